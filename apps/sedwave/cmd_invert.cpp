@@ -1,0 +1,198 @@
+// `sedwave invert`: fit grain-contact parameters to observation files and report what the data
+// determine, with a plot.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "sedwave/forward/models.hpp"
+#include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/observations.hpp"
+#include "sedwave/inversion/plot.hpp"
+#include "sedwave/inversion/report.hpp"
+
+namespace sedwave::app {
+namespace {
+
+struct InvertOptions {
+  std::vector<std::string> files;
+  std::vector<std::string> digitized_files;
+  std::vector<std::string> digitized_specs;
+  std::string model = "lattice";
+  std::string fit = "kappa,d,gamma";
+  std::string method = "global";
+  std::string out = "sedwave-fit";
+  std::optional<double> kappa, diameter, gamma, restitution;
+  std::vector<double> kappa_bounds, diameter_bounds, gamma_bounds, restitution_bounds;
+  double density = 2650.0;
+  std::optional<double> water_speed, sediment_speed;
+  inversion::FitOptions fit_options;
+  bool plot = true;
+};
+
+/// "QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA]" -> DigitizedColumns.
+inversion::DigitizedColumns parse_digitized_spec(const std::string& spec) {
+  std::vector<std::string> parts;
+  std::stringstream stream(spec);
+  for (std::string part; std::getline(stream, part, ':');) parts.push_back(part);
+  if (parts.size() < 3 || parts.size() > 4) {
+    throw std::invalid_argument("--digitized '" + spec + "': expected QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA]");
+  }
+  inversion::DigitizedColumns columns{parts[0], parts[1], parts[2], std::nullopt};
+  if (parts.size() == 4) {
+    try {
+      columns.relative_sigma = std::stod(parts[3]);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--digitized '" + spec + "': REL_SIGMA '" + parts[3] + "' is not a number");
+    }
+  }
+  return columns;
+}
+
+inversion::ObservationSet read_all(const InvertOptions& o) {
+  const inversion::ReadOptions read{o.water_speed, o.sediment_speed};
+  inversion::ObservationSet all;
+  for (const std::string& f : o.files) all.append(inversion::read_observation_csv(f, read));
+  if (!o.digitized_files.empty() && o.digitized_specs.size() != 1 && o.digitized_specs.size() != o.digitized_files.size()) {
+    throw std::invalid_argument("give one --digitized spec for all --digitized-file, or one per file");
+  }
+  for (size_t i = 0; i < o.digitized_files.size(); ++i) {
+    const std::string& spec = o.digitized_specs[o.digitized_specs.size() == 1 ? 0 : i];
+    all.append(inversion::read_digitized_csv(o.digitized_files[i], parse_digitized_spec(spec), read));
+  }
+  if (!all.water_sound_speed) all.water_sound_speed = o.water_speed;
+  if (all.observations.empty()) throw std::invalid_argument("no observation files given");
+  return all;
+}
+
+void apply_value(inversion::ParameterSpec& spec, const std::optional<double>& value, const std::vector<double>& bounds) {
+  if (bounds.size() == 2) {
+    spec.lower = bounds[0];
+    spec.upper = bounds[1];
+  }
+  if (value) spec.value = *value;
+}
+
+inversion::FitParameters make_parameters(const InvertOptions& o) {
+  inversion::FitParameters p;
+  p.density = o.density;
+  const bool restitution = o.fit.find("en") != std::string::npos || (o.restitution && !o.gamma);
+  if (restitution) p.set_damping_form(inversion::DampingForm::Restitution);
+  p.set_free_from_list(o.fit);
+  apply_value(p.spec[inversion::kKappa], o.kappa, o.kappa_bounds);
+  apply_value(p.spec[inversion::kDiameter], o.diameter, o.diameter_bounds);
+  if (restitution) {
+    apply_value(p.spec[inversion::kDamping], o.restitution, o.restitution_bounds);
+  } else {
+    apply_value(p.spec[inversion::kDamping], o.gamma, o.gamma_bounds);
+  }
+  p.validate();
+  return p;
+}
+
+std::string format_value(double value, double sigma, bool free, bool determined) {
+  char text[128];
+  if (!free) {
+    std::snprintf(text, sizeof text, "%.6g (fixed)", value);
+  } else if (determined) {
+    std::snprintf(text, sizeof text, "%.6g +- %.2g", value, sigma);
+  } else {
+    std::snprintf(text, sizeof text, "%.6g   NOT DETERMINED by these data", value);
+  }
+  return text;
+}
+
+void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& plot, const std::string& out) {
+  std::printf("sedwave invert: model %s, method %s, %d observations, %.1f ms\n", r.model.c_str(), r.method.c_str(),
+              r.n_observations, 1e3 * r.wall_seconds);
+  std::printf("\nparameters:\n");
+  for (const auto& p : r.parameters) {
+    std::printf("  %-10s [%-4s] %s\n", p.name.c_str(), p.unit.c_str(),
+                format_value(p.value, p.sigma, p.free, p.determined).c_str());
+  }
+  std::printf("\ncombinations the data may determine:\n");
+  for (const auto& c : r.combinations) {
+    std::printf("  %-10s [%-4s] %s\n", c.name.c_str(), c.unit.c_str(),
+                format_value(c.value, c.sigma, true, c.determined).c_str());
+  }
+  for (const auto& w : r.weak_directions) {
+    std::printf("  %s: %s\n", w.unseen ? "unseen direction" : "poorly constrained", w.direction.c_str());
+  }
+  std::printf("\nchi2 = %.4g for %d dof (reduced %.3g), AIC %.4g, BIC %.4g, %s\n", r.chi2, r.dof,
+              r.dof > 0 ? r.chi2 / r.dof : NAN, r.aic, r.bic, r.converged ? "converged" : "NOT converged");
+  if (r.global) {
+    std::printf("global search (%s, %d evaluations) and local fit from the start values %s (chi2 %.6g vs %.6g)\n",
+                r.global->algorithm.c_str(), r.global->evaluations,
+                r.global->local_and_global_agree ? "agree" : "DISAGREE", r.global->chi2_polished,
+                r.global->chi2_local_from_start);
+  }
+  std::printf("\nreport: %s/fit.json, curves: %s/curves.csv\n%s\n", out.c_str(), out.c_str(), plot.message.c_str());
+}
+
+}  // namespace
+
+Command add_invert_command(CLI::App& app) {
+  auto o = std::make_shared<InvertOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "invert", "Fit kappa, d and gamma (or e_n) to attenuation/sound-speed observations (SI units; "
+                "see docs/cli.md)");
+  cmd->add_option("files", o->files, "observation CSV files (docs/file-formats.md)");
+  cmd->add_option("--digitized-file", o->digitized_files, "WebPlotDigitizer x,y export (repeatable)");
+  cmd->add_option("--digitized", o->digitized_specs,
+                  "QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA] for --digitized-file (one for all, or one each)");
+  cmd->add_option("--model", o->model, "forward model: continuum | lattice")->capture_default_str();
+  cmd->add_option("--fit", o->fit, "free parameters among kappa,d,gamma|en (others fixed)")->capture_default_str();
+  cmd->add_option("--method", o->method, "ceres (local) | nlopt (global search) | global (search + polish)")->capture_default_str()
+      ->check(CLI::IsMember({"ceres", "nlopt", "global"}));
+  cmd->add_option("--out", o->out, "output directory")->capture_default_str();
+  cmd->add_option("--kappa", o->kappa, "contact stiffness [N/m]: start value, or the value if fixed");
+  cmd->add_option("--d", o->diameter, "grain diameter [m]: start value, or the value if fixed");
+  cmd->add_option("--gamma", o->gamma, "normal dashpot [kg/s]: start value, or the value if fixed");
+  cmd->add_option("--en", o->restitution, "restitution coefficient e_n (0,1): start value, or the value if fixed");
+  cmd->add_option("--kappa-bounds", o->kappa_bounds, "LO,HI [N/m]")->delimiter(',')->expected(2);
+  cmd->add_option("--d-bounds", o->diameter_bounds, "LO,HI [m]")->delimiter(',')->expected(2);
+  cmd->add_option("--gamma-bounds", o->gamma_bounds, "LO,HI [kg/s]")->delimiter(',')->expected(2);
+  cmd->add_option("--en-bounds", o->restitution_bounds, "LO,HI")->delimiter(',')->expected(2);
+  cmd->add_option("--density", o->density, "grain density rho_s [kg/m^3] (fixed)")->capture_default_str();
+  cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios");
+  cmd->add_option("--sediment-speed", o->sediment_speed, "sediment sound speed [m/s] to convert dB/wavelength");
+  cmd->add_option("--default-sigma", o->fit_options.default_relative_sigma,
+                  "relative 1-sigma for observations given without one")->capture_default_str();
+  cmd->add_option("--global-algorithm", o->fit_options.global_algorithm, "direct-l | crs2 | mlsl")->capture_default_str()
+      ->check(CLI::IsMember({"direct-l", "crs2", "mlsl"}));
+  cmd->add_option("--max-evaluations", o->fit_options.max_global_evaluations, "global search budget")->capture_default_str();
+  cmd->add_option("--determined-log-sigma", o->fit_options.determined_log_sigma,
+                  "largest 1-sigma of ln(value) that still counts as determined")->capture_default_str();
+  cmd->add_flag("!--no-plot", o->plot, "skip the gnuplot figure");
+
+  return {cmd, [o]() {
+            const inversion::ObservationSet data = read_all(*o);
+            const auto model = forward::make_dispersion_model(o->model);
+            inversion::FitOptions options = o->fit_options;
+            options.method = inversion::parse_fit_method(o->method);
+            const inversion::FitResult result = inversion::fit(data, *model, make_parameters(*o), options);
+
+            const std::filesystem::path out(o->out);
+            std::filesystem::create_directories(out);
+            std::ofstream(out / "fit.json") << inversion::fit_report(result, data).dump(2) << "\n";
+            inversion::write_curves_csv(out / "curves.csv",
+                                        inversion::model_curves(result, *model, inversion::curve_frequencies(data)),
+                                        data.water_sound_speed);
+            inversion::write_observations_table(out / "observations.csv", data, result);
+            inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
+            if (o->plot) {
+              plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model + " chain model",
+                                              data.water_sound_speed.has_value());
+            }
+            print_summary(result, plot, o->out);
+            return result.converged ? 0 : 2;
+          }};
+}
+
+}  // namespace sedwave::app

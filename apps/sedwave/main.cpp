@@ -1,0 +1,31 @@
+// sedwave: geoacoustic inversion with discrete-element and 1D chain forward models.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <vector>
+
+#include "commands.hpp"
+#include "sedwave/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"sedwave: fit grain-contact parameters (stiffness kappa, diameter d, dashpot gamma or "
+               "restitution e_n) to seabed attenuation and sound-speed data"};
+  app.set_version_flag("--version", sedwave::kVersion);
+  app.require_subcommand(1);
+  const std::vector<sedwave::app::Command> commands{sedwave::app::add_theory_command(app),
+                                                    sedwave::app::add_invert_command(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (const sedwave::app::Command& command : commands) {
+      if (command.app->parsed()) return command.run();
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "sedwave: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
+}

@@ -1,0 +1,48 @@
+#pragma once
+// Hertz normal contact with a Tsuji-type dashpot:
+//   F_n = k_h delta^(3/2) - alpha sqrt(m_eff k_h) delta^(1/4) v_n,   k_h = (4/3) E* sqrt(R_eff),
+// E* the effective modulus (units.hpp: hertz_effective_modulus) and 1/R_eff = 1/r_i + 1/r_j.
+// Scaling delta and t (see docs/dem.md) turns a binary collision into the universal equation
+//   y'' = -y^(3/2) - alpha y^(1/4) y',  y(0) = 0, y'(0) = 1,
+// so the restitution depends on alpha only, never on the impact speed. e_n(alpha) has no closed form;
+// hertz_restitution() integrates the universal equation and hertz_alpha_from_restitution() inverts it
+// (both to ~1e-6), which is the documented, tested e_n mapping for Hertz.
+#include <cmath>
+
+#include "sedwave/forward/dem/contact/contact_point.hpp"
+
+namespace sedwave::forward::dem {
+
+/// Restitution coefficient of a Hertz-Tsuji collision with dimensionless damping alpha >= 0.
+[[nodiscard]] double hertz_restitution(double alpha);
+/// Damping alpha giving restitution e_n in (0, 1].
+[[nodiscard]] double hertz_alpha_from_restitution(double e_n);
+/// Duration of an undamped Hertz collision at impact speed v: 2.9432 delta_max / v
+/// = 2.868 (m_eff^2 / (R E*^2 v))^(1/5).
+[[nodiscard]] double hertz_collision_time(double effective_modulus, double effective_radius,
+                                          double effective_mass, double impact_speed);
+
+struct HertzNormal {
+  double effective_modulus;  ///< E* [force/length^2]
+  double alpha;              ///< dimensionless dashpot (from e_n via hertz_alpha_from_restitution)
+
+  [[nodiscard]] double force(const ContactPoint& c) const {
+    const double r_eff = c.radius_i * c.radius_j / (c.radius_i + c.radius_j);
+    const double contact_radius = std::sqrt(r_eff * c.overlap);  // a = sqrt(R delta)
+    const double k_a = (4.0 / 3.0) * effective_modulus * contact_radius;  // k_h sqrt(delta)
+    return k_a * c.overlap - alpha * std::sqrt(c.effective_mass * k_a) * c.normal_velocity;
+  }
+  /// Linearisation at a given overlap: tangent stiffness 2 E* sqrt(R delta) and the dashpot there.
+  [[nodiscard]] ContactOscillator oscillator(double effective_mass, double effective_radius,
+                                             double overlap) const {
+    const double a = std::sqrt(effective_radius * overlap);
+    return {2.0 * effective_modulus * a,
+            alpha * std::sqrt(effective_mass * (4.0 / 3.0) * effective_modulus * a)};
+  }
+  [[nodiscard]] double energy(double overlap, double r_i, double r_j) const {
+    const double r_eff = r_i * r_j / (r_i + r_j);
+    return 0.4 * (4.0 / 3.0) * effective_modulus * std::sqrt(r_eff) * std::pow(overlap, 2.5);
+  }
+};
+
+}  // namespace sedwave::forward::dem

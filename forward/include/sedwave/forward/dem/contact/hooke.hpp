@@ -1,0 +1,32 @@
+#pragma once
+// Linear (Hooke) normal contact with a viscous dashpot, the thesis's model (eq. 3.1, normal part):
+//   F_n = kn delta - gamma v_n,   delta = overlap, v_n = separation rate.
+// With the restitution dashpot a binary collision rebounds with exactly e_n and lasts
+//   t_col = pi / sqrt(kn/m_eff - (gamma/(2 m_eff))^2)   (units.hpp: hooke_collision_time).
+// The force is not clipped at zero: near separation the dashpot may pull briefly, which is what
+// makes the e_n mapping exact (and is what LAMMPS gran/hooke does).
+#include "sedwave/forward/dem/contact/contact_point.hpp"
+#include "sedwave/forward/dem/contact/dashpot.hpp"
+
+namespace sedwave::forward::dem {
+
+struct HookeNormal {
+  double kn;              ///< normal stiffness [force/length]
+  LinearDashpot dashpot;  ///< normal damping
+
+  /// Normal force magnitude on i along the contact normal (positive = repulsive).
+  [[nodiscard]] double force(const ContactPoint& c) const {
+    return kn * c.overlap - dashpot.gamma(kn, c.effective_mass) * c.normal_velocity;
+  }
+  /// Stiffness and damping of the contact (the same at any overlap).
+  [[nodiscard]] ContactOscillator oscillator(double effective_mass, double /*radius*/,
+                                             double /*overlap*/) const {
+    return {kn, dashpot.gamma(kn, effective_mass)};
+  }
+  /// Elastic energy stored at overlap delta.
+  [[nodiscard]] double energy(double overlap, double /*r_i*/, double /*r_j*/) const {
+    return 0.5 * kn * overlap * overlap;
+  }
+};
+
+}  // namespace sedwave::forward::dem

@@ -1,0 +1,40 @@
+#pragma once
+// The one question every sedwave forward model answers:
+//   given the dimensionless angular frequency omega_hat = omega * sqrt(m / kappa) and the
+//   dimensionless dashpot gamma_hat = gamma / sqrt(kappa * m), what are the dimensionless
+//   attenuation alpha_hat = alpha * d (Np per grain diameter) and sound speed
+//   c_hat = c / (d * sqrt(kappa / m)), with what uncertainty?
+//
+// Closed-form theories, tables and simulations all implement DispersionModel, so the inversion
+// never depends on which one it is fitting with.
+#include <string>
+
+namespace sedwave::forward {
+
+/// Partial derivatives of one output with respect to the two dimensionless inputs.
+struct Gradient {
+  double d_omega_hat = 0.0;
+  double d_gamma_hat = 0.0;
+};
+
+/// The answer of a forward model at one (omega_hat, gamma_hat). All quantities are dimensionless.
+struct DispersionPoint {
+  double alpha_hat = 0.0;        ///< attenuation times grain diameter, Np (amplitude ~ exp(-alpha x))
+  double c_hat = 0.0;            ///< phase speed over d*sqrt(kappa/m)
+  Gradient d_alpha_hat;          ///< exact partial derivatives of alpha_hat
+  Gradient d_c_hat;              ///< exact partial derivatives of c_hat
+  double sigma_alpha_hat = 0.0;  ///< 1-sigma model uncertainty (0 for closed forms)
+  double sigma_c_hat = 0.0;      ///< 1-sigma model uncertainty (0 for closed forms)
+};
+
+/// Interface of all forward models. Implementations must be thread-safe for concurrent evaluate().
+class DispersionModel {
+ public:
+  virtual ~DispersionModel() = default;
+  /// Short identifier used on the command line and in reports, e.g. "continuum".
+  [[nodiscard]] virtual std::string name() const = 0;
+  /// Values and derivatives at one point. Throws std::domain_error outside the model's domain.
+  [[nodiscard]] virtual DispersionPoint evaluate(double omega_hat, double gamma_hat) const = 0;
+};
+
+}  // namespace sedwave::forward

@@ -1,0 +1,18 @@
+#pragma once
+// Choosing a forward model by name, as the command line and scene files do.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/dispersion.hpp"
+
+namespace sedwave::forward {
+
+/// "continuum" or "lattice" (the 1D chain theories). Throws std::invalid_argument naming the
+/// accepted specifications for anything else.
+[[nodiscard]] std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec);
+
+/// The specifications make_dispersion_model accepts, for help texts.
+[[nodiscard]] std::vector<std::string> dispersion_model_names();
+
+}  // namespace sedwave::forward

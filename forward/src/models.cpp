@@ -1,0 +1,20 @@
+#include "sedwave/forward/models.hpp"
+
+#include <stdexcept>
+
+#include "sedwave/forward/theory/continuum.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
+
+namespace sedwave::forward {
+
+std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec) {
+  if (spec == "continuum") return std::make_unique<ContinuumModel>();
+  if (spec == "lattice") return std::make_unique<LatticeModel>();
+  std::string accepted;
+  for (const std::string& name : dispersion_model_names()) accepted += (accepted.empty() ? "" : ", ") + name;
+  throw std::invalid_argument("unknown forward model '" + spec + "' (accepted: " + accepted + ")");
+}
+
+std::vector<std::string> dispersion_model_names() { return {"continuum", "lattice"}; }
+
+}  // namespace sedwave::forward

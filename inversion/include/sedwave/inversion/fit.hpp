@@ -1,0 +1,122 @@
+#pragma once
+// Fitting contact parameters to field observations: the solver side.
+//   ceres   Levenberg-Marquardt from the start values, exact Jacobians (local).
+//   nlopt   a derivative-free global search over the bounds (DIRECT-L, CRS2 or MLSL).
+//   global  the NLopt search, then a Ceres polish; also a local fit from the start values, and a
+//           report of whether the two agree.
+// Every method ends with the same analysis at the solution: covariance (ceres::Covariance, a
+// pseudo-inverse when the data leave directions undetermined), identifiability, and goodness of fit.
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/dispersion.hpp"
+#include "sedwave/inversion/observations.hpp"
+#include "sedwave/inversion/parameters.hpp"
+
+namespace sedwave::inversion {
+
+enum class FitMethod { Ceres, NLopt, Global };
+
+struct FitOptions {
+  FitMethod method = FitMethod::Global;
+  std::string global_algorithm = "direct-l";  ///< direct-l | crs2 | mlsl
+  int max_global_evaluations = 20000;
+  int max_iterations = 200;                   ///< Levenberg-Marquardt iterations
+  double default_relative_sigma = 0.1;        ///< for observations whose file gave no sigma
+  /// A parameter or combination is "determined" when its 1-sigma spread in ln units is below this
+  /// (0.5: known to within a factor e^0.5 = 1.65) and it has no component along unseen directions.
+  double determined_log_sigma = 0.5;
+  unsigned random_seed = 20090501;            ///< for the stochastic NLopt algorithms
+};
+
+struct ParameterResult {
+  std::string name;
+  std::string unit;
+  double value = 0.0;       ///< [unit]
+  bool free = false;
+  bool at_bound = false;
+  bool determined = false;  ///< fixed parameters count as determined
+  double log_sigma = 0.0;   ///< 1-sigma of ln(value); meaningful only if determined
+  double sigma = 0.0;       ///< value * log_sigma (first order) [unit]
+};
+
+/// A function of the parameters that the data may determine even when they do not.
+struct CombinationResult {
+  std::string name;
+  std::string unit;
+  std::string meaning;
+  double value = 0.0;
+  bool determined = false;
+  double log_sigma = 0.0;
+  double sigma = 0.0;
+};
+
+/// A direction of ln-parameter space the data cannot see or barely see.
+struct WeakDirection {
+  std::string direction;     ///< e.g. "kappa^1 * d^1 * gamma^1"
+  double singular_value;     ///< whitened; 0 for a structural null direction
+  bool unseen;               ///< in the numerical null space
+};
+
+struct PointResidual {
+  Observation observation;
+  double sigma = 0.0;            ///< SI, as used (defaulted if the file had none)
+  bool default_sigma = false;
+  double model = 0.0;            ///< SI
+  double normalized = 0.0;       ///< whitened residual
+};
+
+struct GlobalSearchReport {
+  std::string algorithm;
+  int evaluations = 0;
+  double chi2_search = 0.0;           ///< best chi^2 the global search found
+  double chi2_polished = 0.0;         ///< after the Ceres polish
+  double chi2_local_from_start = 0.0; ///< Ceres alone from the start values (method global)
+  bool local_and_global_agree = false;
+};
+
+struct FitResult {
+  std::string model;
+  std::string method;
+  FitParameters fitted;  ///< the solution (values updated)
+  std::vector<ParameterResult> parameters;
+  std::vector<CombinationResult> combinations;
+  std::vector<std::string> free_names;
+  Eigen::MatrixXd correlation;       ///< of the free ln-parameters (NaN rows for undetermined ones)
+  Eigen::MatrixXd covariance;        ///< of the free ln-parameters (pseudo-inverse)
+  Eigen::VectorXd singular_values;   ///< of the whitened Jacobian
+  int rank = 0;
+  std::vector<WeakDirection> weak_directions;
+  std::vector<PointResidual> residuals;
+  double chi2 = 0.0;
+  int n_observations = 0;
+  int dof = 0;        ///< n - rank
+  double aic = 0.0;   ///< chi2 + 2 rank
+  double bic = 0.0;   ///< chi2 + rank ln n
+  bool converged = false;
+  std::string solver_message;
+  std::optional<GlobalSearchReport> global;
+  double wall_seconds = 0.0;
+};
+
+/// Fits `parameters` (free ones from their start values) to `data` with `model`.
+/// Throws std::invalid_argument for unusable input (no observations, ratio without water speed...).
+[[nodiscard]] FitResult fit(const ObservationSet& data, const forward::DispersionModel& model,
+                            const FitParameters& parameters, const FitOptions& options);
+
+/// Physical predictions of a fitted model on a frequency grid, with 1-sigma bands from the
+/// covariance (attenuation in Np/m, speed in m/s).
+struct CurvePoint {
+  double frequency_hz;
+  double omega_hat, gamma_hat, alpha_hat, c_hat;
+  double alpha, alpha_sigma;
+  double speed, speed_sigma;
+};
+[[nodiscard]] std::vector<CurvePoint> model_curves(const FitResult& result, const forward::DispersionModel& model,
+                                                   const std::vector<double>& frequencies_hz);
+
+[[nodiscard]] FitMethod parse_fit_method(const std::string& name);
+
+}  // namespace sedwave::inversion

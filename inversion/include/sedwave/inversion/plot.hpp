@@ -1,0 +1,19 @@
+#pragma once
+// The fit plot: attenuation (dB/m, log-log) and sound speed (ratio to water when known) against
+// frequency, data with error bars, the fitted curve and its 1-sigma band. Drawn by gnuplot, driven
+// through a script written next to the output so the user can restyle and re-run it.
+#include <filesystem>
+#include <string>
+
+namespace sedwave::inversion {
+
+struct PlotOutcome {
+  bool drawn = false;
+  std::string message;  ///< where the plot is, or why it was skipped
+};
+
+/// Expects DIR/curves.csv and DIR/observations.dat; writes DIR/fit.gp, DIR/fit.png and DIR/fit.svg.
+/// Never throws for a missing or failing gnuplot: the outcome says the plot was skipped.
+PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis);
+
+}  // namespace sedwave::inversion

@@ -1,0 +1,149 @@
+#include "sedwave/inversion/report.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <stdexcept>
+
+#include "sedwave/version.hpp"
+
+namespace sedwave::inversion {
+namespace {
+
+/// JSON has no NaN: undetermined numbers become null.
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
+
+std::ofstream open_for_writing(const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  out << std::setprecision(17);
+  return out;
+}
+
+const char* quantity_name(Quantity q) { return q == Quantity::Attenuation ? "attenuation" : "sound_speed"; }
+const char* quantity_unit(Quantity q) { return q == Quantity::Attenuation ? "Np/m" : "m/s"; }
+
+}  // namespace
+
+nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
+  nlohmann::json j;
+  j["sedwave_version"] = kVersion;
+  j["model"] = r.model;
+  j["method"] = r.method;
+  j["grain_density"] = {{"value", r.fitted.density}, {"unit", "kg/m^3"}, {"fixed", true}};
+  if (data.water_sound_speed) j["water_sound_speed"] = {{"value", *data.water_sound_speed}, {"unit", "m/s"}};
+  for (const ParameterResult& p : r.parameters) {
+    j["parameters"][p.name] = {{"value", p.value},
+                               {"unit", p.unit},
+                               {"free", p.free},
+                               {"identifiable", p.determined},
+                               {"sigma", p.free && p.determined ? number_or_null(p.sigma) : nlohmann::json()},
+                               {"log_sigma", p.free && p.determined ? number_or_null(p.log_sigma) : nlohmann::json()},
+                               {"at_bound", p.at_bound}};
+  }
+  for (const CombinationResult& c : r.combinations) {
+    j["combinations"][c.name] = {{"value", c.value},       {"unit", c.unit},
+                                 {"meaning", c.meaning},   {"determined", c.determined},
+                                 {"sigma", c.determined ? number_or_null(c.sigma) : nlohmann::json()},
+                                 {"log_sigma", c.determined ? number_or_null(c.log_sigma) : nlohmann::json()}};
+  }
+  nlohmann::json correlation = nlohmann::json::array();
+  for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index b = 0; b < r.correlation.cols(); ++b) row.push_back(number_or_null(r.correlation(a, b)));
+    correlation.push_back(row);
+  }
+  j["correlation"] = {{"parameters", r.free_names}, {"of", "natural logarithms of the free parameters"},
+                      {"matrix", correlation}};
+  std::vector<double> singular(r.singular_values.data(), r.singular_values.data() + r.singular_values.size());
+  j["identifiability"] = {{"jacobian_singular_values", singular},
+                          {"rank", r.rank},
+                          {"free_parameters", r.free_names.size()},
+                          {"weak_directions", nlohmann::json::array()}};
+  for (const WeakDirection& w : r.weak_directions) {
+    j["identifiability"]["weak_directions"].push_back(
+        {{"direction", w.direction},
+         {"singular_value", w.singular_value},
+         {"meaning", w.unseen ? "the data cannot see changes along this product of parameters"
+                              : "the data constrain this product only poorly"}});
+  }
+  j["chi2"] = r.chi2;
+  j["n_observations"] = r.n_observations;
+  j["dof"] = r.dof;
+  j["reduced_chi2"] = r.dof > 0 ? number_or_null(r.chi2 / r.dof) : nlohmann::json();
+  j["aic"] = r.aic;
+  j["bic"] = r.bic;
+  j["converged"] = r.converged;
+  j["solver_message"] = r.solver_message;
+  if (r.global) {
+    j["global_search"] = {{"algorithm", r.global->algorithm},
+                          {"evaluations", r.global->evaluations},
+                          {"chi2_search", r.global->chi2_search},
+                          {"chi2_polished", r.global->chi2_polished},
+                          {"chi2_local_from_start", r.global->chi2_local_from_start},
+                          {"local_and_global_agree", r.global->local_and_global_agree}};
+  }
+  int defaulted = 0;
+  for (const PointResidual& p : r.residuals) {
+    defaulted += p.default_sigma ? 1 : 0;
+    j["residuals"].push_back({{"quantity", quantity_name(p.observation.quantity)},
+                              {"frequency_hz", p.observation.frequency_hz},
+                              {"observed", p.observation.value},
+                              {"model", p.model},
+                              {"sigma", p.sigma},
+                              {"unit", quantity_unit(p.observation.quantity)},
+                              {"sigma_defaulted", p.default_sigma},
+                              {"normalized_residual", p.normalized},
+                              {"source", p.observation.file + ":" + std::to_string(p.observation.line)}});
+  }
+  j["observations_with_default_sigma"] = defaulted;
+  j["wall_seconds"] = r.wall_seconds;
+  return j;
+}
+
+std::vector<double> curve_frequencies(const ObservationSet& data, int count) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const Observation& o : data.observations) {
+    lo = std::min(lo, o.frequency_hz);
+    hi = std::max(hi, o.frequency_hz);
+  }
+  const double a = std::log10(lo) - 1.0, b = std::log10(hi) + 1.0;
+  std::vector<double> f;
+  for (int i = 0; i < count; ++i) f.push_back(std::pow(10.0, a + (b - a) * i / (count - 1)));
+  return f;
+}
+
+void write_curves_csv(const std::filesystem::path& file, const std::vector<CurvePoint>& curves,
+                      std::optional<double> water_sound_speed) {
+  std::ofstream out = open_for_writing(file);
+  out << "# sedwave model curves; sigma columns are 1-sigma bands from the fit covariance\n";
+  out << "frequency_hz,omega_hat,gamma_hat,alpha_hat,c_hat,alpha_np_per_m,alpha_np_per_m_sigma,"
+         "alpha_db_per_m,alpha_db_per_m_sigma,sound_speed_m_per_s,sound_speed_m_per_s_sigma";
+  if (water_sound_speed) out << ",sound_speed_ratio,sound_speed_ratio_sigma";
+  out << "\n";
+  for (const CurvePoint& c : curves) {
+    out << c.frequency_hz << ',' << c.omega_hat << ',' << c.gamma_hat << ',' << c.alpha_hat << ',' << c.c_hat << ','
+        << c.alpha << ',' << c.alpha_sigma << ',' << c.alpha * kDecibelPerNeper << ','
+        << c.alpha_sigma * kDecibelPerNeper << ',' << c.speed << ',' << c.speed_sigma;
+    if (water_sound_speed) out << ',' << c.speed / *water_sound_speed << ',' << c.speed_sigma / *water_sound_speed;
+    out << "\n";
+  }
+}
+
+void write_observations_table(const std::filesystem::path& file, const ObservationSet& data, const FitResult& result) {
+  std::ofstream out = open_for_writing(file);
+  out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s];\n"
+      << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s\n"
+      << "quantity,frequency_hz,value,sigma,display_value,display_sigma\n";
+  const double speed_unit = data.water_sound_speed.value_or(1.0);
+  for (const PointResidual& p : result.residuals) {
+    const Observation& o = p.observation;
+    const bool attenuation = o.quantity == Quantity::Attenuation;
+    const double scale = attenuation ? kDecibelPerNeper : 1.0 / speed_unit;
+    out << (attenuation ? 0 : 1) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
+        << ',' << p.sigma * scale << "\n";
+  }
+}
+
+}  // namespace sedwave::inversion

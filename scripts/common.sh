@@ -1,0 +1,38 @@
+# Shared set-up for scripts/demo.sh and scripts/test.sh: install missing Debian packages, configure,
+# build. Sourced, not executed. Honours BUILD_DIR (default: build) and JOBS (default: nproc).
+set -euo pipefail
+
+SEDWAVE_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$SEDWAVE_ROOT/build}"
+JOBS="${JOBS:-$(nproc 2>/dev/null || echo 2)}"
+
+# Everything sedwave needs, all Debian packages. gnuplot draws the fit plot (optional at run time).
+SEDWAVE_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev
+  libopenmpi-dev openmpi-bin libhdf5-dev libgtest-dev libbenchmark-dev libcli11-dev libtoml11-dev
+  nlohmann-json3-dev gnuplot-nox)
+
+sedwave_install_packages() {
+  local missing=()
+  local p
+  for p in "${SEDWAVE_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local line="apt-get update && apt-get install -y ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "sedwave: missing Debian packages. As root, run:" >&2
+    echo "  $line" >&2
+    exit 1
+  fi
+  echo "sedwave: installing ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+}
+
+sedwave_build() {
+  local type="${1:-Release}"
+  shift || true
+  cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$type" "$@" >/dev/null
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
