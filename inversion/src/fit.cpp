@@ -75,14 +75,15 @@ struct GuardedResidual {
 };
 
 /// The Ceres problem over theta; fixed parameters are constant blocks, bounds are in ln space.
-void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem) {
+/// `held` (if >= 0) is a free parameter held at its current value, as a likelihood profile needs.
+void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem, int held = -1) {
   for (const ObservationResidual& r : s.residuals) {
     auto* cost = new ceres::AutoDiffCostFunction<GuardedResidual, 1, 1, 1, 1>(new GuardedResidual{r});
     problem.AddResidualBlock(cost, nullptr, &theta[0], &theta[1], &theta[2]);
   }
   for (int i = 0; i < kParameterCount; ++i) {
     const ParameterSpec& spec = s.parameters.spec[i];
-    if (!spec.free) {
+    if (!spec.free || i == held) {
       problem.SetParameterBlockConstant(&theta[i]);
       continue;
     }
@@ -98,9 +99,9 @@ struct LocalFit {
   double chi2;
 };
 
-LocalFit solve_local(const Setup& s, Theta theta, int max_iterations) {
+LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held = -1) {
   ceres::Problem problem;
-  build_problem(s, theta, problem);
+  build_problem(s, theta, problem, held);
   ceres::Solver::Options options;
   options.minimizer_type = ceres::TRUST_REGION;
   options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
@@ -189,15 +190,20 @@ Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
   return J;
 }
 
+/// Relative size below which a singular value of the whitened Jacobian counts as zero. The
+/// covariance drops the matching eigenvalues of J^T J (their squares), so both views agree on
+/// which directions are unseen.
+constexpr double kRankTolerance = 1e-8;
+
 /// Covariance of the free ln-parameters from ceres::Covariance; a pseudo-inverse when J^T J is
-/// singular (eigenvalues below 1e-14 of the largest are dropped).
+/// singular.
 Eigen::MatrixXd ceres_covariance(const Setup& s, Theta theta) {
   ceres::Problem problem;
   build_problem(s, theta, problem);
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::DENSE_SVD;
   options.null_space_rank = -1;
-  options.min_reciprocal_condition_number = 1e-14;
+  options.min_reciprocal_condition_number = kRankTolerance * kRankTolerance;
   options.num_threads = 1;
   ceres::Covariance covariance(options);
   std::vector<const double*> blocks;
@@ -226,9 +232,64 @@ Eigen::VectorXd free_part(const Jet3& q, const std::vector<int>& free) {
   return g;
 }
 
+/// Profile-likelihood interval of one free ln-parameter: where chi^2, minimised over the other
+/// parameters, rises by 1 above its minimum on each side. A side that reaches the bound first is
+/// open. Unlike the linearised sigma this stays honest when the model is strongly nonlinear in the
+/// parameter (a grain size seen only through a small lattice correction, say).
+ProfileInterval profile_interval(const Setup& s, const Theta& best, double chi2_min, int index, double linear_sigma,
+                                 int max_iterations) {
+  const double lower_bound = std::log(s.parameters.spec[index].lower);
+  const double upper_bound = std::log(s.parameters.spec[index].upper);
+  auto delta_chi2 = [&](double value, Theta& start) {
+    start[index] = value;
+    const LocalFit f = solve_local(s, start, max_iterations, index);
+    start = f.theta;
+    return f.chi2 - chi2_min;
+  };
+  ProfileInterval interval;
+  for (int side : {-1, +1}) {
+    const double bound = side < 0 ? lower_bound : upper_bound;
+    double inside = best[index];  // Delta chi^2 < 1 here
+    double step = std::clamp(std::isfinite(linear_sigma) ? linear_sigma : 0.1, 1e-3, 1.0);
+    Theta start = best;
+    std::optional<double> outside;
+    while (!outside) {
+      const double trial = best[index] + side * step;
+      if (side * (trial - bound) >= 0.0) {
+        if (delta_chi2(bound, start) < 1.0) break;  // open: the bound is within 1 sigma
+        outside = bound;
+      } else if (delta_chi2(trial, start) >= 1.0) {
+        outside = trial;
+      } else {
+        inside = trial;
+        step *= 2.0;
+      }
+    }
+    if (!outside) continue;
+    // Bisection on Delta chi^2 = 1 to 1e-3 in ln units (0.1% relative).
+    Theta from = best;
+    while (std::abs(*outside - inside) > 1e-3) {
+      const double middle = 0.5 * (inside + *outside);
+      Theta trial_start = from;
+      if (delta_chi2(middle, trial_start) >= 1.0) {
+        outside = middle;
+      } else {
+        inside = middle;
+        from = trial_start;
+      }
+    }
+    (side < 0 ? interval.lower : interval.upper) = 0.5 * (inside + *outside);
+    // A profile can close at 1 sigma and still flatten out towards the bound (a weak preference
+    // for a finite value, as noise can fake): demand the bound itself be excluded at 2 sigma.
+    Theta at_bound = best;
+    if (delta_chi2(bound, at_bound) < 4.0) interval.bounded_at_2_sigma = false;
+  }
+  return interval;
+}
+
 void analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitResult& result) {
   const Eigen::MatrixXd J = whitened_jacobian(s, theta);
-  const JacobianAnalysis analysis = analyze_jacobian(J);
+  const JacobianAnalysis analysis = analyze_jacobian(J, kRankTolerance);
   result.covariance = ceres_covariance(s, theta);
   result.singular_values = analysis.singular_values;
   result.rank = analysis.rank;
@@ -247,17 +308,33 @@ void analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitR
 
   for (int i = 0; i < kParameterCount; ++i) {
     const ParameterSpec& spec = s.parameters.spec[i];
-    ParameterResult r{parameter_name(i, form), parameter_unit(i, form), std::exp(theta[i]), spec.free, false, true, 0.0, 0.0};
+    ParameterResult r;
+    r.name = parameter_name(i, form);
+    r.unit = parameter_unit(i, form);
+    r.value = std::exp(theta[i]);
+    r.free = spec.free;
+    r.determined = true;  // fixed parameters are known exactly
     if (spec.free) {
       const auto k = std::find(s.free.begin(), s.free.end(), i) - s.free.begin();
       Eigen::VectorXd e = Eigen::VectorXd::Zero(p);
       e(k) = 1.0;
       const Determination d = determine(e, analysis, result.covariance, options.determined_log_sigma);
-      r.determined = d.determined;
-      r.log_sigma = d.log_sigma;
-      r.sigma = r.value * d.log_sigma;
       const double tol = 1e-6;
       r.at_bound = theta[i] <= std::log(spec.lower) + tol || theta[i] >= std::log(spec.upper) - tol;
+      r.log_sigma = d.log_sigma;
+      r.sigma = r.value * d.log_sigma;
+      bool profile_closed = true;
+      if (options.profile_likelihood) {
+        const ProfileInterval interval =
+            profile_interval(s, theta, chi2_at(s, theta), i, d.log_sigma, options.max_iterations);
+        if (interval.lower) r.profile_lower = std::exp(*interval.lower);
+        if (interval.upper) r.profile_upper = std::exp(*interval.upper);
+        profile_closed = interval.lower && interval.upper && interval.bounded_at_2_sigma &&
+                         0.5 * (*interval.upper - *interval.lower) < options.determined_log_sigma;
+      }
+      // At a bound the prior, not the data, holds the value; and both the linearisation and the
+      // profile must agree before a value is called determined.
+      r.determined = d.determined && !r.at_bound && profile_closed;
     }
     result.parameters.push_back(r);
   }

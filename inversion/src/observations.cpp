@@ -242,7 +242,7 @@ std::optional<double> resolve_speed(const std::string& file, std::string_view ke
   if (from_caller && !agree(*declared.value, *from_caller)) {
     throw InputError(file, declared.line, declared.column, std::string(key),
                      format_number(*declared.value) + " m/s disagrees with " + format_number(*from_caller) +
-                         " m/s given by the caller");
+                         " m/s given as an option");
   }
   return declared.value;
 }
@@ -269,16 +269,20 @@ ReferenceSpeeds read_metadata(const std::string& file, const std::vector<std::st
           resolve_speed(file, kSedimentSpeedKey, sediment, options.sediment_sound_speed)};
 }
 
+/// Where a missing speed can come from, for the message: a digitized file cannot declare one.
+enum class SpeedSource { FileOrOption, OptionOnly };
+
 /// Reason why `unit` cannot be converted with the speeds at hand, or empty if it can.
-std::string missing_speed(std::string_view unit, const ReferenceSpeeds& speeds) {
+std::string missing_speed(std::string_view unit, const ReferenceSpeeds& speeds, SpeedSource source) {
+  const auto hint = [source](std::string_view key) {
+    return source == SpeedSource::OptionOnly
+               ? std::string(" (a digitized file cannot declare one: give it as a command-line option)")
+               : " ('# " + std::string(key) + ": ...' in the file, or a command-line option)";
+  };
   if (is_per_wavelength(unit) && !speeds.sediment) {
-    return std::string(unit) + " needs a sediment sound speed ('# " + std::string(kSedimentSpeedKey) +
-           ": ...' in the file, or given by the caller)";
+    return std::string(unit) + " needs a sediment sound speed" + hint(kSedimentSpeedKey);
   }
-  if (unit == "ratio" && !speeds.water) {
-    return "ratio needs a water sound speed ('# " + std::string(kWaterSpeedKey) +
-           ": ...' in the file, or given by the caller)";
-  }
+  if (unit == "ratio" && !speeds.water) return "ratio needs a water sound speed" + hint(kWaterSpeedKey);
   return {};
 }
 
@@ -347,13 +351,13 @@ double parse_frequency_unit(const LineRef& at, const Field& field) {
 }
 
 void check_value_unit(const LineRef& at, const Field& field, const QuantitySpec& spec,
-                      const ReferenceSpeeds& speeds) {
+                      const ReferenceSpeeds& speeds, SpeedSource source) {
   const auto accepted = " for " + std::string(spec.name) + " (accepted: " + join(spec.units) + ")";
   if (field.text.empty()) at.fail(field.column, field.name, "missing unit" + accepted);
   if (!accepts_unit(spec, field.text)) {
     at.fail(field.column, field.name, "unknown unit '" + std::string(field.text) + "'" + accepted);
   }
-  if (const auto reason = missing_speed(field.text, speeds); !reason.empty()) {
+  if (const auto reason = missing_speed(field.text, speeds, source); !reason.empty()) {
     at.fail(field.column, field.name, reason);
   }
 }
@@ -368,7 +372,7 @@ Observation parse_csv_row(const LineRef& at, const std::vector<std::string_view>
   const double frequency = parse_positive(at, field(2), "frequency");
   const double to_hz = parse_frequency_unit(at, field(3));
   const double value = parse_positive(at, field(4), positive_what(spec));
-  check_value_unit(at, field(5), spec, speeds);
+  check_value_unit(at, field(5), spec, speeds, SpeedSource::FileOrOption);
   std::optional<double> sigma;
   if (!field(6).text.empty()) sigma = parse_positive(at, field(6), "sigma");
   return make_observation(at, {&spec, frequency * to_hz, value, sigma, field(5).text}, speeds);
@@ -446,7 +450,7 @@ DigitizedSpec check_columns(const std::string& file, const DigitizedColumns& col
   const LineRef at(file, 0);
   const auto& quantity = parse_quantity(at, {columns.quantity, 0, "quantity"});
   const double to_hz = parse_frequency_unit(at, {columns.frequency_unit, 0, "frequency_unit"});
-  check_value_unit(at, {columns.value_unit, 0, "value_unit"}, quantity, speeds);
+  check_value_unit(at, {columns.value_unit, 0, "value_unit"}, quantity, speeds, SpeedSource::OptionOnly);
   if (columns.relative_sigma && !(std::isfinite(*columns.relative_sigma) && *columns.relative_sigma > 0.0)) {
     at.fail(0, "relative_sigma",
             "relative sigma must be a positive finite number, got " + format_number(*columns.relative_sigma));

@@ -10,7 +10,7 @@ void FitParameters::set_damping_form(DampingForm form) {
   damping = form;
   const bool was_free = spec[kDamping].free;
   // e_n < 1 strictly: e_n = 1 means no dashpot, where attenuation (fitted in log space) vanishes.
-  spec[kDamping] = form == DampingForm::Gamma ? ParameterSpec{1.0e-2, 1.0e-12, 1.0e6, was_free}
+  spec[kDamping] = form == DampingForm::Gamma ? ParameterSpec{1.0e-2, 1.0e-12, 1.0e8, was_free}
                                               : ParameterSpec{0.5, 1.0e-6, 0.999999, was_free};
 }
 

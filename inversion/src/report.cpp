@@ -40,7 +40,10 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                                {"identifiable", p.determined},
                                {"sigma", p.free && p.determined ? number_or_null(p.sigma) : nlohmann::json()},
                                {"log_sigma", p.free && p.determined ? number_or_null(p.log_sigma) : nlohmann::json()},
-                               {"at_bound", p.at_bound}};
+                               {"at_bound", p.at_bound},
+                               {"profile_interval_68",
+                                {p.profile_lower ? nlohmann::json(*p.profile_lower) : nlohmann::json(),
+                                 p.profile_upper ? nlohmann::json(*p.profile_upper) : nlohmann::json()}}};
   }
   for (const CombinationResult& c : r.combinations) {
     j["combinations"][c.name] = {{"value", c.value},       {"unit", c.unit},

@@ -28,9 +28,9 @@ struct FitParameters {
   DampingForm damping = DampingForm::Gamma;
   double density = 2650.0;  ///< grain density rho_s [kg/m^3], fixed
   std::array<ParameterSpec, kParameterCount> spec{{
-      {6.0e3, 1.0e-2, 1.0e12, true},   // kappa [N/m]
-      {2.0e-4, 1.0e-6, 1.0e-1, true},  // d [m]
-      {1.0e-2, 1.0e-12, 1.0e6, true},  // gamma [kg/s]; see set_damping_form for e_n
+      {6.0e3, 1.0e-3, 1.0e13, true},   // kappa [N/m]
+      {2.0e-4, 1.0e-8, 1.0, true},     // d [m]: 10 nm (clay) to 1 m (boulders)
+      {1.0e-2, 1.0e-12, 1.0e8, true},  // gamma [kg/s]; see set_damping_form for e_n
   }};
 
   /// Switch between gamma and e_n, resetting the damping entry to that form's defaults.

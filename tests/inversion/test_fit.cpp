@@ -1,0 +1,193 @@
+// Synthetic inversions: data generated from known parameters are recovered within their stated
+// uncertainties, and what the data cannot determine is reported as such.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "sedwave/forward/theory/continuum.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
+#include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/identifiability.hpp"
+#include "sedwave/inversion/residuals.hpp"
+
+namespace sedwave::inversion {
+namespace {
+
+// A sand-like contact whose lattice dispersion reaches kd ~ 1 at 1 MHz: c0 ~ 1.7 km/s,
+// f* = 20 kHz, gamma_hat ~ 48 (overdamped contacts, as real sediments need).
+constexpr double kKappaTrue = 1.0e6;   // N/m
+constexpr double kDiameterTrue = 2.7e-4;  // m
+constexpr double kGammaTrue = 7.96;    // kg/s
+
+FitParameters true_parameters() {
+  FitParameters p;
+  p.spec[kKappa].value = kKappaTrue;
+  p.spec[kDiameter].value = kDiameterTrue;
+  p.spec[kDamping].value = kGammaTrue;
+  return p;
+}
+
+/// Attenuation and sound speed at 25 log-spaced frequencies each from 10 Hz to 1 MHz, with 5%
+/// Gaussian noise (fixed seed) and sigma = 5% of the noise-free value.
+ObservationSet synthetic_data(const forward::DispersionModel& model, const FitParameters& p, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  const Predictor predictor(model, p.damping, p.density);
+  const auto theta = p.log_values();
+  ObservationSet data;
+  for (int i = 0; i < 25; ++i) {
+    const double f = std::pow(10.0, 1.0 + 5.0 * i / 24.0);
+    const Prediction<double> truth = predictor(theta[0], theta[1], theta[2], f);
+    data.observations.push_back({Quantity::Attenuation, f, truth.alpha * (1.0 + noise(rng)), 0.05 * truth.alpha,
+                                 "Np/m", "synthetic", i + 1});
+    data.observations.push_back({Quantity::SoundSpeed, f, truth.speed * (1.0 + noise(rng)), 0.05 * truth.speed,
+                                 "m/s", "synthetic", i + 1});
+  }
+  return data;
+}
+
+const CombinationResult& combination(const FitResult& r, const std::string& name) {
+  for (const CombinationResult& c : r.combinations) {
+    if (c.name == name) return c;
+  }
+  throw std::runtime_error("no combination " + name);
+}
+
+void expect_within_3_sigma(const FitResult& r, const std::string& name, double truth) {
+  const CombinationResult& c = combination(r, name);
+  ASSERT_TRUE(c.determined) << name;
+  EXPECT_LT(std::abs(std::log(c.value / truth)), 3.0 * c.log_sigma)
+      << name << " = " << c.value << " +- " << c.sigma << ", truth " << truth;
+}
+
+TEST(SyntheticInversion, LatticeRecoversDeterminedCombinations) {
+  // Several noise realisations, so a pass is not the luck of one seed.
+  const forward::LatticeModel lattice;
+  const forward::GrainScales<double> truth{kKappaTrue, kDiameterTrue, 2650.0};
+  int claimed_diameter = 0;
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const ObservationSet data = synthetic_data(lattice, true_parameters(), seed);
+    FitParameters start = true_parameters();
+    start.spec[kKappa].value = 3.0e6;
+    start.spec[kDiameter].value = 1.0e-4;
+    start.spec[kDamping].value = 20.0;
+    const FitResult r = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
+    EXPECT_TRUE(r.converged) << r.solver_message;
+    expect_within_3_sigma(r, "c0", truth.speed_scale());
+    expect_within_3_sigma(r, "tau", kGammaTrue / kKappaTrue);
+    expect_within_3_sigma(r, "f_star", kKappaTrue / (2.0 * std::numbers::pi * kGammaTrue));
+    // 50 points with 5% noise: chi2 within loose 99.9% bounds for ~47 dof.
+    EXPECT_GT(r.chi2, 20.0);
+    EXPECT_LT(r.chi2, 85.0);
+    claimed_diameter += r.parameters[kDiameter].determined ? 1 : 0;
+  }
+  // With gamma_hat ~ 48 the sound speed rises so fast that kd stays below 0.15 even at 1 MHz: the
+  // lattice correction (~(kd)^2/24) is below the noise and d is normally not determined. Noise can
+  // fake the correction, though (seed 4 prefers d ~ 8x too large by Delta chi^2 ~ 10, with both
+  // profile sides closed); docs/inversion.md discusses this. Demand it stays the exception.
+  EXPECT_LE(claimed_diameter, 1);
+}
+
+TEST(SyntheticInversion, LatticeDeterminesDiameterWhenKdReachesOne) {
+  // A weakly damped contact (gamma_hat = 0.05) keeps c ~ c0, so 1 MHz reaches kd ~ 1 and the
+  // lattice's dispersion reveals d itself.
+  const forward::LatticeModel lattice;
+  FitParameters truth = true_parameters();
+  const forward::GrainScales<double> scales{kKappaTrue, kDiameterTrue, 2650.0};
+  truth.spec[kDamping].value = scales.gamma(0.05);
+  const ObservationSet data = synthetic_data(lattice, truth, 1);
+  FitParameters start = truth;
+  start.spec[kKappa].value = 3.0e6;
+  start.spec[kDiameter].value = 1.0e-4;
+  const FitResult r = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
+  EXPECT_EQ(r.rank, 3);
+  const ParameterResult& d = r.parameters[kDiameter];
+  ASSERT_TRUE(d.determined);
+  EXPECT_LT(std::abs(std::log(d.value / kDiameterTrue)), 3.0 * d.log_sigma);
+  expect_within_3_sigma(r, "gamma_hat", 0.05);
+}
+
+TEST(SyntheticInversion, ContinuumFlagsDiameterAsNotDetermined) {
+  const forward::LatticeModel lattice;
+  const forward::ContinuumModel continuum;
+  const ObservationSet data = synthetic_data(lattice, true_parameters(), 42);
+  const FitResult r = fit(data, continuum, true_parameters(), FitOptions{.method = FitMethod::Global});
+  EXPECT_EQ(r.rank, 2);  // only c0 and tau are visible to the continuum chain
+  EXPECT_FALSE(r.parameters[kDiameter].determined);
+  EXPECT_FALSE(r.parameters[kKappa].determined);
+  EXPECT_FALSE(r.parameters[kDamping].determined);
+  EXPECT_TRUE(combination(r, "c0").determined);
+  EXPECT_TRUE(combination(r, "tau").determined);
+  EXPECT_TRUE(combination(r, "f_star").determined);
+  EXPECT_FALSE(combination(r, "gamma_hat").determined);
+  ASSERT_EQ(r.weak_directions.size(), 1u);
+  EXPECT_TRUE(r.weak_directions[0].unseen);
+  EXPECT_EQ(r.weak_directions[0].direction, "kappa^1 * d^1 * gamma^1");
+}
+
+TEST(SyntheticInversion, GlobalMethodConvergesFromBadlyScaledStart) {
+  const forward::LatticeModel lattice;
+  const ObservationSet data = synthetic_data(lattice, true_parameters(), 7);
+  FitParameters start = true_parameters();
+  start.spec[kKappa].value = kKappaTrue * 1e4;
+  start.spec[kDiameter].value = kDiameterTrue * 1e-4;
+  start.spec[kDamping].value = kGammaTrue * 1e4;
+  const FitResult global = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
+  const FitResult reference = fit(data, lattice, true_parameters(), FitOptions{.method = FitMethod::Ceres});
+  EXPECT_NEAR(global.chi2, reference.chi2, 1e-6 * reference.chi2);
+  const forward::GrainScales<double> truth{kKappaTrue, kDiameterTrue, 2650.0};
+  expect_within_3_sigma(global, "c0", truth.speed_scale());
+  expect_within_3_sigma(global, "tau", kGammaTrue / kKappaTrue);
+}
+
+TEST(SyntheticInversion, RestitutionParameterisation) {
+  // e_n maps to gamma_hat = sqrt(2) zeta(e_n) <= sqrt(2): a weakly damped chain.
+  const forward::LatticeModel lattice;
+  FitParameters truth = true_parameters();
+  truth.set_damping_form(DampingForm::Restitution);
+  truth.spec[kDamping].value = 0.5;
+  const ObservationSet data = synthetic_data(lattice, truth, 3);
+  FitParameters start = truth;
+  start.set_free_from_list("kappa,en");
+  start.spec[kDamping].value = 0.9;
+  start.spec[kKappa].value = 3e5;
+  const FitResult r = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
+  const ParameterResult& e = r.parameters[kDamping];
+  EXPECT_EQ(e.name, "e_n");
+  ASSERT_TRUE(e.determined);
+  EXPECT_LT(std::abs(std::log(e.value / 0.5)), 3.0 * e.log_sigma);
+  EXPECT_TRUE(r.parameters[kDiameter].determined);  // fixed: known exactly
+  EXPECT_FALSE(r.parameters[kDiameter].free);
+}
+
+TEST(SyntheticInversion, CeresAndNloptMethodsReachTheSameMinimum) {
+  const forward::ContinuumModel continuum;
+  FitParameters p = true_parameters();
+  p.set_free_from_list("kappa,gamma");
+  const ObservationSet data = synthetic_data(continuum, p, 11);
+  const FitResult local = fit(data, continuum, p, FitOptions{.method = FitMethod::Ceres});
+  const FitResult search = fit(data, continuum, p, FitOptions{.method = FitMethod::NLopt});
+  EXPECT_TRUE(local.converged);
+  EXPECT_NEAR(search.chi2 / local.chi2, 1.0, 1e-2);  // DIRECT-L alone is only approximate
+  ASSERT_TRUE(search.global.has_value());
+}
+
+TEST(Identifiability, NullSpaceOfAKnownJacobian) {
+  // Residuals depend on x0 - x1 and x2 only: the direction (1, 1, 0) is unseen.
+  Eigen::MatrixXd J(4, 3);
+  J << 1, -1, 0, 2, -2, 1, 0, 0, 3, -1, 1, 1;
+  const JacobianAnalysis a = analyze_jacobian(J);
+  EXPECT_EQ(a.rank, 2);
+  const Eigen::MatrixXd cov = (J.transpose() * J).completeOrthogonalDecomposition().pseudoInverse();
+  Eigen::Vector3d difference(1, -1, 0), sum(1, 1, 0);
+  EXPECT_TRUE(determine(difference, a, cov, 10.0).determined);
+  EXPECT_FALSE(determine(sum, a, cov, 10.0).determined);
+  EXPECT_EQ(describe_direction(a.null_space.col(0), {"a", "b", "c"}), "a^1 * b^1");
+}
+
+}  // namespace
+}  // namespace sedwave::inversion
