@@ -108,13 +108,25 @@ std::string format_value(double value, double sigma, bool free, bool determined)
   return text;
 }
 
+/// One end of a profile-likelihood interval; "open" when the parameter bound lies inside it.
+std::string format_end(const std::optional<double>& end) {
+  if (!end) return "open";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", *end);
+  return text;
+}
+
 void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& plot, const std::string& out) {
   std::printf("sedwave invert: model %s, method %s, %d observations, %.1f ms\n", r.model.c_str(), r.method.c_str(),
               r.n_observations, 1e3 * r.wall_seconds);
   std::printf("\nparameters:\n");
   for (const auto& p : r.parameters) {
-    std::printf("  %-10s [%-4s] %s\n", p.name.c_str(), p.unit.c_str(),
+    std::printf("  %-10s [%-4s] %s", p.name.c_str(), p.unit.c_str(),
                 format_value(p.value, p.sigma, p.free, p.determined).c_str());
+    if (p.free) {
+      std::printf("  (profile 68%%: %s .. %s)", format_end(p.profile_lower).c_str(), format_end(p.profile_upper).c_str());
+    }
+    std::printf("\n");
   }
   std::printf("\ncombinations the data may determine:\n");
   for (const auto& c : r.combinations) {
@@ -126,6 +138,12 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
   }
   std::printf("\nchi2 = %.4g for %d dof (reduced %.3g), AIC %.4g, BIC %.4g, %s\n", r.chi2, r.dof,
               r.dof > 0 ? r.chi2 / r.dof : NAN, r.aic, r.bic, r.converged ? "converged" : "NOT converged");
+  const double reduced = r.dof > 0 ? r.chi2 / r.dof : 0.0;
+  if (reduced > 2.0) {
+    std::printf("warning: reduced chi2 %.3g >> 1: the model does not describe these data within their stated "
+                "errors;\n         the sigmas above are formal (scaled by sqrt(reduced chi2) they grow %.2gx)\n",
+                reduced, std::sqrt(reduced));
+  }
   if (r.global) {
     std::printf("global search (%s, %d evaluations) and local fit from the start values %s (chi2 %.6g vs %.6g)\n",
                 r.global->algorithm.c_str(), r.global->evaluations,

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# The main job on a fresh Debian machine (as root): install what is missing, build Release, and
+# invert the shipped field data (Zhou et al. 2009 regressions) with the lattice chain model.
+# Extra arguments go to `sedwave invert` (e.g. --model continuum --method ceres).
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+sedwave_install_packages
+cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD_DIR" -j "$JOBS" --target sedwave
+OUT="${OUT:-$SEDWAVE_ROOT/out/demo}"
+"$BUILD_DIR/bin/sedwave" invert "$SEDWAVE_ROOT/data/field/zhou2009_regression.csv" \
+  --model lattice --fit kappa,d,gamma --method global --out "$OUT" "$@"
