@@ -1,9 +1,22 @@
 #!/usr/bin/env bash
-# Set up a fresh Debian machine (as root), build with warnings as errors, run every test with ctest.
+# Set up a fresh Debian machine (as root), build with warnings as errors, run every test with ctest,
+# then run the unit tests once more under AddressSanitizer + UBSan.
+# SEDWAVE_SANITIZE_TESTS=0 skips the sanitizer pass (it adds a second build of those targets).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 sedwave_install_packages
 sedwave_build Release -DSEDWAVE_WERROR=ON
-cd "$BUILD_DIR"
 # Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-ctest --output-on-failure -j "$JOBS" "$@"
+(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@")
+
+if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
+  SAN_DIR="${BUILD_DIR}-sanitize"
+  SAN_TARGETS=(test_theory test_inversion)
+  cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEDWAVE_SANITIZE=ON \
+    -DSEDWAVE_WERROR=ON -DSEDWAVE_BUILD_BENCH=OFF >/dev/null
+  cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
+  for t in "${SAN_TARGETS[@]}"; do
+    echo "== $t under AddressSanitizer + UBSan"
+    "$SAN_DIR/tests/$t" --gtest_brief=1
+  done
+fi
