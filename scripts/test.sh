@@ -1,13 +1,12 @@
 #!/usr/bin/env bash
-# Set up a fresh Debian machine (as root), build with warnings as errors, run every test with ctest,
-# then run the unit tests once more under AddressSanitizer + UBSan.
+# Set up a fresh Debian machine (as root), build with warnings as errors, run the unit tests under
+# AddressSanitizer + UBSan, then every test with ctest (last, so its summary closes the output).
 # SEDWAVE_SANITIZE_TESTS=0 skips the sanitizer pass (it adds a second build of those targets).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 sedwave_install_packages
 sedwave_build Release -DSEDWAVE_WERROR=ON
 # Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@")
 
 if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
   SAN_DIR="${BUILD_DIR}-sanitize"
@@ -20,3 +19,6 @@ if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
     "$SAN_DIR/tests/$t" --gtest_brief=1
   done
 fi
+
+cd "$BUILD_DIR"
+ctest --output-on-failure -j "$JOBS" "$@"
