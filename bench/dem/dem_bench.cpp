@@ -1,0 +1,165 @@
+// Benchmark driver for the thesis scene (see bench/dem/run_vs_lammps.sh and docs/performance.md).
+//   dem_bench prepare N file.data   builds a compressed polydisperse packing (d = 1 +- 0.2, density
+//                                   1) in a W = 3 periodic channel and writes a LAMMPS data file
+//   dem_bench run file.data STEPS   runs the thesis physics (frictionless Hooke, E = 1000,
+//                                   nu = 2/7, e_n = 0.9, LAMMPS kn/gamma_n, dt = 0.01 t_col) and
+//                                   prints "ns_per_grain_step=... " on rank 0
+//   dem_bench params file.data      prints kn gamma_n dt for the LAMMPS input
+#include <mpi.h>
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/units.hpp"
+
+namespace dem = sedwave::forward::dem;
+namespace fw = sedwave::forward;
+
+namespace {
+
+constexpr double kYoung = 1000.0, kPoisson = 2.0 / 7.0, kRestitution = 0.9, kSkin = 0.1;
+
+struct ThesisPhysics {
+  double kn, gamma_n, dt;
+};
+
+ThesisPhysics thesis_physics() {
+  const double min_mass = fw::grain_mass(1.0, 0.8);  // the smallest grain, d = 0.8
+  const double m_eff = 0.5 * min_mass;
+  const fw::LammpsHooke h = fw::lammps_hooke_from_material(kYoung, kPoisson, kRestitution, m_eff);
+  const double t_col = fw::hooke_collision_time(h.kn, m_eff, fw::gamma_from_lammps(h.gamma_n, m_eff));
+  return {h.kn, h.gamma_n, 0.01 * t_col};
+}
+
+dem::EngineSettings settings(const dem::Box& box, bool prepare) {
+  const ThesisPhysics p = thesis_physics();
+  dem::EngineSettings s;
+  s.box = box;
+  s.box.periodic = {true, true, true};
+  s.contact.kn = p.kn;
+  s.contact.lammps_gamma_n = p.gamma_n;
+  s.time_step = p.dt;
+  s.skin = kSkin;
+  if (prepare) {
+    s.viscous_damping = 2.0;
+    s.guard.max_overlap_fraction = 0.6;  // the lattice start overlaps; relaxation removes it
+  }
+  return s;
+}
+
+long peak_rss_kib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+int prepare(long n, const std::string& path) {
+  // Jittered FCC at packing fraction ~0.64 for the mean grain volume, two cells (W ~ 3) across.
+  const double spacing = 1.0636, a = spacing * std::numbers::sqrt2;
+  const long layers = (n + 15) / 16;
+  std::mt19937_64 rng(20240501);
+  std::uniform_real_distribution<double> diameter(0.8, 1.2), jitter(-0.02, 0.02);
+  std::vector<dem::Grain> grains;
+  const dem::Vec3 basis[4] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+  for (long iz = 0; iz < layers; ++iz)
+    for (int ix = 0; ix < 2; ++ix)
+      for (int iy = 0; iy < 2; ++iy)
+        for (const dem::Vec3& b : basis) {
+          if (static_cast<long>(grains.size()) == n) break;
+          dem::Grain g;
+          g.id = static_cast<std::int64_t>(grains.size()) + 1;
+          g.group = 1;
+          const double d = diameter(rng);
+          g.radius = 0.5 * d;
+          g.mass = fw::grain_mass(1.0, d);
+          g.position = a * dem::Vec3{ix + b.x + 0.25 + jitter(rng), iy + b.y + 0.25 + jitter(rng),
+                                     static_cast<double>(iz) + b.z + 0.25 + jitter(rng)};
+          grains.push_back(g);
+        }
+  dem::Box box;
+  box.lo = {0, 0, 0};
+  box.hi = {2 * a, 2 * a, static_cast<double>(layers) * a};
+  dem::Engine engine(MPI_COMM_SELF, settings(box, true), grains);
+  engine.run(4000);  // relax the overlaps under strong viscous damping
+  std::vector<dem::Grain> out;
+  std::normal_distribution<double> thermal(0.0, 1e-3);
+  for (std::size_t i = 0; i < engine.n_local(); ++i) {
+    dem::Grain g = engine.grains().grain(i);
+    g.velocity = {thermal(rng), thermal(rng), thermal(rng)};
+    out.push_back(g);
+  }
+  std::sort(out.begin(), out.end(), [](const dem::Grain& x, const dem::Grain& y) { return x.id < y.id; });
+  dem::write_lammps_data(path, engine.domain().box(), out);
+  std::printf("prepared %zu grains, box %g x %g x %g, KE %.3g\n", out.size(), box.hi.x, box.hi.y, box.hi.z,
+              engine.kinetic_energy());
+  return 0;
+}
+
+int run(const std::string& path, long steps) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const long rss_before = peak_rss_kib();
+  // Rank 0 reads and the engine distributes.
+  dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) { return rank == 0; });
+  MPI_Bcast(&data.box, sizeof(dem::Box), MPI_BYTE, 0, MPI_COMM_WORLD);
+  dem::EngineSettings s = settings(data.box, false);
+  s.guard.check_interval = 1000;
+  s.progress.enabled = std::getenv("DEM_BENCH_VERBOSE") != nullptr;
+  dem::Engine engine(MPI_COMM_WORLD, s, data.grains);
+  data.grains.clear();
+  data.grains.shrink_to_fit();
+  engine.run(std::min(steps / 10, 200L));  // warm-up
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double t0 = MPI_Wtime();
+  engine.run(steps);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double seconds = MPI_Wtime() - t0;
+  double bytes = static_cast<double>(engine.memory_bytes());
+  MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  long rss_growth = peak_rss_kib() - rss_before;
+  MPI_Allreduce(MPI_IN_PLACE, &rss_growth, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  const double n = static_cast<double>(engine.n_global());
+  if (rank == 0 && std::getenv("DEM_BENCH_VERBOSE"))
+    std::printf("listed pairs per local grain (rank 0): %.2f, ghosts per local grain: %.2f\n",
+                double(engine.neighbor_list().n_pairs()) / double(engine.n_local()),
+                double(engine.grains().n_ghost()) / double(engine.n_local()));
+  if (rank == 0)
+    std::printf("ns_per_grain_step=%.2f ranks=%d grains=%.0f steps=%ld engine_bytes_per_grain=%.0f "
+                "rss_growth_bytes_per_grain=%.0f dt=%.6g\n",
+                1e9 * seconds / (n * static_cast<double>(steps)), size, n, steps, bytes / n,
+                1024.0 * static_cast<double>(rss_growth) / n, engine.time_step());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int status = 2;
+  try {
+    const std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "prepare" && argc == 4) status = prepare(std::stol(argv[2]), argv[3]);
+    else if (mode == "run" && argc == 4) status = run(argv[2], std::stol(argv[3]));
+    else if (mode == "params") {
+      const ThesisPhysics p = thesis_physics();
+      std::printf("%.17g %.17g %.17g\n", p.kn, p.gamma_n, p.dt);
+      status = 0;
+    } else {
+      std::cerr << "usage: dem_bench prepare N file | run file steps | params\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "dem_bench: " << e.what() << '\n';
+    status = 1;
+  }
+  MPI_Finalize();
+  return status;
+}

@@ -1,0 +1,41 @@
+#pragma once
+// The static contact network of a packing: which pairs touch, how hard, and what that says about
+// the packing (coordination, rattlers, overlaps, gaps). Used to judge a prepared packing and to
+// decide when it is in mechanical equilibrium. Units: those of the engine.
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "sedwave/forward/dem/engine.hpp"
+
+namespace sedwave::forward::channel {
+
+/// Summary of the contact network over all ranks (collective to compute).
+struct PackingStats {
+  std::int64_t flow_grains = 0;
+  std::int64_t contacts = 0;               ///< touching pairs with at least one flow grain
+  double mean_contact_force = 0.0;         ///< static normal force (positive = repulsive)
+  double max_residual_force = 0.0;         ///< largest |total force| on a flow grain
+  double coordination = 0.0;               ///< mean contacts per flow grain (all of them)
+  double coordination_without_rattlers = 0.0;
+  double rattler_fraction = 0.0;           ///< flow grains with fewer than 4 contacts
+  double mean_overlap = 0.0;               ///< over contacts, in units of the mean diameter
+  double max_overlap = 0.0;                ///< in units of the mean diameter
+  double packing_fraction = 0.0;           ///< flow-grain volume / (W^2 x column height)
+  double column_height = 0.0;              ///< between the walls' mean surfaces (centres -+ radius)
+  /// Counts of overlaps (contacts) and gaps (listed pairs not touching) per decade of
+  /// |separation| / mean diameter: bin k covers [1e-(k+1), 1e-k), k = 0..11; the last bin also
+  /// holds anything smaller.
+  std::vector<std::int64_t> overlap_histogram;
+  std::vector<std::int64_t> gap_histogram;
+};
+
+/// Computes the statistics of the engine's current state (collective). Gaps are counted among
+/// neighbour-list pairs only (within the Verlet skin). `mean_diameter` sets the unit of overlaps.
+[[nodiscard]] PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, double width);
+
+/// Every flow grain's contact count (local grains, in local order), for rattler removal and tests.
+[[nodiscard]] std::vector<int> contact_counts(const dem::Engine& engine);
+
+}  // namespace sedwave::forward::channel

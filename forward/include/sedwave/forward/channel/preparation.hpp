@@ -1,0 +1,71 @@
+#pragma once
+// Preparing the channel: compress the loose column under a constant pressure P on the upper wall
+// (with global viscous damping), then relax it to mechanical equilibrium with FIRE.
+//
+// Why both stages: damping alone never settles a frictionless column (it keeps creeping), and both
+// the lock-in measurement and the linear-response engine need a truly static start. FIRE (Bitzek et
+// al., PRL 97, 170201, 2006) is the standard minimiser for jammed packings: molecular dynamics whose
+// velocities are steered along the force and zeroed whenever the power F.v turns negative.
+//
+// During FIRE the upper wall is frozen (a minimiser needs a fixed energy landscape); its height is
+// then corrected by a secant iteration until the force the grains exert on it is P W^2 within the
+// tolerance, and FIRE runs again. Pressure is force per area: the wall carries P W^2 in total, not
+// P per wall grain.
+#include <mpi.h>
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/channel/contacts.hpp"
+#include "sedwave/forward/channel/geometry.hpp"
+#include "sedwave/forward/dem/contact/contact_model.hpp"
+
+namespace sedwave::forward::channel {
+
+struct PreparationSettings {
+  double pressure = 10.0;             ///< P [force / length^2] on the upper wall
+  double wall_mass = 0.0;             ///< upper wall during compression; 0: total mass of its grains
+  /// Global viscous drag during compression, in units of sqrt(kn m) of the mean grain.
+  double compression_damping = 0.05;
+  double compression_step_fraction = 0.05;  ///< dt / binary collision time while compressing
+  std::int64_t max_compression_steps = 2'000'000;
+  /// Compression ends when the kinetic energy per grain falls below this fraction of P W^2 times
+  /// one mean diameter (the work of moving the wall by one grain) divided by N.
+  double settled_kinetic_energy = 1e-6;
+  double relaxation_step_fraction = 0.2;    ///< dt / binary collision time during FIRE
+  double residual_force_tolerance = 1e-9;   ///< max |F| on a flow grain / mean contact force
+  double pressure_tolerance = 1e-2;         ///< | wall force / (P W^2) - 1 |
+  std::int64_t max_relaxation_steps = 2'000'000;
+  int max_wall_corrections = 30;
+  std::ostream* log = nullptr;              ///< progress lines (rank 0), or nullptr
+};
+
+struct PreparationReport {
+  std::int64_t compression_steps = 0;
+  std::int64_t relaxation_steps = 0;
+  int wall_corrections = 0;
+  double wall_force = 0.0;         ///< force of the grains on the upper wall at the end
+  double target_wall_force = 0.0;  ///< P W^2
+  double pressure = 0.0;           ///< wall_force / W^2
+  double residual_ratio = 0.0;     ///< max |F| / mean contact force at the end
+  bool converged = false;
+  PackingStats stats;
+};
+
+struct PreparedChannel {
+  dem::Box box;
+  std::vector<dem::Grain> grains;  ///< all grains at rest, on rank 0 only (empty elsewhere)
+  PreparationReport report;
+};
+
+/// Compresses and relaxes `start` (whose grains may be given on any rank). Collective over comm.
+[[nodiscard]] PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start,
+                                              const dem::ContactSpec& contact, double width,
+                                              const PreparationSettings& settings);
+
+/// One line per quantity, for logs and reports.
+[[nodiscard]] std::string describe(const PreparationReport& report);
+
+}  // namespace sedwave::forward::channel

@@ -1,0 +1,85 @@
+#pragma once
+// Spatial domain decomposition along z (the long axis of the channels) in slabs.
+//
+// Rank r owns the grains with boundaries[r] <= z < boundaries[r+1]. Along an open z axis the end
+// slabs reach to -inf / +inf, so no grain is ever lost; along a periodic z axis they end at the box.
+// Every rank spans the whole box in x and y.
+//
+// Ghosts are built in LAMMPS's swap order: x images, then y images (of locals and x images, which
+// covers the edges), then z copies from the neighbouring slabs (periodic images across the z ends,
+// or self-images on one rank). One Swap records what was sent where with which periodic shift, so
+// the per-step ghost update replays the same swaps with fresh positions and velocities.
+//
+// Migration sends departing grains (and the contact history records that involve them) straight to
+// their owner with one all-to-all, so any displacement, setup scatter and restart is the same path.
+// Load balancing moves the slab boundaries so that the measured work per rank is equal.
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "sedwave/forward/dem/box.hpp"
+#include "sedwave/forward/dem/contact_history.hpp"
+#include "sedwave/forward/dem/grains.hpp"
+
+namespace sedwave::forward::dem {
+
+class Domain {
+ public:
+  Domain(MPI_Comm comm, const Box& box);
+
+  [[nodiscard]] MPI_Comm comm() const { return comm_; }
+  [[nodiscard]] int rank() const { return rank_; }
+  [[nodiscard]] int size() const { return size_; }
+  [[nodiscard]] const Box& box() const { return box_; }
+  [[nodiscard]] Box& box() { return box_; }
+  [[nodiscard]] const std::vector<double>& boundaries() const { return boundaries_; }
+  [[nodiscard]] double slab_lo() const { return boundaries_[rank_]; }
+  [[nodiscard]] double slab_hi() const { return boundaries_[rank_ + 1]; }
+  /// Rank owning height z.
+  [[nodiscard]] int owner(double z) const;
+
+  /// Sets the interior boundaries (size()+1 values; the ends are reset to the box or +-inf).
+  void set_boundaries(std::vector<double> boundaries);
+  /// Equal-count slabs from a histogram of the grains' heights (collective).
+  void partition_by_count(const GrainArrays& g, double min_thickness);
+  /// Moves boundaries to equalise work (collective): each rank's work is spread uniformly over its
+  /// slab, the cumulative work is inverted, and the boundaries move halfway to the result.
+  void balance(double my_work, const GrainArrays& g, double min_thickness);
+
+  /// Wraps local grains into the periodic box and sends those outside the slab to their owners,
+  /// with the history records that involve them (collective; ghosts must have been cleared).
+  void migrate(GrainArrays& g, std::vector<HistoryEntry>& history);
+  /// Rebuilds the ghosts within `cutoff` of each face (collective).
+  void build_ghosts(GrainArrays& g, double cutoff);
+  /// Refreshes ghost positions, velocities and spins from their sources (collective).
+  void update_ghosts(GrainArrays& g);
+
+  /// Communication volume of the last update_ghosts in bytes (for the timing report).
+  [[nodiscard]] std::size_t ghost_bytes() const { return ghost_bytes_; }
+
+ private:
+  struct Swap {
+    std::vector<std::int32_t> send;  // indices sent (locals or earlier ghosts)
+    Vec3 shift;                      // periodic shift applied to sent positions
+    int send_to = MPI_PROC_NULL;     // rank_ itself for a local image swap
+    int recv_from = MPI_PROC_NULL;
+    std::size_t recv_first = 0;
+    std::size_t recv_count = 0;
+  };
+  void image_swaps(GrainArrays& g, int axis, double cutoff);
+  void neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candidates, double cutoff);
+  void clamp_thickness(double min_thickness);
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  int size_ = 1;
+  Box box_;
+  std::vector<double> boundaries_;
+  std::vector<Swap> swaps_;
+  std::vector<double> send_buffer_;
+  std::vector<double> recv_buffer_;
+  std::size_t ghost_bytes_ = 0;
+};
+
+}  // namespace sedwave::forward::dem

@@ -1,0 +1,56 @@
+#pragma once
+// Verlet neighbour list built from a cell list.
+//
+// A pair enters the list when its gap is below the skin: |x_i - x_j| < r_i + r_j + skin. The list
+// stays valid until some grain has moved more than skin/2 since the build (two grains approaching
+// each other by skin/2 each just close the gap), which needs_rebuild() checks.
+//
+// Layout: compressed rows over the local grains. Row i holds first its local partners j > i (each
+// local pair once: the loop applies +F to i and -F to j) and then its ghost partners (the force on
+// a ghost belongs to another rank or image and is computed there: "newton off" across boundaries).
+// Pairs of two rigid-body grains are excluded (walls do not interact with walls).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sedwave/forward/dem/grains.hpp"
+
+namespace sedwave::forward::dem {
+
+class NeighborList {
+ public:
+  /// Builds the list for the current local and ghost grains. max_radius: largest radius anywhere.
+  void build(const GrainArrays& g, double skin, double max_radius);
+  /// True when a local grain moved more than skin/2 since the last build (local decision: the engine
+  /// reduces it over ranks).
+  [[nodiscard]] bool needs_rebuild(const GrainArrays& g) const;
+
+  [[nodiscard]] std::size_t n_rows() const { return ghost_begin_.size(); }
+  [[nodiscard]] std::size_t n_pairs() const { return partners_.size(); }
+  [[nodiscard]] std::uint32_t row_begin(std::size_t i) const { return row_begin_[i]; }
+  [[nodiscard]] std::uint32_t ghost_begin(std::size_t i) const { return ghost_begin_[i]; }
+  [[nodiscard]] std::uint32_t row_end(std::size_t i) const { return row_begin_[i + 1]; }
+  [[nodiscard]] std::span<const std::int32_t> partners() const { return partners_; }
+  [[nodiscard]] double skin() const { return skin_; }
+  /// Bytes held (for the memory report).
+  [[nodiscard]] std::size_t memory_bytes() const;
+
+ private:
+  std::vector<std::uint32_t> row_begin_;    // n_local + 1
+  std::vector<std::uint32_t> ghost_begin_;  // n_local
+  std::vector<std::int32_t> partners_;
+  std::vector<Vec3> reference_;             // local positions at build time
+  // Cell-list scratch, kept between builds to avoid reallocation.
+  std::vector<std::uint32_t> cell_start_;
+  std::vector<std::int32_t> cell_items_;
+  std::vector<std::uint32_t> cell_of_;
+  std::vector<std::int32_t> ghost_scratch_;
+  double skin_ = 0.0;
+};
+
+/// Order of the local grains along a z-major cell grid (cells of size cell_size; stable within a
+/// cell). Applied before ghosts are built, it keeps neighbours close in memory.
+[[nodiscard]] std::vector<std::uint32_t> spatial_order(const GrainArrays& g, double cell_size);
+
+}  // namespace sedwave::forward::dem

@@ -1,0 +1,67 @@
+#pragma once
+// A forward model that interpolates a dispersion table (docs/tables.md).
+//
+// Interpolation: ln alpha_hat and ln c_hat as functions of (ln omega_hat, ln gamma_hat) by a bicubic
+// Hermite surface whose node slopes come from three-point finite differences (exact for quadratics,
+// so power laws alpha_hat ~ omega_hat^p gamma_hat^q are reproduced exactly). The surface is C1
+// everywhere, which Ceres needs, and local: a noisy point moves only the cells around it. The
+// derivatives returned are the exact derivatives of the interpolant, converted to d/d omega_hat and
+// d/d gamma_hat of alpha_hat and c_hat. Sigmas: the relative sigma (sigma/value) is interpolated
+// bilinearly in the same log coordinates (not differentiated: the residuals treat it as a constant).
+//
+// Points that are not ok (unresolved, failed, missing) act like the table's edge: their cells are
+// outside. A table with a single gamma_hat (or omega_hat) interpolates along the other axis only and
+// accepts only that gamma_hat (its d/d gamma_hat is 0).
+//
+// Outside the table: std::domain_error naming the point and the table's range, or (option) the
+// lattice theory, counted by fallback_count(). The theory is not matched to the table at its edge,
+// so a fit that wanders outside sees a jump: the report should say how often that happened.
+//
+// Units: dimensionless throughout (dispersion.hpp). Thread-safe: evaluate() only reads.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sedwave/forward/dispersion.hpp"
+#include "sedwave/forward/table/table.hpp"
+
+namespace sedwave::forward::table {
+
+/// What to do at a point the table does not cover.
+enum class OutsideTable {
+  error,           ///< throw std::domain_error
+  lattice_theory,  ///< evaluate the 1D lattice theory instead and count it
+};
+
+class TableModel final : public DispersionModel {
+ public:
+  /// Throws std::invalid_argument if an ok point has a value that is not positive and finite, or a
+  /// sigma that is negative or not finite.
+  TableModel(DispersionTable table, std::string name, OutsideTable outside = OutsideTable::error);
+
+  /// From a command-line specification "table:FILE" or "table:FILE?extrapolate=theory".
+  [[nodiscard]] static std::unique_ptr<TableModel> from_spec(std::string_view spec);
+
+  [[nodiscard]] std::string name() const override { return name_; }
+  [[nodiscard]] DispersionPoint evaluate(double omega_hat, double gamma_hat) const override;
+
+  /// How many evaluations fell back to the lattice theory so far.
+  [[nodiscard]] std::uint64_t fallback_count() const { return fallbacks_.load(std::memory_order_relaxed); }
+  [[nodiscard]] const DispersionTable& table() const { return table_; }
+
+ private:
+  struct Interpolant;
+
+  [[nodiscard]] DispersionPoint outside(double omega_hat, double gamma_hat, const std::string& why) const;
+
+  DispersionTable table_;
+  std::string name_;
+  OutsideTable outside_;
+  std::shared_ptr<const Interpolant> interpolant_;
+  mutable std::atomic<std::uint64_t> fallbacks_{0};
+};
+
+}  // namespace sedwave::forward::table

@@ -1,0 +1,240 @@
+#include "sedwave/forward/channel/preparation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/dem/gather.hpp"
+
+namespace sedwave::forward::channel {
+namespace {
+
+struct Scene {
+  MPI_Comm comm;
+  dem::Box box;
+  dem::ContactSpec contact;
+  double width;
+  double mean_mass;
+  double mean_diameter;
+};
+
+int rank_of(MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank;
+}
+
+std::unique_ptr<dem::Engine> make_engine(const Scene& s, std::span<const dem::Grain> grains, dem::BodyMotion upper,
+                                         double step_fraction, double viscous_damping) {
+  dem::EngineSettings settings;
+  settings.box = s.box;
+  settings.contact = s.contact;
+  settings.time_step_fraction = step_fraction;
+  settings.viscous_damping = viscous_damping;
+  std::vector<dem::RigidBody> bodies{dem::RigidBody("lower_wall", dem::Frozen{}),
+                                     dem::RigidBody("upper_wall", std::move(upper))};
+  return std::make_unique<dem::Engine>(s.comm, settings, grains, std::move(bodies));
+}
+
+/// Natural angular frequency of the mean grain on the lightest pair's contact: pi / t_col.
+double contact_frequency(const dem::Engine& e) { return std::numbers::pi / e.time_step_limits().collision_time; }
+
+std::int64_t compress(dem::Engine& e, const PreparationSettings& p, double target_force, double mean_diameter) {
+  const double settled = p.settled_kinetic_energy * target_force * mean_diameter;
+  const std::int64_t chunk = 1000;
+  std::int64_t steps = 0;
+  while (steps < p.max_compression_steps) {
+    e.run(chunk);
+    steps += chunk;
+    if (e.kinetic_energy() < settled) break;
+  }
+  return steps;
+}
+
+/// FIRE on the free grains; velocities are steered after every velocity-Verlet step.
+class Fire {
+ public:
+  explicit Fire(dem::Engine& e) : engine_(e) {
+    e.add_step_callback(1, [this](const dem::Engine&) { mix(); });
+  }
+
+  /// Runs until max |F| < tolerance x mean contact force or the step budget is spent.
+  std::int64_t relax(double tolerance, std::int64_t max_steps, double mean_diameter, double width, double& ratio) {
+    restart();
+    std::int64_t steps = 0;
+    const std::int64_t chunk = 200;
+    while (steps < max_steps) {
+      engine_.run(chunk);
+      steps += chunk;
+      const PackingStats s = packing_stats(engine_, mean_diameter, width);
+      ratio = s.mean_contact_force > 0.0 ? s.max_residual_force / s.mean_contact_force : INFINITY;
+      if (ratio < tolerance) break;
+    }
+    return steps;
+  }
+
+ private:
+  static constexpr double kAlphaStart = 0.1;
+  static constexpr double kAlphaShrink = 0.99;
+  static constexpr int kMinPositiveSteps = 5;
+
+  void restart() {
+    alpha_ = kAlphaStart;
+    positive_steps_ = 0;
+  }
+
+  void mix() {
+    dem::GrainArrays& g = engine_.grains();
+    const std::size_t n = engine_.n_local();
+    double sums[3] = {0.0, 0.0, 0.0};  // F.v, v.v, F.F over free grains
+    for (std::size_t i = 0; i < n; ++i) {
+      if (g.body[i] != dem::kFreeBody) continue;
+      sums[0] += dem::dot(g.force[i], g.velocity[i]);
+      sums[1] += dem::norm2(g.velocity[i]);
+      sums[2] += dem::norm2(g.force[i]);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, engine_.domain().comm());
+    if (sums[0] > 0.0) {
+      // v <- (1 - alpha) v + alpha |v| F/|F|: turn the motion towards the force.
+      const double steer = sums[2] > 0.0 ? alpha_ * std::sqrt(sums[1] / sums[2]) : 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (g.body[i] == dem::kFreeBody) g.velocity[i] = (1.0 - alpha_) * g.velocity[i] + steer * g.force[i];
+      }
+      if (++positive_steps_ > kMinPositiveSteps) alpha_ *= kAlphaShrink;
+    } else {
+      // Uphill: stop everything and start over.
+      for (std::size_t i = 0; i < n; ++i) {
+        if (g.body[i] == dem::kFreeBody) g.velocity[i] = dem::Vec3{};
+      }
+      restart();
+    }
+  }
+
+  dem::Engine& engine_;
+  double alpha_ = kAlphaStart;
+  int positive_steps_ = 0;
+};
+
+/// Positions of the upper wall's grains shifted by dz (on every rank; walls have few grains).
+std::unordered_map<std::int64_t, dem::Vec3> shifted_upper_wall(const dem::Engine& e, double dz) {
+  std::vector<dem::Grain> local;
+  for (std::size_t i = 0; i < e.n_local(); ++i) {
+    if (e.grains().group[i] == kUpperWallGroup) local.push_back(e.grains().grain(i));
+  }
+  int size = 1;
+  MPI_Comm_size(e.domain().comm(), &size);
+  std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
+  const int bytes = static_cast<int>(local.size() * sizeof(dem::Grain));
+  MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, e.domain().comm());
+  std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
+  std::vector<dem::Grain> all(static_cast<std::size_t>(displs.back() + counts.back()) / sizeof(dem::Grain));
+  MPI_Allgatherv(local.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE,
+                 e.domain().comm());
+  std::unordered_map<std::int64_t, dem::Vec3> moved;
+  for (const dem::Grain& g : all) moved[g.id] = g.position + dem::Vec3{0.0, 0.0, dz};
+  return moved;
+}
+
+void log_line(const PreparationSettings& p, MPI_Comm comm, const std::string& line) {
+  if (p.log && rank_of(comm) == 0) *p.log << "prepare: " << line << std::endl;
+}
+
+}  // namespace
+
+PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start, const dem::ContactSpec& contact,
+                                double width, const PreparationSettings& p) {
+  if (!(p.pressure > 0.0)) throw std::invalid_argument("preparation: pressure must be positive");
+  double flow_mass = 0.0, flow_diameter = 0.0, wall_mass = 0.0;
+  std::int64_t n_flow = 0;
+  for (const dem::Grain& g : start.grains) {
+    if (g.group == kFlowGroup) {
+      flow_mass += g.mass;
+      flow_diameter += 2.0 * g.radius;
+      ++n_flow;
+    } else if (g.group == kUpperWallGroup) {
+      wall_mass += g.mass;
+    }
+  }
+  double counts[4] = {flow_mass, flow_diameter, static_cast<double>(n_flow), wall_mass};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 4, MPI_DOUBLE, MPI_SUM, comm);
+  const Scene scene{comm, start.box, contact, width, counts[0] / counts[2], counts[1] / counts[2]};
+  const double target = p.pressure * width * width;
+  PreparedChannel out;
+  out.report.target_wall_force = target;
+
+  // Stage 1: compression under the constant wall force, with global drag.
+  const dem::ConstantForce push{{0.0, 0.0, -target}, p.wall_mass > 0.0 ? p.wall_mass : counts[3], {false, false, true}};
+  double omega = 0.0;
+  {
+    const auto probe = make_engine(scene, start.grains, push, p.compression_step_fraction, 0.0);
+    omega = contact_frequency(*probe);
+  }
+  const double drag = p.compression_damping * scene.mean_mass * omega;
+  auto compressor = make_engine(scene, start.grains, push, p.compression_step_fraction, drag);
+  out.report.compression_steps = compress(*compressor, p, target, scene.mean_diameter);
+  log_line(p, comm, "compressed in " + std::to_string(out.report.compression_steps) + " steps");
+
+  // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height.
+  std::vector<dem::Grain> grains = dem::gather_grains(*compressor);
+  compressor.reset();
+  for (dem::Grain& g : grains) g.velocity = dem::Vec3{};
+  auto relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
+  Fire fire(*relaxer);
+  double shift = 0.0, previous_shift = 0.0, previous_force = 0.0;
+  for (int iteration = 0;; ++iteration) {
+    out.report.relaxation_steps += fire.relax(p.residual_force_tolerance, p.max_relaxation_steps, scene.mean_diameter,
+                                              width, out.report.residual_ratio);
+    out.report.wall_force = relaxer->bodies()[1].contact_force().z;
+    const double error = out.report.wall_force / target - 1.0;
+    log_line(p, comm, "wall force / P W^2 = " + std::to_string(1.0 + error) + ", residual ratio " +
+                          std::to_string(out.report.residual_ratio));
+    if (std::abs(error) < p.pressure_tolerance || iteration >= p.max_wall_corrections) break;
+    // The wall force falls as the wall rises: secant slope once two points exist, else a column of
+    // W^2 parallel chains of contact springs (stiffness ~ mean force / mean overlap) of its height.
+    double slope = 0.0;
+    if (iteration > 0 && shift != previous_shift) {
+      slope = -(out.report.wall_force - previous_force) / (shift - previous_shift);
+    }
+    if (!(slope > 0.0)) {
+      const PackingStats s = packing_stats(*relaxer, scene.mean_diameter, width);
+      slope = s.mean_contact_force / (s.mean_overlap * scene.mean_diameter) * width * width /
+              std::max(1.0, s.column_height / scene.mean_diameter);
+    }
+    const double step = (out.report.wall_force - target) / slope;
+    previous_shift = shift;
+    previous_force = out.report.wall_force;
+    shift += step;
+    relaxer->set_positions(shifted_upper_wall(*relaxer, step));
+    ++out.report.wall_corrections;
+  }
+  out.report.pressure = out.report.wall_force / (width * width);
+  out.report.stats = packing_stats(*relaxer, scene.mean_diameter, width);
+  out.report.converged = out.report.residual_ratio < p.residual_force_tolerance &&
+                         std::abs(out.report.wall_force / target - 1.0) < p.pressure_tolerance;
+  out.box = relaxer->settings().box;
+  out.grains = dem::gather_grains(*relaxer);
+  for (dem::Grain& g : out.grains) g.velocity = dem::Vec3{};
+  return out;
+}
+
+std::string describe(const PreparationReport& r) {
+  std::ostringstream s;
+  const PackingStats& p = r.stats;
+  s << "pressure " << r.pressure << " (wall force " << r.wall_force << " / target " << r.target_wall_force << ")\n"
+    << "packing fraction " << p.packing_fraction << ", column height " << p.column_height << "\n"
+    << "coordination " << p.coordination << " (without rattlers " << p.coordination_without_rattlers
+    << "), rattler fraction " << p.rattler_fraction << "\n"
+    << "overlap / d: mean " << p.mean_overlap << ", max " << p.max_overlap << "\n"
+    << "max residual force / mean contact force " << r.residual_ratio << "\n"
+    << "steps: compression " << r.compression_steps << ", relaxation " << r.relaxation_steps << ", wall corrections "
+    << r.wall_corrections << (r.converged ? ", converged" : ", NOT converged");
+  return s.str();
+}
+
+}  // namespace sedwave::forward::channel

@@ -1,0 +1,234 @@
+// HDF5 checkpoint and restart of the DEM engine.
+//
+// File layout (all datasets in one file, format attribute "sedwave-dem-checkpoint", version 1):
+//   /            attributes step, time, dt, ranks, rebuilds, user_state
+//   /grains      id, group, body, radius, mass [N]; position, velocity, force [N,3];
+//                angular_velocity, torque [N,3] when the model rotates grains
+//   /history     a, b [M] (smaller, larger global id), shear [M,3] (seen from a)
+//   /bodies      displacement, velocity, contact_force [B,3]
+//   /domain      boundaries [ranks+1]
+// Rank 0 gathers and writes (the only time one rank holds all grains); every rank reads in chunks
+// and keeps what it owns.
+#include <cstdio>
+#include <numeric>
+
+#include "hdf5_io.hpp"
+#include "sedwave/forward/dem/engine.hpp"
+
+namespace sedwave::forward::dem {
+namespace {
+
+constexpr std::int32_t kCheckpointVersion = 1;
+constexpr std::size_t kReadChunk = 1 << 16;
+
+/// Gathers trivially copyable records from all ranks on rank 0 (rank order).
+template <typename T>
+std::vector<T> gather_on_root(MPI_Comm comm, const std::vector<T>& local) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int bytes = static_cast<int>(local.size() * sizeof(T));
+  std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
+  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
+  std::vector<T> all(rank == 0 ? static_cast<std::size_t>(displs.back() + counts.back()) / sizeof(T) : 0);
+  MPI_Gatherv(local.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, comm);
+  return all;
+}
+
+template <typename T, typename F>
+std::vector<T> column(const std::vector<Grain>& grains, F field) {
+  std::vector<T> out;
+  out.reserve(grains.size());
+  for (const Grain& g : grains) out.push_back(field(g));
+  return out;
+}
+
+std::vector<double> vectors(const std::vector<Grain>& grains, Vec3 Grain::*field) {
+  std::vector<double> out;
+  out.reserve(3 * grains.size());
+  for (const Grain& g : grains) {
+    const Vec3& v = g.*field;
+    out.insert(out.end(), {v.x, v.y, v.z});
+  }
+  return out;
+}
+
+}  // namespace
+
+void Engine::write_checkpoint(const std::string& path) {
+  std::vector<Grain> local;
+  local.reserve(grains_.n_local());
+  for (std::size_t i = 0; i < grains_.n_local(); ++i) local.push_back(grains_.grain(i));
+  const std::vector<Grain> all = gather_on_root(domain_.comm(), local);
+  const std::vector<HistoryEntry> history = gather_on_root(domain_.comm(), contact_history());
+  int status = 0;
+  std::string error;
+  if (domain_.rank() == 0) {
+    const std::string temporary = path + ".tmp";
+    try {
+      {
+        h5::Handle file = h5::create_file(temporary);
+        h5::write_string_attribute(file, "format", "sedwave-dem-checkpoint");
+        h5::write_attribute(file, "version", kCheckpointVersion);
+        h5::write_attribute(file, "step", step_);
+        h5::write_attribute(file, "time", time_);
+        h5::write_attribute(file, "dt", dt_);
+        h5::write_attribute(file, "ranks", static_cast<std::int32_t>(domain_.size()));
+        h5::write_attribute(file, "rebuilds", rebuilds_);
+        h5::write_string_attribute(file, "user_state", user_state_);
+        h5::write_string_attribute(file, "contact_model", describe(settings_.contact));
+
+        h5::Handle g = h5::create_group(file, "grains");
+        const std::size_t n = all.size();
+        h5::write(g, "id", column<std::int64_t>(all, [](const Grain& x) { return x.id; }).data(), n);
+        h5::write(g, "group", column<std::int32_t>(all, [](const Grain& x) { return x.group; }).data(), n);
+        h5::write(g, "body", column<std::int32_t>(all, [](const Grain& x) { return x.body; }).data(), n);
+        h5::write(g, "radius", column<double>(all, [](const Grain& x) { return x.radius; }).data(), n);
+        h5::write(g, "mass", column<double>(all, [](const Grain& x) { return x.mass; }).data(), n);
+        h5::write(g, "position", vectors(all, &Grain::position).data(), n, 3);
+        h5::write(g, "velocity", vectors(all, &Grain::velocity).data(), n, 3);
+        h5::write(g, "force", vectors(all, &Grain::force).data(), n, 3);
+        if (grains_.rotation()) {
+          h5::write(g, "angular_velocity", vectors(all, &Grain::angular_velocity).data(), n, 3);
+          h5::write(g, "torque", vectors(all, &Grain::torque).data(), n, 3);
+        }
+
+        h5::Handle h = h5::create_group(file, "history");
+        std::vector<std::int64_t> a, b;
+        std::vector<double> shear;
+        for (const HistoryEntry& e : history) {
+          a.push_back(e.a);
+          b.push_back(e.b);
+          shear.insert(shear.end(), {e.shear.x, e.shear.y, e.shear.z});
+        }
+        h5::write(h, "a", a.data(), a.size());
+        h5::write(h, "b", b.data(), b.size());
+        h5::write(h, "shear", shear.data(), a.size(), 3);
+
+        h5::Handle bodies = h5::create_group(file, "bodies");
+        std::vector<double> u, v, f;
+        for (const RigidBody& body : bodies_) {
+          for (const Vec3* x : {&body.displacement(), &body.velocity(), &body.contact_force()}) {
+            std::vector<double>& out = x == &body.displacement() ? u : (x == &body.velocity() ? v : f);
+            out.insert(out.end(), {x->x, x->y, x->z});
+          }
+        }
+        h5::write(bodies, "displacement", u.data(), bodies_.size(), 3);
+        h5::write(bodies, "velocity", v.data(), bodies_.size(), 3);
+        h5::write(bodies, "contact_force", f.data(), bodies_.size(), 3);
+
+        h5::Handle d = h5::create_group(file, "domain");
+        h5::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
+        h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + temporary);
+      }
+      // rename() is atomic: a reader (or a restart after SIGKILL) sees the old or the new file.
+      if (std::rename(temporary.c_str(), path.c_str()) != 0)
+        throw std::runtime_error("cannot rename " + temporary + " to " + path);
+    } catch (const std::exception& e) {
+      status = 1;
+      error = e.what();
+      std::remove(temporary.c_str());
+    }
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, domain_.comm());
+  if (status != 0) throw std::runtime_error("DEM checkpoint: " + (error.empty() ? "write failed on rank 0" : error));
+}
+
+void Engine::restore_checkpoint(const std::string& path) {
+  h5::Handle file = h5::open_file(path);
+  if (h5::read_string_attribute(file, "format") != "sedwave-dem-checkpoint")
+    throw std::runtime_error("DEM restart: " + path + " is not a sedwave DEM checkpoint");
+  if (h5::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
+    throw std::runtime_error("DEM restart: unsupported checkpoint version in " + path);
+  step_ = h5::read_attribute<std::int64_t>(file, "step");
+  time_ = h5::read_attribute<double>(file, "time");
+  dt_ = h5::read_attribute<double>(file, "dt");
+  rebuilds_ = h5::read_attribute<std::int64_t>(file, "rebuilds");
+  user_state_ = h5::read_string_attribute(file, "user_state");
+  const int ranks = h5::read_attribute<std::int32_t>(file, "ranks");
+
+  h5::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
+  const bool same_layout = ranks == domain_.size();
+  if (same_layout) {
+    domain_.set_boundaries(h5::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
+  }
+
+  h5::Handle bodies(H5Gopen2(file, "bodies", H5P_DEFAULT), H5Gclose, "open /bodies");
+  if (h5::rows(bodies, "displacement") != bodies_.size())
+    throw std::runtime_error("DEM restart: the scene has a different number of rigid bodies than " + path);
+  const auto u = h5::read_rows<double>(bodies, "displacement", 0, bodies_.size(), 3);
+  const auto v = h5::read_rows<double>(bodies, "velocity", 0, bodies_.size(), 3);
+  const auto f = h5::read_rows<double>(bodies, "contact_force", 0, bodies_.size(), 3);
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
+                       {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
+
+  // Grains, in file order, each rank keeping its own (by slab, or by row range before repartition).
+  h5::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
+  const std::size_t n = h5::rows(g, "id");
+  const bool spins = grains_.rotation();
+  if (spins && !h5::exists(g, "angular_velocity"))
+    throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
+  grains_ = GrainArrays(spins);
+  const auto r = static_cast<std::size_t>(domain_.rank());
+  const auto p = static_cast<std::size_t>(domain_.size());
+  for (std::size_t first = 0; first < n; first += kReadChunk) {
+    const std::size_t count = std::min(kReadChunk, n - first);
+    const auto id = h5::read_rows<std::int64_t>(g, "id", first, count);
+    const auto group = h5::read_rows<std::int32_t>(g, "group", first, count);
+    const auto body = h5::read_rows<std::int32_t>(g, "body", first, count);
+    const auto radius = h5::read_rows<double>(g, "radius", first, count);
+    const auto mass = h5::read_rows<double>(g, "mass", first, count);
+    const auto x = h5::read_rows<double>(g, "position", first, count, 3);
+    const auto vel = h5::read_rows<double>(g, "velocity", first, count, 3);
+    const auto force = h5::read_rows<double>(g, "force", first, count, 3);
+    std::vector<double> w, torque;
+    if (spins) {
+      w = h5::read_rows<double>(g, "angular_velocity", first, count, 3);
+      torque = h5::read_rows<double>(g, "torque", first, count, 3);
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
+      const Vec3 position = at(x);
+      const bool mine = same_layout ? domain_.owner(position.z) == domain_.rank()
+                                    : (first + k) * p / n == r;
+      if (!mine) continue;
+      Grain grain{id[k], group[k], body[k], radius[k], mass[k], position, at(vel), {}, at(force), {}};
+      if (spins) {
+        grain.angular_velocity = at(w);
+        grain.torque = at(torque);
+      }
+      grains_.push_local(grain);
+    }
+  }
+
+  // History records that involve a local grain (migration forwards the rest as grains move).
+  pending_history_.clear();
+  if (needs_history(model_)) {
+    std::unordered_map<std::int64_t, char> local_ids;
+    for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
+    h5::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
+    const std::size_t m = h5::rows(h, "a");
+    for (std::size_t first = 0; first < m; first += kReadChunk) {
+      const std::size_t count = std::min(kReadChunk, m - first);
+      const auto a = h5::read_rows<std::int64_t>(h, "a", first, count);
+      const auto b = h5::read_rows<std::int64_t>(h, "b", first, count);
+      const auto s = h5::read_rows<double>(h, "shear", first, count, 3);
+      for (std::size_t k = 0; k < count; ++k)
+        if (local_ids.contains(a[k]) || local_ids.contains(b[k]))
+          pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+    }
+  }
+  if (!same_layout) domain_.partition_by_count(grains_, ghost_cutoff_);
+  list_valid_ = false;
+  history_.clear();
+  force_rebuild_ = true;
+  last_kinetic_energy_ = -1.0;
+  update_global_grain_stats();
+  ghost_cutoff_ = 2.0 * max_radius_ + skin_;
+  if (settings_.time_step && *settings_.time_step != dt_)
+    throw std::runtime_error("DEM restart: the scene's time step differs from the checkpoint's");
+}
+
+}  // namespace sedwave::forward::dem

@@ -1,0 +1,291 @@
+#include "sedwave/forward/dem/domain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace sedwave::forward::dem {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Sends per-destination vectors of trivially copyable records with one all-to-all; returns what
+/// arrived, ordered by source rank (deterministic).
+template <typename T>
+std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outgoing) {
+  const int size = static_cast<int>(outgoing.size());
+  std::vector<int> send_counts(size), recv_counts(size), send_displs(size), recv_displs(size);
+  for (int r = 0; r < size; ++r) send_counts[r] = static_cast<int>(outgoing[r].size() * sizeof(T));
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  std::exclusive_scan(send_counts.begin(), send_counts.end(), send_displs.begin(), 0);
+  std::exclusive_scan(recv_counts.begin(), recv_counts.end(), recv_displs.begin(), 0);
+  std::vector<char> send(static_cast<std::size_t>(send_displs.back() + send_counts.back()));
+  for (int r = 0; r < size; ++r)
+    if (!outgoing[r].empty())
+      std::copy_n(reinterpret_cast<const char*>(outgoing[r].data()), send_counts[r],
+                  send.data() + send_displs[r]);
+  const std::size_t recv_bytes = static_cast<std::size_t>(recv_displs.back() + recv_counts.back());
+  std::vector<T> incoming(recv_bytes / sizeof(T));
+  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), MPI_BYTE, incoming.data(),
+                recv_counts.data(), recv_displs.data(), MPI_BYTE, comm);
+  return incoming;
+}
+
+}  // namespace
+
+Domain::Domain(MPI_Comm comm, const Box& box) : comm_(comm), box_(box) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  std::vector<double> b(static_cast<std::size_t>(size_) + 1);
+  for (int r = 0; r <= size_; ++r) b[r] = box.lo.z + box.length(2) * r / size_;
+  set_boundaries(std::move(b));
+}
+
+void Domain::set_boundaries(std::vector<double> boundaries) {
+  if (boundaries.size() != static_cast<std::size_t>(size_) + 1)
+    throw std::invalid_argument("Domain: need size()+1 boundaries");
+  boundaries_ = std::move(boundaries);
+  boundaries_.front() = box_.periodic[2] ? box_.lo.z : -kInf;
+  boundaries_.back() = box_.periodic[2] ? box_.hi.z : kInf;
+}
+
+int Domain::owner(double z) const {
+  const auto it = std::upper_bound(boundaries_.begin() + 1, boundaries_.end() - 1, z);
+  return static_cast<int>(it - (boundaries_.begin() + 1));
+}
+
+void Domain::clamp_thickness(double min_thickness) {
+  // Interior slabs must be at least one ghost cutoff thick (ghosts come from adjacent slabs only).
+  const auto n = static_cast<std::size_t>(size_);
+  if (n < 2) return;
+  const bool periodic = box_.periodic[2];
+  if (periodic && box_.length(2) < static_cast<double>(n) * min_thickness)
+    throw std::runtime_error("Domain: box too short for " + std::to_string(size_) +
+                             " slabs of thickness >= the ghost cutoff " + std::to_string(min_thickness));
+  for (std::size_t k = periodic ? 1 : 2; k < n; ++k)
+    boundaries_[k] = std::max(boundaries_[k], boundaries_[k - 1] + min_thickness);
+  if (periodic) {
+    for (std::size_t k = n - 1; k >= 1; --k)
+      boundaries_[k] = std::min(boundaries_[k], boundaries_[k + 1] - min_thickness);
+  }
+}
+
+void Domain::partition_by_count(const GrainArrays& g, double min_thickness) {
+  if (size_ == 1) return;
+  double lo = kInf, hi = -kInf;
+  for (std::size_t i = 0; i < g.n_local(); ++i) {
+    lo = std::min(lo, g.position[i].z);
+    hi = std::max(hi, g.position[i].z);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  if (box_.periodic[2]) {
+    lo = box_.lo.z;
+    hi = box_.hi.z;
+  }
+  constexpr int bins = 8192;
+  std::vector<double> histogram(bins, 0.0);
+  const double width = std::max(hi - lo, 1e-300) / bins;
+  for (std::size_t i = 0; i < g.n_local(); ++i)
+    histogram[std::clamp(static_cast<int>((g.position[i].z - lo) / width), 0, bins - 1)] += 1.0;
+  MPI_Allreduce(MPI_IN_PLACE, histogram.data(), bins, MPI_DOUBLE, MPI_SUM, comm_);
+  const double total = std::accumulate(histogram.begin(), histogram.end(), 0.0);
+  std::vector<double> b(boundaries_);
+  double cumulative = 0.0;
+  int next = 1;
+  for (int k = 0; k < bins && next < size_; ++k) {
+    cumulative += histogram[k];
+    while (next < size_ && cumulative >= total * next / size_) b[next++] = lo + (k + 1) * width;
+  }
+  for (; next < size_; ++next) b[next] = hi;
+  set_boundaries(std::move(b));
+  clamp_thickness(min_thickness);
+}
+
+void Domain::balance(double my_work, const GrainArrays& g, double min_thickness) {
+  if (size_ == 1) return;
+  std::vector<double> work(static_cast<std::size_t>(size_));
+  MPI_Allgather(&my_work, 1, MPI_DOUBLE, work.data(), 1, MPI_DOUBLE, comm_);
+  // Work is assumed uniform within each slab; open end slabs are cut at the grains' extent.
+  double lo = boundaries_.front(), hi = boundaries_.back();
+  if (!box_.periodic[2]) {
+    double z_lo = kInf, z_hi = -kInf;
+    for (std::size_t i = 0; i < g.n_local(); ++i) {
+      z_lo = std::min(z_lo, g.position[i].z);
+      z_hi = std::max(z_hi, g.position[i].z);
+    }
+    MPI_Allreduce(&z_lo, &lo, 1, MPI_DOUBLE, MPI_MIN, comm_);
+    MPI_Allreduce(&z_hi, &hi, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  }
+  std::vector<double> edge(boundaries_);
+  edge.front() = std::min(lo, edge[1]);
+  edge.back() = std::max(hi, edge[edge.size() - 2]);
+  const double total = std::accumulate(work.begin(), work.end(), 0.0);
+  if (!(total > 0.0)) return;
+  std::vector<double> b(boundaries_);
+  double cumulative = 0.0;
+  int slab = 0;
+  for (int k = 1; k < size_; ++k) {
+    const double target = total * k / size_;
+    while (slab < size_ - 1 && cumulative + work[slab] < target) cumulative += work[slab++];
+    const double fraction = work[slab] > 0.0 ? (target - cumulative) / work[slab] : 0.5;
+    const double ideal = edge[slab] + std::clamp(fraction, 0.0, 1.0) * (edge[slab + 1] - edge[slab]);
+    b[k] = boundaries_[k] + 0.5 * (ideal - boundaries_[k]);  // half steps: no oscillation
+  }
+  set_boundaries(std::move(b));
+  clamp_thickness(min_thickness);
+}
+
+void Domain::migrate(GrainArrays& g, std::vector<HistoryEntry>& history) {
+  if (g.n_ghost() != 0) throw std::logic_error("Domain::migrate with ghosts present");
+  const std::size_t n = g.n_local();
+  for (std::size_t i = 0; i < n; ++i) box_.wrap(g.position[i]);
+  if (size_ == 1) return;
+  std::vector<std::vector<Grain>> grains_out(static_cast<std::size_t>(size_));
+  std::vector<std::uint8_t> keep(n, 1);
+  std::unordered_map<std::int64_t, int> departing;  // id -> destination
+  for (std::size_t i = 0; i < n; ++i) {
+    const int dest = owner(g.position[i].z);
+    if (dest == rank_) continue;
+    keep[i] = 0;
+    grains_out[dest].push_back(g.grain(i));
+    departing.emplace(g.id[i], dest);
+  }
+  std::vector<std::vector<HistoryEntry>> history_out(static_cast<std::size_t>(size_));
+  if (!departing.empty())
+    for (const HistoryEntry& e : history) {
+      const auto a = departing.find(e.a);
+      const auto b = departing.find(e.b);
+      if (a != departing.end()) history_out[a->second].push_back(e);
+      if (b != departing.end() && (a == departing.end() || b->second != a->second))
+        history_out[b->second].push_back(e);
+    }
+  g.keep_local(keep);
+  for (const Grain& grain : all_to_all(comm_, grains_out)) g.push_local(grain);
+  const std::vector<HistoryEntry> arrived = all_to_all(comm_, history_out);
+  history.insert(history.end(), arrived.begin(), arrived.end());
+}
+
+void Domain::image_swaps(GrainArrays& g, int axis, double cutoff) {
+  if (box_.length(axis) < cutoff)
+    throw std::runtime_error("Domain: periodic length along axis " + std::to_string(axis) +
+                             " is shorter than the ghost cutoff " + std::to_string(cutoff));
+  const std::size_t candidates = g.n_total();
+  for (const int side : {0, 1}) {
+    Swap s;
+    s.send_to = s.recv_from = rank_;
+    s.shift[axis] = side == 0 ? box_.length(axis) : -box_.length(axis);
+    for (std::size_t i = 0; i < candidates; ++i) {
+      const double c = g.position[i][axis];
+      if (side == 0 ? c < box_.lo[axis] + cutoff : c >= box_.hi[axis] - cutoff)
+        s.send.push_back(static_cast<std::int32_t>(i));
+    }
+    s.recv_first = g.n_total();
+    s.recv_count = s.send.size();
+    for (const std::int32_t i : s.send) {
+      Grain ghost = g.grain(static_cast<std::size_t>(i));
+      ghost.position += s.shift;
+      g.push_ghost(ghost);
+    }
+    swaps_.push_back(std::move(s));
+  }
+}
+
+void Domain::neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candidates, double cutoff) {
+  const bool periodic = box_.periodic[2];
+  Swap s;
+  const int below = rank_ > 0 ? rank_ - 1 : (periodic ? size_ - 1 : MPI_PROC_NULL);
+  const int above = rank_ < size_ - 1 ? rank_ + 1 : (periodic ? 0 : MPI_PROC_NULL);
+  s.send_to = downwards ? below : above;
+  s.recv_from = downwards ? above : below;
+  if (downwards && rank_ == 0 && periodic) s.shift.z = box_.length(2);
+  if (!downwards && rank_ == size_ - 1 && periodic) s.shift.z = -box_.length(2);
+  if (s.send_to != MPI_PROC_NULL)
+    for (std::size_t i = 0; i < n_candidates; ++i) {
+      const double z = g.position[i].z;
+      if (downwards ? z < slab_lo() + cutoff : z >= slab_hi() - cutoff)
+        s.send.push_back(static_cast<std::int32_t>(i));
+    }
+  std::vector<Grain> out;
+  out.reserve(s.send.size());
+  for (const std::int32_t i : s.send) {
+    out.push_back(g.grain(static_cast<std::size_t>(i)));
+    out.back().position += s.shift;
+  }
+  int n_out = static_cast<int>(out.size()), n_in = 0;
+  MPI_Sendrecv(&n_out, 1, MPI_INT, s.send_to, 11, &n_in, 1, MPI_INT, s.recv_from, 11, comm_,
+               MPI_STATUS_IGNORE);
+  std::vector<Grain> in(static_cast<std::size_t>(n_in));
+  MPI_Sendrecv(out.data(), n_out * static_cast<int>(sizeof(Grain)), MPI_BYTE, s.send_to, 12, in.data(),
+               n_in * static_cast<int>(sizeof(Grain)), MPI_BYTE, s.recv_from, 12, comm_,
+               MPI_STATUS_IGNORE);
+  s.recv_first = g.n_total();
+  s.recv_count = in.size();
+  for (const Grain& ghost : in) g.push_ghost(ghost);
+  swaps_.push_back(std::move(s));
+}
+
+void Domain::build_ghosts(GrainArrays& g, double cutoff) {
+  g.clear_ghosts();
+  swaps_.clear();
+  for (int axis = 0; axis < 2; ++axis)
+    if (box_.periodic[axis]) image_swaps(g, axis, cutoff);
+  if (size_ == 1) {
+    if (box_.periodic[2]) image_swaps(g, 2, cutoff);
+    return;
+  }
+  for (int r = 1; r < size_; ++r)
+    if (boundaries_[r + 1] - boundaries_[r] < cutoff && r + 1 < size_)
+      throw std::runtime_error("Domain: slab " + std::to_string(r) + " is thinner than the ghost cutoff");
+  const std::size_t candidates = g.n_total();  // locals and x/y images, not z ghosts
+  neighbour_swap(g, true, candidates, cutoff);
+  neighbour_swap(g, false, candidates, cutoff);
+}
+
+void Domain::update_ghosts(GrainArrays& g) {
+  const bool spin = g.rotation();
+  const std::size_t per = spin ? 9 : 6;
+  ghost_bytes_ = 0;
+  for (const Swap& s : swaps_) {
+    if (s.send_to == rank_ && s.recv_from == rank_) {
+      for (std::size_t k = 0; k < s.send.size(); ++k) {
+        const auto i = static_cast<std::size_t>(s.send[k]);
+        const std::size_t j = s.recv_first + k;
+        g.position[j] = g.position[i] + s.shift;
+        g.velocity[j] = g.velocity[i];
+        if (spin) g.angular_velocity[j] = g.angular_velocity[i];
+      }
+      continue;
+    }
+    send_buffer_.resize(s.send.size() * per);
+    for (std::size_t k = 0; k < s.send.size(); ++k) {
+      const auto i = static_cast<std::size_t>(s.send[k]);
+      double* out = send_buffer_.data() + k * per;
+      const Vec3 p = g.position[i] + s.shift;
+      const Vec3& v = g.velocity[i];
+      out[0] = p.x; out[1] = p.y; out[2] = p.z;
+      out[3] = v.x; out[4] = v.y; out[5] = v.z;
+      if (spin) {
+        const Vec3& w = g.angular_velocity[i];
+        out[6] = w.x; out[7] = w.y; out[8] = w.z;
+      }
+    }
+    recv_buffer_.resize(s.recv_count * per);
+    MPI_Sendrecv(send_buffer_.data(), static_cast<int>(send_buffer_.size()), MPI_DOUBLE, s.send_to, 13,
+                 recv_buffer_.data(), static_cast<int>(recv_buffer_.size()), MPI_DOUBLE, s.recv_from, 13,
+                 comm_, MPI_STATUS_IGNORE);
+    ghost_bytes_ += (send_buffer_.size() + recv_buffer_.size()) * sizeof(double);
+    for (std::size_t k = 0; k < s.recv_count; ++k) {
+      const double* in = recv_buffer_.data() + k * per;
+      const std::size_t j = s.recv_first + k;
+      g.position[j] = {in[0], in[1], in[2]};
+      g.velocity[j] = {in[3], in[4], in[5]};
+      if (spin) g.angular_velocity[j] = {in[6], in[7], in[8]};
+    }
+  }
+}
+
+}  // namespace sedwave::forward::dem

@@ -1,0 +1,133 @@
+#pragma once
+// Minimal RAII over the HDF5 C API for the DEM checkpoint and trajectory files (private header).
+#include <hdf5.h>
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sedwave::forward::dem::h5 {
+
+/// Owns one hid_t and closes it with the matching H5*close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
+  }
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  Handle& operator=(Handle&& o) noexcept {
+    std::swap(id_, o.id_);
+    std::swap(close_, o.close_);
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() {
+    if (id_ >= 0 && close_) close_(id_);
+  }
+  [[nodiscard]] hid_t get() const { return id_; }
+  operator hid_t() const { return id_; }  // NOLINT: handles are used as hid_t throughout
+
+ private:
+  hid_t id_ = -1;
+  Closer close_ = nullptr;
+};
+
+inline void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+}
+
+template <typename T> hid_t native_type();
+template <> inline hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
+template <> inline hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
+template <> inline hid_t native_type<std::int32_t>() { return H5T_NATIVE_INT32; }
+
+inline Handle create_file(const std::string& path) {
+  return {H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + path};
+}
+inline Handle open_file(const std::string& path, bool writable = false) {
+  return {H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+          "open " + path};
+}
+inline Handle create_group(hid_t parent, const std::string& name) {
+  return {H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+          "create group " + name};
+}
+inline bool exists(hid_t parent, const std::string& name) {
+  return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+/// Writes a dataset of shape {rows} (columns == 0) or {rows, columns}.
+template <typename T>
+void write(hid_t parent, const std::string& name, const T* data, std::size_t rows, std::size_t columns = 0) {
+  const std::array<hsize_t, 2> dims{rows, columns};
+  Handle space(H5Screate_simple(columns ? 2 : 1, dims.data(), nullptr), H5Sclose, "dataspace " + name);
+  Handle set(H5Dcreate2(parent, name.c_str(), native_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Dclose, "create dataset " + name);
+  if (rows > 0) check(H5Dwrite(set, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+
+/// Number of rows of a dataset.
+inline std::size_t rows(hid_t parent, const std::string& name) {
+  Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  Handle space(H5Dget_space(set), H5Sclose, "dataspace " + name);
+  std::array<hsize_t, 2> dims{0, 0};
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return static_cast<std::size_t>(dims[0]);
+}
+
+/// Reads rows [first, first + count) of a 1D or 2D dataset (columns: the second extent, 0 for 1D).
+template <typename T>
+std::vector<T> read_rows(hid_t parent, const std::string& name, std::size_t first, std::size_t count,
+                         std::size_t columns = 0) {
+  std::vector<T> out(count * (columns ? columns : 1));
+  if (count == 0) return out;
+  Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  Handle file_space(H5Dget_space(set), H5Sclose, "dataspace " + name);
+  const std::array<hsize_t, 2> start{first, 0};
+  const std::array<hsize_t, 2> extent{count, columns};
+  check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, extent.data(), nullptr),
+        "select " + name);
+  Handle memory(H5Screate_simple(columns ? 2 : 1, extent.data(), nullptr), H5Sclose, "memory space");
+  check(H5Dread(set, native_type<T>(), memory, file_space, H5P_DEFAULT, out.data()), "read " + name);
+  return out;
+}
+
+template <typename T>
+void write_attribute(hid_t parent, const std::string& name, T value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle attr(H5Acreate2(parent, name.c_str(), native_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              "create attribute " + name);
+  check(H5Awrite(attr, native_type<T>(), &value), "write attribute " + name);
+}
+template <typename T>
+T read_attribute(hid_t parent, const std::string& name) {
+  Handle attr(H5Aopen(parent, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + name);
+  T value{};
+  check(H5Aread(attr, native_type<T>(), &value), "read attribute " + name);
+  return value;
+}
+
+inline void write_string_attribute(hid_t parent, const std::string& name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+  check(H5Tset_size(type, std::max<std::size_t>(value.size(), 1)), "string size");
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle attr(H5Acreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              "create attribute " + name);
+  std::string padded = value.empty() ? std::string(1, '\0') : value;
+  check(H5Awrite(attr, type, padded.data()), "write attribute " + name);
+}
+inline std::string read_string_attribute(hid_t parent, const std::string& name) {
+  Handle attr(H5Aopen(parent, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + name);
+  Handle type(H5Aget_type(attr), H5Tclose, "attribute type");
+  std::string value(H5Tget_size(type), '\0');
+  check(H5Aread(attr, type, value.data()), "read attribute " + name);
+  while (!value.empty() && value.back() == '\0') value.pop_back();
+  return value;
+}
+
+}  // namespace sedwave::forward::dem::h5

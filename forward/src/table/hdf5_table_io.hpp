@@ -1,0 +1,97 @@
+#pragma once
+// Private: the few HDF5 C API operations the table file needs, each behind a function that owns its
+// handles (RAII) and throws std::runtime_error naming what failed.
+#include <hdf5.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sedwave::forward::table::h5 {
+
+/// Owns one hid_t and closes it with the matching H5*close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
+  }
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)), close_(other.close_) {}
+  Handle& operator=(Handle&& other) noexcept {
+    std::swap(id_, other.id_);
+    std::swap(close_, other.close_);
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() {
+    if (id_ >= 0 && close_ != nullptr) close_(id_);
+  }
+  [[nodiscard]] hid_t id() const { return id_; }
+
+ private:
+  hid_t id_ = -1;
+  Closer close_ = nullptr;
+};
+
+inline void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+}
+
+/// Turns HDF5's automatic error-stack printing off while alive (for probing files that may be damaged).
+class QuietErrors {
+ public:
+  QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+
+ private:
+  H5E_auto2_t function_ = nullptr;
+  void* data_ = nullptr;
+};
+
+Handle create_file(const std::string& path);
+Handle open_file(const std::string& path, bool writable);
+void flush(const Handle& file);
+Handle create_group(const Handle& parent, const std::string& name);
+Handle open_group(const Handle& parent, const std::string& name);
+Handle open_dataset(const Handle& parent, const std::string& name);
+
+void write_string_attribute(const Handle& object, const std::string& name, const std::string& value);
+[[nodiscard]] std::string read_string_attribute(const Handle& object, const std::string& name);
+void write_int_attribute(const Handle& object, const std::string& name, int value);
+[[nodiscard]] int read_int_attribute(const Handle& object, const std::string& name);
+
+/// Scalar dataset holding one string (any length, including empty).
+void write_string_dataset(const Handle& parent, const std::string& name, const std::string& value);
+[[nodiscard]] std::string read_string_dataset(const Handle& parent, const std::string& name);
+
+void write_vector(const Handle& parent, const std::string& name, const std::vector<double>& values);
+[[nodiscard]] std::vector<double> read_vector(const Handle& parent, const std::string& name);
+
+/// The kinds of 2D [rows][columns] dataset a table holds.
+enum class CellType { float64, status, text };
+
+/// Width of a fixed-length text cell including its terminating NUL.
+inline constexpr std::size_t kTextCellBytes = 160;
+
+/// A 2D dataset, contiguous and allocated (filled with NaN / 0 / empty) at creation, so that writing
+/// a cell later only overwrites raw data and never changes the file's metadata.
+Handle create_matrix(const Handle& parent, const std::string& name, CellType type, std::size_t rows,
+                     std::size_t columns);
+
+/// Writes one cell.
+void write_cell(const Handle& dataset, CellType type, std::size_t row, std::size_t column, const void* value);
+
+[[nodiscard]] std::vector<double> read_float64_matrix(const Handle& dataset);
+[[nodiscard]] std::vector<std::int8_t> read_status_matrix(const Handle& dataset);
+[[nodiscard]] std::vector<std::string> read_text_matrix(const Handle& dataset);
+
+}  // namespace sedwave::forward::table::h5

@@ -1,0 +1,393 @@
+#include "sedwave/forward/table/table_file.hpp"
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "hdf5_table_io.hpp"
+#include "journal.hpp"
+#include "sedwave/version.hpp"
+
+namespace sedwave::forward::table {
+namespace {
+
+constexpr const char* kFormatName = "sedwave dispersion table";
+constexpr int kFormatVersion = 1;
+
+/// A per-point floating-point result: where it lives in PointResult and how the file describes it.
+struct FloatColumn {
+  const char* name;
+  double PointResult::*field;
+  const char* units;
+  const char* description;
+};
+
+constexpr std::array<FloatColumn, 5> kFloatColumns{{
+    {"alpha_hat", &PointResult::alpha_hat, "1 (Np per grain diameter)",
+     "attenuation alpha d; amplitude ~ exp(-alpha x); NaN unless status is ok"},
+    {"c_hat", &PointResult::c_hat, "1", "phase speed c / (d sqrt(kappa/m)); NaN unless status is ok"},
+    {"sigma_alpha_hat", &PointResult::sigma_alpha_hat, "1 (Np per grain diameter)", "1-sigma uncertainty of alpha_hat"},
+    {"sigma_c_hat", &PointResult::sigma_c_hat, "1", "1-sigma uncertainty of c_hat"},
+    {"wall_seconds", &PointResult::wall_seconds, "s", "wall-clock time spent computing the point"},
+}};
+
+/// The open per-point datasets of /results.
+struct ResultDatasets {
+  std::array<h5::Handle, kFloatColumns.size()> floats;
+  h5::Handle status;
+  h5::Handle reason;
+};
+
+void describe(const h5::Handle& object, const std::string& units, const std::string& description) {
+  h5::write_string_attribute(object, "units", units);
+  h5::write_string_attribute(object, "description", description);
+}
+
+// ---- Writing --------------------------------------------------------------------------------------
+
+void write_grid(const h5::Handle& file, const TableGrid& grid) {
+  const h5::Handle group = h5::create_group(file, "grid");
+  h5::write_vector(group, "omega_hat", grid.omega_hat);
+  h5::write_vector(group, "gamma_hat", grid.gamma_hat);
+  const h5::Handle omega = h5::open_dataset(group, "omega_hat");
+  describe(omega, "1", "omega sqrt(m/kappa), strictly ascending; interpolation uses its log");
+  const h5::Handle gamma = h5::open_dataset(group, "gamma_hat");
+  describe(gamma, "1", "gamma / sqrt(kappa m), strictly ascending; interpolation uses its log");
+}
+
+void create_results(const h5::Handle& file, const TableGrid& grid) {
+  const h5::Handle group = h5::create_group(file, "results");
+  const std::size_t rows = grid.gamma_hat.size(), columns = grid.omega_hat.size();
+  for (const FloatColumn& column : kFloatColumns) {
+    describe(h5::create_matrix(group, column.name, h5::CellType::float64, rows, columns), column.units,
+             column.description);
+  }
+  describe(h5::create_matrix(group, "status", h5::CellType::status, rows, columns), "enum",
+           "missing = 0 (not computed), ok = 1, unresolved = 2 (channel length or run time cannot resolve it), "
+           "failed = 3");
+  describe(h5::create_matrix(group, "reason", h5::CellType::text, rows, columns), "text",
+           "why a point is unresolved or failed (at most " + std::to_string(h5::kTextCellBytes - 1) + " bytes)");
+}
+
+void write_layout(const h5::Handle& file, const DispersionTable& table) {
+  const TableMetadata& m = table.metadata();
+  h5::write_string_attribute(file, "format", kFormatName);
+  h5::write_int_attribute(file, "format_version", kFormatVersion);
+  h5::write_string_attribute(file, "sedwave_version", m.code_version);
+  h5::write_string_attribute(file, "engine", m.engine);
+  h5::write_string_attribute(file, "definitions", m.definitions);
+  h5::write_string_dataset(file, "scene", m.scene_toml);
+  write_grid(file, table.grid());
+  create_results(file, table.grid());
+}
+
+ResultDatasets open_results(const h5::Handle& file) {
+  const h5::Handle group = h5::open_group(file, "results");
+  ResultDatasets sets;
+  for (std::size_t i = 0; i < kFloatColumns.size(); ++i) sets.floats[i] = h5::open_dataset(group, kFloatColumns[i].name);
+  sets.status = h5::open_dataset(group, "status");
+  sets.reason = h5::open_dataset(group, "reason");
+  return sets;
+}
+
+/// Values and reason first, status last and flushed separately: within the HDF5 file a point only
+/// counts as finished once everything else about it is on disk.
+void write_point_cells(const ResultDatasets& sets, GridIndex index, const PointResult& result) {
+  for (std::size_t i = 0; i < kFloatColumns.size(); ++i) {
+    const double value = result.*kFloatColumns[i].field;
+    h5::write_cell(sets.floats[i], h5::CellType::float64, index.i_gamma, index.i_omega, &value);
+  }
+  std::array<char, h5::kTextCellBytes> reason{};
+  result.reason.copy(reason.data(), reason.size() - 1);
+  h5::write_cell(sets.reason, h5::CellType::text, index.i_gamma, index.i_omega, reason.data());
+}
+
+void write_point_status(const ResultDatasets& sets, GridIndex index, PointStatus status) {
+  const auto code = static_cast<std::int8_t>(status);
+  h5::write_cell(sets.status, h5::CellType::status, index.i_gamma, index.i_omega, &code);
+}
+
+/// Writes the complete file under a temporary name and renames it into place, so `path` never
+/// holds a half-created table.
+void write_complete_file(const std::filesystem::path& path, const DispersionTable& table) {
+  std::filesystem::path temporary = path;
+  temporary += ".creating";
+  {
+    const h5::Handle file = h5::create_file(temporary.string());
+    write_layout(file, table);
+    const ResultDatasets sets = open_results(file);
+    for (std::size_t g = 0; g < table.n_gamma(); ++g) {
+      for (std::size_t w = 0; w < table.n_omega(); ++w) {
+        const PointResult& p = table.at(g, w);
+        if (p.status == PointStatus::missing) continue;
+        write_point_cells(sets, {g, w}, p);
+        write_point_status(sets, {g, w}, p.status);
+      }
+    }
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+// ---- Reading --------------------------------------------------------------------------------------
+
+TableMetadata read_metadata(const h5::Handle& file) {
+  TableMetadata m;
+  m.scene_toml = h5::read_string_dataset(file, "scene");
+  m.engine = h5::read_string_attribute(file, "engine");
+  m.code_version = h5::read_string_attribute(file, "sedwave_version");
+  m.definitions = h5::read_string_attribute(file, "definitions");
+  return m;
+}
+
+PointStatus status_from_code(std::int8_t code, const std::filesystem::path& path) {
+  if (code < 0 || code > static_cast<std::int8_t>(PointStatus::failed)) {
+    throw std::runtime_error(path.string() + ": invalid status code " + std::to_string(code));
+  }
+  return static_cast<PointStatus>(code);
+}
+
+DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& path) {
+  std::string format;
+  try {
+    format = h5::read_string_attribute(file, "format");
+  } catch (const std::runtime_error&) {
+    format = "(none)";
+  }
+  if (format != kFormatName || h5::read_int_attribute(file, "format_version") != kFormatVersion) {
+    throw std::runtime_error(path.string() + ": not a sedwave dispersion table (format '" + format + "')");
+  }
+  const h5::Handle grid_group = h5::open_group(file, "grid");
+  TableGrid grid{h5::read_vector(grid_group, "omega_hat"), h5::read_vector(grid_group, "gamma_hat")};
+  DispersionTable table(std::move(grid), read_metadata(file));
+
+  const ResultDatasets sets = open_results(file);
+  std::array<std::vector<double>, kFloatColumns.size()> floats;
+  for (std::size_t i = 0; i < floats.size(); ++i) floats[i] = h5::read_float64_matrix(sets.floats[i]);
+  const std::vector<std::int8_t> status = h5::read_status_matrix(sets.status);
+  const std::vector<std::string> reason = h5::read_text_matrix(sets.reason);
+  const std::size_t n = table.grid().size();
+  for (const auto& column : floats) {
+    if (column.size() != n) throw std::runtime_error(path.string() + ": /results do not match /grid in size");
+  }
+  if (status.size() != n || reason.size() != n) {
+    throw std::runtime_error(path.string() + ": /results do not match /grid in size");
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    PointResult p;
+    for (std::size_t i = 0; i < kFloatColumns.size(); ++i) p.*kFloatColumns[i].field = floats[i][k];
+    p.status = status_from_code(status[k], path);
+    p.reason = reason[k];
+    table.set(k / table.n_omega(), k % table.n_omega(), std::move(p));
+  }
+  return table;
+}
+
+// ---- Journal replay -------------------------------------------------------------------------------
+
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+bool identical(const PointResult& a, const PointResult& b) {
+  for (const FloatColumn& column : kFloatColumns) {
+    if (!same_bits(a.*column.field, b.*column.field)) return false;
+  }
+  return a.status == b.status && a.reason == b.reason;
+}
+
+void require_entry_fits(const JournalEntry& e, const DispersionTable& table, const std::filesystem::path& journal) {
+  const bool fits = e.index.i_gamma < table.n_gamma() && e.index.i_omega < table.n_omega() &&
+                    same_bits(e.omega_hat, table.grid().omega_hat[e.index.i_omega]) &&
+                    same_bits(e.gamma_hat, table.grid().gamma_hat[e.index.i_gamma]);
+  if (!fits) {
+    throw std::runtime_error(journal.string() + ": entry (i_gamma=" + std::to_string(e.index.i_gamma) +
+                             ", i_omega=" + std::to_string(e.index.i_omega) +
+                             ") does not belong to this table's grid (a journal of another run?)");
+  }
+}
+
+/// What a reason becomes once stored: one line (the journal is line-based) that fits a text cell,
+/// cut at a UTF-8 character boundary.
+std::string storable_reason(std::string reason) {
+  for (char& ch : reason) {
+    if (ch == '\n' || ch == '\r' || ch == '\0') ch = ' ';
+  }
+  std::size_t length = std::min(reason.size(), h5::kTextCellBytes - 1);
+  while (length < reason.size() && length > 0 && (static_cast<unsigned char>(reason[length]) & 0xC0) == 0x80) --length;
+  reason.resize(length);
+  return reason;
+}
+
+TableMetadata with_defaults(TableMetadata metadata) {
+  if (metadata.code_version.empty()) metadata.code_version = kVersion;
+  if (metadata.definitions.empty()) metadata.definitions = standard_definitions();
+  return metadata;
+}
+
+void require_same_run(const DispersionTable& existing, const TableGrid& grid, const TableMetadata& metadata,
+                      const std::filesystem::path& path) {
+  std::string differs;
+  if (!(existing.grid() == grid)) differs = "grid";
+  else if (existing.metadata().scene_toml != metadata.scene_toml) differs = "scene";
+  else if (existing.metadata().engine != metadata.engine) differs = "engine";
+  if (!differs.empty()) {
+    throw std::runtime_error(path.string() + " holds a table with a different " + differs +
+                             ": refusing to resume into it (choose another path)");
+  }
+}
+
+}  // namespace
+
+// ---- TableFile ------------------------------------------------------------------------------------
+
+struct TableFile::State {
+  std::filesystem::path path;
+  h5::Handle file;  // declared before the datasets: closed last
+  ResultDatasets sets;
+  DispersionTable table;
+  Journal journal;
+
+  /// Opens the HDF5 file for writing and mirrors it in memory (no journal replay yet). The journal,
+  /// already open and locked by the caller, is taken over only on success.
+  static std::unique_ptr<State> load(const std::filesystem::path& path, Journal& journal) {
+    h5::Handle file = h5::open_file(path.string(), true);
+    DispersionTable table = read_file(file, path);
+    ResultDatasets sets = open_results(file);
+    return std::unique_ptr<State>(
+        new State{path, std::move(file), std::move(sets), std::move(table), std::move(journal)});
+  }
+
+  void store(GridIndex index, const PointResult& result) {
+    write_point_cells(sets, index, result);
+    h5::flush(file);
+    write_point_status(sets, index, result.status);
+    h5::flush(file);
+    table.set(index.i_gamma, index.i_omega, result);
+  }
+
+  /// Brings the file up to date with the journal (the last entry of a point wins).
+  void replay_journal() {
+    const std::filesystem::path journal_file = journal_path(path);
+    for (const JournalEntry& e : Journal::read(journal_file)) {
+      require_entry_fits(e, table, journal_file);
+      if (!identical(table.at(e.index.i_gamma, e.index.i_omega), e.result)) store(e.index, e.result);
+    }
+  }
+};
+
+TableFile::TableFile(std::unique_ptr<State> state) : state_(std::move(state)) {}
+TableFile::TableFile(TableFile&&) noexcept = default;
+TableFile& TableFile::operator=(TableFile&&) noexcept = default;
+TableFile::~TableFile() = default;
+
+std::filesystem::path TableFile::journal_path(const std::filesystem::path& table_path) {
+  std::filesystem::path journal = table_path;
+  journal += ".journal";
+  return journal;
+}
+
+TableFile TableFile::create(const std::filesystem::path& path, const TableGrid& grid, TableMetadata metadata) {
+  for (const std::filesystem::path& existing : {path, journal_path(path)}) {
+    if (std::filesystem::exists(existing)) {
+      throw std::runtime_error("cannot create table " + path.string() + ": " + existing.string() +
+                               " exists (resume_or_create continues a run; delete both to start afresh)");
+    }
+  }
+  Journal journal(journal_path(path));
+  write_complete_file(path, DispersionTable(grid, with_defaults(std::move(metadata))));
+  return TableFile(State::load(path, journal));
+}
+
+TableFile TableFile::open(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error("no table file " + path.string());
+  Journal journal(journal_path(path));
+  std::unique_ptr<State> state = State::load(path, journal);
+  state->replay_journal();
+  return TableFile(std::move(state));
+}
+
+TableFile TableFile::resume_or_create(const std::filesystem::path& path, const TableGrid& grid,
+                                      const TableMetadata& metadata) {
+  // The journal lock first: a file that fails to open because another live writer holds it must
+  // not be mistaken for a damaged one.
+  Journal journal(journal_path(path));
+  std::unique_ptr<State> state;
+  if (std::filesystem::exists(path)) {
+    try {
+      const h5::QuietErrors quiet;
+      state = State::load(path, journal);
+    } catch (const std::runtime_error&) {
+      // Unreadable: keep it for inspection and rebuild from the journal below.
+      std::filesystem::path aside = path;
+      aside += ".corrupt";
+      std::filesystem::rename(path, aside);
+    }
+  }
+  if (state) {
+    require_same_run(state->table, grid, metadata, path);
+  } else {
+    write_complete_file(path, DispersionTable(grid, with_defaults(metadata)));
+    state = State::load(path, journal);
+  }
+  state->replay_journal();
+  return TableFile(std::move(state));
+}
+
+void TableFile::write_point(GridIndex index, const PointResult& result) {
+  if (result.status == PointStatus::missing) {
+    throw std::invalid_argument("write_point: a finished point cannot have status 'missing'");
+  }
+  (void)state_->table.at(index.i_gamma, index.i_omega);  // bounds check before anything is written
+  PointResult stored = result;
+  stored.reason = storable_reason(result.reason);
+  const TableGrid& grid = state_->table.grid();
+  // The journal first: once this line is on disk the point survives whatever happens next.
+  state_->journal.append({index, grid.omega_hat[index.i_omega], grid.gamma_hat[index.i_gamma], stored});
+  state_->store(index, stored);
+}
+
+std::vector<GridIndex> TableFile::finished_points() const {
+  std::vector<GridIndex> finished;
+  const DispersionTable& t = state_->table;
+  for (std::size_t g = 0; g < t.n_gamma(); ++g) {
+    for (std::size_t w = 0; w < t.n_omega(); ++w) {
+      if (t.at(g, w).status != PointStatus::missing) finished.push_back({g, w});
+    }
+  }
+  return finished;
+}
+
+const DispersionTable& TableFile::table() const { return state_->table; }
+const std::filesystem::path& TableFile::path() const { return state_->path; }
+
+// ---- Whole tables ---------------------------------------------------------------------------------
+
+DispersionTable read_table(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error("no table file " + path.string());
+  DispersionTable table = [&] {
+    const h5::Handle file = h5::open_file(path.string(), false);
+    return read_file(file, path);
+  }();
+  const std::filesystem::path journal_file = TableFile::journal_path(path);
+  for (const JournalEntry& e : Journal::read(journal_file)) {
+    require_entry_fits(e, table, journal_file);
+    table.set(e.index.i_gamma, e.index.i_omega, e.result);
+  }
+  return table;
+}
+
+void write_table(const std::filesystem::path& path, const DispersionTable& table) {
+  DispersionTable stored(table.grid(), with_defaults(table.metadata()));
+  for (std::size_t g = 0; g < table.n_gamma(); ++g) {
+    for (std::size_t w = 0; w < table.n_omega(); ++w) {
+      PointResult p = table.at(g, w);
+      p.reason = storable_reason(std::move(p.reason));
+      stored.set(g, w, std::move(p));
+    }
+  }
+  write_complete_file(path, stored);
+  std::filesystem::remove(TableFile::journal_path(path));  // the complete file supersedes any journal
+}
+
+}  // namespace sedwave::forward::table

@@ -1,0 +1,149 @@
+#include "sedwave/forward/table/table_model.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include "hermite_surface.hpp"
+#include "sedwave/forward/table/table_file.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
+
+namespace sedwave::forward::table {
+namespace {
+
+std::string str(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+std::vector<double> logs(const std::vector<double>& values) {
+  std::vector<double> out(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) out[i] = std::log(values[i]);
+  return out;
+}
+
+void require_usable(const PointResult& p, std::size_t i_gamma, std::size_t i_omega) {
+  const auto where = " at (i_gamma=" + std::to_string(i_gamma) + ", i_omega=" + std::to_string(i_omega) + ")";
+  if (!(p.alpha_hat > 0.0) || !std::isfinite(p.alpha_hat) || !(p.c_hat > 0.0) || !std::isfinite(p.c_hat)) {
+    throw std::invalid_argument("table point" + where + " is ok but alpha_hat=" + str(p.alpha_hat) +
+                                ", c_hat=" + str(p.c_hat) + ": ok values must be positive and finite");
+  }
+  if (!(p.sigma_alpha_hat >= 0.0) || !std::isfinite(p.sigma_alpha_hat) || !(p.sigma_c_hat >= 0.0) ||
+      !std::isfinite(p.sigma_c_hat)) {
+    throw std::invalid_argument("table point" + where + " has a negative or non-finite sigma");
+  }
+}
+
+}  // namespace
+
+/// Everything evaluate() needs, built once from the table.
+struct TableModel::Interpolant {
+  std::vector<double> log_omega, log_gamma;
+  std::vector<bool> usable;  // row-major [i_gamma][i_omega]
+  HermiteSurface log_alpha, log_c;
+  std::vector<double> relative_sigma_alpha, relative_sigma_c;
+
+  static Interpolant build(const DispersionTable& table) {
+    const std::size_t n = table.grid().size();
+    std::vector<bool> usable(n);
+    std::vector<double> log_alpha(n, 0.0), log_c(n, 0.0), rel_alpha(n, 0.0), rel_c(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t g = k / table.n_omega(), w = k % table.n_omega();
+      const PointResult& p = table.at(g, w);
+      usable[k] = p.status == PointStatus::ok;
+      if (!usable[k]) continue;
+      require_usable(p, g, w);
+      log_alpha[k] = std::log(p.alpha_hat);
+      log_c[k] = std::log(p.c_hat);
+      rel_alpha[k] = p.sigma_alpha_hat / p.alpha_hat;
+      rel_c[k] = p.sigma_c_hat / p.c_hat;
+    }
+    std::vector<double> x = logs(table.grid().omega_hat), y = logs(table.grid().gamma_hat);
+    HermiteSurface alpha(x, y, std::move(log_alpha), usable);
+    HermiteSurface c(x, y, std::move(log_c), usable);
+    return {std::move(x), std::move(y), std::move(usable), std::move(alpha), std::move(c), std::move(rel_alpha),
+            std::move(rel_c)};
+  }
+
+  /// The first corner of the cell that is not ok, if any (as a flat index).
+  [[nodiscard]] std::optional<std::size_t> unusable_corner(const GridCell& cell) const {
+    const std::size_t nx = log_omega.size();
+    for (const std::size_t iy : {cell.y.lower, cell.y.upper}) {
+      for (const std::size_t ix : {cell.x.lower, cell.x.upper}) {
+        if (!usable[iy * nx + ix]) return iy * nx + ix;
+      }
+    }
+    return std::nullopt;
+  }
+};
+
+TableModel::TableModel(DispersionTable table, std::string name, OutsideTable outside)
+    : table_(std::move(table)),
+      name_(std::move(name)),
+      outside_(outside),
+      interpolant_(std::make_shared<const Interpolant>(Interpolant::build(table_))) {}
+
+std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
+  constexpr std::string_view prefix = "table:";
+  if (!spec.starts_with(prefix)) throw std::invalid_argument("not a table model specification: '" + std::string(spec) + "'");
+  spec.remove_prefix(prefix.size());
+  const std::size_t question = spec.find('?');
+  const std::string path(spec.substr(0, question));
+  OutsideTable outside = OutsideTable::error;
+  if (question != std::string_view::npos) {
+    const std::string_view option = spec.substr(question + 1);
+    if (option == "extrapolate=theory") {
+      outside = OutsideTable::lattice_theory;
+    } else if (option != "extrapolate=none") {
+      throw std::invalid_argument("table model option '" + std::string(option) +
+                                  "' not understood (accepted: extrapolate=none, extrapolate=theory)");
+    }
+  }
+  if (path.empty()) throw std::invalid_argument("table model needs a file: table:FILE.h5");
+  return std::make_unique<TableModel>(read_table(path), "table:" + path, outside);
+}
+
+DispersionPoint TableModel::evaluate(double omega_hat, double gamma_hat) const {
+  const Interpolant& in = *interpolant_;
+  const auto x = omega_hat > 0.0 ? locate(in.log_omega, std::log(omega_hat)) : std::nullopt;
+  const auto y = gamma_hat > 0.0 ? locate(in.log_gamma, std::log(gamma_hat)) : std::nullopt;
+  if (!x || !y) return outside(omega_hat, gamma_hat, "is outside the table");
+  const GridCell cell{*x, *y};
+  if (const auto corner = in.unusable_corner(cell)) {
+    const std::size_t g = *corner / table_.n_omega(), w = *corner % table_.n_omega();
+    const PointResult& p = table_.at(g, w);
+    return outside(omega_hat, gamma_hat,
+                   "falls in a cell whose corner (omega_hat=" + str(table_.grid().omega_hat[w]) +
+                       ", gamma_hat=" + str(table_.grid().gamma_hat[g]) + ") is " + std::string(to_string(p.status)) +
+                       (p.reason.empty() ? "" : " (" + p.reason + ")"));
+  }
+  // Interpolated in logs: alpha = exp(L), so d alpha / d omega_hat = alpha dL/d ln(omega_hat) / omega_hat.
+  const SurfaceSample a = in.log_alpha(cell);
+  const SurfaceSample c = in.log_c(cell);
+  DispersionPoint p;
+  p.alpha_hat = std::exp(a.value);
+  p.c_hat = std::exp(c.value);
+  p.d_alpha_hat = {p.alpha_hat * a.d_x / omega_hat, p.alpha_hat * a.d_y / gamma_hat};
+  p.d_c_hat = {p.c_hat * c.d_x / omega_hat, p.c_hat * c.d_y / gamma_hat};
+  p.sigma_alpha_hat = p.alpha_hat * bilinear(cell, in.relative_sigma_alpha, in.log_omega.size());
+  p.sigma_c_hat = p.c_hat * bilinear(cell, in.relative_sigma_c, in.log_omega.size());
+  return p;
+}
+
+DispersionPoint TableModel::outside(double omega_hat, double gamma_hat, const std::string& why) const {
+  if (outside_ == OutsideTable::lattice_theory) {
+    fallbacks_.fetch_add(1, std::memory_order_relaxed);
+    return LatticeModel().evaluate(omega_hat, gamma_hat);
+  }
+  const TableGrid& grid = table_.grid();
+  throw std::domain_error(name_ + ": (omega_hat=" + str(omega_hat) + ", gamma_hat=" + str(gamma_hat) + ") " + why +
+                          "; the table covers omega_hat in [" + str(grid.omega_hat.front()) + ", " +
+                          str(grid.omega_hat.back()) + "], gamma_hat in [" + str(grid.gamma_hat.front()) + ", " +
+                          str(grid.gamma_hat.back()) + "] (use " + name_ +
+                          "?extrapolate=theory to fall back to the lattice theory)");
+}
+
+}  // namespace sedwave::forward::table
