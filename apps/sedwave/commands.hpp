@@ -13,5 +13,6 @@ struct Command {
 
 Command add_theory_command(CLI::App& app);
 Command add_invert_command(CLI::App& app);
+Command add_dem_command(CLI::App& app);
 
 }  // namespace sedwave::app

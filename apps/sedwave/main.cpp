@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", sedwave::kVersion);
   app.require_subcommand(1);
   const std::vector<sedwave::app::Command> commands{sedwave::app::add_theory_command(app),
-                                                    sedwave::app::add_invert_command(app)};
+                                                    sedwave::app::add_invert_command(app),
+                                                    sedwave::app::add_dem_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,9 +5,12 @@
 //                                   nu = 2/7, e_n = 0.9, LAMMPS kn/gamma_n, dt = 0.01 t_col) and
 //                                   prints "ns_per_grain_step=... " on rank 0
 //   dem_bench params file.data      prints kn gamma_n dt for the LAMMPS input
+// DEM_BENCH_NEWTON=off runs sedwave with newton off (default on); DEM_BENCH_VERBOSE=1 prints the
+// engine's timing table and list statistics.
 #include <mpi.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +51,9 @@ dem::EngineSettings settings(const dem::Box& box, bool prepare) {
   s.contact.lammps_gamma_n = p.gamma_n;
   s.time_step = p.dt;
   s.skin = kSkin;
+  // DEM_BENCH_NEWTON=off computes pairs across boundaries on both sides (LAMMPS newton off).
+  const char* newton = std::getenv("DEM_BENCH_NEWTON");
+  s.newton = newton == nullptr || std::string(newton) != "off";
   if (prepare) {
     s.viscous_damping = 2.0;
     s.guard.max_overlap_fraction = 0.6;  // the lattice start overlaps; relaxation removes it

@@ -5,9 +5,11 @@
 # example-script kn, kt = 2/7 kn unused), e_n = 0.9 (gamma_n for the lightest pair), dt = 0.01 t_col,
 # skin 0.1, W = 3 periodic channel (periodic along z too), compressed packing prepared by sedwave
 # and handed to both codes as the same LAMMPS data file (with the same small random velocities).
-# LAMMPS runs pair gran/hooke (xmu = 0), fix nve/sphere, newton off (the thesis's settings).
+# LAMMPS runs pair gran/hooke (xmu = 0), fix nve/sphere. Both codes run with the same newton
+# setting: NEWTON=on (default; each pair across a periodic face or rank boundary computed once, the
+# reaction sent back) or NEWTON=off (computed on both sides, the thesis's LAMMPS setting).
 #
-# Usage: bench/dem/run_vs_lammps.sh [build-dir]   (SIZES="2000 10000" to choose sizes)
+# Usage: bench/dem/run_vs_lammps.sh [build-dir]   (SIZES="2000 10000" to choose sizes, NEWTON=off)
 # Prints a markdown table: ns per grain-step for both codes on 1 and 2 ranks, the ratio, the
 # parallel efficiency and sedwave's memory per grain.
 set -euo pipefail
@@ -15,14 +17,14 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${1:-$ROOT/build-dem}
 WORK=${WORK:-$(mktemp -d /tmp/sedwave-dem-bench.XXXXXX)}
 SIZES=${SIZES:-"2000 10000 50000"}
+NEWTON=${NEWTON:-on}
+export DEM_BENCH_NEWTON=$NEWTON
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 command -v lmp >/dev/null || { apt-get install -y lammps >/dev/null; }
-cmake -S "$ROOT" -B "$BUILD" -DSEDWAVE_BUILD_BENCH=OFF >/dev/null
-cmake --build "$BUILD" -j1 --target sedwave_dem >/dev/null
-mpicxx -std=c++20 -O3 -DNDEBUG -DOMPI_SKIP_MPICXX=1 -I"$ROOT/forward/include" $(pkg-config --cflags hdf5) \
-  "$ROOT/bench/dem/dem_bench.cpp" "$BUILD/forward/src/dem/libsedwave_dem.a" "$BUILD/forward/libsedwave_forward.a" \
-  $(pkg-config --libs hdf5) -o "$WORK/dem_bench"
+cmake -S "$ROOT" -B "$BUILD" -DSEDWAVE_BUILD_BENCH=ON >/dev/null
+cmake --build "$BUILD" -j1 --target dem_bench >/dev/null
+cp "$BUILD/bin/dem_bench" "$WORK/dem_bench"
 
 read -r KN GAMMA_N DT < <("$WORK/dem_bench" params)
 steps_for() { case $1 in 2000) echo 4000 ;; 10000) echo 1000 ;; *) echo 300 ;; esac; }
@@ -34,7 +36,7 @@ units lj
 atom_style sphere
 atom_modify map array
 boundary p p p
-newton off
+newton $NEWTON
 comm_modify vel yes
 read_data $data
 pair_style gran/hooke $KN NULL $GAMMA_N 0.0 0.0 0
@@ -51,6 +53,8 @@ LMP
   awk -v n="$n" '/^Loop time/ {t=$4; s=$9} END {printf "%.2f", 1e9*t/(n*s)}' "$WORK/lmp.out"
 }
 
+echo "newton $NEWTON; load before: $(uptime | sed 's/.*load average/load average/')"
+echo
 echo "| N | steps | sedwave 1 rank | LAMMPS 1 rank | ratio | sedwave 2 ranks | LAMMPS 2 ranks | ratio | sedwave 2-rank efficiency | sedwave bytes/grain (engine) | (RSS growth) |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for N in $SIZES; do

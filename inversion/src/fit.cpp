@@ -114,7 +114,10 @@ LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held =
   options.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
-  return {theta, summary.termination_type == ceres::CONVERGENCE, summary.message, 2.0 * summary.final_cost};
+  // chi^2 from our own evaluation: when the model cannot be evaluated at the start (outside a
+  // table, say) Ceres fails with final_cost 0, which must not read as a perfect fit.
+  const double chi2 = chi2_at(s, theta);
+  return {theta, summary.termination_type == ceres::CONVERGENCE && std::isfinite(chi2), summary.message, chi2};
 }
 
 struct GlobalFit {

@@ -42,19 +42,19 @@ std::unique_ptr<dem::Engine> make_engine(const Scene& s, std::span<const dem::Gr
   return std::make_unique<dem::Engine>(s.comm, settings, grains, std::move(bodies));
 }
 
-/// Natural angular frequency of the mean grain on the lightest pair's contact: pi / t_col.
-double contact_frequency(const dem::Engine& e) { return std::numbers::pi / e.time_step_limits().collision_time; }
-
-std::int64_t compress(dem::Engine& e, const PreparationSettings& p, double target_force, double mean_diameter) {
-  const double settled = p.settled_kinetic_energy * target_force * mean_diameter;
-  const std::int64_t chunk = 1000;
+/// Lowers the upper wall until the grains push back with the target force at three successive
+/// checks (a single impact can exceed it for a moment while the column is still loose).
+std::int64_t compress(dem::Engine& e, const PreparationSettings& p, double target_force) {
+  const std::int64_t chunk = 200;
   std::int64_t steps = 0;
+  int above = 0;
   while (steps < p.max_compression_steps) {
     e.run(chunk);
     steps += chunk;
-    if (e.kinetic_energy() < settled) break;
+    above = e.bodies()[1].contact_force().z >= target_force ? above + 1 : 0;
+    if (above == 3) return steps;
   }
-  return steps;
+  throw std::runtime_error("preparation: the grains never carried the pressure within max_compression_steps");
 }
 
 /// FIRE on the free grains; velocities are steered after every velocity-Verlet step.
@@ -75,6 +75,7 @@ class Fire {
       const PackingStats s = packing_stats(engine_, mean_diameter, width);
       ratio = s.mean_contact_force > 0.0 ? s.max_residual_force / s.mean_contact_force : INFINITY;
       if (ratio < tolerance) break;
+      if (s.contacts == 0 && steps >= 10 * chunk) break;  // nothing to relax: the wall must move
     }
     return steps;
   }
@@ -150,34 +151,32 @@ void log_line(const PreparationSettings& p, MPI_Comm comm, const std::string& li
 PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start, const dem::ContactSpec& contact,
                                 double width, const PreparationSettings& p) {
   if (!(p.pressure > 0.0)) throw std::invalid_argument("preparation: pressure must be positive");
-  double flow_mass = 0.0, flow_diameter = 0.0, wall_mass = 0.0;
+  double flow_mass = 0.0, flow_diameter = 0.0;
   std::int64_t n_flow = 0;
   for (const dem::Grain& g : start.grains) {
     if (g.group == kFlowGroup) {
       flow_mass += g.mass;
       flow_diameter += 2.0 * g.radius;
       ++n_flow;
-    } else if (g.group == kUpperWallGroup) {
-      wall_mass += g.mass;
     }
   }
-  double counts[4] = {flow_mass, flow_diameter, static_cast<double>(n_flow), wall_mass};
-  MPI_Allreduce(MPI_IN_PLACE, counts, 4, MPI_DOUBLE, MPI_SUM, comm);
+  double counts[3] = {flow_mass, flow_diameter, static_cast<double>(n_flow)};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPI_DOUBLE, MPI_SUM, comm);
   const Scene scene{comm, start.box, contact, width, counts[0] / counts[2], counts[1] / counts[2]};
   const double target = p.pressure * width * width;
   PreparedChannel out;
   out.report.target_wall_force = target;
 
-  // Stage 1: compression under the constant wall force, with global drag.
-  const dem::ConstantForce push{{0.0, 0.0, -target}, p.wall_mass > 0.0 ? p.wall_mass : counts[3], {false, false, true}};
-  double omega = 0.0;
+  // Stage 1: lower the wall at a capped speed, with global drag, until it carries P W^2.
+  double t_col = 0.0;
   {
-    const auto probe = make_engine(scene, start.grains, push, p.compression_step_fraction, 0.0);
-    omega = contact_frequency(*probe);
+    const auto probe = make_engine(scene, start.grains, dem::Frozen{}, p.compression_step_fraction, 0.0);
+    t_col = probe->time_step_limits().collision_time;
   }
-  const double drag = p.compression_damping * scene.mean_mass * omega;
-  auto compressor = make_engine(scene, start.grains, push, p.compression_step_fraction, drag);
-  out.report.compression_steps = compress(*compressor, p, target, scene.mean_diameter);
+  const dem::LinearMotion lower{{0.0, 0.0, -p.compression_speed * scene.mean_diameter / t_col}};
+  const double drag = p.compression_damping * scene.mean_mass * std::numbers::pi / t_col;
+  auto compressor = make_engine(scene, start.grains, lower, p.compression_step_fraction, drag);
+  out.report.compression_steps = compress(*compressor, p, target);
   log_line(p, comm, "compressed in " + std::to_string(out.report.compression_steps) + " steps");
 
   // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height.
@@ -207,6 +206,10 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
               std::max(1.0, s.column_height / scene.mean_diameter);
     }
     const double step = (out.report.wall_force - target) / slope;
+    if (!std::isfinite(step)) {
+      throw std::runtime_error("preparation: cannot correct the wall height (wall force " +
+                               std::to_string(out.report.wall_force) + ", target " + std::to_string(target) + ")");
+    }
     previous_shift = shift;
     previous_force = out.report.wall_force;
     shift += step;

@@ -10,31 +10,16 @@
 // Rank 0 gathers and writes (the only time one rank holds all grains); every rank reads in chunks
 // and keeps what it owns.
 #include <cstdio>
-#include <numeric>
 
 #include "hdf5_io.hpp"
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/dem/gather.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
 
 constexpr std::int32_t kCheckpointVersion = 1;
 constexpr std::size_t kReadChunk = 1 << 16;
-
-/// Gathers trivially copyable records from all ranks on rank 0 (rank order).
-template <typename T>
-std::vector<T> gather_on_root(MPI_Comm comm, const std::vector<T>& local) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  const int bytes = static_cast<int>(local.size() * sizeof(T));
-  std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
-  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
-  std::vector<T> all(rank == 0 ? static_cast<std::size_t>(displs.back() + counts.back()) / sizeof(T) : 0);
-  MPI_Gatherv(local.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, comm);
-  return all;
-}
 
 template <typename T, typename F>
 std::vector<T> column(const std::vector<Grain>& grains, F field) {
@@ -57,10 +42,7 @@ std::vector<double> vectors(const std::vector<Grain>& grains, Vec3 Grain::*field
 }  // namespace
 
 void Engine::write_checkpoint(const std::string& path) {
-  std::vector<Grain> local;
-  local.reserve(grains_.n_local());
-  for (std::size_t i = 0; i < grains_.n_local(); ++i) local.push_back(grains_.grain(i));
-  const std::vector<Grain> all = gather_on_root(domain_.comm(), local);
+  const std::vector<Grain> all = gather_grains(*this);
   const std::vector<HistoryEntry> history = gather_on_root(domain_.comm(), contact_history());
   int status = 0;
   std::string error;
@@ -141,6 +123,11 @@ void Engine::restore_checkpoint(const std::string& path) {
     throw std::runtime_error("DEM restart: " + path + " is not a sedwave DEM checkpoint");
   if (h5::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
     throw std::runtime_error("DEM restart: unsupported checkpoint version in " + path);
+  // The laws decide which state exists (spins, history): a checkpoint only continues the same kind.
+  const std::string model = h5::read_string_attribute(file, "contact_model");
+  if (model != describe(settings_.contact))
+    throw std::runtime_error("DEM restart: " + path + " was written with contact model " + model +
+                             ", the scene uses " + describe(settings_.contact));
   step_ = h5::read_attribute<std::int64_t>(file, "step");
   time_ = h5::read_attribute<double>(file, "time");
   dt_ = h5::read_attribute<double>(file, "dt");

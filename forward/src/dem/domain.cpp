@@ -288,4 +288,45 @@ void Domain::update_ghosts(GrainArrays& g) {
   }
 }
 
+void Domain::reverse_forces(GrainArrays& g) {
+  const bool spin = g.rotation();
+  const std::size_t per = spin ? 6 : 3;
+  // Backwards: a ghost that was itself sent on (an x image sent as a y image, or to the next slab)
+  // has collected its images' forces before its own are sent home.
+  for (auto swap = swaps_.rbegin(); swap != swaps_.rend(); ++swap) {
+    const Swap& s = *swap;
+    if (s.send_to == rank_ && s.recv_from == rank_) {
+      for (std::size_t k = 0; k < s.send.size(); ++k) {
+        const auto i = static_cast<std::size_t>(s.send[k]);
+        const std::size_t j = s.recv_first + k;
+        g.force[i] += g.force[j];
+        if (spin) g.torque[i] += g.torque[j];
+      }
+      continue;
+    }
+    // The ghosts received from recv_from return their forces to it; ours arrive from send_to.
+    send_buffer_.resize(s.recv_count * per);
+    for (std::size_t k = 0; k < s.recv_count; ++k) {
+      double* out = send_buffer_.data() + k * per;
+      const Vec3& f = g.force[s.recv_first + k];
+      out[0] = f.x; out[1] = f.y; out[2] = f.z;
+      if (spin) {
+        const Vec3& t = g.torque[s.recv_first + k];
+        out[3] = t.x; out[4] = t.y; out[5] = t.z;
+      }
+    }
+    recv_buffer_.resize(s.send.size() * per);
+    MPI_Sendrecv(send_buffer_.data(), static_cast<int>(send_buffer_.size()), MPI_DOUBLE, s.recv_from, 14,
+                 recv_buffer_.data(), static_cast<int>(recv_buffer_.size()), MPI_DOUBLE, s.send_to, 14,
+                 comm_, MPI_STATUS_IGNORE);
+    ghost_bytes_ += (send_buffer_.size() + recv_buffer_.size()) * sizeof(double);
+    for (std::size_t k = 0; k < s.send.size(); ++k) {
+      const double* in = recv_buffer_.data() + k * per;
+      const auto i = static_cast<std::size_t>(s.send[k]);
+      g.force[i] += Vec3{in[0], in[1], in[2]};
+      if (spin) g.torque[i] += Vec3{in[3], in[4], in[5]};
+    }
+  }
+}
+
 }  // namespace sedwave::forward::dem

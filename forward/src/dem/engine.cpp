@@ -40,6 +40,20 @@ Vec3 sum_over_ranks(MPI_Comm comm, Vec3 local) {
 /// Moment of inertia of a solid sphere, inverted: 1 / (2/5 m r^2) = 2.5 (1/m) / r^2.
 double inverse_inertia(double inv_mass, double radius) { return 2.5 * inv_mass / (radius * radius); }
 
+/// Restores a stream's formatting (precision, flags) at the end of a scope, so the progress report
+/// does not change how the caller prints afterwards.
+class FormatGuard {
+ public:
+  explicit FormatGuard(std::ostream& out) : out_(out), saved_(nullptr) { saved_.copyfmt(out); }
+  ~FormatGuard() { out_.copyfmt(saved_); }
+  FormatGuard(const FormatGuard&) = delete;
+  FormatGuard& operator=(const FormatGuard&) = delete;
+
+ private:
+  std::ostream& out_;
+  std::ios saved_;
+};
+
 std::string format_seconds(double s) {
   std::ostringstream out;
   if (s >= 3600) out << std::fixed << std::setprecision(1) << s / 3600 << " h";
@@ -154,8 +168,11 @@ void Engine::advance(const Model& model) {
   OverlapWatch overlap;
   {
     const auto start = Clock::now();
+    const double communication_before = timings_.communication;
     overlap = evaluate_forces(model, watch);
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    // Communication inside (reverse forces, wall force sums) is counted as communication only.
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count() -
+                           (timings_.communication - communication_before);
     timings_.force += seconds;
     work_since_balance_ += settings_.balance.use_measured_time
                                ? seconds
@@ -225,7 +242,7 @@ void Engine::rebuild() {
   if (sort_every > 0 && rebuilds_ % sort_every == 0)
     grains_.permute_local(spatial_order(grains_, ghost_cutoff_));
   domain_.build_ghosts(grains_, ghost_cutoff_);
-  list_.build(grains_, skin_, max_radius_);
+  list_.build(grains_, skin_, max_radius_, settings_.newton);
   if (history) assign_history(list_, grains_, HistoryMap(entries), history_);
   list_valid_ = true;
   force_rebuild_ = false;
@@ -236,10 +253,14 @@ template <class Model>
 OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
   GrainArrays& g = grains_;
   const std::size_t n = g.n_local();
-  std::fill_n(g.force.begin(), n, Vec3{});
-  if (g.rotation()) std::fill_n(g.torque.begin(), n, Vec3{});
+  std::fill(g.force.begin(), g.force.end(), Vec3{});  // ghosts too: they collect reactions
+  if (g.rotation()) std::fill(g.torque.begin(), g.torque.end(), Vec3{});
   const OverlapWatch w = watch ? accumulate_contact_forces<Model, true>(model, g, list_, history_, dt_)
                                : accumulate_contact_forces<Model, false>(model, g, list_, history_, dt_);
+  if (list_.newton()) {
+    ScopedTimer t(timings_.communication);
+    domain_.reverse_forces(g);
+  }
   const Vec3 gravity = settings_.gravity;
   const double drag = settings_.viscous_damping;
   if (gravity != Vec3{} || drag != 0.0)
@@ -364,8 +385,8 @@ double Engine::elastic_energy() const {
             const auto j = static_cast<std::size_t>(partners[k]);
             const double overlap = g.radius[i] + g.radius[j] - norm(g.position[i] - g.position[j]);
             if (overlap <= 0.0) continue;
-            // A pair with a ghost is also counted by the ghost's owner (or image): half each.
-            const double share = k < list_.ghost_begin(i) ? 1.0 : 0.5;
+            // Under newton off a pair with a ghost is also counted by the ghost's owner (or image).
+            const double share = k < list_.ghost_begin(i) || list_.newton() ? 1.0 : 0.5;
             double pair = model.normal.energy(overlap, g.radius[i], g.radius[j]);
             if constexpr (std::is_same_v<typename Model::TangentialLaw, TangentialSpringHistory>)
               pair += 0.5 * model.tangential.kt * norm2(history_[k]);
@@ -414,6 +435,7 @@ std::size_t Engine::memory_bytes() const {
 void Engine::report_progress(std::int64_t done, std::int64_t total, bool final) {
   const auto now = Clock::now();
   std::ostream& out = settings_.progress.out ? *settings_.progress.out : std::cout;
+  const FormatGuard keep_callers_format(out);
   const double elapsed = std::chrono::duration<double>(now - run_start_).count();
   if (!final) {
     if (domain_.rank() != 0) return;
@@ -442,7 +464,6 @@ void Engine::report_progress(std::int64_t done, std::int64_t total, bool final) 
   row("communication", worst.communication);
   row("integration", worst.integrate);
   row("output", worst.output);
-  out.unsetf(std::ios::fixed);
 }
 
 }  // namespace sedwave::forward::dem

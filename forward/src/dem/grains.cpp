@@ -24,13 +24,21 @@ void GrainArrays::push_local(const Grain& g) {
   ++n_local_;
 }
 
-void GrainArrays::push_ghost(const Grain& g) { push_common(g); }
+void GrainArrays::push_ghost(const Grain& g) {
+  push_common(g);
+  force.emplace_back();
+  if (rotation_) torque.emplace_back();
+}
 
 void GrainArrays::clear_ghosts() {
   const std::size_t n = n_local_;
   position.resize(n);
   velocity.resize(n);
-  if (rotation_) angular_velocity.resize(n);
+  if (rotation_) {
+    angular_velocity.resize(n);
+    torque.resize(n);
+  }
+  force.resize(n);
   radius.resize(n);
   mass.resize(n);
   inv_mass.resize(n);
@@ -48,10 +56,10 @@ Grain GrainArrays::grain(std::size_t i) const {
   g.mass = mass[i];
   g.position = position[i];
   g.velocity = velocity[i];
-  if (rotation_) g.angular_velocity = angular_velocity[i];
-  if (i < n_local_) {
-    g.force = force[i];
-    if (rotation_) g.torque = torque[i];
+  g.force = force[i];
+  if (rotation_) {
+    g.angular_velocity = angular_velocity[i];
+    g.torque = torque[i];
   }
   return g;
 }

@@ -2,6 +2,7 @@
 // Minimal RAII over the HDF5 C API for the DEM checkpoint and trajectory files (private header).
 #include <hdf5.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -128,6 +129,73 @@ inline std::string read_string_attribute(hid_t parent, const std::string& name) 
   check(H5Aread(attr, type, value.data()), "read attribute " + name);
   while (!value.empty() && value.back() == '\0') value.pop_back();
   return value;
+}
+
+// ---- extensible (time-series) datasets -----------------------------------------------------------
+
+using Extent = std::vector<hsize_t>;
+
+/// Creates a dataset of shape [0][inner...] that grows along its first axis (one row per frame).
+/// Chunks hold one frame of at most 2^15 grains, or several frames of small rows (steps, boxes), so
+/// that a chunk is neither tiny nor larger than a few MiB.
+template <typename T>
+void create_extensible(hid_t parent, const std::string& name, const Extent& inner) {
+  hsize_t row = 1;
+  for (hsize_t n : inner) row *= std::max<hsize_t>(n, 1);
+  Extent dims{0}, max_dims{H5S_UNLIMITED}, chunk{std::max<hsize_t>(1, 512 / row)};
+  for (std::size_t k = 0; k < inner.size(); ++k) {
+    dims.push_back(inner[k]);
+    max_dims.push_back(inner[k]);
+    chunk.push_back(std::max<hsize_t>(1, k == 0 ? std::min<hsize_t>(inner[k], hsize_t{1} << 15) : inner[k]));
+  }
+  const int rank = static_cast<int>(dims.size());
+  Handle space(H5Screate_simple(rank, dims.data(), max_dims.data()), H5Sclose, "dataspace " + name);
+  Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "dataset properties");
+  check(H5Pset_chunk(properties, rank, chunk.data()), "chunk " + name);
+  Handle set(H5Dcreate2(parent, name.c_str(), native_type<T>(), space, H5P_DEFAULT, properties, H5P_DEFAULT),
+             H5Dclose, "create dataset " + name);
+}
+
+/// The extent of a dataset along every axis.
+inline Extent extent(hid_t parent, const std::string& name) {
+  Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  Handle space(H5Dget_space(set), H5Sclose, "dataspace " + name);
+  Extent dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return dims;
+}
+
+/// Sets the first extent (the number of frames) of an extensible dataset, growing or shrinking it.
+inline void set_frames(hid_t parent, const std::string& name, hsize_t frames) {
+  Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  Extent dims = extent(parent, name);
+  dims[0] = frames;
+  check(H5Dset_extent(set, dims.data()), "resize " + name);
+}
+
+/// Writes (or reads) the block [start, start + count) of a dataset of any rank.
+template <typename T>
+void write_block(hid_t parent, const std::string& name, const Extent& start, const Extent& count, const T* data) {
+  Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  Handle file_space(H5Dget_space(set), H5Sclose, "dataspace " + name);
+  check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select " + name);
+  Handle memory(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose, "memory space");
+  check(H5Dwrite(set, native_type<T>(), memory, file_space, H5P_DEFAULT, data), "write " + name);
+}
+template <typename T>
+std::vector<T> read_block(hid_t parent, const std::string& name, const Extent& start, const Extent& count) {
+  hsize_t total = 1;
+  for (hsize_t n : count) total *= n;
+  std::vector<T> out(static_cast<std::size_t>(total));
+  if (total == 0) return out;
+  Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  Handle file_space(H5Dget_space(set), H5Sclose, "dataspace " + name);
+  check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select " + name);
+  Handle memory(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose, "memory space");
+  check(H5Dread(set, native_type<T>(), memory, file_space, H5P_DEFAULT, out.data()), "read " + name);
+  return out;
 }
 
 }  // namespace sedwave::forward::dem::h5

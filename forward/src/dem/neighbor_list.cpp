@@ -53,8 +53,9 @@ struct CellGrid {
 
 }  // namespace
 
-void NeighborList::build(const GrainArrays& g, double skin, double max_radius) {
+void NeighborList::build(const GrainArrays& g, double skin, double max_radius, bool newton) {
   skin_ = skin;
+  newton_ = newton;
   const std::size_t n_local = g.n_local();
   const std::size_t n_total = g.n_total();
   const double cutoff = 2.0 * max_radius + skin;
@@ -93,6 +94,7 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius) {
             const auto j = static_cast<std::size_t>(cell_items_[k]);
             const bool local_j = j < n_local;
             if (local_j && j <= i) continue;
+            if (!local_j && newton && g.id[j] < g.id[i]) continue;  // the mirror pair keeps it
             if (rigid_i && g.body[j] != kFreeBody) continue;
             const double reach = ri + g.radius[j] + skin;
             if (norm2(xi - g.position[j]) >= reach * reach) continue;

@@ -9,8 +9,12 @@ namespace {
 
 const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
 
-TEST(Conservation, EnergyDriftBelow1e6OverHundredThousandStepsInDensePacking) {
+/// Parameter: newton on (every pair across the periodic faces computed once, reactions sent back).
+class Conservation : public ::testing::TestWithParam<bool> {};
+
+TEST_P(Conservation, EnergyDriftBelow1e6OverHundredThousandStepsInDensePacking) {
   EngineSettings s;
+  s.newton = GetParam();
   s.contact.kn = 1000.0;  // no damping
   std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.1, 7, s.box);
   Engine engine(MPI_COMM_SELF, s, grains);
@@ -29,7 +33,9 @@ TEST(Conservation, EnergyDriftBelow1e6OverHundredThousandStepsInDensePacking) {
   EXPECT_LT(norm(p1 - p0) / scale, 1e-12);
 }
 
-TEST(Conservation, LinearAndAngularMomentumOfAFrictionalRollingCluster) {
+INSTANTIATE_TEST_SUITE_P(Newton, Conservation, ::testing::Bool());
+
+TEST(Momentum, LinearAndAngularMomentumOfAFrictionalRollingCluster) {
   EngineSettings s;
   s.box.periodic = {false, false, false};
   s.contact.kn = 1000.0;

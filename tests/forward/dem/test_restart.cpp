@@ -17,8 +17,9 @@ struct Scene {
   std::vector<RigidBody> bodies;
 };
 
-Scene frictional_packing(const std::string& checkpoint) {
+Scene frictional_packing(const std::string& checkpoint, bool newton = false) {
   Scene s;
+  s.settings.newton = newton;
   s.settings.contact.kn = 1000.0;
   s.settings.contact.restitution = 0.7;
   s.settings.contact.tangential = TangentialLawKind::spring_history;
@@ -40,16 +41,22 @@ std::map<std::int64_t, Grain> by_id(const Engine& e) {
   return out;
 }
 
-TEST(Restart, InterruptedRunEndsBitIdentical) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string straight_file = (dir / "sedwave_dem_straight.h5").string();
-  const std::string killed_file = (dir / "sedwave_dem_killed.h5").string();
+/// Parameter: newton on (pairs across the periodic faces computed once, reactions sent back).
+class Restart : public ::testing::TestWithParam<bool> {};
 
-  Scene a = frictional_packing(straight_file);
+TEST_P(Restart, InterruptedRunEndsBitIdentical) {
+  const bool newton = GetParam();
+  const auto dir = std::filesystem::temp_directory_path();
+  // Distinct names per parameter: ctest may run the two cases at once.
+  const std::string suffix = newton ? "_newton.h5" : ".h5";
+  const std::string straight_file = (dir / ("sedwave_dem_straight" + suffix)).string();
+  const std::string killed_file = (dir / ("sedwave_dem_killed" + suffix)).string();
+
+  Scene a = frictional_packing(straight_file, newton);
   Engine straight(MPI_COMM_SELF, a.settings, a.grains, a.bodies);
   straight.run(400);
 
-  Scene b = frictional_packing(killed_file);
+  Scene b = frictional_packing(killed_file, newton);
   {
     Engine killed(MPI_COMM_SELF, b.settings, b.grains, b.bodies);
     killed.run(230);  // checkpoint at 150; the 80 steps after it are lost, as under SIGKILL
@@ -76,7 +83,9 @@ TEST(Restart, InterruptedRunEndsBitIdentical) {
   std::remove(killed_file.c_str());
 }
 
-TEST(Restart, CheckpointIsReplacedAtomically) {
+INSTANTIATE_TEST_SUITE_P(Newton, Restart, ::testing::Bool());
+
+TEST(RestartFile, CheckpointIsReplacedAtomically) {
   const std::string file = (std::filesystem::temp_directory_path() / "sedwave_dem_atomic.h5").string();
   Scene s = frictional_packing(file);
   Engine engine(MPI_COMM_SELF, s.settings, s.grains, s.bodies);

@@ -1,6 +1,6 @@
 #pragma once
-// Preparing the channel: compress the loose column under a constant pressure P on the upper wall
-// (with global viscous damping), then relax it to mechanical equilibrium with FIRE.
+// Preparing the channel: compress the loose column by lowering the upper wall (with global viscous
+// damping) until the grains carry the pressure P, then relax it to mechanical equilibrium with FIRE.
 //
 // Why both stages: damping alone never settles a frictionless column (it keeps creeping), and both
 // the lock-in measurement and the linear-response engine need a truly static start. FIRE (Bitzek et
@@ -26,14 +26,17 @@ namespace sedwave::forward::channel {
 
 struct PreparationSettings {
   double pressure = 10.0;             ///< P [force / length^2] on the upper wall
-  double wall_mass = 0.0;             ///< upper wall during compression; 0: total mass of its grains
-  /// Global viscous drag during compression, in units of sqrt(kn m) of the mean grain.
-  double compression_damping = 0.05;
-  double compression_step_fraction = 0.05;  ///< dt / binary collision time while compressing
-  std::int64_t max_compression_steps = 2'000'000;
-  /// Compression ends when the kinetic energy per grain falls below this fraction of P W^2 times
-  /// one mean diameter (the work of moving the wall by one grain) divided by N.
-  double settled_kinetic_energy = 1e-6;
+  /// Compression: the upper wall moves down at this speed, in mean diameters per binary collision
+  /// time, until the grains push back with P W^2. A speed cap (rather than the constant force
+  /// itself) keeps impacts gentle: a contact hit at speed v overlaps by about v t_col / pi.
+  double compression_speed = 0.03;
+  /// Global viscous drag during compression, in units of m pi / t_col of the mean grain. Off by
+  /// default: the wall pushes a growing plug of grains, and drag on that plug (n c v) soon rivals the
+  /// target force itself, ending compression long before the grains carry the pressure. The
+  /// contact dashpots and FIRE remove the kinetic energy instead.
+  double compression_damping = 0.0;
+  double compression_step_fraction = 0.15;  ///< dt / binary collision time while compressing
+  std::int64_t max_compression_steps = 5'000'000;
   double relaxation_step_fraction = 0.2;    ///< dt / binary collision time during FIRE
   double residual_force_tolerance = 1e-9;   ///< max |F| on a flow grain / mean contact force
   double pressure_tolerance = 1e-2;         ///< | wall force / (P W^2) - 1 |

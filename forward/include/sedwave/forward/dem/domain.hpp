@@ -10,6 +10,9 @@
 // or self-images on one rank). One Swap records what was sent where with which periodic shift, so
 // the per-step ghost update replays the same swaps with fresh positions and velocities.
 //
+// Under "newton on" a pair across a boundary is computed on one side only; reverse_forces() sends
+// the reaction collected on the ghost back along the same swaps in reverse order.
+//
 // Migration sends departing grains (and the contact history records that involve them) straight to
 // their owner with one all-to-all, so any displacement, setup scatter and restart is the same path.
 // Load balancing moves the slab boundaries so that the measured work per rank is equal.
@@ -54,6 +57,9 @@ class Domain {
   void build_ghosts(GrainArrays& g, double cutoff);
   /// Refreshes ghost positions, velocities and spins from their sources (collective).
   void update_ghosts(GrainArrays& g);
+  /// "Newton on": adds the forces (and torques) collected on ghosts to their sources, replaying the
+  /// swaps backwards so that images of images pass theirs on (collective).
+  void reverse_forces(GrainArrays& g);
 
   /// Communication volume of the last update_ghosts in bytes (for the timing report).
   [[nodiscard]] std::size_t ghost_bytes() const { return ghost_bytes_; }

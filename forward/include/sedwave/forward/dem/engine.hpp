@@ -78,6 +78,11 @@ struct EngineSettings {
   Vec3 gravity;                         ///< uniform acceleration on free grains
   double viscous_damping = 0.0;         ///< global drag F = -c v on free grains (preparation stages)
   std::int64_t sort_every_rebuilds = 1; ///< spatial sorting period (0: never)
+  /// LAMMPS "newton on": a pair across a periodic face or slab boundary is computed once and its
+  /// reaction sent back to the ghost's owner (fewer pair evaluations; one more communication per
+  /// step). Neighbour-list readers then see such a pair from one side only (the channel contact
+  /// statistics assume both sides, so the default stays off).
+  bool newton = false;
   GuardSettings guard;
   CheckpointSettings checkpoint;
   ProgressSettings progress;

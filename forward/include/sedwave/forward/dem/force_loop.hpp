@@ -21,7 +21,8 @@ struct OverlapWatch {
 };
 
 /// Adds the contact forces (and torques) of all listed pairs to g.force (g.torque): +F on the local
-/// row grain, -F on a local partner; a ghost partner's share is computed by its owner.
+/// row grain, -F on a local partner. A ghost partner gets -F too under "newton on" (reverse
+/// communication delivers it); under "newton off" its owner computes its share.
 template <class Model, bool kWatch>
 OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const NeighborList& list,
                                        std::span<Vec3> history, double dt) {
@@ -85,10 +86,11 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
       return touching;
     };
 
-    const std::uint32_t ghosts = list.ghost_begin(i);
+    // Partners before `with_reaction` take -F: local ones, and ghosts too under newton on.
+    const std::uint32_t with_reaction = list.newton() ? list.row_end(i) : list.ghost_begin(i);
     const std::uint32_t end = list.row_end(i);
     PairResult r;
-    for (std::uint32_t k = list.row_begin(i); k < ghosts; ++k) {
+    for (std::uint32_t k = list.row_begin(i); k < with_reaction; ++k) {
       const auto j = static_cast<std::size_t>(partner[k]);
       if (!contact(k, j, r)) continue;
       fi += r.force;
@@ -98,7 +100,7 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
         torque[j] += r.torque_j;
       }
     }
-    for (std::uint32_t k = ghosts; k < end; ++k) {
+    for (std::uint32_t k = with_reaction; k < end; ++k) {
       if (!contact(k, static_cast<std::size_t>(partner[k]), r)) continue;
       fi += r.force;
       if constexpr (Model::rotates) ti += r.torque_i;

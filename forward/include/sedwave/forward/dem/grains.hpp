@@ -43,7 +43,8 @@ class GrainArrays {
 
   /// Appends an owned grain; only valid while there are no ghosts.
   void push_local(const Grain& g);
-  /// Appends a ghost copy (force and torque are not stored for ghosts).
+  /// Appends a ghost copy. Its force and torque start at zero: under "newton on" they collect the
+  /// reactions of pairs computed here, which reverse communication sends to the owner.
   void push_ghost(const Grain& g);
   /// Drops all ghosts.
   void clear_ghosts();
@@ -54,7 +55,7 @@ class GrainArrays {
   /// Reorders the local grains: new entry k is old entry order[k] (ghosts must have been cleared).
   void permute_local(std::span<const std::uint32_t> order);
 
-  // Fields (sizes: n_total for the kinematic ones, n_local for force and torque).
+  // Fields, n_total entries each (angular_velocity and torque only when rotation()).
   std::vector<Vec3> position;
   std::vector<Vec3> velocity;
   std::vector<Vec3> angular_velocity;  ///< empty unless rotation()

@@ -7,6 +7,10 @@
 // Grain::group; the mass is density * pi d^3 / 6 (units.hpp: grain_mass).
 // Dumps: "ITEM: TIMESTEP / NUMBER OF ATOMS / BOX BOUNDS / ATOMS id type radius x y z vx vy vz",
 // which OVITO and ParaView read directly.
+//
+// Numbers are written with 17 significant digits, so a file read back gives the same doubles bit
+// for bit (restarts from data files and comparisons of final states rely on it). Malformed input
+// throws std::runtime_error naming the file and line: "packing.data:12: bad Atoms line ...".
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -36,17 +40,26 @@ void write_lammps_data(const std::string& path, const Box& box, std::span<const 
 
 struct DumpFrame {
   std::int64_t step = 0;
-  Box box;
-  std::unordered_map<std::int64_t, Vec3> positions;  ///< by id
+  Box box;  ///< bounds and periodic flags (pp / anything else) of the frame
+  std::unordered_map<std::int64_t, Vec3> positions;   ///< by id
+  std::unordered_map<std::int64_t, Vec3> velocities;  ///< by id; empty without vx vy vz columns
 };
 /// Reads the frame with the given step (default: the last) of a text dump with id, x, y, z
-/// columns (or xs ys zs scaled columns).
+/// columns (or xs ys zs scaled columns), and vx vy vz when present.
 [[nodiscard]] DumpFrame read_lammps_dump(const std::string& path, std::optional<std::int64_t> step = {});
+
+/// Cuts a dump after its last complete frame with step <= last_step (serial). A restart calls it
+/// before appending: frames written after the checkpoint by an interrupted run are written again,
+/// and a frame cut short by SIGKILL is dropped. Returns the number of frames kept.
+std::size_t truncate_lammps_dump(const std::string& path, std::int64_t last_step);
 
 /// Appends LAMMPS-style text dump frames (collective: ranks append their grains in turn).
 class LammpsDumpWriter {
  public:
-  explicit LammpsDumpWriter(std::string path) : path_(std::move(path)) {}
+  /// append = false: the first write replaces any existing file; true: frames are added to it
+  /// (after truncate_lammps_dump on a restart).
+  explicit LammpsDumpWriter(std::string path, bool append = false)
+      : path_(std::move(path)), started_(append) {}
   void write(const Engine& engine);
 
  private:

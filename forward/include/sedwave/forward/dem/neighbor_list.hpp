@@ -6,8 +6,13 @@
 // each other by skin/2 each just close the gap), which needs_rebuild() checks.
 //
 // Layout: compressed rows over the local grains. Row i holds first its local partners j > i (each
-// local pair once: the loop applies +F to i and -F to j) and then its ghost partners (the force on
-// a ghost belongs to another rank or image and is computed there: "newton off" across boundaries).
+// local pair once: the loop applies +F to i and -F to j) and then its ghost partners.
+// A pair across a periodic face or slab boundary is seen from both sides (i with the ghost of j,
+// j with the ghost of i). "Newton off" lists it on both sides and each side computes the force on
+// its own grain. "Newton on" lists it only on the side of the smaller global id: the force is
+// computed once, -F lands on the ghost and reverse communication (Domain::reverse_forces) adds it to
+// the owner. The id rule is exact: the mirror pair has the two ids swapped, so exactly one side
+// keeps it, with no floating-point ties (a coordinate rule needs care with periodic shifts).
 // Pairs of two rigid-body grains are excluded (walls do not interact with walls).
 #include <cstddef>
 #include <cstdint>
@@ -21,7 +26,8 @@ namespace sedwave::forward::dem {
 class NeighborList {
  public:
   /// Builds the list for the current local and ghost grains. max_radius: largest radius anywhere.
-  void build(const GrainArrays& g, double skin, double max_radius);
+  /// newton: list each cross-boundary pair on one side only (see above).
+  void build(const GrainArrays& g, double skin, double max_radius, bool newton = false);
   /// True when a local grain moved more than skin/2 since the last build (local decision: the engine
   /// reduces it over ranks).
   [[nodiscard]] bool needs_rebuild(const GrainArrays& g) const;
@@ -33,6 +39,8 @@ class NeighborList {
   [[nodiscard]] std::uint32_t row_end(std::size_t i) const { return row_begin_[i + 1]; }
   [[nodiscard]] std::span<const std::int32_t> partners() const { return partners_; }
   [[nodiscard]] double skin() const { return skin_; }
+  /// Whether cross-boundary pairs are listed once (their reactions go to ghosts).
+  [[nodiscard]] bool newton() const { return newton_; }
   /// Bytes held (for the memory report).
   [[nodiscard]] std::size_t memory_bytes() const;
 
@@ -47,6 +55,7 @@ class NeighborList {
   std::vector<std::uint32_t> cell_of_;
   std::vector<std::int32_t> ghost_scratch_;
   double skin_ = 0.0;
+  bool newton_ = false;
 };
 
 /// Order of the local grains along a z-major cell grid (cells of size cell_size; stable within a

@@ -1,0 +1,331 @@
+// `sedwave dem`: runs a packing from a LAMMPS data file (atom_style sphere) with the DEM engine,
+// with walls chosen by atom type, checkpoints and restarts, dumps and a final-state file. Under
+// mpirun the grains are shared among the ranks (see docs/dem.md, "The sedwave dem command").
+#include <mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/dem/gather.hpp"
+#include "sedwave/forward/dem/h5md.hpp"
+#include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/units.hpp"
+
+namespace sedwave::app {
+namespace {
+
+namespace dem = forward::dem;
+
+struct DemOptions {
+  std::string data;
+  std::int64_t steps = 0;
+  std::string boundary = "ppf";
+  std::optional<double> kn, young, poisson;
+  std::optional<double> restitution, gamma_n, gamma;
+  std::optional<double> friction, kt;
+  double gamma_t = 0.0;
+  std::vector<double> gravity;
+  std::optional<double> dt, skin;
+  std::string newton = "on";
+  std::vector<int> frozen_types;
+  std::vector<std::string> wiggles;
+  std::string checkpoint;
+  std::int64_t checkpoint_every = 0;
+  bool restart = false;
+  std::string dump;
+  std::int64_t dump_every = 0;
+  std::string h5md;
+  std::int64_t h5md_every = 0;
+  std::string final_state;
+  double progress_seconds = 10.0;
+  bool quiet = false;
+};
+
+/// Initialises MPI for this command only (the other subcommands are serial) and finalises it.
+class MpiSession {
+ public:
+  MpiSession() {
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised) {
+      MPI_Init(nullptr, nullptr);
+      owner_ = true;
+    }
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  ~MpiSession() {
+    if (owner_) MPI_Finalize();
+  }
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  [[nodiscard]] int rank() const { return rank_; }
+  [[nodiscard]] int size() const { return size_; }
+
+ private:
+  bool owner_ = false;
+  int rank_ = 0;
+  int size_ = 1;
+};
+
+/// "ppf" or "p p f" (LAMMPS's boundary command): p periodic; f, s or m open.
+std::array<bool, 3> parse_boundary(std::string text) {
+  std::erase(text, ' ');
+  if (text.size() != 3 || text.find_first_not_of("pfsm") != std::string::npos)
+    throw std::invalid_argument("--boundary '" + text + "': expected three letters p (periodic) or f (open), e.g. ppf");
+  return {text[0] == 'p', text[1] == 'p', text[2] == 'p'};
+}
+
+/// Hooke contact (LAMMPS pair gran/hooke[/history]) from kn, or from E and nu with the LAMMPS
+/// example-script formulas; friction adds the tangential spring with history.
+dem::ContactSpec contact_spec(const DemOptions& o) {
+  dem::ContactSpec c;
+  c.normal = dem::NormalLawKind::hooke;
+  double kt_default = 0.0;
+  if (o.kn) {
+    if (o.young || o.poisson) throw std::invalid_argument("give either --kn or --young with --poisson");
+    c.kn = *o.kn;
+    kt_default = 2.0 / 7.0 * c.kn;  // LAMMPS's default for kt NULL
+  } else {
+    if (!o.young || !o.poisson) throw std::invalid_argument("give --kn, or --young with --poisson");
+    const forward::LammpsHooke h = forward::lammps_hooke_from_material(*o.young, *o.poisson, 1.0, 1.0);
+    c.kn = h.kn;
+    kt_default = h.kt;
+  }
+  c.restitution = o.restitution;
+  c.lammps_gamma_n = o.gamma_n;
+  c.gamma = o.gamma;
+  if (o.friction) {
+    c.tangential = dem::TangentialLawKind::spring_history;
+    c.friction = *o.friction;
+    c.kt = o.kt.value_or(kt_default);
+    c.gamma_t = o.gamma_t;
+  } else if (o.kt) {
+    throw std::invalid_argument("--kt needs --friction");
+  }
+  return c;
+}
+
+/// Walls from atom types: --frozen TYPE and --wiggle TYPE:AXIS:AMPLITUDE:PERIOD, one rigid body each.
+std::vector<dem::RigidBody> make_walls(const DemOptions& o, std::map<int, std::int32_t>& body_of_type) {
+  std::vector<dem::RigidBody> bodies;
+  auto add = [&](int type, dem::BodyMotion motion, const std::string& name) {
+    if (!body_of_type.emplace(type, static_cast<std::int32_t>(bodies.size()) + 1).second)
+      throw std::invalid_argument("atom type " + std::to_string(type) + " is given to two walls");
+    bodies.emplace_back(name, std::move(motion));
+  };
+  for (int type : o.frozen_types) add(type, dem::Frozen{}, "frozen type " + std::to_string(type));
+  for (const std::string& spec : o.wiggles) {
+    std::vector<std::string> parts;
+    std::stringstream stream(spec);
+    for (std::string part; std::getline(stream, part, ':');) parts.push_back(part);
+    const bool axis_ok = parts.size() == 4 && parts[1].size() == 1 && parts[1].find_first_of("xyz") == 0;
+    if (!axis_ok) throw std::invalid_argument("--wiggle '" + spec + "': expected TYPE:AXIS:AMPLITUDE:PERIOD, AXIS x, y or z");
+    dem::Wiggle w;
+    w.axis = parts[1][0] - 'x';
+    int type = 0;
+    try {
+      type = std::stoi(parts[0]);
+      w.amplitude = std::stod(parts[2]);
+      w.period = std::stod(parts[3]);
+    } catch (const std::logic_error&) {
+      throw std::invalid_argument("--wiggle '" + spec + "': TYPE, AMPLITUDE and PERIOD must be numbers");
+    }
+    if (!(w.period > 0.0)) throw std::invalid_argument("--wiggle '" + spec + "': PERIOD must be positive");
+    add(type, w, "wiggle type " + parts[0]);
+  }
+  return bodies;
+}
+
+/// Each rank keeps every size-th grain of the file, so no rank holds them all; the engine then
+/// sends each grain to the rank owning its slab.
+dem::LammpsData read_share(const DemOptions& o, const MpiSession& mpi) {
+  std::int64_t index = 0;
+  return dem::read_lammps_data(o.data, [&](const dem::Grain&) { return index++ % mpi.size() == mpi.rank(); });
+}
+
+bool exists_on_root(const std::string& path, const MpiSession& mpi) {
+  int found = mpi.rank() == 0 && std::filesystem::exists(path) ? 1 : 0;
+  MPI_Bcast(&found, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return found != 0;
+}
+
+/// Writes a trajectory frame now and every `every` steps. After a restart the frames that the
+/// interrupted run wrote past its checkpoint are cut away first (and no frame is written now), so the
+/// file ends up as one uninterrupted run would have written it.
+template <class Writer>
+void add_trajectory(dem::Engine& engine, const std::string& path, std::int64_t every, bool restarted,
+                    const MpiSession& mpi, std::size_t (*truncate)(const std::string&, std::int64_t)) {
+  const bool append = restarted && exists_on_root(path, mpi);
+  if (append && mpi.rank() == 0) truncate(path, engine.step_count());
+  MPI_Barrier(MPI_COMM_WORLD);
+  auto writer = std::make_shared<Writer>(path, append);
+  if (!append) writer->write(engine);
+  engine.add_step_callback(every, [writer](const dem::Engine& e) { writer->write(e); });
+}
+
+int run_dem(const DemOptions& o, const MpiSession& mpi) {
+  std::ostream& out = std::cout;
+  const bool root = mpi.rank() == 0;
+
+  dem::LammpsData data = read_share(o, mpi);
+  std::map<int, std::int32_t> body_of_type;
+  std::vector<dem::RigidBody> bodies = make_walls(o, body_of_type);
+  for (dem::Grain& g : data.grains) {
+    const auto it = body_of_type.find(g.group);
+    if (it != body_of_type.end()) g.body = it->second;
+  }
+
+  dem::EngineSettings s;
+  s.box = data.box;
+  s.box.periodic = parse_boundary(o.boundary);
+  s.contact = contact_spec(o);
+  if (!o.gravity.empty()) s.gravity = {o.gravity.at(0), o.gravity.at(1), o.gravity.at(2)};
+  s.time_step = o.dt;
+  if (o.skin) s.skin = *o.skin;
+  s.newton = o.newton == "on";
+  s.checkpoint = {o.checkpoint, o.checkpoint_every};
+  s.progress = {!o.quiet, o.progress_seconds, &out};
+
+  dem::Engine engine(MPI_COMM_WORLD, s, data.grains, std::move(bodies));
+  data.grains = {};
+
+  bool restarted = false;
+  if (o.restart) {
+    restarted = exists_on_root(o.checkpoint, mpi);
+    if (restarted) engine.restore_checkpoint(o.checkpoint);
+    if (root && !o.quiet)
+      out << (restarted ? "dem: restarting from " + o.checkpoint + " at step " + std::to_string(engine.step_count())
+                        : "dem: no checkpoint " + o.checkpoint + " yet: starting at step 0")
+          << '\n';
+  }
+  if (root && !o.quiet)
+    out << "dem: " << engine.n_global() << " grains, " << dem::describe(s.contact) << ", time step "
+        << engine.time_step() << " (" << engine.time_step_limits().summary() << "), " << mpi.size() << " rank(s)\n";
+
+  if (!o.dump.empty())
+    add_trajectory<dem::LammpsDumpWriter>(engine, o.dump, o.dump_every, restarted, mpi, dem::truncate_lammps_dump);
+  if (!o.h5md.empty())
+    add_trajectory<dem::H5mdWriter>(engine, o.h5md, o.h5md_every, restarted, mpi, dem::truncate_h5md);
+
+  const std::int64_t remaining = o.steps - engine.step_count();
+  if (remaining > 0) engine.run(remaining);
+  else if (root && !o.quiet) out << "dem: already at step " << engine.step_count() << ": nothing to run\n";
+  // A checkpoint of the final state (unless the periodic one just wrote it), so a later --restart
+  // with more --steps continues from here.
+  const bool just_written = o.checkpoint_every > 0 && engine.step_count() % o.checkpoint_every == 0;
+  if (!o.checkpoint.empty() && remaining > 0 && !just_written) engine.write_checkpoint(o.checkpoint);
+
+  if (!o.final_state.empty()) {
+    std::vector<dem::Grain> grains = dem::gather_grains(engine);
+    std::sort(grains.begin(), grains.end(), [](const dem::Grain& a, const dem::Grain& b) { return a.id < b.id; });
+    if (root) dem::write_lammps_data(o.final_state, engine.domain().box(), grains);
+  }
+  const double kinetic = engine.kinetic_energy();
+  if (root && !o.quiet)
+    out << "dem: finished at step " << engine.step_count() << ", t = " << engine.time() << ", kinetic energy "
+        << kinetic << '\n';
+  return 0;
+}
+
+}  // namespace
+
+Command add_dem_command(CLI::App& app) {
+  auto o = std::make_shared<DemOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "dem", "Run a grain packing from a LAMMPS data file (atom_style sphere) with the DEM engine "
+             "(Hooke contacts as LAMMPS pair gran/hooke[/history]; run under mpirun for several ranks)");
+  cmd->add_option("data", o->data, "LAMMPS data file: id type diameter density x y z [+ Velocities]")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--steps", o->steps, "step number to reach (a restart runs only the steps left)")
+      ->required()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--boundary", o->boundary, "periodicity along x y z, p or f each (LAMMPS boundary)")
+      ->capture_default_str();
+  auto* kn = cmd->add_option("--kn", o->kn, "normal stiffness kn [force/length]")->check(CLI::PositiveNumber);
+  auto* young = cmd->add_option("--young", o->young,
+                                "Young's modulus E: kn = 4G/(3(1-nu)), kt = 4G/(2-nu), G = E/(2(1+nu)) "
+                                "(LAMMPS example scripts)")
+                    ->check(CLI::PositiveNumber);
+  auto* poisson = cmd->add_option("--poisson", o->poisson, "Poisson's ratio nu (with --young)");
+  young->needs(poisson);
+  poisson->needs(young);
+  kn->excludes(young);
+  auto* e_n = cmd->add_option("--restitution", o->restitution,
+                              "normal restitution e_n in (0, 1], exact for every pair");
+  auto* gamma_n = cmd->add_option("--gamma-n", o->gamma_n, "LAMMPS gamma_n: dashpot per unit reduced mass [1/time]");
+  auto* gamma = cmd->add_option("--gamma", o->gamma, "constant dashpot [force time/length]");
+  e_n->excludes(gamma_n)->excludes(gamma);
+  gamma_n->excludes(gamma);
+  auto* friction = cmd->add_option("--friction", o->friction,
+                                   "Coulomb friction mu: adds the tangential spring with history")
+                       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--kt", o->kt, "tangential stiffness (default 2/7 kn, or 4G/(2-nu) with --young)")
+      ->needs(friction);
+  cmd->add_option("--gamma-t", o->gamma_t, "LAMMPS gamma_t: tangential dashpot per unit reduced mass")
+      ->needs(friction);
+  cmd->add_option("--gravity", o->gravity, "gravity gx,gy,gz")->delimiter(',')->expected(3);
+  cmd->add_option("--dt", o->dt, "time step (default 0.01 binary collision time; refused above the "
+                                 "stability limit)");
+  cmd->add_option("--skin", o->skin, "neighbour skin (default 0.1 mean diameter)");
+  cmd->add_option("--newton", o->newton,
+                  "on: a pair across a periodic face or rank boundary is computed once and its reaction "
+                  "sent back (LAMMPS newton on); off: computed on both sides")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--frozen", o->frozen_types, "atom TYPE forming a wall that does not move (repeatable)");
+  cmd->add_option("--wiggle", o->wiggles,
+                  "TYPE:AXIS:AMPLITUDE:PERIOD: atom type forming a wall moved by AMPLITUDE sin(2 pi t/PERIOD) "
+                  "along AXIS x, y or z (LAMMPS fix move wiggle; repeatable)");
+  auto* checkpoint = cmd->add_option("--checkpoint", o->checkpoint,
+                                     "HDF5 checkpoint, replaced atomically every --every steps and at the end");
+  cmd->add_option("--every", o->checkpoint_every, "steps between checkpoints")
+      ->needs(checkpoint)
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--restart", o->restart,
+                "continue from --checkpoint if it exists (else start at step 0); finished steps are not redone")
+      ->needs(checkpoint);
+  auto* dump = cmd->add_option("--dump", o->dump, "LAMMPS text dump (id type radius x y z vx vy vz)");
+  cmd->add_option("--dump-every", o->dump_every, "steps between dump frames")
+      ->needs(dump)
+      ->check(CLI::PositiveNumber);
+  auto* h5md = cmd->add_option("--h5md", o->h5md,
+                               "H5MD (HDF5) trajectory: position, velocity, id, species, radius, box");
+  cmd->add_option("--h5md-every", o->h5md_every, "steps between H5MD frames")
+      ->needs(h5md)
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--final", o->final_state,
+                  "write the final state as a LAMMPS data file (17 digits: reads back bit for bit)");
+  cmd->add_option("--progress", o->progress_seconds, "seconds between progress lines")->capture_default_str();
+  cmd->add_flag("--quiet", o->quiet, "no progress lines or timing table");
+  cmd->footer("Example: sedwave dem packing.data --steps 100000 --kn 725.9 --restitution 0.9 --frozen 2 "
+              "--checkpoint run.h5 --every 10000 --restart --dump run.dump --dump-every 1000");
+  return {cmd, [o]() {
+    if (!o->dump.empty() && o->dump_every <= 0) throw std::invalid_argument("--dump needs --dump-every");
+    if (!o->h5md.empty() && o->h5md_every <= 0) throw std::invalid_argument("--h5md needs --h5md-every");
+    MpiSession mpi;
+    try {
+      return run_dem(*o, mpi);
+    } catch (const std::exception& e) {
+      if (mpi.size() == 1) throw;
+      // An error on some ranks only would leave the others waiting in a collective call.
+      std::cerr << "sedwave: error on rank " << mpi.rank() << ": " << e.what() << '\n';
+      MPI_Abort(MPI_COMM_WORLD, 1);
+      return 1;
+    }
+  }};
+}
+
+}  // namespace sedwave::app

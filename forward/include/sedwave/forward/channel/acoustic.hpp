@@ -1,0 +1,74 @@
+#pragma once
+// Driving a prepared channel and measuring how the wave attenuates and how fast it travels.
+//
+// The lower wall oscillates sinusoidally (along z: longitudinal; along x: transverse) with amplitude
+// A and angular frequency omega; the far end is either frozen (the thesis) or an absorbing layer of
+// graded viscous drag so little reflects. Flow grains are grouped into layers (slabs along z, fixed
+// membership from the static packing); each layer's mean displacement is recorded, which is far
+// less noisy than any single probe grain. A lock-in at the drive frequency, over whole periods
+// between the passage of the front and the return of any reflection, gives each layer's amplitude
+// and phase; straight-line fits over layers give alpha and k (measurement.hpp).
+//
+// Units: dimensionless, as the rest of forward/: lengths in mean diameters d, masses in the mass m
+// of a grain of diameter d, stiffness in kappa (the Hooke kn), so times are in sqrt(m/kappa) and the
+// results are alpha_hat, k_hat, c_hat directly (docs/physics.md).
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/channel/measurement.hpp"
+#include "sedwave/forward/channel/preparation.hpp"
+
+namespace sedwave::forward::channel {
+
+enum class DriveAxis { longitudinal, transverse };
+enum class FarEnd { frozen, absorbing };
+
+struct DriveSettings {
+  DriveAxis axis = DriveAxis::longitudinal;
+  double amplitude = 1e-4;   ///< A [mean diameters] (thesis: 1e-4)
+  double omega_hat = 0.5;    ///< drive angular frequency [1/sqrt(m/kappa)]
+  double gamma_hat = 0.05;   ///< contact dashpot gamma / sqrt(kappa m)
+  FarEnd far_end = FarEnd::frozen;
+  double absorbing_fraction = 0.3;  ///< of the column, at the far end
+  /// Drag at the far end of the absorbing layer, in units of m omega; it grows quadratically from 0.
+  double absorbing_strength = 1.0;
+  double periods = 0.0;             ///< run length in drive periods; 0: until echoes could return
+  int samples_per_period = 32;
+  double layer_thickness = 1.0;     ///< [mean diameters]
+  int skip_layers = 2;              ///< layers next to the driven wall left out of the fit (near field)
+  double settle_periods = 3.0;      ///< after the front passes, before a layer counts as steady
+  double time_step_fraction = 0.01; ///< dt / binary collision time (thesis: 0.01)
+};
+
+/// Everything measured in one driven run (rank 0 holds the records; results are on every rank).
+struct AcousticResult {
+  // Inputs resolved to dimensionless numbers.
+  double omega_hat = 0.0, gamma_hat = 0.0, amplitude = 0.0;
+  double kappa = 0.0, grain_mass = 0.0, mean_diameter = 1.0;  ///< the units used
+  // Records.
+  std::vector<double> layer_z;           ///< layer centres, from the driven wall's surface
+  std::vector<int> layer_grains;
+  double sample_dt = 0.0;
+  std::vector<std::vector<double>> displacement;  ///< [layer][sample], along the drive axis
+  // Measurement.
+  double wave_speed_estimate = 0.0;      ///< from first-peak arrival times (sets the windows)
+  std::vector<ProbeWindow> windows;
+  std::vector<LockIn> lock_ins;          ///< per layer (zero amplitude where no window)
+  PropagationFit fit;                    ///< over layers with valid windows beyond skip_layers
+  FirstPeakFit first_peak;               ///< the thesis's method, for comparison
+  int layers_used = 0;
+  std::int64_t steps = 0;
+  double wall_seconds = 0.0;
+  std::string problem;                   ///< empty when alpha and c were measured
+  [[nodiscard]] bool ok() const { return problem.empty(); }
+};
+
+/// Drives `packing` (grains on rank 0; other ranks may pass an empty one) with contact law `contact`
+/// (its damping is replaced by gamma_hat) and measures alpha_hat and c_hat. Collective over comm.
+[[nodiscard]] AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
+                                          const DriveSettings& drive);
+
+}  // namespace sedwave::forward::channel
