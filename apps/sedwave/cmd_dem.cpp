@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "mpi_session.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/dem/h5md.hpp"
@@ -50,33 +51,6 @@ struct DemOptions {
   std::string final_state;
   double progress_seconds = 10.0;
   bool quiet = false;
-};
-
-/// Initialises MPI for this command only (the other subcommands are serial) and finalises it.
-class MpiSession {
- public:
-  MpiSession() {
-    int initialised = 0;
-    MPI_Initialized(&initialised);
-    if (!initialised) {
-      MPI_Init(nullptr, nullptr);
-      owner_ = true;
-    }
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
-  }
-  ~MpiSession() {
-    if (owner_) MPI_Finalize();
-  }
-  MpiSession(const MpiSession&) = delete;
-  MpiSession& operator=(const MpiSession&) = delete;
-  [[nodiscard]] int rank() const { return rank_; }
-  [[nodiscard]] int size() const { return size_; }
-
- private:
-  bool owner_ = false;
-  int rank_ = 0;
-  int size_ = 1;
 };
 
 /// "ppf" or "p p f" (LAMMPS's boundary command): p periodic; f, s or m open.

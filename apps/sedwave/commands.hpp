@@ -14,5 +14,7 @@ struct Command {
 Command add_theory_command(CLI::App& app);
 Command add_invert_command(CLI::App& app);
 Command add_dem_command(CLI::App& app);
+Command add_forward_command(CLI::App& app);
+Command add_table_command(CLI::App& app);
 
 }  // namespace sedwave::app

@@ -14,7 +14,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<sedwave::app::Command> commands{sedwave::app::add_theory_command(app),
                                                     sedwave::app::add_invert_command(app),
-                                                    sedwave::app::add_dem_command(app)};
+                                                    sedwave::app::add_dem_command(app),
+                                                    sedwave::app::add_forward_command(app),
+                                                    sedwave::app::add_table_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

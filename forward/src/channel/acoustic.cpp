@@ -178,7 +178,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
 
   const int axis = d.axis == DriveAxis::longitudinal ? 2 : 0;
   dem::EngineSettings settings;
-  settings.box = packing.box;
+  settings.box = broadcast_box(comm, packing.box);
   settings.contact = contact;
   settings.time_step_fraction = d.time_step_fraction;
   settings.balance.every_rebuilds = 0;

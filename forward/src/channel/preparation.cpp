@@ -162,7 +162,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   }
   double counts[3] = {flow_mass, flow_diameter, static_cast<double>(n_flow)};
   MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPI_DOUBLE, MPI_SUM, comm);
-  const Scene scene{comm, start.box, contact, width, counts[0] / counts[2], counts[1] / counts[2]};
+  const Scene scene{comm, broadcast_box(comm, start.box), contact, width, counts[0] / counts[2], counts[1] / counts[2]};
   const double target = p.pressure * width * width;
   PreparedChannel out;
   out.report.target_wall_force = target;
@@ -224,6 +224,16 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   out.grains = dem::gather_grains(*relaxer);
   for (dem::Grain& g : out.grains) g.velocity = dem::Vec3{};
   return out;
+}
+
+dem::Box broadcast_box(MPI_Comm comm, dem::Box box) {
+  double values[9] = {box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z,
+                      box.periodic[0] ? 1.0 : 0.0, box.periodic[1] ? 1.0 : 0.0, box.periodic[2] ? 1.0 : 0.0};
+  MPI_Bcast(values, 9, MPI_DOUBLE, 0, comm);
+  box.lo = {values[0], values[1], values[2]};
+  box.hi = {values[3], values[4], values[5]};
+  box.periodic = {values[6] != 0.0, values[7] != 0.0, values[8] != 0.0};
+  return box;
 }
 
 std::string describe(const PreparationReport& r) {

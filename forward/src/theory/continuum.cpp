@@ -21,19 +21,24 @@ void require_valid(double omega_hat, double gamma_hat) {
 ComplexWavenumber continuum_wavenumber(double omega_hat, double gamma_hat) {
   require_valid(omega_hat, gamma_hat);
   using cd = std::complex<double>;
-  // With x = omega_hat*gamma_hat and h = |1 - i x| = hypot(1, x), the principal root
+  // With x = omega_hat*gamma_hat and h = |1 - i x| = sqrt(1 + x^2), the principal root
   // s = sqrt(1 - i x) has Re s = sqrt((h + 1) / 2) and Im s = -x / (2 Re s); then
   // 1/s = conj(s) / h. Every step adds positive numbers, so both limits x -> 0 and x -> inf keep
-  // full relative precision (no 1 - sqrt(1 + x^2) style cancellation).
+  // full relative precision (no 1 - sqrt(1 + x^2) style cancellation). Real arithmetic throughout:
+  // hypot() and complex division cost three times the rest (docs/performance.md).
   const double x = omega_hat * gamma_hat;
-  const double h = std::hypot(1.0, x);
+  const double h = x < 1e150 ? std::sqrt(1.0 + x * x) : x;
   const double re_s = std::sqrt(0.5 * (h + 1.0));
-  const cd k(omega_hat * re_s / h, omega_hat * (x / (2.0 * re_s)) / h);
-  // d/d omega_hat: k/omega_hat * (1 - i x/2) / (1 - i x);  d/d gamma_hat: k * (i omega_hat / 2) / (1 - i x).
-  const cd one_minus_ix(1.0, -x);
-  const cd dk_dw = (k / omega_hat) * (cd(1.0, -0.5 * x) / one_minus_ix);
-  const cd dk_dg = k * (cd(0.0, 0.5 * omega_hat) / one_minus_ix);
-  return {k, dk_dw, dk_dg};
+  const double k_re = omega_hat * re_s / h;
+  const double k_im = omega_hat * (x / (2.0 * re_s)) / h;
+  // d/d omega_hat: k/omega_hat * (1 - i x/2) / (1 - i x) = k/omega_hat * (A + i B);
+  // d/d gamma_hat: k * (i omega_hat / 2) / (1 - i x) = k * (C + i D), using
+  // 1 / (1 - i x) = (1 + i x) q with q = 1 / (1 + x^2) (0 where x^2 overflows: the terms vanish).
+  const double q = 1.0 / (1.0 + x * x);
+  const double a = 0.5 + 0.5 * q, b = 0.5 * x * q;
+  const double c = -0.5 * omega_hat * x * q, d = 0.5 * omega_hat * q;
+  const double kw_re = k_re / omega_hat, kw_im = k_im / omega_hat;
+  return {cd(k_re, k_im), cd(kw_re * a - kw_im * b, kw_re * b + kw_im * a), cd(k_re * c - k_im * d, k_re * d + k_im * c)};
 }
 
 DispersionPoint dispersion_from_wavenumber(double omega_hat, const ComplexWavenumber& w) {

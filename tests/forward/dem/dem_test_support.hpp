@@ -2,9 +2,12 @@
 // Shared helpers of the DEM tests: MPI start-up for GoogleTest and small scene builders.
 #include <gtest/gtest.h>
 #include <mpi.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <string>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -28,6 +31,14 @@ class MpiEnvironment : public ::testing::Environment {
     if (!finalised) MPI_Finalize();
   }
 };
+
+/// A file in the temporary directory whose name carries rank 0's process id of `comm`, so that
+/// test binaries of several build trees (or ctest -j) running at once do not share files.
+inline std::string temp_path(const std::string& name, MPI_Comm comm = MPI_COMM_SELF) {
+  long pid = static_cast<long>(::getpid());
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
+  return (std::filesystem::temp_directory_path() / ("sedwave_" + std::to_string(pid) + "_" + name)).string();
+}
 
 inline double sphere_mass(double density, double radius) {
   return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;

@@ -16,7 +16,7 @@ mkdir -p "$work"
 cd "$work"
 
 scene=(dem "$data" --steps 20000 --boundary ppf --kn 1000 --restitution 0.7 --friction 0.5
-       --gravity 0,0,-1 --wiggle 2:z:0.001:0.37 --every 1000 --dump-every 300 --progress 1000)
+       --gravity 0,0,-1 --wiggle 2:z:0.001:0.37 --every 1000 --dump-every 100 --progress 1000)
 
 "$sedwave" "${scene[@]}" --checkpoint straight.h5 --dump straight.dump --final straight.data > straight.log
 
@@ -35,6 +35,7 @@ if [[ $status -ne 137 ]]; then
   exit 1
 fi
 [[ ! -f killed.data ]] || { echo "FAIL: the killed run wrote its final state" >&2; exit 1; }
+echo "killed with $(grep -c TIMESTEP killed.dump) dump frames written (the restart cuts those past the checkpoint)"
 
 "$sedwave" "${scene[@]}" --checkpoint killed.h5 --dump killed.dump --final killed.data --restart > restarted.log
 cat restarted.log

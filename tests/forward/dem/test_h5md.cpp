@@ -54,7 +54,7 @@ std::vector<hsize_t> dims_of(hid_t file, const char* name) {
 }
 
 TEST(H5md, FramesReadBackBitExactInTheH5mdLayout) {
-  const std::string path = (std::filesystem::temp_directory_path() / "sedwave_h5md_frames.h5").string();
+  const std::string path = testing::temp_path("h5md_frames.h5");
   Box box;
   const std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.3, 3, box);
   Engine engine(MPI_COMM_SELF, fcc_settings(box), grains);
@@ -98,7 +98,7 @@ TEST(H5md, FramesReadBackBitExactInTheH5mdLayout) {
 }
 
 TEST(H5md, TruncationThenAppendContinuesTheTrajectory) {
-  const std::string path = (std::filesystem::temp_directory_path() / "sedwave_h5md_truncate.h5").string();
+  const std::string path = testing::temp_path("h5md_truncate.h5");
   Box box;
   const std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.3, 4, box);
   Engine engine(MPI_COMM_SELF, fcc_settings(box), grains);

@@ -14,7 +14,7 @@ namespace {
 const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
 
 std::string temp_file(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("sedwave_lammps_io_" + name)).string();
+  return testing::temp_path("lammps_io_" + name);
 }
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }

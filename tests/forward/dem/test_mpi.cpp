@@ -149,9 +149,8 @@ INSTANTIATE_TEST_SUITE_P(BoundariesAndNewton, RankEquivalence,
 TEST(Trajectories, FourRanksWriteEveryGrainOnceBitExact) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string h5md = (dir / "sedwave_dem_mpi_trajectory.h5").string();
-  const std::string dump = (dir / "sedwave_dem_mpi_trajectory.dump").string();
+  const std::string h5md = testing::temp_path("dem_mpi_trajectory.h5", MPI_COMM_WORLD);
+  const std::string dump = testing::temp_path("dem_mpi_trajectory.dump", MPI_COMM_WORLD);
   Box box;
   std::vector<Grain> all = tall_column(2, 12, 0.01, box, 7);
   std::vector<Grain> mine = rank == 0 ? all : std::vector<Grain>{};

@@ -46,11 +46,10 @@ class Restart : public ::testing::TestWithParam<bool> {};
 
 TEST_P(Restart, InterruptedRunEndsBitIdentical) {
   const bool newton = GetParam();
-  const auto dir = std::filesystem::temp_directory_path();
   // Distinct names per parameter: ctest may run the two cases at once.
   const std::string suffix = newton ? "_newton.h5" : ".h5";
-  const std::string straight_file = (dir / ("sedwave_dem_straight" + suffix)).string();
-  const std::string killed_file = (dir / ("sedwave_dem_killed" + suffix)).string();
+  const std::string straight_file = testing::temp_path("dem_straight" + suffix);
+  const std::string killed_file = testing::temp_path("dem_killed" + suffix);
 
   Scene a = frictional_packing(straight_file, newton);
   Engine straight(MPI_COMM_SELF, a.settings, a.grains, a.bodies);
@@ -86,7 +85,7 @@ TEST_P(Restart, InterruptedRunEndsBitIdentical) {
 INSTANTIATE_TEST_SUITE_P(Newton, Restart, ::testing::Bool());
 
 TEST(RestartFile, CheckpointIsReplacedAtomically) {
-  const std::string file = (std::filesystem::temp_directory_path() / "sedwave_dem_atomic.h5").string();
+  const std::string file = testing::temp_path("dem_atomic.h5");
   Scene s = frictional_packing(file);
   Engine engine(MPI_COMM_SELF, s.settings, s.grains, s.bodies);
   engine.run(300);

@@ -22,7 +22,7 @@ enum class FitMethod { Ceres, NLopt, Global };
 struct FitOptions {
   FitMethod method = FitMethod::Global;
   std::string global_algorithm = "direct-l";  ///< direct-l | crs2 | mlsl
-  int max_global_evaluations = 20000;
+  int max_global_evaluations = 5000;
   int max_iterations = 200;                   ///< Levenberg-Marquardt iterations
   double default_relative_sigma = 0.1;        ///< for observations whose file gave no sigma
   /// A parameter or combination is "determined" when its 1-sigma spread in ln units is below this

@@ -68,6 +68,10 @@ struct PreparedChannel {
                                               const dem::ContactSpec& contact, double width,
                                               const PreparationSettings& settings);
 
+/// The box as rank 0 knows it, on every rank: scenes hold their grains (and so their box) on rank 0
+/// only, and every rank must construct its engine with the same box (collective).
+[[nodiscard]] dem::Box broadcast_box(MPI_Comm comm, dem::Box box);
+
 /// One line per quantity, for logs and reports.
 [[nodiscard]] std::string describe(const PreparationReport& report);
 

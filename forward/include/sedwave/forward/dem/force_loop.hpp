@@ -68,11 +68,15 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
       const double inv_product = 1.0 / (distance * inv_mass_sum);
       const Vec3 n = (inv_product * inv_mass_sum) * d;
       const Vec3 v_rel = vi - v[j];
-      // A separated pair gets overlap 0 (laws such as Hertz take roots of it) and a masked result.
-      const double overlap = touching ? reach - distance : 0.0;
+      // A separated pair gets overlap 0 (laws such as Hertz take roots of it) and a masked result,
+      // through a 0/1 factor: GCC compiles `touching ? x : 0.0` and std::max into jumps, which are
+      // mispredicted half the time. The factor tests the distance itself, so the overlap is never
+      // negative (r2 < reach^2 may hold while the rounded sqrt reaches `reach`).
+      const double in_contact = static_cast<double>(distance < reach);
+      const double overlap = in_contact * (reach - distance);
       const ContactPoint c{n, overlap, dot(v_rel, n), inv_product * distance, ri, radius[j]};
       if constexpr (kWatch) {
-        const double ratio = touching ? c.overlap / std::min(ri, radius[j]) : 0.0;
+        const double ratio = c.overlap / std::min(ri, radius[j]);
         if (ratio > watch.worst_ratio) watch = {ratio, c.overlap, g.id[i], g.id[j]};
       }
       Vec3 wj;
@@ -80,7 +84,7 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
       Vec3& slot = Model::needs_history ? history[k] : no_history;
       out = model.evaluate(c, v_rel, wi, wj, dt, slot);
       if constexpr (!Model::rotates) {
-        out.force *= touching ? 1.0 : 0.0;
+        out.force *= in_contact;
         return true;
       }
       return touching;

@@ -1,0 +1,23 @@
+#pragma once
+// Files of the channel workflow (HDF5; every dataset and attribute carries its units):
+//  * a packing file: the prepared, static packing (grains at full precision, box, preparation
+//    report), reusable by later runs and tables; a LAMMPS data file is written beside it;
+//  * a run file: scene text, packing statistics, layer time series and the measured results.
+// Layouts are listed in docs/scenes.md. Serial: call on the rank that holds the grains (rank 0).
+#include <filesystem>
+
+#include "sedwave/forward/channel/acoustic.hpp"
+#include "sedwave/forward/channel/scene.hpp"
+
+namespace sedwave::forward::channel {
+
+/// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1).
+void write_packing(const std::filesystem::path& path, const PreparedChannel& packing, const std::string& scene_text);
+/// Reads a packing written by write_packing (grains, box, report statistics).
+[[nodiscard]] PreparedChannel read_packing(const std::filesystem::path& path);
+
+/// Writes the run file, atomically (temporary file + rename).
+void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
+                    const AcousticResult& result);
+
+}  // namespace sedwave::forward::channel

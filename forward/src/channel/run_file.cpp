@@ -1,0 +1,170 @@
+#include "sedwave/forward/channel/run_file.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "../dem/hdf5_io.hpp"
+#include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/version.hpp"
+
+namespace sedwave::forward::channel {
+namespace {
+
+namespace h5 = dem::h5;
+
+void number(hid_t parent, const std::string& name, double value, const std::string& unit) {
+  h5::write_attribute(parent, name, value);
+  h5::write_string_attribute(parent, name + "_unit", unit);
+}
+
+void write_stats(hid_t parent, const PreparationReport& r) {
+  const PackingStats& s = r.stats;
+  number(parent, "pressure", r.pressure, "kappa/d (force per d^2)");
+  number(parent, "target_wall_force", r.target_wall_force, "kappa d");
+  number(parent, "residual_ratio", r.residual_ratio, "max |F| / mean contact force");
+  number(parent, "packing_fraction", s.packing_fraction, "1");
+  number(parent, "column_height", s.column_height, "d");
+  number(parent, "coordination", s.coordination, "contacts per flow grain");
+  number(parent, "coordination_without_rattlers", s.coordination_without_rattlers, "contacts per grain");
+  number(parent, "rattler_fraction", s.rattler_fraction, "1");
+  number(parent, "mean_overlap", s.mean_overlap, "d");
+  number(parent, "max_overlap", s.max_overlap, "d");
+  number(parent, "mean_contact_force", s.mean_contact_force, "force unit of the scene");
+  h5::write_attribute(parent, "contacts", s.contacts);
+  h5::write_attribute(parent, "converged", static_cast<std::int32_t>(r.converged));
+  h5::write(parent, "overlap_histogram", s.overlap_histogram.data(), s.overlap_histogram.size());
+  h5::write(parent, "gap_histogram", s.gap_histogram.data(), s.gap_histogram.size());
+  h5::write_string_attribute(parent, "histogram_bins",
+                             "bin k counts separations |s|/d in [1e-(k+1), 1e-k); the last bin also holds smaller");
+}
+
+}  // namespace
+
+void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
+  const std::filesystem::path temporary = path.string() + ".tmp";
+  {
+    h5::Handle file = h5::create_file(temporary.string());
+    h5::write_string_attribute(file, "sedwave_version", kVersion);
+    h5::write_string_attribute(file, "scene", scene_text);
+    h5::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
+    h5::Handle grains = h5::create_group(file, "grains");
+    std::vector<std::int64_t> id;
+    std::vector<std::int32_t> group, body;
+    std::vector<double> radius, mass, position;
+    for (const dem::Grain& g : p.grains) {
+      id.push_back(g.id);
+      group.push_back(g.group);
+      body.push_back(g.body);
+      radius.push_back(g.radius);
+      mass.push_back(g.mass);
+      position.insert(position.end(), {g.position.x, g.position.y, g.position.z});
+    }
+    h5::write(grains, "id", id.data(), id.size());
+    h5::write(grains, "group", group.data(), group.size());
+    h5::write(grains, "body", body.data(), body.size());
+    h5::write(grains, "radius", radius.data(), radius.size());
+    h5::write(grains, "mass", mass.data(), mass.size());
+    h5::write(grains, "position", position.data(), id.size(), 3);
+    h5::Handle box = h5::create_group(file, "box");
+    const double bounds[6] = {p.box.lo.x, p.box.lo.y, p.box.lo.z, p.box.hi.x, p.box.hi.y, p.box.hi.z};
+    h5::write(box, "bounds", bounds, 2, 3);
+    const std::int32_t periodic[3] = {p.box.periodic[0], p.box.periodic[1], p.box.periodic[2]};
+    h5::write(box, "periodic", periodic, 3);
+    h5::Handle stats = h5::create_group(file, "preparation");
+    write_stats(stats, p.report);
+  }
+  std::filesystem::rename(temporary, path);
+  std::vector<dem::Grain> typed = p.grains;
+  for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
+  std::filesystem::path data = path;
+  data.replace_extension(".data");
+  dem::write_lammps_data(data.string(), p.box, typed);
+}
+
+PreparedChannel read_packing(const std::filesystem::path& path) {
+  h5::Handle file = h5::open_file(path.string());
+  h5::Handle grains(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open group grains");
+  const std::size_t n = h5::rows(grains, "id");
+  const auto id = h5::read_rows<std::int64_t>(grains, "id", 0, n);
+  const auto group = h5::read_rows<std::int32_t>(grains, "group", 0, n);
+  const auto body = h5::read_rows<std::int32_t>(grains, "body", 0, n);
+  const auto radius = h5::read_rows<double>(grains, "radius", 0, n);
+  const auto mass = h5::read_rows<double>(grains, "mass", 0, n);
+  const auto position = h5::read_rows<double>(grains, "position", 0, n, 3);
+  PreparedChannel p;
+  for (std::size_t i = 0; i < n; ++i) {
+    dem::Grain g;
+    g.id = id[i];
+    g.group = group[i];
+    g.body = body[i];
+    g.radius = radius[i];
+    g.mass = mass[i];
+    g.position = {position[3 * i], position[3 * i + 1], position[3 * i + 2]};
+    p.grains.push_back(g);
+  }
+  h5::Handle box(H5Gopen2(file, "box", H5P_DEFAULT), H5Gclose, "open group box");
+  const auto bounds = h5::read_rows<double>(box, "bounds", 0, 2, 3);
+  const auto periodic = h5::read_rows<std::int32_t>(box, "periodic", 0, 3);
+  p.box.lo = {bounds[0], bounds[1], bounds[2]};
+  p.box.hi = {bounds[3], bounds[4], bounds[5]};
+  p.box.periodic = {periodic[0] != 0, periodic[1] != 0, periodic[2] != 0};
+  h5::Handle stats(H5Gopen2(file, "preparation", H5P_DEFAULT), H5Gclose, "open group preparation");
+  p.report.pressure = h5::read_attribute<double>(stats, "pressure");
+  p.report.converged = h5::read_attribute<std::int32_t>(stats, "converged") != 0;
+  p.report.residual_ratio = h5::read_attribute<double>(stats, "residual_ratio");
+  p.report.stats.packing_fraction = h5::read_attribute<double>(stats, "packing_fraction");
+  p.report.stats.coordination = h5::read_attribute<double>(stats, "coordination");
+  return p;
+}
+
+void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
+                    const AcousticResult& r) {
+  const std::filesystem::path temporary = path.string() + ".tmp";
+  {
+    h5::Handle file = h5::create_file(temporary.string());
+    h5::write_string_attribute(file, "sedwave_version", kVersion);
+    h5::write_string_attribute(file, "scene", scene.text);
+    h5::write_string_attribute(file, "units",
+                               "dimensionless: lengths in mean grain diameters d, times in sqrt(m/kappa) with m the "
+                               "mass of a grain of diameter d and kappa the contact stiffness");
+    h5::Handle packing = h5::create_group(file, "packing");
+    write_stats(packing, preparation);
+
+    h5::Handle probes = h5::create_group(file, "probes");
+    h5::write(probes, "layer_z", r.layer_z.data(), r.layer_z.size());
+    h5::write_string_attribute(probes, "layer_z_unit", "d, from the driven wall's mean surface");
+    h5::write(probes, "layer_grains", r.layer_grains.data(), r.layer_grains.size());
+    std::vector<double> series;
+    const std::size_t samples = r.displacement.empty() ? 0 : r.displacement.front().size();
+    for (const auto& layer : r.displacement) series.insert(series.end(), layer.begin(), layer.end());
+    h5::write(probes, "displacement", series.data(), r.displacement.size(), samples);
+    h5::write_string_attribute(probes, "displacement_unit", "d; mean over the layer, along the drive axis");
+    number(probes, "sample_dt", r.sample_dt, "sqrt(m/kappa)");
+
+    h5::Handle results = h5::create_group(file, "results");
+    number(results, "omega_hat", r.omega_hat, "1");
+    number(results, "gamma_hat", r.gamma_hat, "1");
+    number(results, "amplitude", r.amplitude, "d");
+    number(results, "alpha_hat", r.fit.alpha, "Np per d");
+    number(results, "sigma_alpha_hat", r.fit.sigma_alpha, "Np per d");
+    number(results, "k_hat", r.fit.k, "rad per d");
+    number(results, "sigma_k_hat", r.fit.sigma_k, "rad per d");
+    number(results, "c_hat", r.fit.c, "d sqrt(kappa/m)");
+    number(results, "sigma_c_hat", r.fit.sigma_c, "d sqrt(kappa/m)");
+    number(results, "first_peak_alpha_hat", r.first_peak.alpha, "Np per d");
+    number(results, "first_peak_c_hat", r.first_peak.speed, "d sqrt(kappa/m)");
+    number(results, "wave_speed_estimate", r.wave_speed_estimate, "d sqrt(kappa/m)");
+    // The same in the scene's own units (lengths in d, the scene's mass and stiffness).
+    const double t0 = std::sqrt(r.grain_mass / r.kappa);
+    number(results, "omega", r.omega_hat / t0, "rad per scene time unit");
+    number(results, "alpha", r.fit.alpha / r.mean_diameter, "Np per scene length unit");
+    number(results, "c", r.fit.c * r.mean_diameter / t0, "scene length per scene time unit");
+    h5::write_attribute(results, "layers_used", static_cast<std::int32_t>(r.layers_used));
+    h5::write_attribute(results, "steps", r.steps);
+    number(results, "wall_seconds", r.wall_seconds, "s");
+    h5::write_string_attribute(results, "problem", r.problem);
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+}  // namespace sedwave::forward::channel

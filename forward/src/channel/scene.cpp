@@ -1,0 +1,222 @@
+#include "sedwave/forward/channel/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml.hpp>
+
+#include "sedwave/forward/units.hpp"
+
+namespace sedwave::forward::channel {
+namespace {
+
+/// One TOML table of the scene: typed reads with defaults, and a final check that every key was
+/// understood (a misspelt key must not silently fall back to a default).
+class Section {
+ public:
+  Section(const toml::value& value, std::string name, std::string origin)
+      : value_(value), name_(std::move(name)), origin_(std::move(origin)) {
+    if (!value_.is_table()) fail(value_, "must be a table");
+  }
+
+  [[nodiscard]] bool has(const std::string& key) const { return value_.as_table().count(key) > 0; }
+
+  double number(const std::string& key, double fallback) { return has(key) ? required_number(key) : mark(key, fallback); }
+  double required_number(const std::string& key) {
+    const toml::value& v = at(key);
+    if (v.is_integer()) return static_cast<double>(v.as_integer());
+    if (!v.is_floating()) fail(v, "must be a number");
+    if (!std::isfinite(v.as_floating())) fail(v, "must be finite");
+    return v.as_floating();
+  }
+  double positive(const std::string& key, double fallback) {
+    const double x = number(key, fallback);
+    if (has(key) && !(x > 0.0)) fail(value_.at(key), "must be positive");
+    return x;
+  }
+  std::int64_t integer(const std::string& key, std::int64_t fallback) {
+    if (!has(key)) return mark(key, fallback);
+    const toml::value& v = at(key);
+    if (!v.is_integer()) fail(v, "must be an integer");
+    return v.as_integer();
+  }
+  std::string text(const std::string& key, const std::string& fallback) {
+    if (!has(key)) return mark(key, fallback);
+    const toml::value& v = at(key);
+    if (!v.is_string()) fail(v, "must be a string");
+    return v.as_string();
+  }
+  std::string choice(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed) {
+    const std::string s = text(key, fallback);
+    if (!allowed.count(s)) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(value_.at(key), "must be one of " + list);
+    }
+    return s;
+  }
+  std::optional<double> optional_number(const std::string& key) {
+    if (!has(key)) return std::nullopt;
+    return required_number(key);
+  }
+  Section sub(const std::string& key) {
+    used_.insert(key);
+    static const toml::value empty = toml::table{};
+    return Section(has(key) ? value_.at(key) : empty, qualified(key), origin_);
+  }
+  /// Throws for keys nobody asked for.
+  void finish() const {
+    for (const auto& [key, v] : value_.as_table()) {
+      if (!used_.count(key)) fail(v, "unknown key (misspelt?)", key);
+    }
+  }
+  [[noreturn]] void fail(const toml::value& v, const std::string& why, const std::string& key = "") const {
+    std::ostringstream msg;
+    const auto& loc = v.location();
+    const std::string file = loc.file_name().empty() || loc.file_name() == "unknown file" ? origin_ : loc.file_name();
+    msg << file << ":" << loc.line() << ": key '" << qualified(key.empty() ? last_key_ : key) << "': " << why;
+    throw SceneError(msg.str());
+  }
+
+ private:
+  const toml::value& at(const std::string& key) {
+    used_.insert(key);
+    last_key_ = key;
+    return value_.at(key);
+  }
+  template <typename T>
+  T mark(const std::string& key, T fallback) {
+    used_.insert(key);
+    return fallback;
+  }
+  [[nodiscard]] std::string qualified(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
+
+  const toml::value& value_;
+  std::string name_;
+  std::string origin_;
+  std::set<std::string> used_;
+  std::string last_key_;
+};
+
+void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& base) {
+  ChannelGeometry& g = scene.geometry;
+  if (s.has("import_lammps_data")) {
+    scene.import_lammps_data = base / s.text("import_lammps_data", "");
+  }
+  g.n_grains = static_cast<int>(s.integer("grains", g.n_grains));
+  g.width = s.positive("width", g.width);
+  g.density = s.positive("density", g.density);
+  g.seed = static_cast<std::uint64_t>(s.integer("seed", static_cast<std::int64_t>(g.seed)));
+  g.initial_packing_fraction = s.positive("initial_packing_fraction", g.initial_packing_fraction);
+  Section sizes = s.sub("sizes");
+  sizes.choice("distribution", "normal", {"normal"});
+  g.sizes.mean = sizes.positive("mean", g.sizes.mean);
+  g.sizes.sd = sizes.number("sd", g.sizes.sd);
+  g.sizes.min = sizes.positive("min", g.sizes.min);
+  g.sizes.max = sizes.positive("max", g.sizes.max);
+  sizes.finish();
+  Section walls = s.sub("walls");
+  g.wall_diameter = walls.positive("diameter", g.wall_diameter);
+  g.wall_roughness = walls.number("roughness", g.wall_roughness);
+  walls.finish();
+  s.finish();
+}
+
+void read_contact(Section s, dem::ContactSpec& c, double density) {
+  const std::string law = s.choice("law", "hooke", {"hooke", "hertz"});
+  c.normal = law == "hooke" ? dem::NormalLawKind::hooke : dem::NormalLawKind::hertz;
+  const std::optional<double> E = s.optional_number("youngs_modulus");
+  const double nu = s.number("poisson_ratio", 2.0 / 7.0);
+  c.restitution = s.optional_number("restitution");
+  if (c.normal == dem::NormalLawKind::hooke) {
+    // kn directly, or from E and nu with LAMMPS's example-script formula (units.hpp).
+    if (s.has("kn") == E.has_value()) throw SceneError("contact: give exactly one of 'kn' or 'youngs_modulus'");
+    c.kn = E ? lammps_hooke_from_material(*E, nu, 0.5, grain_mass(density, 0.8)).kn : s.positive("kn", 0.0);
+  } else {
+    if (!E) throw SceneError("contact: the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
+    c.effective_modulus = hertz_effective_modulus(*E, nu, *E, nu);
+  }
+  const double mu = s.number("friction", 0.0);
+  if (mu > 0.0) {
+    c.tangential = dem::TangentialLawKind::spring_history;
+    c.friction = mu;
+    c.kt = s.positive("kt", 2.0 / 7.0 * (c.kn > 0.0 ? c.kn : 1.0));
+  }
+  s.finish();
+}
+
+void read_preparation(Section s, PreparationSettings& p) {
+  p.pressure = s.positive("pressure", p.pressure);
+  p.compression_speed = s.positive("compression_speed", p.compression_speed);
+  p.compression_damping = s.number("compression_damping", p.compression_damping);
+  p.residual_force_tolerance = s.positive("residual_force_tolerance", p.residual_force_tolerance);
+  p.pressure_tolerance = s.positive("pressure_tolerance", p.pressure_tolerance);
+  p.max_compression_steps = s.integer("max_compression_steps", p.max_compression_steps);
+  p.max_relaxation_steps = s.integer("max_relaxation_steps", p.max_relaxation_steps);
+  s.finish();
+}
+
+void read_drive(Section s, DriveSettings& d) {
+  d.axis = s.choice("axis", "z", {"z", "x"}) == "z" ? DriveAxis::longitudinal : DriveAxis::transverse;
+  d.amplitude = s.positive("amplitude", d.amplitude);
+  d.omega_hat = s.positive("omega_hat", d.omega_hat);
+  if (s.has("gamma_hat") && s.has("restitution")) throw SceneError("drive: give 'gamma_hat' or 'restitution', not both");
+  if (s.has("restitution")) {
+    const double e = s.positive("restitution", 0.9);
+    d.gamma_hat = gamma_hat_from_restitution(e);
+  } else {
+    d.gamma_hat = s.number("gamma_hat", d.gamma_hat);
+  }
+  d.far_end = s.choice("far_end", "absorbing", {"frozen", "absorbing"}) == "frozen" ? FarEnd::frozen : FarEnd::absorbing;
+  d.absorbing_fraction = s.positive("absorbing_fraction", d.absorbing_fraction);
+  d.absorbing_strength = s.positive("absorbing_strength", d.absorbing_strength);
+  d.periods = s.number("periods", d.periods);
+  d.samples_per_period = static_cast<int>(s.integer("samples_per_period", d.samples_per_period));
+  d.time_step_fraction = s.positive("time_step_fraction", d.time_step_fraction);
+  Section m = s.sub("measurement");
+  d.layer_thickness = m.positive("layer_thickness", d.layer_thickness);
+  d.skip_layers = static_cast<int>(m.integer("skip_layers", d.skip_layers));
+  d.settle_periods = m.number("settle_periods", d.settle_periods);
+  m.finish();
+  s.finish();
+}
+
+ChannelScene from_value(const toml::value& root, const std::string& origin, const std::filesystem::path& base) {
+  ChannelScene scene;
+  Section top(root, "", origin);
+  top.text("title", "");
+  read_geometry(top.sub("geometry"), scene, base);
+  read_contact(top.sub("contact"), scene.contact, scene.geometry.density);
+  read_preparation(top.sub("preparation"), scene.preparation);
+  read_drive(top.sub("drive"), scene.drive);
+  top.finish();
+  if (!scene.contact.restitution) scene.contact.restitution = 0.9;  // preparation damping (thesis)
+  return scene;
+}
+
+}  // namespace
+
+ChannelScene parse_scene(const std::string& text, const std::string& origin) {
+  std::istringstream stream(text);
+  toml::value root;
+  try {
+    root = toml::parse(stream, origin);
+  } catch (const std::exception& e) {
+    throw SceneError(e.what());
+  }
+  ChannelScene scene = from_value(root, origin, std::filesystem::path(origin).parent_path());
+  scene.text = text;
+  scene.path = origin;
+  return scene;
+}
+
+ChannelScene read_scene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path.string() + ": cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path.string());
+}
+
+}  // namespace sedwave::forward::channel

@@ -1,0 +1,57 @@
+// How a driven run's measurement becomes a table point: ok only when the attenuation is
+// significantly positive; otherwise unresolved with a reason, never noise stored as a value.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sedwave/forward/table/task_farm.hpp"
+
+namespace sedwave::forward::table {
+namespace {
+
+channel::AcousticResult measured(double alpha, double sigma_alpha, double c, double sigma_c) {
+  channel::AcousticResult r;
+  r.fit.alpha = alpha;
+  r.fit.sigma_alpha = sigma_alpha;
+  r.fit.c = c;
+  r.fit.sigma_c = sigma_c;
+  r.wall_seconds = 3.5;
+  return r;
+}
+
+TEST(PointFromAcoustic, SignificantAttenuationIsOk) {
+  const PointResult p = point_from_acoustic(measured(0.02, 0.001, 0.9, 0.01));
+  EXPECT_EQ(p.status, PointStatus::ok);
+  EXPECT_EQ(p.alpha_hat, 0.02);
+  EXPECT_EQ(p.sigma_alpha_hat, 0.001);
+  EXPECT_EQ(p.c_hat, 0.9);
+  EXPECT_EQ(p.sigma_c_hat, 0.01);
+  EXPECT_EQ(p.wall_seconds, 3.5);
+  EXPECT_TRUE(p.reason.empty());
+}
+
+TEST(PointFromAcoustic, AttenuationBelowTwoSigmaIsUnresolved) {
+  for (double alpha : {0.0015, -0.001, 0.0}) {
+    const PointResult p = point_from_acoustic(measured(alpha, 0.001, 0.9, 0.01));
+    EXPECT_EQ(p.status, PointStatus::unresolved) << alpha;
+    EXPECT_TRUE(std::isnan(p.alpha_hat));
+    EXPECT_NE(p.reason.find("not significantly positive"), std::string::npos) << p.reason;
+  }
+}
+
+TEST(PointFromAcoustic, RunProblemIsUnresolvedWithItsReason) {
+  channel::AcousticResult r = measured(0.02, 0.001, 0.9, 0.01);
+  r.problem = "fewer than 3 layers have a steady window";
+  const PointResult p = point_from_acoustic(r);
+  EXPECT_EQ(p.status, PointStatus::unresolved);
+  EXPECT_EQ(p.reason, r.problem);
+  EXPECT_TRUE(std::isnan(p.c_hat));
+}
+
+TEST(PointFromAcoustic, NonFiniteFitIsUnresolved) {
+  const PointResult p = point_from_acoustic(measured(0.02, NAN, 0.9, 0.01));
+  EXPECT_EQ(p.status, PointStatus::unresolved);
+}
+
+}  // namespace
+}  // namespace sedwave::forward::table
