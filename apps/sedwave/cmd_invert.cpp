@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "sedwave/forward/models.hpp"
+#include "sedwave/forward/table/table_model.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
@@ -164,7 +165,9 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--digitized-file", o->digitized_files, "WebPlotDigitizer x,y export (repeatable)");
   cmd->add_option("--digitized", o->digitized_specs,
                   "QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA] for --digitized-file (one for all, or one each)");
-  cmd->add_option("--model", o->model, "forward model: continuum | lattice")->capture_default_str();
+  cmd->add_option("--model", o->model,
+                  "forward model: continuum | lattice | table:FILE.h5[?extrapolate=theory] (docs/tables.md)")
+      ->capture_default_str();
   cmd->add_option("--fit", o->fit, "free parameters among kappa,d,gamma|en (others fixed)")->capture_default_str();
   cmd->add_option("--method", o->method, "ceres (local) | nlopt (global search) | global (search + polish)")->capture_default_str()
       ->check(CLI::IsMember({"ceres", "nlopt", "global"}));
@@ -198,7 +201,17 @@ Command add_invert_command(CLI::App& app) {
 
             const std::filesystem::path out(o->out);
             std::filesystem::create_directories(out);
-            std::ofstream(out / "fit.json") << inversion::fit_report(result, data).dump(2) << "\n";
+            nlohmann::json report = inversion::fit_report(result, data);
+            // A table model may have answered some evaluations with the 1D theory outside its range:
+            // the report must say so, or a theory fit would pass for a table fit.
+            if (const auto* table = dynamic_cast<const forward::table::TableModel*>(model.get())) {
+              report["table_fallback_evaluations"] = table->fallback_count();
+              if (table->fallback_count() > 0) {
+                std::printf("note: %llu model evaluations fell outside the table and used the 1D lattice theory\n",
+                            static_cast<unsigned long long>(table->fallback_count()));
+              }
+            }
+            std::ofstream(out / "fit.json") << report.dump(2) << "\n";
             inversion::write_curves_csv(out / "curves.csv",
                                         inversion::model_curves(result, *model, inversion::curve_frequencies(data)),
                                         data.water_sound_speed);

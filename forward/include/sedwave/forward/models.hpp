@@ -8,8 +8,9 @@
 
 namespace sedwave::forward {
 
-/// "continuum" or "lattice" (the 1D chain theories). Throws std::invalid_argument naming the
-/// accepted specifications for anything else.
+/// "continuum" or "lattice" (the 1D chain theories), or "table:FILE.h5[?extrapolate=theory]" (a
+/// precomputed table, docs/tables.md). Throws std::invalid_argument naming the accepted
+/// specifications for anything else.
 [[nodiscard]] std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec);
 
 /// The specifications make_dispersion_model accepts, for help texts.
