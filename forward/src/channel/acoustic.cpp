@@ -159,6 +159,20 @@ void measure(AcousticResult& r, const DriveSettings& d, const Units& u, double r
     return;
   }
   r.fit = fit_attenuation_and_wavenumber(z_used, used, omega, omega / r.wave_speed_estimate);
+  // What this channel cannot resolve is reported, not filled with numbers: a fit over less than a
+  // wavelength cannot separate the travelling wave from near field and reflections, and an
+  // absorbing layer shorter than a wavelength reflects much of what reaches it.
+  const double wavelength = 2.0 * std::numbers::pi / r.fit.k;
+  const double span = z_used.back() - z_used.front();
+  if (!(r.fit.k > 0.0) || span < wavelength) {
+    r.problem = "unresolved: the layers with a steady window span " + std::to_string(span) +
+                " d, less than one wavelength (" + std::to_string(wavelength) + " d); lengthen the channel";
+  } else if (d.far_end == FarEnd::absorbing &&
+             d.absorbing_fraction * (u.column_top - u.wall_surface) / u.diameter < wavelength) {
+    r.problem = "unresolved: the absorbing layer (" +
+                std::to_string(d.absorbing_fraction * (u.column_top - u.wall_surface) / u.diameter) +
+                " d) is shorter than one wavelength (" + std::to_string(wavelength) + " d) and reflects";
+  }
 }
 
 }  // namespace

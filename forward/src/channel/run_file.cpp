@@ -3,14 +3,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "../dem/hdf5_io.hpp"
+#include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 #include "sedwave/version.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
-
-namespace h5 = dem::h5;
 
 void number(hid_t parent, const std::string& name, double value, const std::string& unit) {
   h5::write_attribute(parent, name, value);

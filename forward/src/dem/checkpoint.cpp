@@ -11,7 +11,7 @@
 // and keeps what it owns.
 #include <cstdio>
 
-#include "hdf5_io.hpp"
+#include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdlib>
 
-#include "hdf5_io.hpp"
+#include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 
 namespace sedwave::forward::dem {

@@ -3,6 +3,8 @@
 // handles (RAII) and throws std::runtime_error naming what failed.
 #include <hdf5.h>
 
+#include "../io/hdf5.hpp"
+
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -11,35 +13,8 @@
 
 namespace sedwave::forward::table::h5 {
 
-/// Owns one hid_t and closes it with the matching H5*close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle() = default;
-  Handle(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
-  }
-  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)), close_(other.close_) {}
-  Handle& operator=(Handle&& other) noexcept {
-    std::swap(id_, other.id_);
-    std::swap(close_, other.close_);
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() {
-    if (id_ >= 0 && close_ != nullptr) close_(id_);
-  }
-  [[nodiscard]] hid_t id() const { return id_; }
-
- private:
-  hid_t id_ = -1;
-  Closer close_ = nullptr;
-};
-
-inline void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
-}
+using forward::h5::check;
+using forward::h5::Handle;
 
 /// Turns HDF5's automatic error-stack printing off while alive (for probing files that may be damaged).
 class QuietErrors {

@@ -1,5 +1,6 @@
 #pragma once
-// Minimal RAII over the HDF5 C API for the DEM checkpoint and trajectory files (private header).
+// Minimal RAII over the HDF5 C API, shared by the forward library's files (DEM checkpoints and
+// trajectories, channel packings and runs, dispersion tables). Private header: not installed.
 #include <hdf5.h>
 
 #include <algorithm>
@@ -9,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace sedwave::forward::dem::h5 {
+namespace sedwave::forward::h5 {
 
 /// Owns one hid_t and closes it with the matching H5*close.
 class Handle {
@@ -198,4 +199,4 @@ std::vector<T> read_block(hid_t parent, const std::string& name, const Extent& s
   return out;
 }
 
-}  // namespace sedwave::forward::dem::h5
+}  // namespace sedwave::forward::h5
