@@ -165,11 +165,11 @@ void measure(AcousticResult& r, const DriveSettings& d, const Units& u, double r
   const double wavelength = 2.0 * std::numbers::pi / r.fit.k;
   const double span = z_used.back() - z_used.front();
   if (!(r.fit.k > 0.0) || span < wavelength) {
-    r.problem = "unresolved: the layers with a steady window span " + std::to_string(span) +
+    r.problem = "the layers with a steady window span " + std::to_string(span) +
                 " d, less than one wavelength (" + std::to_string(wavelength) + " d); lengthen the channel";
   } else if (d.far_end == FarEnd::absorbing &&
              d.absorbing_fraction * (u.column_top - u.wall_surface) / u.diameter < wavelength) {
-    r.problem = "unresolved: the absorbing layer (" +
+    r.problem = "the absorbing layer (" +
                 std::to_string(d.absorbing_fraction * (u.column_top - u.wall_surface) / u.diameter) +
                 " d) is shorter than one wavelength (" + std::to_string(wavelength) + " d) and reflects";
   }
