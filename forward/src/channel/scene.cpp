@@ -65,6 +65,19 @@ class Section {
     static const toml::value empty = toml::table{};
     return Section(has(key) ? value_.at(key) : empty, qualified(key), origin_);
   }
+  /// An error about the section as a whole (conflicting or missing keys).
+  [[noreturn]] void fail_section(const std::string& why) const {
+    const auto& loc = value_.location();
+    const std::string file = loc.file_name().empty() || loc.file_name() == "unknown file" ? origin_ : loc.file_name();
+    throw SceneError(file + ":" + std::to_string(loc.line()) + ": [" + name_ + "]: " + why);
+  }
+  /// Rejects keys outside `allowed` before anything is read, so a misspelt section or key is
+  /// reported as such rather than as the "missing" error its correctly spelt twin would give.
+  void allow_only(const std::set<std::string>& allowed) const {
+    for (const auto& [key, v] : value_.as_table()) {
+      if (!allowed.count(key)) fail(v, "unknown key (misspelt?)", key);
+    }
+  }
   /// Throws for keys nobody asked for.
   void finish() const {
     for (const auto& [key, v] : value_.as_table()) {
@@ -131,10 +144,10 @@ void read_contact(Section s, dem::ContactSpec& c, double density) {
   c.restitution = s.optional_number("restitution");
   if (c.normal == dem::NormalLawKind::hooke) {
     // kn directly, or from E and nu with LAMMPS's example-script formula (units.hpp).
-    if (s.has("kn") == E.has_value()) throw SceneError("contact: give exactly one of 'kn' or 'youngs_modulus'");
+    if (s.has("kn") == E.has_value()) s.fail_section("give exactly one of 'kn' or 'youngs_modulus'");
     c.kn = E ? lammps_hooke_from_material(*E, nu, 0.5, grain_mass(density, 0.8)).kn : s.positive("kn", 0.0);
   } else {
-    if (!E) throw SceneError("contact: the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
+    if (!E) s.fail_section("the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
     c.effective_modulus = hertz_effective_modulus(*E, nu, *E, nu);
   }
   const double mu = s.number("friction", 0.0);
@@ -161,7 +174,7 @@ void read_drive(Section s, DriveSettings& d) {
   d.axis = s.choice("axis", "z", {"z", "x"}) == "z" ? DriveAxis::longitudinal : DriveAxis::transverse;
   d.amplitude = s.positive("amplitude", d.amplitude);
   d.omega_hat = s.positive("omega_hat", d.omega_hat);
-  if (s.has("gamma_hat") && s.has("restitution")) throw SceneError("drive: give 'gamma_hat' or 'restitution', not both");
+  if (s.has("gamma_hat") && s.has("restitution")) s.fail_section("give 'gamma_hat' or 'restitution', not both");
   if (s.has("restitution")) {
     const double e = s.positive("restitution", 0.9);
     d.gamma_hat = gamma_hat_from_restitution(e);
@@ -185,6 +198,7 @@ void read_drive(Section s, DriveSettings& d) {
 ChannelScene from_value(const toml::value& root, const std::string& origin, const std::filesystem::path& base) {
   ChannelScene scene;
   Section top(root, "", origin);
+  top.allow_only({"title", "geometry", "contact", "preparation", "drive"});
   top.text("title", "");
   read_geometry(top.sub("geometry"), scene, base);
   read_contact(top.sub("contact"), scene.contact, scene.geometry.density);

@@ -1,0 +1,60 @@
+// Scene files: the shipped example parses to the thesis's numbers, and every mistake names the
+// file, the line and the key.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "sedwave/forward/channel/scene.hpp"
+
+namespace sedwave::forward::channel {
+namespace {
+
+TEST(Scene, ShippedExampleParses) {
+  const ChannelScene s = read_scene(std::string(SEDWAVE_SOURCE_DIR) + "/data/scenes/thesis_w3.toml");
+  EXPECT_EQ(s.geometry.n_grains, 1000);
+  EXPECT_DOUBLE_EQ(s.geometry.width, 3.0);
+  EXPECT_DOUBLE_EQ(s.geometry.sizes.min, 0.8);
+  // kn from E = 1000, nu = 2/7 by LAMMPS's formula 4G / (3 (1 - nu)), G = E / (2 (1 + nu)).
+  EXPECT_NEAR(s.contact.kn, 4.0 * (1000.0 / (2.0 * (1.0 + 2.0 / 7.0))) / (3.0 * (1.0 - 2.0 / 7.0)), 1e-9);
+  EXPECT_DOUBLE_EQ(s.preparation.pressure, 10.0);
+  EXPECT_EQ(s.drive.far_end, FarEnd::absorbing);
+  EXPECT_DOUBLE_EQ(s.drive.layer_thickness, 1.0);
+  EXPECT_FALSE(s.text.empty());
+}
+
+TEST(Scene, RestitutionInDriveMapsToGammaHat) {
+  const ChannelScene s = parse_scene("[contact]\nkn = 726\n[drive]\nrestitution = 0.5\n", "x.toml");
+  EXPECT_NEAR(s.drive.gamma_hat, 0.3046976322369708, 1e-12);
+}
+
+struct BadScene {
+  std::string text;
+  std::string expected;  // substring of the message
+};
+
+class BadScenes : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadScenes, NameFileLineAndKey) {
+  try {
+    (void)parse_scene(GetParam().text, "bad.toml");
+    FAIL() << "no error for:\n" << GetParam().text;
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(GetParam().expected), std::string::npos) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Mistakes, BadScenes,
+    ::testing::Values(BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 10\nwidht = 3\n", "bad.toml:5: key 'geometry.widht': unknown key"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nomega_hat = \"fast\"\n", "bad.toml:4: key 'drive.omega_hat': must be a number"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nomega_hat = -1\n", "bad.toml:4: key 'drive.omega_hat': must be positive"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\naxis = \"y\"\n", "bad.toml:4: key 'drive.axis': must be one of x, z"},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 1.5\n", "bad.toml:4: key 'geometry.grains': must be an integer"},
+                      BadScene{"[contact]\nkn = 726\n[geometry.sizes]\nmean = 1\nsdd = 0.1\n", "key 'geometry.sizes.sdd': unknown key"},
+                      BadScene{"[contact]\nkn = 726\nyoungs_modulus = 1000\n", "bad.toml:1: [contact]: give exactly one of 'kn' or 'youngs_modulus'"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\ngamma_hat = 0.1\nrestitution = 0.9\n", "bad.toml:3: [drive]: give 'gamma_hat' or 'restitution', not both"},
+                      BadScene{"[contact]\nkn = [726\n", "bad.toml"},
+                      BadScene{"[contakt]\nkn = 726\n", "bad.toml:1: key 'contakt': unknown key"}));
+
+}  // namespace
+}  // namespace sedwave::forward::channel
