@@ -2,115 +2,17 @@
 
 #include <cmath>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <toml.hpp>
+
+#include "../io/toml_table.hpp"
 
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
 
-/// One TOML table of the scene: typed reads with defaults, and a final check that every key was
-/// understood (a misspelt key must not silently fall back to a default).
-class Section {
- public:
-  Section(const toml::value& value, std::string name, std::string origin)
-      : value_(value), name_(std::move(name)), origin_(std::move(origin)) {
-    if (!value_.is_table()) fail(value_, "must be a table");
-  }
-
-  [[nodiscard]] bool has(const std::string& key) const { return value_.as_table().count(key) > 0; }
-
-  double number(const std::string& key, double fallback) { return has(key) ? required_number(key) : mark(key, fallback); }
-  double required_number(const std::string& key) {
-    const toml::value& v = at(key);
-    if (v.is_integer()) return static_cast<double>(v.as_integer());
-    if (!v.is_floating()) fail(v, "must be a number");
-    if (!std::isfinite(v.as_floating())) fail(v, "must be finite");
-    return v.as_floating();
-  }
-  double positive(const std::string& key, double fallback) {
-    const double x = number(key, fallback);
-    if (has(key) && !(x > 0.0)) fail(value_.at(key), "must be positive");
-    return x;
-  }
-  std::int64_t integer(const std::string& key, std::int64_t fallback) {
-    if (!has(key)) return mark(key, fallback);
-    const toml::value& v = at(key);
-    if (!v.is_integer()) fail(v, "must be an integer");
-    return v.as_integer();
-  }
-  std::string text(const std::string& key, const std::string& fallback) {
-    if (!has(key)) return mark(key, fallback);
-    const toml::value& v = at(key);
-    if (!v.is_string()) fail(v, "must be a string");
-    return v.as_string();
-  }
-  std::string choice(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed) {
-    const std::string s = text(key, fallback);
-    if (!allowed.count(s)) {
-      std::string list;
-      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(value_.at(key), "must be one of " + list);
-    }
-    return s;
-  }
-  std::optional<double> optional_number(const std::string& key) {
-    if (!has(key)) return std::nullopt;
-    return required_number(key);
-  }
-  Section sub(const std::string& key) {
-    used_.insert(key);
-    static const toml::value empty = toml::table{};
-    return Section(has(key) ? value_.at(key) : empty, qualified(key), origin_);
-  }
-  /// An error about the section as a whole (conflicting or missing keys).
-  [[noreturn]] void fail_section(const std::string& why) const {
-    const auto& loc = value_.location();
-    const std::string file = loc.file_name().empty() || loc.file_name() == "unknown file" ? origin_ : loc.file_name();
-    throw SceneError(file + ":" + std::to_string(loc.line()) + ": [" + name_ + "]: " + why);
-  }
-  /// Rejects keys outside `allowed` before anything is read, so a misspelt section or key is
-  /// reported as such rather than as the "missing" error its correctly spelt twin would give.
-  void allow_only(const std::set<std::string>& allowed) const {
-    for (const auto& [key, v] : value_.as_table()) {
-      if (!allowed.count(key)) fail(v, "unknown key (misspelt?)", key);
-    }
-  }
-  /// Throws for keys nobody asked for.
-  void finish() const {
-    for (const auto& [key, v] : value_.as_table()) {
-      if (!used_.count(key)) fail(v, "unknown key (misspelt?)", key);
-    }
-  }
-  [[noreturn]] void fail(const toml::value& v, const std::string& why, const std::string& key = "") const {
-    std::ostringstream msg;
-    const auto& loc = v.location();
-    const std::string file = loc.file_name().empty() || loc.file_name() == "unknown file" ? origin_ : loc.file_name();
-    msg << file << ":" << loc.line() << ": key '" << qualified(key.empty() ? last_key_ : key) << "': " << why;
-    throw SceneError(msg.str());
-  }
-
- private:
-  const toml::value& at(const std::string& key) {
-    used_.insert(key);
-    last_key_ = key;
-    return value_.at(key);
-  }
-  template <typename T>
-  T mark(const std::string& key, T fallback) {
-    used_.insert(key);
-    return fallback;
-  }
-  [[nodiscard]] std::string qualified(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
-
-  const toml::value& value_;
-  std::string name_;
-  std::string origin_;
-  std::set<std::string> used_;
-  std::string last_key_;
-};
+using Section = toml_io::Table<SceneError>;
 
 void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& base) {
   ChannelGeometry& g = scene.geometry;
@@ -144,10 +46,10 @@ void read_contact(Section s, dem::ContactSpec& c, double density) {
   c.restitution = s.optional_number("restitution");
   if (c.normal == dem::NormalLawKind::hooke) {
     // kn directly, or from E and nu with LAMMPS's example-script formula (units.hpp).
-    if (s.has("kn") == E.has_value()) s.fail_section("give exactly one of 'kn' or 'youngs_modulus'");
+    if (s.has("kn") == E.has_value()) s.fail_table("give exactly one of 'kn' or 'youngs_modulus'");
     c.kn = E ? lammps_hooke_from_material(*E, nu, 0.5, grain_mass(density, 0.8)).kn : s.positive("kn", 0.0);
   } else {
-    if (!E) s.fail_section("the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
+    if (!E) s.fail_table("the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
     c.effective_modulus = hertz_effective_modulus(*E, nu, *E, nu);
   }
   const double mu = s.number("friction", 0.0);
@@ -174,7 +76,7 @@ void read_drive(Section s, DriveSettings& d) {
   d.axis = s.choice("axis", "z", {"z", "x"}) == "z" ? DriveAxis::longitudinal : DriveAxis::transverse;
   d.amplitude = s.positive("amplitude", d.amplitude);
   d.omega_hat = s.positive("omega_hat", d.omega_hat);
-  if (s.has("gamma_hat") && s.has("restitution")) s.fail_section("give 'gamma_hat' or 'restitution', not both");
+  if (s.has("gamma_hat") && s.has("restitution")) s.fail_table("give 'gamma_hat' or 'restitution', not both");
   if (s.has("restitution")) {
     const double e = s.positive("restitution", 0.9);
     d.gamma_hat = gamma_hat_from_restitution(e);

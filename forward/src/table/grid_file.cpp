@@ -3,76 +3,21 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <toml.hpp>
+
+#include "../io/toml_table.hpp"
 
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::table {
 namespace {
 
-/// "FILE:LINE: key 'KEY': WHY" for value `v` (toml11 records where each value was read).
-[[noreturn]] void fail(const toml::value& v, const std::string& key, const std::string& why,
-                       const std::string& origin) {
-  const toml::source_location loc = v.location();
-  const std::string file = loc.file_name().empty() || loc.file_name() == "unknown file" ? origin : loc.file_name();
-  throw GridFileError(file + ":" + std::to_string(loc.line()) + ": key '" + key + "': " + why);
+using Keys = toml_io::Table<GridFileError>;
+
+[[noreturn]] void fail(const toml::value& v, const std::string& key, const std::string& why, const std::string& origin) {
+  toml_io::fail<GridFileError>(v, key, why, origin);
 }
-
-/// Reads one table's keys; keys it does not know are errors (a misspelt key must not be silently
-/// ignored).
-class Keys {
- public:
-  /// Rejects any key not in `allowed` at once, before reading any: "unknown key" says more about a
-  /// misspelling than the "missing" error its correctly spelt twin would otherwise give.
-  Keys(const toml::value& table, std::string prefix, std::string origin, const std::set<std::string>& allowed)
-      : table_(table), prefix_(std::move(prefix)), origin_(std::move(origin)) {
-    for (const auto& [key, v] : table_.as_table()) {
-      if (!allowed.count(key)) fail(v, name(key), "unknown key (misspelt?)", origin_);
-    }
-  }
-
-  [[nodiscard]] bool has(const std::string& key) const { return table_.as_table().count(key) > 0; }
-  [[nodiscard]] std::string name(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
-
-  const toml::value& at(const std::string& key) {
-    if (!has(key)) {
-      throw GridFileError(origin_ + ":" + std::to_string(table_.location().line()) + ": key '" + name(key) +
-                          "': missing (required)");
-    }
-    return table_.as_table().at(key);
-  }
-
-  [[nodiscard]] double positive_number(const std::string& key) {
-    const toml::value& v = at(key);
-    return positive(v, name(key));
-  }
-
-  [[nodiscard]] double positive(const toml::value& v, const std::string& key) const {
-    double x = 0.0;
-    if (v.is_integer()) x = static_cast<double>(v.as_integer());
-    else if (v.is_floating()) x = v.as_floating();
-    else fail(v, key, "must be a number", origin_);
-    if (!std::isfinite(x) || !(x > 0.0)) fail(v, key, "must be positive and finite", origin_);
-    return x;
-  }
-
-  [[nodiscard]] std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t minimum) {
-    if (!has(key)) return fallback;
-    const toml::value& v = at(key);
-    if (!v.is_integer()) fail(v, name(key), "must be an integer", origin_);
-    if (v.as_integer() < minimum) fail(v, name(key), "must be at least " + std::to_string(minimum), origin_);
-    return v.as_integer();
-  }
-
-  [[nodiscard]] const std::string& origin() const { return origin_; }
-
- private:
-  const toml::value& table_;
-  std::string prefix_;
-  std::string origin_;
-};
 
 /// An explicit list: positive numbers, strictly ascending (descending when `descending`).
 std::vector<double> number_list(const toml::value& v, const std::string& key, const Keys& keys, bool descending,
@@ -83,7 +28,7 @@ std::vector<double> number_list(const toml::value& v, const std::string& key, co
   std::vector<double> values;
   for (std::size_t i = 0; i < array.size(); ++i) {
     const std::string element = key + "[" + std::to_string(i) + "]";
-    const double x = keys.positive(array[i], element);
+    const double x = keys.positive_value(array[i], element);
     if (!(x < upper_bound_exclusive)) {
       std::ostringstream bound;
       bound << "must be below " << upper_bound_exclusive;
@@ -101,9 +46,10 @@ std::vector<double> number_list(const toml::value& v, const std::string& key, co
 std::vector<double> axis(const toml::value& v, const std::string& key, const Keys& parent) {
   if (v.is_array()) return number_list(v, key, parent, false);
   if (!v.is_table()) fail(v, key, "must be a list of values or a table { from, to, points }", parent.origin());
-  Keys range(v, key, parent.origin(), {"from", "to", "points"});
-  const double from = range.positive_number("from");
-  const double to = range.positive_number("to");
+  Keys range(v, key, parent.origin());
+  range.allow_only({"from", "to", "points"});
+  const double from = range.required_positive("from");
+  const double to = range.required_positive("to");
   if (!(to > from)) fail(range.at("to"), range.name("to"), "must be greater than 'from'", parent.origin());
   const std::int64_t points = range.integer("points", 0, 2);
   if (points == 0) range.at("points");  // missing: throws naming the key
@@ -145,7 +91,8 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
     // toml11's message shows the offending lines; the prefix gives the usual FILE:LINE form.
     throw GridFileError(origin_name + ":" + std::to_string(e.location().line()) + ": syntax error: " + e.what());
   }
-  Keys top(root, "", origin_name, {"scene", "ranks_per_point", "omega_hat", "gamma_hat", "restitution"});
+  Keys top(root, "", origin_name);
+  top.allow_only({"scene", "ranks_per_point", "omega_hat", "gamma_hat", "restitution"});
   TableGridFile file;
   file.path = origin;
   file.text = text;
