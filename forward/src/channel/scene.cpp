@@ -1,8 +1,6 @@
 #include "sedwave/forward/channel/scene.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <toml.hpp>
 
 #include "../io/toml_table.hpp"
@@ -114,25 +112,15 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
 }  // namespace
 
 ChannelScene parse_scene(const std::string& text, const std::string& origin) {
-  std::istringstream stream(text);
-  toml::value root;
-  try {
-    root = toml::parse(stream, origin);
-  } catch (const std::exception& e) {
-    throw SceneError(e.what());
-  }
-  ChannelScene scene = from_value(root, origin, std::filesystem::path(origin).parent_path());
+  ChannelScene scene =
+      from_value(toml_io::parse<SceneError>(text, origin), origin, std::filesystem::path(origin).parent_path());
   scene.text = text;
   scene.path = origin;
   return scene;
 }
 
 ChannelScene read_scene(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw SceneError(path.string() + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path.string());
+  return parse_scene(toml_io::read_text<SceneError>(path, "scene file"), path.string());
 }
 
 }  // namespace sedwave::forward::channel

@@ -5,9 +5,12 @@
 // are errors too, so a misspelt key never silently falls back to a default.
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <toml.hpp>
 
@@ -23,6 +26,28 @@ inline std::string file_of(const toml::value& v, const std::string& origin) {
 template <class Error>
 [[noreturn]] void fail(const toml::value& v, const std::string& key, const std::string& why, const std::string& origin) {
   throw Error(file_of(v, origin) + ":" + std::to_string(v.location().line()) + ": key '" + key + "': " + why);
+}
+
+/// A whole file as text (kept verbatim in outputs for provenance); `what` names it in the error.
+template <class Error>
+std::string read_text(const std::filesystem::path& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw Error(path.string() + ": cannot open " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Parses TOML text; a syntax error becomes Error("ORIGIN:LINE: syntax error: <toml11's message>").
+template <class Error>
+toml::value parse(const std::string& text, const std::string& origin) {
+  try {
+    std::istringstream stream(text);
+    return toml::parse(stream, origin);
+  } catch (const toml::exception& e) {
+    // toml11's message shows the offending lines; the prefix gives the usual FILE:LINE form.
+    throw Error(origin + ":" + std::to_string(e.location().line()) + ": syntax error: " + e.what());
+  }
 }
 
 template <class Error>

@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <toml.hpp>
 
@@ -83,14 +82,7 @@ std::string TableGridFile::describe_axes() const {
 
 TableGridFile parse_grid_file(const std::string& text, const std::filesystem::path& origin) {
   const std::string origin_name = origin.string();
-  toml::value root;
-  try {
-    std::istringstream stream(text);
-    root = toml::parse(stream, origin_name);
-  } catch (const toml::exception& e) {
-    // toml11's message shows the offending lines; the prefix gives the usual FILE:LINE form.
-    throw GridFileError(origin_name + ":" + std::to_string(e.location().line()) + ": syntax error: " + e.what());
-  }
+  const toml::value root = toml_io::parse<GridFileError>(text, origin_name);
   Keys top(root, "", origin_name);
   top.allow_only({"scene", "ranks_per_point", "omega_hat", "gamma_hat", "restitution"});
   TableGridFile file;
@@ -124,11 +116,7 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
 }
 
 TableGridFile read_grid_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw GridFileError(path.string() + ": cannot open grid file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_grid_file(text.str(), path);
+  return parse_grid_file(toml_io::read_text<GridFileError>(path, "grid file"), path);
 }
 
 }  // namespace sedwave::forward::table
