@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "sedwave/forward/channel/packing_units.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 #include "sedwave/forward/units.hpp"
@@ -14,67 +15,23 @@
 namespace sedwave::forward::channel {
 namespace {
 
-/// The dimensionless units of a packing: mean diameter, mass of a mean grain, contact stiffness.
-struct Units {
-  double diameter = 1.0;
-  double mass = 1.0;
-  double kappa = 1.0;
-  double wall_surface = 0.0;  ///< z of the driven wall's mean surface
-  double column_top = 0.0;    ///< z of the far wall's mean surface
-  [[nodiscard]] double time() const { return std::sqrt(mass / kappa); }
-};
-
-Units packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
-  // Sums on whichever rank holds the grains: flow count, diameters, masses / volumes (density),
-  // lower wall (z + r) and count, upper wall (z - r) and count.
-  double s[7] = {0, 0, 0, 0, 0, 0, 0};
-  for (const dem::Grain& g : packing.grains) {
-    if (g.group == kFlowGroup) {
-      s[0] += 1.0;
-      s[1] += 2.0 * g.radius;
-      s[2] += g.mass / (std::numbers::pi / 6.0 * std::pow(2.0 * g.radius, 3));
-    } else if (g.group == kLowerWallGroup) {
-      s[3] += g.position.z + g.radius;
-      s[4] += 1.0;
-    } else {
-      s[5] += g.position.z - g.radius;
-      s[6] += 1.0;
-    }
-  }
-  MPI_Allreduce(MPI_IN_PLACE, s, 7, MPI_DOUBLE, MPI_SUM, comm);
-  if (s[0] < 1 || s[4] < 1 || s[6] < 1) throw std::invalid_argument("acoustic run: packing has no flow grains or walls");
-  if (contact.normal != dem::NormalLawKind::hooke) {
-    throw std::invalid_argument("acoustic run: only Hooke contacts are supported so far (kappa = kn)");
-  }
-  Units u;
-  u.diameter = s[1] / s[0];
-  u.mass = grain_mass(s[2] / s[0], u.diameter);
-  u.kappa = contact.kn;
-  u.wall_surface = s[3] / s[4];
-  u.column_top = s[5] / s[6];
-  return u;
-}
-
 /// Fixed layer membership and reference coordinate of each local flow grain, by id. The drive is
 /// far too small to move grains between ranks (load balancing is off), so this stays valid.
 struct Layers {
-  double thickness = 1.0;
-  double origin = 0.0;
   int count = 0;
   std::unordered_map<std::int64_t, std::pair<int, double>> member;  // id -> (layer, reference coordinate)
   std::vector<int> grains_per_layer;
 };
 
-Layers assign_layers(const dem::Engine& e, const Units& u, double thickness, int axis) {
+Layers assign_layers(const dem::Engine& e, const PackingUnits& u, double thickness, int axis) {
+  const LayerGrid grid(u, thickness);
   Layers l;
-  l.thickness = thickness * u.diameter;
-  l.origin = u.wall_surface;
-  l.count = std::max(1, static_cast<int>(std::floor((u.column_top - u.wall_surface) / l.thickness)));
+  l.count = grid.count;
   l.grains_per_layer.assign(static_cast<std::size_t>(l.count), 0);
   const dem::GrainArrays& g = e.grains();
   for (std::size_t i = 0; i < e.n_local(); ++i) {
     if (g.group[i] != kFlowGroup) continue;
-    const int layer = std::clamp(static_cast<int>((g.position[i].z - l.origin) / l.thickness), 0, l.count - 1);
+    const int layer = grid.index(g.position[i].z);
     l.member[g.id[i]] = {layer, g.position[i][axis]};
     ++l.grains_per_layer[static_cast<std::size_t>(layer)];
   }
@@ -102,7 +59,7 @@ std::vector<double> layer_displacements(const dem::Engine& e, const Layers& l, i
 
 /// Graded drag in the absorbing layer, integrated exactly over each step (operator splitting):
 /// v <- v exp(-c(z) dt / m), with c growing quadratically from 0 at the layer's start.
-void apply_sponge(dem::Engine& e, const Units& u, const DriveSettings& d, double omega) {
+void apply_sponge(dem::Engine& e, const PackingUnits& u, const DriveSettings& d, double omega) {
   const double length = u.column_top - u.wall_surface;
   const double start = u.wall_surface + (1.0 - d.absorbing_fraction) * length;
   const double c_max = d.absorbing_strength * u.mass * omega;
@@ -114,7 +71,7 @@ void apply_sponge(dem::Engine& e, const Units& u, const DriveSettings& d, double
   }
 }
 
-void measure(AcousticResult& r, const DriveSettings& d, const Units& u, double run_time, double c_guess) {
+void measure(AcousticResult& r, const DriveSettings& d, const PackingUnits& u, double run_time, double c_guess) {
   const double omega = r.omega_hat;  // dimensionless from here on: z in d, t in sqrt(m/kappa)
   std::vector<SampledSignal> signals;
   for (const auto& record : r.displacement) signals.push_back({record, 0.0, r.sample_dt});
@@ -159,20 +116,8 @@ void measure(AcousticResult& r, const DriveSettings& d, const Units& u, double r
     return;
   }
   r.fit = fit_attenuation_and_wavenumber(z_used, used, omega, omega / r.wave_speed_estimate);
-  // What this channel cannot resolve is reported, not filled with numbers: a fit over less than a
-  // wavelength cannot separate the travelling wave from near field and reflections, and an
-  // absorbing layer shorter than a wavelength reflects much of what reaches it.
-  const double wavelength = 2.0 * std::numbers::pi / r.fit.k;
-  const double span = z_used.back() - z_used.front();
-  if (!(r.fit.k > 0.0) || span < wavelength) {
-    r.problem = "the layers with a steady window span " + std::to_string(span) +
-                " d, less than one wavelength (" + std::to_string(wavelength) + " d); lengthen the channel";
-  } else if (d.far_end == FarEnd::absorbing &&
-             d.absorbing_fraction * (u.column_top - u.wall_surface) / u.diameter < wavelength) {
-    r.problem = "the absorbing layer (" +
-                std::to_string(d.absorbing_fraction * (u.column_top - u.wall_surface) / u.diameter) +
-                " d) is shorter than one wavelength (" + std::to_string(wavelength) + " d) and reflects";
-  }
+  r.problem = resolution_problem(r.fit, z_used.back() - z_used.front(),
+                                 d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0);
 }
 
 }  // namespace
@@ -183,7 +128,10 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   if (!(d.omega_hat > 0.0) || !(d.gamma_hat >= 0.0) || !(d.amplitude > 0.0)) {
     throw std::invalid_argument("acoustic run: omega_hat and amplitude must be positive, gamma_hat non-negative");
   }
-  const Units u = packing_units(comm, packing, contact);
+  if (contact.normal != dem::NormalLawKind::hooke) {
+    throw std::invalid_argument("acoustic run: only Hooke contacts are supported so far (kappa = kn)");
+  }
+  const PackingUnits u = packing_units(comm, packing, contact);
   const double t0 = u.time();
   const double omega = d.omega_hat / t0;
   contact.restitution.reset();

@@ -324,4 +324,58 @@ std::vector<SpectralPoint> transfer_function(std::span<const double> x_ref, std:
   return points;
 }
 
+std::string resolution_problem(const PropagationFit& fit, double span, double absorbing_length) {
+  const double wavelength = 2.0 * std::numbers::pi / fit.k;
+  if (!(fit.k > 0.0) || span < wavelength) {
+    return "the probes span " + std::to_string(span) + " d, less than one wavelength (" + std::to_string(wavelength) +
+           " d); lengthen the channel";
+  }
+  if (absorbing_length > 0.0 && absorbing_length < wavelength) {
+    return "the absorbing layer (" + std::to_string(absorbing_length) + " d) is shorter than one wavelength (" +
+           std::to_string(wavelength) + " d) and reflects";
+  }
+  return {};
+}
+
+TwoWaveFit fit_two_waves(double h, std::span<const std::complex<double>> u) {
+  using C = std::complex<double>;
+  const std::size_t n = u.size();
+  if (n < 4) throw std::invalid_argument("two-wave fit: needs at least 4 samples");
+  // 2 cos(q h) = sum conj(u_i)(u_{i+1} + u_{i-1}) / sum |u_i|^2 over interior samples.
+  C numerator = 0.0;
+  double denominator = 0.0;
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    numerator += std::conj(u[i]) * (u[i + 1] + u[i - 1]);
+    denominator += std::norm(u[i]);
+  }
+  if (!(denominator > 0.0)) throw std::invalid_argument("two-wave fit: the field is zero");
+  C qh = std::acos(numerator / (2.0 * denominator));  // principal branch: 0 <= Re <= pi
+  TwoWaveFit fit;
+  fit.k = qh.real() / h;
+  fit.alpha = -qh.imag() / h;  // exp(-i q z) with q = k - i alpha decays as exp(-alpha z)
+  if (fit.alpha < 0.0) {
+    // acos picked -q's imaginary part: the same pair of waves, with the sign that makes the forward
+    // wave decay (cos is even, so only Re q > 0 is fixed by the branch).
+    qh = std::conj(qh);
+    fit.alpha = -fit.alpha;
+  }
+  const C i_unit(0.0, 1.0);
+  const double z_end = static_cast<double>(n - 1) * h;
+  Eigen::MatrixX2cd basis(static_cast<Eigen::Index>(n), 2);
+  Eigen::VectorXcd values(static_cast<Eigen::Index>(n));
+  for (std::size_t j = 0; j < n; ++j) {
+    const double z = static_cast<double>(j) * h;
+    const auto row = static_cast<Eigen::Index>(j);
+    basis(row, 0) = std::exp(-i_unit * qh * (z / h));
+    basis(row, 1) = std::exp(i_unit * qh * ((z - z_end) / h));
+    values(row) = u[j];
+  }
+  const Eigen::Vector2cd ab = basis.colPivHouseholderQr().solve(values);
+  fit.forward = ab(0);
+  fit.backward = ab(1);
+  fit.reflection = std::abs(fit.backward) / std::abs(fit.forward * std::exp(-i_unit * qh * (z_end / h)));
+  fit.relative_residual = (basis * ab - values).norm() / values.norm();
+  return fit;
+}
+
 }  // namespace sedwave::forward::channel

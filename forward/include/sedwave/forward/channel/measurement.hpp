@@ -13,6 +13,7 @@
 //   alpha = -d ln A / dz,   k = d phi / dz,   c = omega / k.
 // Spectra use the same convention, X(omega) = sum_n x(t_n) exp(+i omega t_n), so a layer dz further
 // along has X_probe(omega) = X_ref(omega) exp(i k~(omega) dz).
+#include <complex>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -88,6 +89,34 @@ struct PropagationFit {
 /// pi / max spacing of the truth) any spacing works.
 [[nodiscard]] PropagationFit fit_attenuation_and_wavenumber(std::span<const double> z, std::span<const LockIn> probes,
                                                             double omega, double expected_k = 0.0);
+
+/// Why a steady-state fit over probes spanning `span` cannot be trusted, or empty if it can. A fit
+/// over less than a wavelength cannot separate the travelling wave from near field and reflections,
+/// and an absorbing layer (of length `absorbing_length`; 0 for none) shorter than a wavelength
+/// reflects much of what reaches it. What a channel cannot resolve is reported, not filled with
+/// numbers.
+[[nodiscard]] std::string resolution_problem(const PropagationFit& fit, double span, double absorbing_length);
+
+// ---- A steady complex field: forward and reflected wave ---------------------------------------------
+
+/// A complex steady-state field sampled at equally spaced positions, written as a wave travelling to
+/// +z plus a reflected one: u(z) = a exp(-i q (z - z_0)) + b exp(+i q (z - z_end)), q = k - i alpha.
+/// (Time dependence exp(+i omega t), so a lock-in phase is -arg u.) Both terms satisfy
+/// u(z + h) + u(z - h) = 2 cos(q h) u(z), which gives q by linear least squares over all triples
+/// without any guess; a and b follow by linear least squares.
+struct TwoWaveFit {
+  double alpha = 0.0;                 ///< of the forward wave [1/length]
+  double k = 0.0;                     ///< [1/length], 0 < k h < pi
+  std::complex<double> forward;       ///< a: forward amplitude at z_0 (the first sample)
+  std::complex<double> backward;      ///< b: reflected amplitude at z_end (the last sample)
+  /// |b| / |a exp(-i q (z_end - z_0))|: reflection coefficient at the end of the samples.
+  double reflection = 0.0;
+  double relative_residual = 0.0;     ///< rms misfit / rms field
+};
+
+/// Fits the two waves to samples u[n] at z_0 + n h (n = 0..size-1, at least 4). Throws
+/// std::invalid_argument for fewer samples or a zero field.
+[[nodiscard]] TwoWaveFit fit_two_waves(double h, std::span<const std::complex<double>> u);
 
 // ---- Which part of each record is a clean steady state --------------------------------------------
 

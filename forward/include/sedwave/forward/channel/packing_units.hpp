@@ -1,0 +1,46 @@
+#pragma once
+// The dimensionless units of a prepared channel and where its walls are. Every engine that drives
+// a packing (time-domain DEM, linear response) measures in the same units (docs/physics.md):
+// lengths in the mean flow-grain diameter d, masses in the mass m of a grain of diameter d (at the
+// packing's mean density), stiffness in kappa, so times are in sqrt(m/kappa).
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sedwave/forward/channel/preparation.hpp"
+
+namespace sedwave::forward::channel {
+
+struct PackingUnits {
+  double diameter = 1.0;      ///< d: mean flow-grain diameter
+  double mass = 1.0;          ///< m: mass of a grain of diameter d
+  double kappa = 1.0;         ///< contact stiffness (Hooke: kn)
+  double wall_surface = 0.0;  ///< z of the driven (lower) wall's mean surface
+  double column_top = 0.0;    ///< z of the far (upper) wall's mean surface
+  [[nodiscard]] double time() const { return std::sqrt(mass / kappa); }
+  [[nodiscard]] double column_length() const { return (column_top - wall_surface) / diameter; }  ///< [d]
+};
+
+/// Layers: slabs of equal thickness along z from the driven wall's surface, into which flow grains
+/// are grouped for layer-averaged (coherent) displacements. The last layer ends at or below the far
+/// wall's surface; a grain beyond either end counts in the nearest layer.
+struct LayerGrid {
+  double origin = 0.0;     ///< z of the driven wall's surface [length]
+  double thickness = 1.0;  ///< [length]
+  int count = 1;
+
+  LayerGrid(const PackingUnits& u, double thickness_in_diameters)
+      : origin(u.wall_surface), thickness(thickness_in_diameters * u.diameter),
+        count(std::max(1, static_cast<int>(std::floor((u.column_top - u.wall_surface) / thickness)))) {}
+  [[nodiscard]] int index(double z) const {
+    return std::clamp(static_cast<int>(std::floor((z - origin) / thickness)), 0, count - 1);
+  }
+};
+
+/// Units of `packing` (its grains on any ranks; collective over comm). kappa is the Hooke kn; for
+/// Hertz contacts (no single stiffness) it is left at 1 for the caller to set. Throws
+/// std::invalid_argument when the packing has no flow grains or lacks a wall.
+[[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact);
+
+}  // namespace sedwave::forward::channel

@@ -1,0 +1,47 @@
+#pragma once
+// The static contact network of a prepared packing, contact by contact, with what the linear
+// engine needs of each: geometry, static force and tangent stiffness. Also the nearly touching
+// pairs (gaps), which a drive can close.
+//
+// Serial: the linear engine solves one packing per rank (the task farm spreads frequencies and
+// packings over ranks). Periodic images follow the box as in the DEM engine: a pair touches through
+// every image within reach, each touching image being its own contact. Pairs of grains that are both
+// in rigid bodies (wall-wall) are left out: their relative motion is prescribed.
+//
+// Units: those of the packing (lengths, forces and stiffnesses as stored in its grains and contact
+// law).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sedwave/forward/dem/box.hpp"
+#include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/dem/grains.hpp"
+
+namespace sedwave::forward::linear {
+
+/// One touching pair, or one nearly touching pair (then force and stiffness are 0).
+struct StaticPair {
+  std::int32_t i = 0;      ///< index into the packing's grains
+  std::int32_t j = 0;      ///< index into the packing's grains (the image actually touched)
+  dem::Vec3 normal;        ///< unit vector from j's image to i
+  double distance = 0.0;   ///< between the centres
+  double overlap = 0.0;    ///< r_i + r_j - distance: > 0 for contacts, < 0 (minus the gap) for gaps
+  double force = 0.0;      ///< static normal force (repulsive > 0)
+  double stiffness = 0.0;  ///< tangent normal stiffness dF/d(overlap) at the static overlap
+};
+
+struct ContactNetwork {
+  std::vector<StaticPair> contacts;
+  std::vector<StaticPair> gaps;           ///< pairs closer than the gap search distance
+  std::vector<int> contacts_per_grain;    ///< per packing grain
+  double mean_stiffness = 0.0;       ///< mean tangent stiffness over contacts
+};
+
+/// Finds every contact, and every gap narrower than `gap_search` (same length unit), of `grains`
+/// in `box` (periodic in x, y; open in z) under `model`. Throws std::invalid_argument for a box
+/// periodic in z or narrower than twice the largest grain.
+[[nodiscard]] ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
+                                           const dem::AnyContactModel& model, double gap_search = 0.0);
+
+}  // namespace sedwave::forward::linear

@@ -1,0 +1,45 @@
+#pragma once
+// The linearised equations of motion of a packing about its static state,
+//   M u'' + gamma C1 u' + K u = - sum_b (K_b + gamma C1_b d/dt) U_b(t),
+// for the translations u of the free grains (3 per grain) when the rigid bodies (walls) move by
+// prescribed translations U_b(t).
+//
+// Per contact (i, j) with unit normal n (from j to i), centre distance r, static normal force f and
+// tangent stiffness k (Hooke: kn; Hertz: dF/d(overlap) at the static overlap) the stiffness block is
+//   k n n^T - (f / r) (I - n n^T):
+// the second term is the pre-stress (a compressed contact that rotates loses part of its force
+// along the original line); it is what makes a compressed packing's K differ from a spring network's.
+// The dashpot block is n n^T per unit dashpot coefficient: every contact carries the same dashpot
+// gamma (the thesis's model, as in the driven DEM runs), so C = gamma C1 and K, C1, M are assembled
+// once for any gamma and frequency.
+//
+// Units: those of the packing (force/length for K, mass for M; C1 is dimensionless).
+#include <Eigen/Sparse>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sedwave/forward/dem/grains.hpp"
+#include "sedwave/forward/linear/contact_network.hpp"
+
+namespace sedwave::forward::linear {
+
+struct DynamicMatrices {
+  std::vector<std::int32_t> grain_of_node;   ///< free grains in ascending z (node n: unknowns 3n..3n+2)
+  std::vector<std::int32_t> node_of_grain;   ///< per packing grain; -1 for grains of rigid bodies
+  Eigen::SparseMatrix<double> stiffness;     ///< K, 3n x 3n, symmetric
+  Eigen::SparseMatrix<double> dashpots;      ///< C1, 3n x 3n, symmetric
+  Eigen::VectorXd mass;                      ///< diagonal of M, 3n
+  /// Per rigid body (index body - 1): coupling of its translation (3 columns) to the free unknowns.
+  std::vector<Eigen::SparseMatrix<double>> body_stiffness;
+  std::vector<Eigen::SparseMatrix<double>> body_dashpots;
+
+  [[nodiscard]] Eigen::Index unknowns() const { return mass.size(); }
+};
+
+/// Assembles K, C1, M and the body couplings of `grains` over `network`. `n_bodies` is the number of
+/// rigid bodies (Grain::body runs over 1..n_bodies for their grains).
+[[nodiscard]] DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network,
+                                       int n_bodies);
+
+}  // namespace sedwave::forward::linear

@@ -1,0 +1,102 @@
+#pragma once
+// The linear-response engine: the steady small-amplitude response of a prepared channel to its
+// lower wall oscillating at omega, from one sparse complex solve
+//   (K + i omega (gamma C1 + D_sponge) - omega^2 M) U = -(K_wall + i omega gamma C1_wall) A e_axis,
+// instead of hundreds of thousands of time steps. Same packing, drive settings, layers and
+// measurement as the time-domain engine (channel/acoustic.hpp), so the two are directly comparable:
+// layer-averaged complex displacements along the drive axis, alpha = -d ln|U| / dz and
+// k = -d arg U / dz by least squares over the layers between the near field and the absorbing layer.
+//
+// Where it is valid: wherever contacts neither open nor slide (and gaps do not close) during the
+// cycle. Every result counts, from the solved field, how many contacts would open and gaps close at
+// the drive amplitude (the response scales with A), warns, and refuses when too many do; the
+// time-domain engine is then the right one.
+//
+// Units: dimensionless results, as channel/acoustic.hpp (d, m, kappa; kappa = kn for Hooke, the mean
+// tangent stiffness of the contacts for Hertz).
+#include <complex>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/channel/acoustic.hpp"
+#include "sedwave/forward/channel/packing_units.hpp"
+#include "sedwave/forward/linear/contact_network.hpp"
+#include "sedwave/forward/linear/dynamic_matrices.hpp"
+#include "sedwave/forward/linear/slab_solver.hpp"
+
+namespace sedwave::forward::linear {
+
+/// What only the linear engine needs.
+struct LinearSettings {
+  double gap_search = 1e-2;   ///< gaps narrower than this [mean diameters] are checked for closing
+  /// Fraction of contacts opening plus gaps closing (of all contacts) above which a result warns,
+  /// and above which it is refused (the time-domain engine is then the right one).
+  double warn_state_changes = 0.01;
+  double refuse_state_changes = 0.1;
+};
+
+/// Contacts that open and gaps that close at some drive amplitude (peak relative normal motion
+/// beyond the static overlap or gap).
+struct StateChanges {
+  double amplitude = 0.0;       ///< [mean diameters]
+  std::int64_t contacts = 0;
+  std::int64_t opening = 0;
+  std::int64_t gaps = 0;        ///< gaps narrower than LinearSettings::gap_search
+  std::int64_t closing = 0;
+  [[nodiscard]] double fraction() const {
+    return contacts > 0 ? static_cast<double>(opening + closing) / static_cast<double>(contacts) : 0.0;
+  }
+};
+
+struct LinearResult {
+  double omega_hat = 0.0, gamma_hat = 0.0, amplitude = 0.0;
+  std::vector<double> layer_z;                    ///< layer centres from the driven wall [d]
+  std::vector<int> layer_grains;
+  std::vector<std::complex<double>> layer_field;  ///< mean displacement along the drive axis / A
+  channel::PropagationFit fit;                    ///< alpha_hat, k_hat, c_hat over the fitted layers
+  channel::TwoWaveFit waves;                      ///< the same layers as forward + reflected wave
+  int layers_used = 0;
+  StateChanges state_changes;                     ///< at the drive amplitude
+  std::string warning;                            ///< set when the linearisation is doubtful
+  double solve_seconds = 0.0;
+  std::string problem;                            ///< empty when alpha and c were measured
+  [[nodiscard]] bool ok() const { return problem.empty(); }
+};
+
+class LinearChannel {
+ public:
+  /// Finds the contacts of `packing` (its grains must be on this rank), assembles K, C1 and M once,
+  /// and cuts them into slabs. Throws std::invalid_argument for a packing without walls or grains.
+  LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact, LinearSettings settings = {});
+
+  /// The steady response to `drive` (its omega_hat, gamma_hat, amplitude, axis, far end, layers).
+  /// The far end must be absorbing: in a steady state a frozen end reflects everything.
+  [[nodiscard]] LinearResult respond(const channel::DriveSettings& drive) const;
+
+  /// Complex displacement amplitudes of the free grains (3 per node, DynamicMatrices order) per unit
+  /// wall amplitude.
+  [[nodiscard]] Eigen::VectorXcd displacement(const channel::DriveSettings& drive) const;
+  /// Which contacts open and gaps close at wall amplitude `amplitude` [d], given the response `u` per
+  /// unit wall amplitude.
+  [[nodiscard]] StateChanges state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& drive,
+                                           double amplitude) const;
+
+  [[nodiscard]] const channel::PackingUnits& units() const { return units_; }
+  [[nodiscard]] const ContactNetwork& network() const { return network_; }
+  [[nodiscard]] const DynamicMatrices& matrices() const { return matrices_; }
+  [[nodiscard]] const SlabSolver& solver() const { return solver_; }
+  [[nodiscard]] const std::vector<dem::Grain>& grains() const { return grains_; }
+
+ private:
+  [[nodiscard]] Eigen::VectorXd sponge(const channel::DriveSettings& drive, double omega) const;
+
+  std::vector<dem::Grain> grains_;
+  LinearSettings settings_;
+  channel::PackingUnits units_;
+  ContactNetwork network_;
+  DynamicMatrices matrices_;
+  SlabSolver solver_;
+};
+
+}  // namespace sedwave::forward::linear

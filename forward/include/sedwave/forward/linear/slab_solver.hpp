@@ -1,0 +1,46 @@
+#pragma once
+// Direct solver for the steady response of a long channel,
+//   (K + i omega (gamma C1 + D) - omega^2 M) U = F,
+// exploiting its quasi-1D structure. Unknowns are ordered by z and cut into slabs at least as thick
+// as the longest contact (in z), so every contact joins a slab only to itself or a neighbour: the
+// matrix is block tridiagonal, and block Gaussian elimination along z (the block Thomas algorithm)
+// costs O(number of slabs x slab size^3) = O(N) for a fixed cross-section, in O(N) memory. K, C1 and
+// M are cut into real blocks once; each solve combines them for its omega and gamma.
+//
+// The matrix is complex symmetric (not Hermitian); blocks are factorised by LU with partial pivoting,
+// so the solve is stable for any damping, including gamma = 0 away from resonances, and for rattlers
+// (a grain with too few contacts makes K singular, but never -omega^2 M + K at omega > 0 together
+// with any damping).
+//
+// Units: any consistent set (those of DynamicMatrices).
+#include <Eigen/Dense>
+#include <span>
+#include <vector>
+
+#include "sedwave/forward/linear/dynamic_matrices.hpp"
+
+namespace sedwave::forward::linear {
+
+class SlabSolver {
+ public:
+  /// `node_z`: z of each node (ascending, as DynamicMatrices orders them). Throws std::logic_error if
+  /// the matrices couple slabs that are not neighbours (cannot happen for contacts found in z).
+  SlabSolver(const DynamicMatrices& matrices, std::span<const double> node_z);
+
+  /// Solves for one right-hand side. `extra_damping` is a diagonal damping per unknown (e.g. an
+  /// absorbing layer), or empty for none.
+  [[nodiscard]] Eigen::VectorXcd solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
+                                       const Eigen::VectorXcd& rhs) const;
+
+  [[nodiscard]] std::size_t slabs() const { return k_diagonal_.size(); }
+  [[nodiscard]] Eigen::Index largest_slab() const;     ///< unknowns in the largest slab
+  [[nodiscard]] double slab_thickness() const { return thickness_; }
+
+ private:
+  std::vector<Eigen::Index> offset_;  ///< first unknown of each slab, plus the total at the end
+  std::vector<Eigen::MatrixXd> k_diagonal_, k_lower_, c_diagonal_, c_lower_;  ///< lower[s]: rows s, cols s-1
+  Eigen::VectorXd mass_;
+  double thickness_ = 0.0;
+};
+
+}  // namespace sedwave::forward::linear

@@ -1,0 +1,81 @@
+#include "sedwave/forward/linear/contact_network.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <variant>
+
+namespace sedwave::forward::linear {
+namespace {
+
+double effective_mass(const dem::Grain& a, const dem::Grain& b) {
+  // A grain of a rigid wall counts as infinitely heavy, as in the DEM engine.
+  if (a.body != dem::kFreeBody) return b.mass;
+  if (b.body != dem::kFreeBody) return a.mass;
+  return a.mass * b.mass / (a.mass + b.mass);
+}
+
+}  // namespace
+
+ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
+                             const dem::AnyContactModel& model, double gap_search) {
+  if (box.periodic[2]) throw std::invalid_argument("linear engine: channels must be open along z");
+  double max_radius = 0.0;
+  for (const dem::Grain& g : grains) max_radius = std::max(max_radius, g.radius);
+  const double reach = 2.0 * max_radius + gap_search;
+  for (int a = 0; a < 2; ++a) {
+    if (box.periodic[static_cast<std::size_t>(a)] && box.length(a) < reach) {
+      throw std::invalid_argument("linear engine: the periodic box is narrower than two grain diameters");
+    }
+  }
+  // Sweep along z: every pair within `reach` in z, each periodic image tested.
+  std::vector<std::int32_t> order(grains.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return grains[static_cast<std::size_t>(a)].position.z < grains[static_cast<std::size_t>(b)].position.z;
+  });
+  const int sx = box.periodic[0] ? 1 : 0;
+  const int sy = box.periodic[1] ? 1 : 0;
+
+  ContactNetwork net;
+  net.contacts_per_grain.assign(grains.size(), 0);
+  double stiffness_sum = 0.0;
+  for (std::size_t a = 0; a < order.size(); ++a) {
+    const dem::Grain& gi = grains[static_cast<std::size_t>(order[a])];
+    for (std::size_t b = a + 1; b < order.size(); ++b) {
+      const dem::Grain& gj = grains[static_cast<std::size_t>(order[b])];
+      if (gj.position.z - gi.position.z > reach) break;
+      if (gi.body != dem::kFreeBody && gj.body != dem::kFreeBody) continue;
+      for (int ix = -sx; ix <= sx; ++ix) {
+        for (int iy = -sy; iy <= sy; ++iy) {
+          const dem::Vec3 shift{ix * box.length(0), iy * box.length(1), 0.0};
+          const dem::Vec3 d = gi.position - (gj.position + shift);
+          const double distance = dem::norm(d);
+          const double overlap = gi.radius + gj.radius - distance;
+          if (overlap <= -gap_search) continue;
+          StaticPair p{order[a], order[b], (1.0 / distance) * d, distance, overlap, 0.0, 0.0};
+          if (overlap <= 0.0) {
+            net.gaps.push_back(p);
+            continue;
+          }
+          const double m_eff = effective_mass(gi, gj);
+          const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
+          std::visit(
+              [&](const auto& m) {
+                p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
+                p.stiffness = m.normal.oscillator(m_eff, r_eff, overlap).stiffness;
+              },
+              model);
+          net.contacts.push_back(p);
+          ++net.contacts_per_grain[static_cast<std::size_t>(p.i)];
+          ++net.contacts_per_grain[static_cast<std::size_t>(p.j)];
+          stiffness_sum += p.stiffness;
+        }
+      }
+    }
+  }
+  if (!net.contacts.empty()) net.mean_stiffness = stiffness_sum / static_cast<double>(net.contacts.size());
+  return net;
+}
+
+}  // namespace sedwave::forward::linear

@@ -1,0 +1,161 @@
+#include "sedwave/forward/linear/linear_channel.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "sedwave/forward/channel/geometry.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
+
+namespace sedwave::forward::linear {
+namespace {
+
+using Complex = std::complex<double>;
+
+std::vector<double> node_heights(const std::vector<dem::Grain>& grains, const DynamicMatrices& m) {
+  std::vector<double> z;
+  z.reserve(m.grain_of_node.size());
+  for (const std::int32_t g : m.grain_of_node) z.push_back(grains[static_cast<std::size_t>(g)].position.z);
+  return z;
+}
+
+int axis_index(channel::DriveAxis axis) { return axis == channel::DriveAxis::longitudinal ? 2 : 0; }
+
+void check_drive(const channel::DriveSettings& d) {
+  if (!(d.omega_hat > 0.0) || !(d.gamma_hat >= 0.0) || !(d.amplitude > 0.0)) {
+    throw std::invalid_argument("linear engine: omega_hat and amplitude must be positive, gamma_hat non-negative");
+  }
+  if (d.far_end != channel::FarEnd::absorbing) {
+    throw std::invalid_argument(
+        "linear engine: the far end must be absorbing (in a steady state a frozen end reflects the whole wave)");
+  }
+}
+
+}  // namespace
+
+LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact,
+                             LinearSettings settings)
+    : grains_(packing.grains),
+      settings_(settings),
+      units_(channel::packing_units(MPI_COMM_SELF, packing, contact)),
+      network_(find_contacts(grains_, packing.box, dem::make_contact_model(contact),
+                             settings.gap_search * units_.diameter)),
+      matrices_(assemble(grains_, network_, 2)),
+      solver_(matrices_, node_heights(grains_, matrices_)) {
+  // Hertz has no single stiffness: kappa is the mean tangent stiffness of the static contacts.
+  if (contact.normal != dem::NormalLawKind::hooke) units_.kappa = network_.mean_stiffness;
+}
+
+Eigen::VectorXd LinearChannel::sponge(const channel::DriveSettings& d, double omega) const {
+  // As the time-domain engine's absorbing layer: drag c(z) = strength m omega s^2 on every free
+  // grain, s rising from 0 to 1 over the last absorbing_fraction of the column.
+  const double length = units_.column_top - units_.wall_surface;
+  const double start = units_.wall_surface + (1.0 - d.absorbing_fraction) * length;
+  const double c_max = d.absorbing_strength * units_.mass * omega;
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(matrices_.unknowns());
+  for (std::size_t n = 0; n < matrices_.grain_of_node.size(); ++n) {
+    const double z = grains_[static_cast<std::size_t>(matrices_.grain_of_node[n])].position.z;
+    if (z <= start) continue;
+    const double s = (z - start) / (d.absorbing_fraction * length);
+    c.segment<3>(static_cast<Eigen::Index>(3 * n)).setConstant(c_max * s * s);
+  }
+  return c;
+}
+
+Eigen::VectorXcd LinearChannel::displacement(const channel::DriveSettings& d) const {
+  check_drive(d);
+  const double omega = d.omega_hat / units_.time();
+  const double gamma = d.gamma_hat * std::sqrt(units_.kappa * units_.mass);
+  const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
+  const int axis = axis_index(d.axis);
+  // Unit wall displacement along the axis: force on the free grains -(K_b + i omega gamma C1_b) e_axis.
+  const Eigen::VectorXcd rhs = -(matrices_.body_stiffness[wall].col(axis).cast<Complex>() +
+                                 Complex(0.0, omega * gamma) * matrices_.body_dashpots[wall].col(axis).cast<Complex>());
+  return solver_.solve(omega, gamma, sponge(d, omega), rhs);
+}
+
+StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                          double amplitude) const {
+  const int axis = axis_index(d.axis);
+  const double scale = amplitude * units_.diameter;
+  auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
+    const std::int32_t node = matrices_.node_of_grain[static_cast<std::size_t>(grain)];
+    if (node >= 0) return u.segment<3>(3 * static_cast<Eigen::Index>(node));
+    Eigen::Vector3cd wall = Eigen::Vector3cd::Zero();
+    if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) wall(axis) = 1.0;
+    return wall;
+  };
+  auto normal_motion = [&](const StaticPair& p) {
+    const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+    return scale * std::abs(n.cast<Complex>().dot(motion(p.i) - motion(p.j)));
+  };
+  StateChanges s;
+  s.amplitude = amplitude;
+  s.contacts = static_cast<std::int64_t>(network_.contacts.size());
+  s.gaps = static_cast<std::int64_t>(network_.gaps.size());
+  for (const StaticPair& p : network_.contacts) s.opening += normal_motion(p) > p.overlap ? 1 : 0;
+  for (const StaticPair& p : network_.gaps) s.closing += normal_motion(p) > -p.overlap ? 1 : 0;
+  return s;
+}
+
+LinearResult LinearChannel::respond(const channel::DriveSettings& d) const {
+  const auto started = std::chrono::steady_clock::now();
+  const Eigen::VectorXcd u = displacement(d);
+  const int axis = axis_index(d.axis);
+
+  LinearResult r;
+  r.omega_hat = d.omega_hat;
+  r.gamma_hat = d.gamma_hat;
+  r.amplitude = d.amplitude;
+  const channel::LayerGrid grid(units_, d.layer_thickness);
+  r.layer_grains.assign(static_cast<std::size_t>(grid.count), 0);
+  r.layer_field.assign(static_cast<std::size_t>(grid.count), Complex(0.0));
+  for (std::size_t n = 0; n < matrices_.grain_of_node.size(); ++n) {
+    const dem::Grain& g = grains_[static_cast<std::size_t>(matrices_.grain_of_node[n])];
+    if (g.group != channel::kFlowGroup) continue;
+    const auto layer = static_cast<std::size_t>(grid.index(g.position.z));
+    r.layer_field[layer] += u(static_cast<Eigen::Index>(3 * n) + axis);
+    ++r.layer_grains[layer];
+  }
+  for (int k = 0; k < grid.count; ++k) {
+    const auto layer = static_cast<std::size_t>(k);
+    if (r.layer_grains[layer] > 0) r.layer_field[layer] /= static_cast<double>(r.layer_grains[layer]);
+    r.layer_z.push_back((k + 0.5) * d.layer_thickness);
+  }
+
+  const auto first = static_cast<std::size_t>(std::max(0, d.skip_layers));
+  const auto last = static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(grid.count));
+  r.state_changes = state_changes(u, d, d.amplitude);
+  if (last < first + 4) {
+    r.problem = "channel too short: fewer than 4 layers between the near field and the absorbing layer";
+  } else {
+    std::vector<channel::LockIn> probes;
+    for (std::size_t k = first; k < last; ++k) {
+      channel::LockIn l;
+      l.amplitude = std::abs(r.layer_field[k]);
+      l.phase = -std::arg(r.layer_field[k]);  // x(t) = Re(U e^{i omega t}) = |U| cos(omega t - phase)
+      probes.push_back(l);
+    }
+    r.layers_used = static_cast<int>(probes.size());
+    const std::span<const double> z(r.layer_z.data() + first, last - first);
+    const double expected_k = d.omega_hat / LatticeModel().evaluate(d.omega_hat, d.gamma_hat).c_hat;
+    r.fit = channel::fit_attenuation_and_wavenumber(z, probes, d.omega_hat, expected_k);
+    r.waves = channel::fit_two_waves(d.layer_thickness, std::span(r.layer_field.data() + first, last - first));
+    r.problem = channel::resolution_problem(r.fit, z.back() - z.front(), d.absorbing_fraction * units_.column_length());
+  }
+  const double changed = r.state_changes.fraction();
+  const std::string changes = std::to_string(r.state_changes.opening) + " of " +
+                              std::to_string(r.state_changes.contacts) + " contacts open and " +
+                              std::to_string(r.state_changes.closing) + " gaps close at A = " +
+                              std::to_string(d.amplitude) + " d";
+  if (changed > settings_.refuse_state_changes && r.problem.empty()) {
+    r.problem = "linear response not valid: " + changes + "; use the time-domain engine";
+  } else if (changed > settings_.warn_state_changes) {
+    r.warning = "linear response doubtful: " + changes;
+  }
+  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+}  // namespace sedwave::forward::linear

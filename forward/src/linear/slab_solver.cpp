@@ -1,0 +1,123 @@
+#include "sedwave/forward/linear/slab_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+namespace sedwave::forward::linear {
+namespace {
+
+/// Largest z distance between two nodes coupled by the matrix.
+double longest_coupling(const Eigen::SparseMatrix<double>& a, std::span<const double> node_z) {
+  double longest = 0.0;
+  for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
+      longest = std::max(longest, std::abs(node_z[static_cast<std::size_t>(it.row() / 3)] -
+                                           node_z[static_cast<std::size_t>(col / 3)]));
+    }
+  }
+  return longest;
+}
+
+}  // namespace
+
+SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z) : mass_(m.mass) {
+  const auto nodes = static_cast<Eigen::Index>(node_z.size());
+  if (3 * nodes != m.unknowns()) throw std::invalid_argument("slab solver: one z per node is needed");
+  // Slabs of thickness h >= the longest coupling: neighbours in z are at most one slab apart.
+  // Slab boundaries fall between nodes; empty slabs are dropped (nothing couples across them).
+  thickness_ = longest_coupling(m.stiffness, node_z) * (1.0 + 1e-9);
+  std::vector<Eigen::Index> slab_of_node(node_z.size(), 0);
+  Eigen::Index slab = -1;
+  long previous_cell = 0;
+  for (std::size_t n = 0; n < node_z.size(); ++n) {
+    const long cell = thickness_ > 0.0 ? static_cast<long>(std::floor((node_z[n] - node_z[0]) / thickness_))
+                                       : static_cast<long>(n);
+    if (n == 0 || cell != previous_cell) {
+      ++slab;
+      offset_.push_back(3 * static_cast<Eigen::Index>(n));
+    }
+    previous_cell = cell;
+    slab_of_node[n] = slab;
+  }
+  offset_.push_back(m.unknowns());
+  const std::size_t s_count = offset_.size() - 1;
+  auto size = [&](std::size_t s) { return offset_[s + 1] - offset_[s]; };
+  for (std::size_t s = 0; s < s_count; ++s) {
+    k_diagonal_.push_back(Eigen::MatrixXd::Zero(size(s), size(s)));
+    c_diagonal_.push_back(Eigen::MatrixXd::Zero(size(s), size(s)));
+    k_lower_.push_back(Eigen::MatrixXd::Zero(size(s), s > 0 ? size(s - 1) : 0));
+    c_lower_.push_back(Eigen::MatrixXd::Zero(size(s), s > 0 ? size(s - 1) : 0));
+  }
+  auto scatter = [&](const Eigen::SparseMatrix<double>& a, std::vector<Eigen::MatrixXd>& diagonal,
+                     std::vector<Eigen::MatrixXd>& lower) {
+    for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
+      const auto sc = static_cast<std::size_t>(slab_of_node[static_cast<std::size_t>(col / 3)]);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
+        const auto sr = static_cast<std::size_t>(slab_of_node[static_cast<std::size_t>(it.row() / 3)]);
+        if (sr == sc) {
+          diagonal[sr](it.row() - offset_[sr], col - offset_[sc]) += it.value();
+        } else if (sr == sc + 1) {
+          lower[sr](it.row() - offset_[sr], col - offset_[sc]) += it.value();
+        } else if (sc != sr + 1) {
+          throw std::logic_error("slab solver: the matrix couples slabs that are not neighbours");
+        }
+      }
+    }
+  };
+  scatter(m.stiffness, k_diagonal_, k_lower_);
+  scatter(m.dashpots, c_diagonal_, c_lower_);
+}
+
+Eigen::Index SlabSolver::largest_slab() const {
+  Eigen::Index largest = 0;
+  for (std::size_t s = 0; s + 1 < offset_.size(); ++s) largest = std::max(largest, offset_[s + 1] - offset_[s]);
+  return largest;
+}
+
+Eigen::VectorXcd SlabSolver::solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
+                                   const Eigen::VectorXcd& rhs) const {
+  using Complex = std::complex<double>;
+  const std::size_t slabs = k_diagonal_.size();
+  const Complex i_omega(0.0, omega);
+  auto lower = [&](std::size_t s) -> Eigen::MatrixXcd {
+    return k_lower_[s].cast<Complex>() + (i_omega * gamma) * c_lower_[s].cast<Complex>();
+  };
+  auto diagonal = [&](std::size_t s) -> Eigen::MatrixXcd {
+    const Eigen::Index o = offset_[s], n = offset_[s + 1] - offset_[s];
+    Eigen::MatrixXcd z = k_diagonal_[s].cast<Complex>() + (i_omega * gamma) * c_diagonal_[s].cast<Complex>();
+    z.diagonal() -= (omega * omega) * mass_.segment(o, n).cast<Complex>();
+    if (extra_damping.size() > 0) z.diagonal() += i_omega * extra_damping.segment(o, n).cast<Complex>();
+    return z;
+  };
+  // Forward elimination: Schur complements S_s = Z_s - L_s S_{s-1}^{-1} L_s^T, kept as
+  // X_s = S_{s-1}^{-1} L_s^T and w_s = S_s^{-1} (b_s - L_s w_{s-1}).
+  std::vector<Eigen::MatrixXcd> x(slabs);
+  std::vector<Eigen::VectorXcd> w(slabs);
+  Eigen::MatrixXcd next_lower;
+  for (std::size_t s = 0; s < slabs; ++s) {
+    Eigen::MatrixXcd schur = diagonal(s);
+    Eigen::VectorXcd y = rhs.segment(offset_[s], offset_[s + 1] - offset_[s]);
+    if (s > 0) {
+      schur.noalias() -= next_lower * x[s];
+      y.noalias() -= next_lower * w[s - 1];
+    }
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(schur);
+    w[s] = lu.solve(y);
+    if (s + 1 < slabs) {
+      next_lower = lower(s + 1);
+      x[s + 1] = lu.solve(next_lower.transpose());
+    }
+  }
+  // Back substitution: U_s = w_s - X_{s+1} U_{s+1}.
+  Eigen::VectorXcd u(rhs.size());
+  for (std::size_t s = slabs; s-- > 0;) {
+    Eigen::VectorXcd us = w[s];
+    if (s + 1 < slabs) us.noalias() -= x[s + 1] * u.segment(offset_[s + 1], offset_[s + 2] - offset_[s + 1]);
+    u.segment(offset_[s], offset_[s + 1] - offset_[s]) = us;
+  }
+  return u;
+}
+
+}  // namespace sedwave::forward::linear

@@ -1,0 +1,284 @@
+// The linear-response engine against closed forms and against the DEM engine itself:
+//  - an ordered chain: the exact finite-chain solution at every grain, and the lattice theory's
+//    complex wavenumber from the field, to 1e-10;
+//  - a prepared 3D packing: K and C1 equal finite-difference Jacobians of the DEM engine's forces;
+//    the slab solver equals a general sparse LU; the power the wall injects equals the power the
+//    dashpots and the absorbing layer dissipate (energy balance of the steady state).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Eigen/SparseLU>
+#include <cmath>
+#include <complex>
+#include <memory>
+#include <numbers>
+#include <unordered_map>
+
+#include "sedwave/forward/channel/geometry.hpp"
+#include "sedwave/forward/channel/preparation.hpp"
+#include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/linear/linear_channel.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
+
+namespace sedwave::forward::linear {
+namespace {
+
+using Complex = std::complex<double>;
+
+dem::ContactSpec hooke(double kn) {
+  dem::ContactSpec c;
+  c.kn = kn;
+  c.restitution = 0.9;
+  return c;
+}
+
+// ---- Ordered chain ----------------------------------------------------------------------------------
+
+/// n unit grains (mass 1) on the z axis, spacing s < 1 (pre-compressed), between two one-grain walls.
+channel::PreparedChannel chain(int n, double spacing) {
+  channel::PreparedChannel p;
+  p.box.lo = {-1.5, -1.5, -1.0};
+  p.box.hi = {1.5, 1.5, (n + 2) * spacing};
+  const double density = 6.0 / std::numbers::pi;  // unit mass for unit diameter
+  for (int i = 0; i <= n + 1; ++i) {
+    dem::Grain g;
+    g.id = i + 1;
+    g.radius = 0.5;
+    g.mass = 1.0;
+    g.position = {0.0, 0.0, i * spacing};
+    if (i == 0) {
+      g.group = channel::kLowerWallGroup;
+      g.body = channel::kLowerWallBody;
+    } else if (i == n + 1) {
+      g.group = channel::kUpperWallGroup;
+      g.body = channel::kUpperWallBody;
+    }
+    g.mass = density * std::numbers::pi / 6.0;
+    p.grains.push_back(g);
+  }
+  return p;
+}
+
+channel::DriveSettings frozen_end_drive(double omega_hat, double gamma_hat) {
+  channel::DriveSettings d;
+  d.omega_hat = omega_hat;
+  d.gamma_hat = gamma_hat;
+  d.far_end = channel::FarEnd::absorbing;
+  d.absorbing_strength = 0.0;  // no drag: the far wall is a frozen, perfectly reflecting end
+  return d;
+}
+
+class OrderedChain : public ::testing::TestWithParam<std::pair<double, double>> {};
+
+TEST_P(OrderedChain, MatchesTheExactLatticeSolution) {
+  const auto [omega_hat, gamma_hat] = GetParam();
+  const int n = 40;
+  const double spacing = 1.0 - 1e-3;
+  const LinearChannel engine(chain(n, spacing), hooke(1.0));
+  const Eigen::VectorXcd u = engine.displacement(frozen_end_drive(omega_hat, gamma_hat));
+
+  // Grain i of the chain (wall = 0, far wall = n + 1): u_i = sin((n + 1 - i) q) / sin((n + 1) q) with
+  // 4 (kappa + i omega gamma) sin^2(q/2) = omega^2 m, i.e. the lattice theory's k~ under our
+  // exp(+i omega t) convention: q = conj(k~).
+  const Complex q = std::conj(lattice_wavenumber(omega_hat, gamma_hat).k);
+  ASSERT_EQ(engine.matrices().grain_of_node.size(), static_cast<std::size_t>(n));
+  double worst = 0.0;
+  for (int i = 1; i <= n; ++i) {
+    const Complex exact = std::sin(static_cast<double>(n + 1 - i) * q) / std::sin(static_cast<double>(n + 1) * q);
+    worst = std::max(worst, std::abs(u(3 * (i - 1) + 2) - exact));
+    EXPECT_EQ(u(3 * (i - 1)), Complex(0.0));  // a longitudinal drive moves nothing sideways
+  }
+  EXPECT_LT(worst, 1e-10);
+
+  // The two-wave fit of the grain field recovers the lattice wavenumber (per spacing) and the
+  // reflection: total at the frozen wall, one spacing beyond the last grain.
+  std::vector<Complex> field;
+  for (int i = 0; i < n; ++i) field.push_back(u(3 * i + 2));
+  const channel::TwoWaveFit waves = channel::fit_two_waves(spacing, field);
+  const ComplexWavenumber exact = lattice_wavenumber(omega_hat, gamma_hat);
+  EXPECT_NEAR(waves.k * spacing, exact.k.real(), 1e-10);
+  EXPECT_NEAR(waves.alpha * spacing, exact.k.imag(), 1e-10);
+  EXPECT_NEAR(waves.reflection / std::exp(-2.0 * exact.k.imag()), 1.0, 1e-5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Frequencies, OrderedChain,
+                         ::testing::Values(std::pair{0.05, 0.0}, std::pair{0.3, 0.2}, std::pair{1.0, 0.05},
+                                           std::pair{1.5, 1.0}, std::pair{0.01, 100.0}));
+
+// ---- A prepared 3D packing ------------------------------------------------------------------------
+
+class Packing : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    channel::ChannelGeometry g;
+    g.n_grains = 200;
+    g.seed = 7;
+    channel::PreparationSettings p;
+    p.pressure = 10.0;
+    packing_ = std::make_unique<channel::PreparedChannel>(
+        channel::prepare_channel(MPI_COMM_SELF, channel::generate_channel(g), hooke(kKn), g.width, p));
+  }
+  static void TearDownTestSuite() { packing_.reset(); }
+  static constexpr double kKn = 726.0;
+  static std::unique_ptr<channel::PreparedChannel> packing_;
+};
+std::unique_ptr<channel::PreparedChannel> Packing::packing_;
+
+/// Forces of the DEM engine at the given positions and velocities (by grain index), walls frozen.
+Eigen::VectorXd dem_forces(const channel::PreparedChannel& p, const dem::ContactSpec& contact,
+                           const std::vector<dem::Grain>& grains, const DynamicMatrices& m) {
+  dem::EngineSettings s;
+  s.box = p.box;
+  s.contact = contact;
+  std::vector<dem::RigidBody> bodies{dem::RigidBody("lower", dem::Frozen{}), dem::RigidBody("upper", dem::Frozen{})};
+  dem::Engine engine(MPI_COMM_SELF, s, grains, std::move(bodies));
+  engine.compute_forces();
+  std::unordered_map<std::int64_t, dem::Vec3> by_id;
+  const dem::GrainArrays& g = engine.grains();
+  for (std::size_t i = 0; i < engine.n_local(); ++i) by_id[g.id[i]] = g.force[i];
+  Eigen::VectorXd f(m.unknowns());
+  for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
+    const dem::Vec3 v = by_id.at(grains[static_cast<std::size_t>(m.grain_of_node[n])].id);
+    f.segment<3>(static_cast<Eigen::Index>(3 * n)) << v.x, v.y, v.z;
+  }
+  return f;
+}
+
+TEST_F(Packing, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
+  ASSERT_TRUE(packing_->report.converged);
+  const dem::ContactSpec elastic = hooke(kKn);
+  dem::ContactSpec damped = elastic;
+  damped.restitution.reset();
+  damped.gamma = 3.0;  // a constant dashpot, as the driven runs use
+  const LinearChannel engine(*packing_, elastic);
+  const DynamicMatrices& m = engine.matrices();
+  const Eigen::MatrixXd k = Eigen::MatrixXd(m.stiffness);
+  const Eigen::MatrixXd c = Eigen::MatrixXd(m.dashpots);
+
+  // Steps far below the smallest overlap and gap, so no contact changes state.
+  double smallest = 1.0;
+  for (const StaticPair& p : engine.network().contacts) smallest = std::min(smallest, p.overlap);
+  for (const StaticPair& p : engine.network().gaps) smallest = std::min(smallest, -p.overlap);
+  const double h = std::min(1e-7, 0.01 * smallest);
+  double worst_k = 0.0, worst_c = 0.0;
+  const double scale_k = k.cwiseAbs().maxCoeff();
+  std::vector<dem::Grain> grains = packing_->grains;
+  const Eigen::VectorXd at_rest = dem_forces(*packing_, damped, grains, m);
+  for (Eigen::Index col = 0; col < m.unknowns(); ++col) {
+    dem::Grain& g = grains[static_cast<std::size_t>(m.grain_of_node[static_cast<std::size_t>(col / 3)])];
+    const int axis = static_cast<int>(col % 3);
+    const double x0 = g.position[axis];
+    g.position[axis] = x0 + h;
+    const Eigen::VectorXd plus = dem_forces(*packing_, elastic, grains, m);
+    g.position[axis] = x0 - h;
+    const Eigen::VectorXd minus = dem_forces(*packing_, elastic, grains, m);
+    g.position[axis] = x0;
+    worst_k = std::max(worst_k, ((plus - minus) / (2.0 * h) + k.col(col)).cwiseAbs().maxCoeff());
+    // The dashpot force is linear in the velocity: one-sided difference is exact.
+    g.velocity[axis] = 1.0;
+    const Eigen::VectorXd moving = dem_forces(*packing_, damped, grains, m);
+    g.velocity[axis] = 0.0;
+    worst_c = std::max(worst_c, ((moving - at_rest) / damped.gamma.value() + c.col(col)).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst_k, 1e-6 * scale_k) << "largest |K| " << scale_k;
+  EXPECT_LT(worst_c, 1e-9);
+  // The pre-stress term is really there: K is not the plain spring network's.
+  EXPECT_GT(engine.network().contacts.front().force, 0.0);
+}
+
+TEST_F(Packing, SlabSolverEqualsSparseLu) {
+  const LinearChannel engine(*packing_, hooke(kKn));
+  const DynamicMatrices& m = engine.matrices();
+  const double omega = 0.7 * std::sqrt(kKn), gamma = 2.0;
+  Eigen::VectorXd extra = Eigen::VectorXd::LinSpaced(m.unknowns(), 0.0, 5.0);
+  Eigen::VectorXcd rhs = Eigen::VectorXcd::Random(m.unknowns());
+  const Eigen::VectorXcd slab = engine.solver().solve(omega, gamma, extra, rhs);
+  Eigen::SparseMatrix<Complex> z = m.stiffness.cast<Complex>() + Complex(0.0, omega * gamma) * m.dashpots.cast<Complex>();
+  for (Eigen::Index i = 0; i < m.unknowns(); ++i) z.coeffRef(i, i) += Complex(-omega * omega * m.mass(i), omega * extra(i));
+  Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu(z);
+  ASSERT_EQ(lu.info(), Eigen::Success);
+  const Eigen::VectorXcd reference = lu.solve(rhs);
+  EXPECT_LT((slab - reference).norm(), 1e-10 * reference.norm());
+  EXPECT_GT(engine.solver().slabs(), 3u);
+}
+
+TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
+  // Steady state: the time-averaged power the wall puts in equals what the contact dashpots and the
+  // absorbing layer take out. A conservation law the solve must satisfy, whatever the packing.
+  const LinearChannel engine(*packing_, hooke(kKn));
+  channel::DriveSettings d;
+  d.omega_hat = 0.8;
+  d.gamma_hat = 0.3;
+  d.far_end = channel::FarEnd::absorbing;
+  const Eigen::VectorXcd u = engine.displacement(d);
+  const channel::PackingUnits& units = engine.units();
+  const double omega = d.omega_hat / units.time();
+  const double gamma = d.gamma_hat * std::sqrt(units.kappa * units.mass);
+  const DynamicMatrices& m = engine.matrices();
+  auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
+    const std::int32_t node = m.node_of_grain[static_cast<std::size_t>(grain)];
+    if (node >= 0) return u.segment<3>(3 * node);
+    return engine.grains()[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody
+               ? Eigen::Vector3cd(0, 0, 1) : Eigen::Vector3cd::Zero();
+  };
+  double injected = 0.0, dissipated = 0.0;
+  for (const StaticPair& p : engine.network().contacts) {
+    const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+    const Eigen::Matrix3d kb = p.stiffness * n * n.transpose() -
+                               (p.force / p.distance) * (Eigen::Matrix3d::Identity() - n * n.transpose());
+    const Eigen::Vector3cd rel = motion(p.i) - motion(p.j);
+    dissipated += 0.5 * omega * omega * gamma * std::norm(n.cast<Complex>().dot(rel));
+    // Force of the driven wall on its partner, times the wall velocity i omega e_z, time-averaged.
+    const bool i_wall = engine.grains()[static_cast<std::size_t>(p.i)].body == channel::kLowerWallBody;
+    const bool j_wall = engine.grains()[static_cast<std::size_t>(p.j)].body == channel::kLowerWallBody;
+    if (i_wall == j_wall) continue;
+    const Eigen::Vector3cd on_wall = -(kb.cast<Complex>() + Complex(0, omega * gamma) * (n * n.transpose()).cast<Complex>()) *
+                                     (i_wall ? rel : Eigen::Vector3cd(-rel));
+    injected += 0.5 * std::real(std::conj(Complex(0.0, omega)) * -on_wall(2));
+  }
+  d.far_end = channel::FarEnd::absorbing;
+  const double length = units.column_top - units.wall_surface;
+  const double start = units.wall_surface + (1.0 - d.absorbing_fraction) * length;
+  for (std::size_t node = 0; node < m.grain_of_node.size(); ++node) {
+    const double z = engine.grains()[static_cast<std::size_t>(m.grain_of_node[node])].position.z;
+    if (z <= start) continue;
+    const double s = (z - start) / (d.absorbing_fraction * length);
+    dissipated += 0.5 * omega * omega * d.absorbing_strength * units.mass * omega * s * s *
+                  u.segment<3>(static_cast<Eigen::Index>(3 * node)).squaredNorm();
+  }
+  EXPECT_GT(injected, 0.0);
+  EXPECT_NEAR(dissipated / injected, 1.0, 1e-9);
+}
+
+TEST_F(Packing, ContactsOpenInProportionToTheAmplitude) {
+  const LinearChannel engine(*packing_, hooke(kKn));
+  channel::DriveSettings d;
+  d.far_end = channel::FarEnd::absorbing;
+  const Eigen::VectorXcd u = engine.displacement(d);
+  std::int64_t previous = -1;
+  for (double a : {1e-8, 1e-6, 1e-4, 1e-2}) {
+    const StateChanges s = engine.state_changes(u, d, a);
+    EXPECT_GE(s.opening + s.closing, previous);
+    previous = s.opening + s.closing;
+  }
+  EXPECT_EQ(engine.state_changes(u, d, 1e-14).opening, 0);
+  EXPECT_GT(engine.state_changes(u, d, 1e-1).opening, 0);
+}
+
+TEST(LinearEngine, RefusesAFrozenFarEnd) {
+  const LinearChannel engine(chain(10, 0.999), hooke(1.0));
+  channel::DriveSettings d;
+  d.far_end = channel::FarEnd::frozen;
+  EXPECT_THROW((void)engine.respond(d), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sedwave::forward::linear
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int result = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return result;
+}
