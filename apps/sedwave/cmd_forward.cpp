@@ -1,17 +1,21 @@
 // `sedwave forward`: one acoustic run of a channel scene: generate (or import) the packing,
-// compress and relax it, drive it, measure alpha_hat and c_hat, write everything to HDF5.
+// compress and relax it, drive it, measure alpha_hat and c_hat, write everything to HDF5. The
+// scene's `engine` picks the time-domain DEM or the linear-response engine (over an ensemble of
+// packings).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/channel/scene.hpp"
-#include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/linear/run_file.hpp"
+#include "scene_packings.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -26,26 +30,49 @@ struct ForwardOptions {
   bool quiet = false;
 };
 
-/// The loose column from the scene (generated, or a LAMMPS data file), on rank 0 only.
-forward::channel::ChannelConfiguration initial_column(const forward::channel::ChannelScene& scene, int rank) {
+/// The linear engine: one packing per ensemble member (prepared, or read with --packing), solved on
+/// rank 0 (the solve is serial and takes seconds; preparation uses every rank).
+int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& scene, const MpiSession& mpi, bool talk) {
   using namespace forward::channel;
-  if (rank != 0) return {};
-  if (!scene.import_lammps_data) return generate_channel(scene.geometry);
-  const forward::dem::LammpsData data = forward::dem::read_lammps_data(scene.import_lammps_data->string());
-  ChannelConfiguration c;
-  c.box = data.box;
-  c.box.periodic = {true, true, false};
-  for (forward::dem::Grain g : data.grains) {
-    // Thesis convention: type 1 flow grains, 2 lower wall, 3 upper wall.
-    g.group -= 1;
-    if (g.group < kFlowGroup || g.group > kUpperWallGroup) {
-      throw std::runtime_error(scene.import_lammps_data->string() + ": atom " + std::to_string(g.id) +
-                               " has a type other than 1 (flow), 2 (lower wall) or 3 (upper wall)");
+  std::vector<forward::linear::LinearChannel> members;
+  std::vector<PreparationReport> reports;
+  for (int k = 0; k < scene.linear.ensemble; ++k) {
+    PreparedChannel packing;
+    if (!o.packing_in.empty()) {
+      if (mpi.rank() == 0) packing = read_packing(member_path(o.packing_in, k));
+    } else {
+      packing = prepare_member(scene, k, mpi.rank(), talk ? &std::cout : nullptr);
+      if (talk) std::cout << "member " << k << ":\n" << describe(packing.report) << "\n";
+      if (mpi.rank() == 0 && !o.packing_out.empty()) write_packing(member_path(o.packing_out, k), packing, scene.text);
     }
-    g.body = g.group == kLowerWallGroup ? kLowerWallBody : g.group == kUpperWallGroup ? kUpperWallBody : 0;
-    c.grains.push_back(g);
+    if (mpi.rank() != 0) continue;
+    reports.push_back(packing.report);
+    members.emplace_back(packing, scene.contact, scene.linear);
   }
-  return c;
+  if (mpi.rank() != 0) return 0;
+  const forward::linear::EnsembleResult e = forward::linear::respond(members, scene.drive);
+  forward::linear::write_linear_run_file(o.out, scene, reports, e);
+  if (talk) {
+    std::printf("linear engine, %zu packing(s): omega_hat %.6g  gamma_hat %.6g\n", members.size(),
+                scene.drive.omega_hat, scene.drive.gamma_hat);
+    for (std::size_t k = 0; k < e.members.size(); ++k) {
+      const forward::linear::LinearResult& r = e.members[k];
+      std::printf("  member %zu: alpha_hat %.6g +- %.2g  c_hat %.6g +- %.2g  reflection %.2g  (%d layers; %lld of "
+                  "%lld contacts open; %.2f s)\n",
+                  k, r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c, r.waves.reflection, r.layers_used,
+                  static_cast<long long>(r.state_changes.opening), static_cast<long long>(r.state_changes.contacts),
+                  r.solve_seconds);
+    }
+    if (e.ok()) {
+      std::printf("alpha_hat %.6g +- %.2g   c_hat %.6g +- %.2g   (%.2f s of solving)\n", e.alpha_hat,
+                  e.sigma_alpha_hat, e.c_hat, e.sigma_c_hat, e.solve_seconds);
+    } else {
+      std::printf("not measured: %s\n", e.problem.c_str());
+    }
+    if (!e.warning.empty()) std::printf("warning: %s\n", e.warning.c_str());
+    std::printf("written to %s\n", o.out.c_str());
+  }
+  return e.ok() ? 0 : 3;
 }
 
 int run_forward(const ForwardOptions& o) {
@@ -56,13 +83,13 @@ int run_forward(const ForwardOptions& o) {
   if (o.gamma_hat) scene.drive.gamma_hat = *o.gamma_hat;
   const bool talk = mpi.rank() == 0 && !o.quiet;
   scene.preparation.log = talk ? &std::cout : nullptr;
+  if (scene.engine == EngineKind::linear) return run_linear(o, scene, mpi, talk);
 
   PreparedChannel packing;
   if (!o.packing_in.empty()) {
     if (mpi.rank() == 0) packing = read_packing(o.packing_in);
   } else {
-    packing = prepare_channel(MPI_COMM_WORLD, initial_column(scene, mpi.rank()), scene.contact,
-                              scene.geometry.width, scene.preparation);
+    packing = prepare_member(scene, 0, mpi.rank(), scene.preparation.log);
     if (talk) std::cout << describe(packing.report) << "\n";
     if (mpi.rank() == 0 && !o.packing_out.empty()) {
       write_packing(o.packing_out, packing, scene.text);
@@ -96,7 +123,7 @@ Command add_forward_command(CLI::App& app) {
   cmd->add_option("scene", o->scene, "scene file (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "run file to write (HDF5)")->capture_default_str();
   cmd->add_option("--packing-out", o->packing_out, "also write the prepared packing (HDF5 + LAMMPS .data)");
-  cmd->add_option("--packing", o->packing_in, "reuse a packing written by --packing-out instead of preparing")
+  cmd->add_option("--packing", o->packing_in, "reuse a packing written by --packing-out instead of preparing (ensembles: member k reads FILE.member<k>)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--omega-hat", o->omega_hat, "override the scene's drive frequency omega_hat");
   cmd->add_option("--gamma-hat", o->gamma_hat, "override the scene's dashpot gamma_hat");

@@ -1,5 +1,6 @@
 // `sedwave table`: fills a dispersion table (alpha_hat, c_hat on an omega_hat x gamma_hat grid) with
-// the DEM channel, one driven run per grid point, shared among MPI ranks by a task farm. One
+// the DEM channel (one driven run per grid point) or the linear-response engine (one solve per
+// point and ensemble member), shared among MPI ranks by a task farm. One
 // prepared packing serves every point. A killed run, restarted with the same command, continues
 // where it stopped (docs/tables.md).
 #include <mpi.h>
@@ -9,13 +10,16 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/channel/scene.hpp"
 #include "sedwave/forward/table/grid_file.hpp"
+#include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/table/task_farm.hpp"
+#include "scene_packings.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -27,6 +31,7 @@ struct TableOptions {
   std::string grid_file;
   std::string out;
   std::string packing;
+  std::string engine;  ///< "time_domain" or "linear"; empty: the scene's
   bool quiet = false;
   bool retry_failed = false;
 };
@@ -34,27 +39,27 @@ struct TableOptions {
 /// The one packing every grid point starts from: read from --packing if that file exists, otherwise
 /// prepared (collectively) and, with --packing, saved there so a restart skips the preparation.
 channel::PreparedChannel packing_for_table(const channel::ChannelScene& scene, const TableOptions& o,
-                                           const MpiSession& mpi, std::string& provenance) {
-  if (!o.packing.empty() && std::filesystem::exists(o.packing)) {
-    provenance = "packing read from " + o.packing;
-    if (mpi.rank() == 0) return channel::read_packing(o.packing);
+                                           const MpiSession& mpi, int member, std::string& provenance) {
+  const std::string path = o.packing.empty() ? std::string{} : member_path(o.packing, member);
+  if (!path.empty() && std::filesystem::exists(path)) {
+    provenance = "packing read from " + path;
+    if (mpi.rank() == 0) return channel::read_packing(path);
     return channel::PreparedChannel{};  // run_acoustic needs the grains on rank 0 only
   }
   if (scene.import_lammps_data) {
     throw std::invalid_argument(scene.path.string() + ": scenes with import_lammps_data are not prepared by "
                                 "`sedwave table`; prepare the packing first and pass it with --packing");
   }
-  channel::PreparationSettings settings = scene.preparation;
-  settings.log = (mpi.rank() == 0 && !o.quiet) ? &std::cout : nullptr;
-  channel::PreparedChannel packing = channel::prepare_channel(
-      MPI_COMM_WORLD, channel::generate_channel(scene.geometry), scene.contact, scene.geometry.width, settings);
-  provenance = "packing prepared from the scene on " + std::to_string(mpi.size()) + " rank(s)";
+  channel::PreparedChannel packing =
+      prepare_member(scene, member, mpi.rank(), (mpi.rank() == 0 && !o.quiet) ? &std::cout : nullptr);
+  provenance = "packing prepared from the scene (seed + " + std::to_string(member) + ") on " +
+               std::to_string(mpi.size()) + " rank(s)";
   if (!packing.report.converged) provenance += " (preparation did NOT converge: see the log)";
   if (mpi.rank() == 0) {
     if (!packing.report.converged) std::cerr << "sedwave table: warning: the preparation did not converge\n";
-    if (!o.packing.empty()) {
-      channel::write_packing(o.packing, packing, scene.text);
-      provenance += ", saved to " + o.packing;
+    if (!path.empty()) {
+      channel::write_packing(path, packing, scene.text);
+      provenance += ", saved to " + path;
     }
   }
   return packing;
@@ -64,7 +69,7 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const chan
                                     const std::string& packing_provenance) {
   table::TableMetadata m;
   m.scene_toml = scene.text;
-  m.engine = "sedwave-dem";
+  m.engine = scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem";
   std::ostringstream definitions;
   definitions << table::standard_definitions() << "; " << grid.describe_axes() << "; " << packing_provenance
               << ".\nGrid file " << grid.path.string() << " (verbatim):\n"
@@ -85,33 +90,58 @@ Command add_table_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "table file (HDF5) to create, or to resume if it exists")->required();
   cmd->add_option("--packing", o->packing,
                   "packing file (HDF5): reused if it exists, else the prepared packing is saved there");
+  cmd->add_option("--engine", o->engine, "override the scene's engine: time_domain (DEM) or linear (linear response)")
+      ->check(CLI::IsMember({"time_domain", "linear"}));
   cmd->add_flag("--retry-failed", o->retry_failed, "when resuming, compute failed points again");
   cmd->add_flag("--quiet", o->quiet, "no progress lines");
   return {cmd, [o]() {
     MpiSession mpi;
     // Every rank reads both files: they are small, and errors then stop all ranks alike.
     const table::TableGridFile grid = table::read_grid_file(o->grid_file);
-    const channel::ChannelScene scene = channel::read_scene(grid.scene_path);
+    channel::ChannelScene scene = channel::read_scene(grid.scene_path);
+    if (!o->engine.empty()) {
+      scene.engine = o->engine == "linear" ? channel::EngineKind::linear : channel::EngineKind::time_domain;
+      if (scene.engine == channel::EngineKind::linear && scene.drive.far_end != channel::FarEnd::absorbing) {
+        throw std::invalid_argument(grid.scene_path.string() +
+                                    ": --engine linear needs [drive] far_end = \"absorbing\" (a steady state "
+                                    "with a frozen end is a standing wave)");
+      }
+    }
     if (mpi.size() % grid.ranks_per_point != 0) {
       throw std::invalid_argument(o->grid_file + ": ranks_per_point = " + std::to_string(grid.ranks_per_point) +
                                   " does not divide the " + std::to_string(mpi.size()) + " MPI ranks");
     }
-    std::string provenance;
-    channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, provenance);
-    table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
-
-    const table::FarmSettings settings{grid.ranks_per_point, (mpi.rank() == 0 && !o->quiet) ? &std::cout : nullptr,
+    const int ranks_per_point = scene.engine == channel::EngineKind::linear ? 1 : grid.ranks_per_point;
+    const table::FarmSettings settings{ranks_per_point, (mpi.rank() == 0 && !o->quiet) ? &std::cout : nullptr,
                                        o->retry_failed};
-    const table::FarmReport report =
-        table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance),
-                             table::dem_point_function(packing, scene.contact, scene.drive), settings);
+    table::FarmReport report;
+    if (scene.engine == channel::EngineKind::linear) {
+      // Every rank solves whole points serially and needs every member's packing.
+      std::string provenance;
+      std::vector<forward::linear::LinearChannel> members;
+      for (int k = 0; k < scene.linear.ensemble; ++k) {
+        std::string member_provenance;
+        channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, k, member_provenance);
+        table::share_packing_with_groups(MPI_COMM_WORLD, packing, 1);
+        members.emplace_back(packing, scene.contact, scene.linear);
+        provenance += (k > 0 ? "; " : "") + member_provenance;
+      }
+      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance),
+                                    forward::linear::linear_point_function(members, scene.drive), settings);
+    } else {
+      std::string provenance;
+      channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
+      table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
+      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance),
+                                    table::dem_point_function(packing, scene.contact, scene.drive), settings);
+    }
     if (mpi.rank() == 0) {
       const double busy = report.wall_seconds > 0.0 ? report.point_seconds / (report.wall_seconds * mpi.size()) : 0.0;
       std::cout << "table " << o->out << ": " << report.points << " points, " << report.already_finished
                 << " already finished, " << report.computed << " computed (" << report.ok << " ok, "
                 << report.unresolved << " unresolved, " << report.failed << " failed) in " << report.wall_seconds
                 << " s on " << mpi.size() << " rank(s); points took " << report.point_seconds
-                << " s in all (ranks busy " << static_cast<int>(100.0 * busy * grid.ranks_per_point + 0.5)
+                << " s in all (ranks busy " << static_cast<int>(100.0 * busy * ranks_per_point + 0.5)
                 << " % of the time)\n";
     }
     return report.failed == 0 ? 0 : 2;

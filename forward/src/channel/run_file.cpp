@@ -4,40 +4,11 @@
 #include <stdexcept>
 
 #include "../io/hdf5.hpp"
+#include "run_file_parts.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 #include "sedwave/version.hpp"
 
 namespace sedwave::forward::channel {
-namespace {
-
-void number(hid_t parent, const std::string& name, double value, const std::string& unit) {
-  h5::write_attribute(parent, name, value);
-  h5::write_string_attribute(parent, name + "_unit", unit);
-}
-
-void write_stats(hid_t parent, const PreparationReport& r) {
-  const PackingStats& s = r.stats;
-  number(parent, "pressure", r.pressure, "kappa/d (force per d^2)");
-  number(parent, "target_wall_force", r.target_wall_force, "kappa d");
-  number(parent, "residual_ratio", r.residual_ratio, "max |F| / mean contact force");
-  number(parent, "packing_fraction", s.packing_fraction, "1");
-  number(parent, "column_height", s.column_height, "d");
-  number(parent, "coordination", s.coordination, "contacts per flow grain");
-  number(parent, "coordination_without_rattlers", s.coordination_without_rattlers, "contacts per grain");
-  number(parent, "rattler_fraction", s.rattler_fraction, "1");
-  number(parent, "mean_overlap", s.mean_overlap, "d");
-  number(parent, "max_overlap", s.max_overlap, "d");
-  number(parent, "mean_contact_force", s.mean_contact_force, "force unit of the scene");
-  h5::write_attribute(parent, "contacts", s.contacts);
-  h5::write_attribute(parent, "converged", static_cast<std::int32_t>(r.converged));
-  h5::write(parent, "overlap_histogram", s.overlap_histogram.data(), s.overlap_histogram.size());
-  h5::write(parent, "gap_histogram", s.gap_histogram.data(), s.gap_histogram.size());
-  h5::write_string_attribute(parent, "histogram_bins",
-                             "bin k counts separations |s|/d in [1e-(k+1), 1e-k); the last bin also holds smaller");
-}
-
-}  // namespace
-
 void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
   const std::filesystem::path temporary = path.string() + ".tmp";
   {

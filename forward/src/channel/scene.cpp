@@ -95,15 +95,30 @@ void read_drive(Section s, DriveSettings& d) {
   s.finish();
 }
 
+void read_linear(Section s, linear::LinearSettings& l) {
+  l.ensemble = static_cast<int>(s.integer("ensemble", l.ensemble, 1));
+  l.gap_search = s.positive("gap_search", l.gap_search);
+  l.warn_state_changes = s.positive("warn_state_changes", l.warn_state_changes);
+  l.refuse_state_changes = s.positive("refuse_state_changes", l.refuse_state_changes);
+  s.finish();
+}
+
 ChannelScene from_value(const toml::value& root, const std::string& origin, const std::filesystem::path& base) {
   ChannelScene scene;
   Section top(root, "", origin);
-  top.allow_only({"title", "geometry", "contact", "preparation", "drive"});
+  top.allow_only({"title", "engine", "geometry", "contact", "preparation", "drive", "linear"});
   top.text("title", "");
+  scene.engine = top.choice("engine", "time_domain", {"time_domain", "linear"}) == "linear" ? EngineKind::linear
+                                                                                           : EngineKind::time_domain;
   read_geometry(top.sub("geometry"), scene, base);
   read_contact(top.sub("contact"), scene.contact, scene.geometry.density);
   read_preparation(top.sub("preparation"), scene.preparation);
   read_drive(top.sub("drive"), scene.drive);
+  read_linear(top.sub("linear"), scene.linear);
+  if (scene.engine == EngineKind::linear && scene.drive.far_end != FarEnd::absorbing) {
+    top.sub("drive").fail_table("far_end: the linear engine computes the steady state, in which a frozen end "
+                                         "reflects the whole wave: use far_end = \"absorbing\"");
+  }
   top.finish();
   if (!scene.contact.restitution) scene.contact.restitution = 0.9;  // preparation damping (thesis)
   return scene;

@@ -321,27 +321,32 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
   return report;
 }
 
-PointResult point_from_acoustic(const channel::AcousticResult& result) {
-  if (!result.ok()) return unresolved_point(result.problem, result.wall_seconds);
-  const channel::PropagationFit& fit = result.fit;
-  const bool finite = std::isfinite(fit.alpha) && std::isfinite(fit.sigma_alpha) && std::isfinite(fit.c) &&
-                      std::isfinite(fit.sigma_c) && fit.c > 0.0;
-  if (!finite) return unresolved_point("the propagation fit gave no finite alpha_hat and c_hat", result.wall_seconds);
-  if (!(fit.alpha >= 2.0 * fit.sigma_alpha) || !(fit.alpha > 0.0)) {
+PointResult point_from_measurement(const std::string& problem, double alpha, double sigma_alpha, double c,
+                                   double sigma_c, double wall_seconds) {
+  if (!problem.empty()) return unresolved_point(problem, wall_seconds);
+  const bool finite = std::isfinite(alpha) && std::isfinite(sigma_alpha) && std::isfinite(c) &&
+                      std::isfinite(sigma_c) && c > 0.0;
+  if (!finite) return unresolved_point("the propagation fit gave no finite alpha_hat and c_hat", wall_seconds);
+  if (!(alpha >= 2.0 * sigma_alpha) || !(alpha > 0.0)) {
     std::ostringstream why;
     why.precision(3);
-    why << "attenuation not significantly positive (alpha_hat " << fit.alpha << " +- " << fit.sigma_alpha
+    why << "attenuation not significantly positive (alpha_hat " << alpha << " +- " << sigma_alpha
         << " < 2 sigma): the channel is too short to measure it";
-    return unresolved_point(why.str(), result.wall_seconds);
+    return unresolved_point(why.str(), wall_seconds);
   }
   PointResult p;
   p.status = PointStatus::ok;
-  p.alpha_hat = fit.alpha;
-  p.c_hat = fit.c;
-  p.sigma_alpha_hat = fit.sigma_alpha;
-  p.sigma_c_hat = fit.sigma_c;
-  p.wall_seconds = result.wall_seconds;
+  p.alpha_hat = alpha;
+  p.c_hat = c;
+  p.sigma_alpha_hat = sigma_alpha;
+  p.sigma_c_hat = sigma_c;
+  p.wall_seconds = wall_seconds;
   return p;
+}
+
+PointResult point_from_acoustic(const channel::AcousticResult& result) {
+  const channel::PropagationFit& fit = result.fit;
+  return point_from_measurement(result.problem, fit.alpha, fit.sigma_alpha, fit.c, fit.sigma_c, result.wall_seconds);
 }
 
 void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point) {

@@ -22,6 +22,15 @@ TEST(Scene, ShippedExampleParses) {
   EXPECT_FALSE(s.text.empty());
 }
 
+TEST(Scene, ShippedLinearExampleParses) {
+  const ChannelScene s = read_scene(std::string(SEDWAVE_SOURCE_DIR) + "/data/scenes/linear_w3.toml");
+  EXPECT_EQ(s.engine, EngineKind::linear);
+  EXPECT_EQ(s.linear.ensemble, 3);
+  EXPECT_DOUBLE_EQ(s.linear.refuse_state_changes, 0.1);
+  EXPECT_EQ(read_scene(std::string(SEDWAVE_SOURCE_DIR) + "/data/scenes/thesis_w3.toml").engine,
+            EngineKind::time_domain);
+}
+
 TEST(Scene, RestitutionInDriveMapsToGammaHat) {
   const ChannelScene s = parse_scene("[contact]\nkn = 726\n[drive]\nrestitution = 0.5\n", "x.toml");
   EXPECT_NEAR(s.drive.gamma_hat, 0.3046976322369708, 1e-12);
@@ -54,7 +63,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"[contact]\nkn = 726\nyoungs_modulus = 1000\n", "bad.toml:1: [contact]: give exactly one of 'kn' or 'youngs_modulus'"},
                       BadScene{"[contact]\nkn = 726\n[drive]\ngamma_hat = 0.1\nrestitution = 0.9\n", "bad.toml:3: [drive]: give 'gamma_hat' or 'restitution', not both"},
                       BadScene{"[contact]\nkn = [726\n", "bad.toml"},
-                      BadScene{"[contakt]\nkn = 726\n", "bad.toml:1: key 'contakt': unknown key"}));
+                      BadScene{"[contakt]\nkn = 726\n", "bad.toml:1: key 'contakt': unknown key"},
+                      BadScene{"engine = \"fast\"\n[contact]\nkn = 726\n", "bad.toml:1: key 'engine': must be one of linear, time_domain"},
+                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[linear]\nensemble = 0\n", "bad.toml:5: key 'linear.ensemble': must be at least 1"},
+                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nfar_end = \"frozen\"\n", "bad.toml:4: [drive]: far_end: the linear engine"}));
 
 }  // namespace
 }  // namespace sedwave::forward::channel

@@ -15,6 +15,7 @@
 #include "sedwave/forward/channel/geometry.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/linear/settings.hpp"
 
 namespace sedwave::forward::channel {
 
@@ -23,6 +24,10 @@ class SceneError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// Which engine drives the packing: the time-domain DEM (any amplitude) or the linear-response
+/// engine (small amplitudes, steady state, orders of magnitude faster; docs/linear.md).
+enum class EngineKind { time_domain, linear };
 
 struct ChannelScene {
   std::filesystem::path path;   ///< where it was read from (relative paths inside resolve from here)
@@ -36,6 +41,8 @@ struct ChannelScene {
   dem::ContactSpec contact;
   PreparationSettings preparation;
   DriveSettings drive;
+  EngineKind engine = EngineKind::time_domain;
+  linear::LinearSettings linear;  ///< used when engine == linear
 };
 
 /// Reads and validates a scene. Throws SceneError.

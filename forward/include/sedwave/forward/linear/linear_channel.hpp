@@ -23,18 +23,10 @@
 #include "sedwave/forward/channel/packing_units.hpp"
 #include "sedwave/forward/linear/contact_network.hpp"
 #include "sedwave/forward/linear/dynamic_matrices.hpp"
+#include "sedwave/forward/linear/settings.hpp"
 #include "sedwave/forward/linear/slab_solver.hpp"
 
 namespace sedwave::forward::linear {
-
-/// What only the linear engine needs.
-struct LinearSettings {
-  double gap_search = 1e-2;   ///< gaps narrower than this [mean diameters] are checked for closing
-  /// Fraction of contacts opening plus gaps closing (of all contacts) above which a result warns,
-  /// and above which it is refused (the time-domain engine is then the right one).
-  double warn_state_changes = 0.01;
-  double refuse_state_changes = 0.1;
-};
 
 /// Contacts that open and gaps that close at some drive amplitude (peak relative normal motion
 /// beyond the static overlap or gap).

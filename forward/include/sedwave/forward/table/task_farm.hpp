@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <iosfwd>
 
 #include "sedwave/forward/channel/acoustic.hpp"
@@ -54,10 +55,13 @@ struct FarmReport {
 FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path, const TableGrid& grid,
                          const TableMetadata& metadata, const PointFunction& compute, const FarmSettings& settings);
 
-/// What a driven run measured, as a table point: ok with alpha_hat, c_hat and their sigmas; or
-/// unresolved with the run's reason, or when alpha_hat is not significantly positive (alpha < 2
-/// sigma: the channel is too short to measure so weak an attenuation, and storing the noise would
-/// mislead the interpolation).
+/// A measurement as a table point: unresolved with `problem` when that is not empty, or when alpha
+/// is not significantly positive (alpha < 2 sigma: the channel is too short to measure so weak an
+/// attenuation, and storing the noise would mislead the interpolation); ok otherwise.
+[[nodiscard]] PointResult point_from_measurement(const std::string& problem, double alpha, double sigma_alpha,
+                                                 double c, double sigma_c, double wall_seconds);
+
+/// What a driven run measured, as a table point (point_from_measurement).
 [[nodiscard]] PointResult point_from_acoustic(const channel::AcousticResult& result);
 
 /// Copies the prepared packing from rank 0 of `world` (where prepare_channel leaves it) to the rank 0

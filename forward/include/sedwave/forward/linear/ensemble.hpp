@@ -1,0 +1,42 @@
+#pragma once
+// An ensemble of independently generated packings driven alike: a single disordered channel
+// scatters, so alpha_hat and c_hat are the ensemble mean with the standard error of the mean
+// (from the spread between packings, which includes each member's own fit error). With one member
+// the member's own fit errors are kept.
+//
+// Also the linear engine's table point function, for the same task farm and table format as the
+// time-domain engine (table/task_farm.hpp).
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/linear/linear_channel.hpp"
+#include "sedwave/forward/table/task_farm.hpp"
+
+namespace sedwave::forward::linear {
+
+struct EnsembleResult {
+  std::vector<LinearResult> members;
+  double alpha_hat = 0.0, sigma_alpha_hat = 0.0;
+  double c_hat = 0.0, sigma_c_hat = 0.0;
+  double reflection = 0.0;  ///< largest over the members (absorbing layer's reflection coefficient)
+  std::string warning;      ///< the first member warning, if any
+  std::string problem;      ///< a member's problem (then nothing was measured)
+  double solve_seconds = 0.0;
+  [[nodiscard]] bool ok() const { return problem.empty(); }
+};
+
+/// Drives every member with `drive` and combines the results.
+[[nodiscard]] EnsembleResult respond(const std::vector<LinearChannel>& members, const channel::DriveSettings& drive);
+
+/// The table point: ok with the ensemble mean and standard errors; unresolved with the reason when
+/// a member cannot measure the point or alpha_hat is not significantly positive (as the
+/// time-domain engine's point_from_acoustic).
+[[nodiscard]] table::PointResult point_from_ensemble(const EnsembleResult& result);
+
+/// Point function for the task farm: every point drives all members (which must be on every rank)
+/// with `drive`, its omega_hat and gamma_hat replaced by the grid point's. Serial per point: run
+/// with ranks_per_point = 1. The references must outlive the farm.
+[[nodiscard]] table::PointFunction linear_point_function(const std::vector<LinearChannel>& members,
+                                                         const channel::DriveSettings& drive);
+
+}  // namespace sedwave::forward::linear

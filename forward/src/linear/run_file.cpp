@@ -1,0 +1,75 @@
+#include "sedwave/forward/linear/run_file.hpp"
+
+#include "../channel/run_file_parts.hpp"
+#include "../io/hdf5.hpp"
+#include "sedwave/version.hpp"
+
+namespace sedwave::forward::linear {
+
+using channel::number;
+
+void write_linear_run_file(const std::filesystem::path& path, const channel::ChannelScene& scene,
+                           const std::vector<channel::PreparationReport>& preparations, const EnsembleResult& e) {
+  const std::filesystem::path temporary = path.string() + ".tmp";
+  {
+    h5::Handle file = h5::create_file(temporary.string());
+    h5::write_string_attribute(file, "sedwave_version", kVersion);
+    h5::write_string_attribute(file, "engine", "linear");
+    h5::write_string_attribute(file, "scene", scene.text);
+    h5::write_string_attribute(file, "units",
+                               "dimensionless: lengths in mean grain diameters d, times in sqrt(m/kappa) with m the "
+                               "mass of a grain of diameter d and kappa the contact stiffness");
+    for (std::size_t k = 0; k < e.members.size(); ++k) {
+      const LinearResult& r = e.members[k];
+      h5::Handle member = h5::create_group(file, "member_" + std::to_string(k));
+      h5::write_attribute(member, "seed", static_cast<std::int64_t>(scene.geometry.seed + k));
+      if (k < preparations.size()) {
+        h5::Handle packing = h5::create_group(member, "packing");
+        channel::write_stats(packing, preparations[k]);
+      }
+      h5::write(member, "layer_z", r.layer_z.data(), r.layer_z.size());
+      h5::write_string_attribute(member, "layer_z_unit", "d, from the driven wall's mean surface");
+      h5::write(member, "layer_grains", r.layer_grains.data(), r.layer_grains.size());
+      std::vector<double> re, im;
+      for (const auto& u : r.layer_field) {
+        re.push_back(u.real());
+        im.push_back(u.imag());
+      }
+      h5::write(member, "layer_field_real", re.data(), re.size());
+      h5::write(member, "layer_field_imag", im.data(), im.size());
+      h5::write_string_attribute(member, "layer_field_unit",
+                                 "wall amplitude A; mean displacement along the drive axis is Re(U exp(i omega t))");
+      number(member, "alpha_hat", r.fit.alpha, "Np per d");
+      number(member, "sigma_alpha_hat", r.fit.sigma_alpha, "Np per d");
+      number(member, "c_hat", r.fit.c, "d sqrt(kappa/m)");
+      number(member, "sigma_c_hat", r.fit.sigma_c, "d sqrt(kappa/m)");
+      number(member, "two_wave_alpha_hat", r.waves.alpha, "Np per d");
+      number(member, "two_wave_k_hat", r.waves.k, "rad per d");
+      number(member, "reflection", r.waves.reflection, "1 (at the absorbing layer's start)");
+      h5::write_attribute(member, "contacts", r.state_changes.contacts);
+      h5::write_attribute(member, "contacts_opening", r.state_changes.opening);
+      h5::write_attribute(member, "gaps", r.state_changes.gaps);
+      h5::write_attribute(member, "gaps_closing", r.state_changes.closing);
+      number(member, "solve_seconds", r.solve_seconds, "s");
+      h5::write_string_attribute(member, "problem", r.problem);
+      h5::write_string_attribute(member, "warning", r.warning);
+    }
+    h5::Handle results = h5::create_group(file, "results");
+    const channel::DriveSettings& d = scene.drive;
+    number(results, "omega_hat", e.members.empty() ? d.omega_hat : e.members.front().omega_hat, "1");
+    number(results, "gamma_hat", e.members.empty() ? d.gamma_hat : e.members.front().gamma_hat, "1");
+    number(results, "amplitude", d.amplitude, "d");
+    number(results, "alpha_hat", e.alpha_hat, "Np per d");
+    number(results, "sigma_alpha_hat", e.sigma_alpha_hat, "Np per d (standard error of the ensemble mean)");
+    number(results, "c_hat", e.c_hat, "d sqrt(kappa/m)");
+    number(results, "sigma_c_hat", e.sigma_c_hat, "d sqrt(kappa/m) (standard error of the ensemble mean)");
+    number(results, "reflection", e.reflection, "1 (largest over the members)");
+    h5::write_attribute(results, "members", static_cast<std::int32_t>(e.members.size()));
+    number(results, "solve_seconds", e.solve_seconds, "s");
+    h5::write_string_attribute(results, "problem", e.problem);
+    h5::write_string_attribute(results, "warning", e.warning);
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+}  // namespace sedwave::forward::linear
