@@ -57,9 +57,9 @@ int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& sc
                 scene.drive.omega_hat, scene.drive.gamma_hat);
     for (std::size_t k = 0; k < e.members.size(); ++k) {
       const forward::linear::LinearResult& r = e.members[k];
-      std::printf("  member %zu: alpha_hat %.6g +- %.2g  c_hat %.6g +- %.2g  reflection %.2g  (%d layers; %lld of "
+      std::printf("  member %zu: alpha_hat %.6g +- %.2g  c_hat %.6g +- %.2g  (%d layers; %lld of "
                   "%lld contacts open; %.2f s)\n",
-                  k, r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c, r.waves.reflection, r.layers_used,
+                  k, r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c, r.layers_used,
                   static_cast<long long>(r.state_changes.opening), static_cast<long long>(r.state_changes.contacts),
                   r.solve_seconds);
     }

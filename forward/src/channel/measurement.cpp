@@ -350,15 +350,21 @@ TwoWaveFit fit_two_waves(double h, std::span<const std::complex<double>> u) {
   }
   if (!(denominator > 0.0)) throw std::invalid_argument("two-wave fit: the field is zero");
   C qh = std::acos(numerator / (2.0 * denominator));  // principal branch: 0 <= Re <= pi
+  double k = qh.real() / h;
+  double alpha = -qh.imag() / h;  // exp(-i q z) with q = k - i alpha decays as exp(-alpha z)
+  // cos is even: the branch fixes only Re q > 0; the sign of alpha is the one that makes the forward
+  // wave decay.
+  return fit_two_waves(h, u, k, std::abs(alpha));
+}
+
+TwoWaveFit fit_two_waves(double h, std::span<const std::complex<double>> u, double k, double alpha) {
+  using C = std::complex<double>;
+  const std::size_t n = u.size();
+  if (n < 4) throw std::invalid_argument("two-wave fit: needs at least 4 samples");
+  const C qh(k * h, -alpha * h);
   TwoWaveFit fit;
-  fit.k = qh.real() / h;
-  fit.alpha = -qh.imag() / h;  // exp(-i q z) with q = k - i alpha decays as exp(-alpha z)
-  if (fit.alpha < 0.0) {
-    // acos picked -q's imaginary part: the same pair of waves, with the sign that makes the forward
-    // wave decay (cos is even, so only Re q > 0 is fixed by the branch).
-    qh = std::conj(qh);
-    fit.alpha = -fit.alpha;
-  }
+  fit.k = k;
+  fit.alpha = alpha;
   const C i_unit(0.0, 1.0);
   const double z_end = static_cast<double>(n - 1) * h;
   Eigen::MatrixX2cd basis(static_cast<Eigen::Index>(n), 2);

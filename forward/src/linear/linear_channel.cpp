@@ -141,7 +141,8 @@ LinearResult LinearChannel::respond(const channel::DriveSettings& d) const {
     const std::span<const double> z(r.layer_z.data() + first, last - first);
     const double expected_k = d.omega_hat / LatticeModel().evaluate(d.omega_hat, d.gamma_hat).c_hat;
     r.fit = channel::fit_attenuation_and_wavenumber(z, probes, d.omega_hat, expected_k);
-    r.waves = channel::fit_two_waves(d.layer_thickness, std::span(r.layer_field.data() + first, last - first));
+    r.waves = channel::fit_two_waves(d.layer_thickness, std::span(r.layer_field.data() + first, last - first),
+                                     r.fit.k, r.fit.alpha);
     r.problem = channel::resolution_problem(r.fit, z.back() - z.front(), d.absorbing_fraction * units_.column_length());
   }
   const double changed = r.state_changes.fraction();

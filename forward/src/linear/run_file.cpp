@@ -45,7 +45,7 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
       number(member, "sigma_c_hat", r.fit.sigma_c, "d sqrt(kappa/m)");
       number(member, "two_wave_alpha_hat", r.waves.alpha, "Np per d");
       number(member, "two_wave_k_hat", r.waves.k, "rad per d");
-      number(member, "reflection", r.waves.reflection, "1 (at the absorbing layer's start)");
+      number(member, "reflection", r.waves.reflection, "1 (at the absorbing layer's start; indicative only: in a disordered channel with alpha L >> 1 scattering noise dominates it)");
       h5::write_attribute(member, "contacts", r.state_changes.contacts);
       h5::write_attribute(member, "contacts_opening", r.state_changes.opening);
       h5::write_attribute(member, "gaps", r.state_changes.gaps);
@@ -63,7 +63,7 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
     number(results, "sigma_alpha_hat", e.sigma_alpha_hat, "Np per d (standard error of the ensemble mean)");
     number(results, "c_hat", e.c_hat, "d sqrt(kappa/m)");
     number(results, "sigma_c_hat", e.sigma_c_hat, "d sqrt(kappa/m) (standard error of the ensemble mean)");
-    number(results, "reflection", e.reflection, "1 (largest over the members)");
+    number(results, "reflection", e.reflection, "1 (largest over the members; indicative only, see member_k)");
     h5::write_attribute(results, "members", static_cast<std::int32_t>(e.members.size()));
     number(results, "solve_seconds", e.solve_seconds, "s");
     h5::write_string_attribute(results, "problem", e.problem);

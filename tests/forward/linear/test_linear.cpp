@@ -18,6 +18,7 @@
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
+#include "sedwave/forward/linear/ordered_chain.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 
 namespace sedwave::forward::linear {
@@ -34,30 +35,7 @@ dem::ContactSpec hooke(double kn) {
 
 // ---- Ordered chain ----------------------------------------------------------------------------------
 
-/// n unit grains (mass 1) on the z axis, spacing s < 1 (pre-compressed), between two one-grain walls.
-channel::PreparedChannel chain(int n, double spacing) {
-  channel::PreparedChannel p;
-  p.box.lo = {-1.5, -1.5, -1.0};
-  p.box.hi = {1.5, 1.5, (n + 2) * spacing};
-  const double density = 6.0 / std::numbers::pi;  // unit mass for unit diameter
-  for (int i = 0; i <= n + 1; ++i) {
-    dem::Grain g;
-    g.id = i + 1;
-    g.radius = 0.5;
-    g.mass = 1.0;
-    g.position = {0.0, 0.0, i * spacing};
-    if (i == 0) {
-      g.group = channel::kLowerWallGroup;
-      g.body = channel::kLowerWallBody;
-    } else if (i == n + 1) {
-      g.group = channel::kUpperWallGroup;
-      g.body = channel::kUpperWallBody;
-    }
-    g.mass = density * std::numbers::pi / 6.0;
-    p.grains.push_back(g);
-  }
-  return p;
-}
+channel::PreparedChannel chain(int n, double spacing) { return ordered_chain(n, spacing); }
 
 channel::DriveSettings frozen_end_drive(double omega_hat, double gamma_hat) {
   channel::DriveSettings d;
@@ -99,6 +77,22 @@ TEST_P(OrderedChain, MatchesTheExactLatticeSolution) {
   EXPECT_NEAR(waves.k * spacing, exact.k.real(), 1e-10);
   EXPECT_NEAR(waves.alpha * spacing, exact.k.imag(), 1e-10);
   EXPECT_NEAR(waves.reflection / std::exp(-2.0 * exact.k.imag()), 1.0, 1e-5);
+}
+
+TEST(OrderedChainSponge, AbsorbingLayerOfTwoWavelengthsReflectsUnderOnePercent) {
+  // Undamped chain: every bit of the backward wave comes from the absorbing layer, and the field
+  // before it is exactly two lattice waves, so the two-wave fit measures the layer's reflection.
+  const int n = 400;
+  const LinearChannel engine(chain(n, 0.999), hooke(1.0));
+  channel::DriveSettings d = frozen_end_drive(0.5, 0.0);
+  d.absorbing_strength = 1.0;
+  d.absorbing_fraction = 0.25;  // 100 grains, about 8 wavelengths at omega_hat = 0.5
+  const Eigen::VectorXcd u = engine.displacement(d);
+  std::vector<Complex> field;
+  for (int i = 0; i < 250; ++i) field.push_back(u(3 * i + 2));
+  const channel::TwoWaveFit waves = channel::fit_two_waves(0.999, field);
+  EXPECT_LT(waves.reflection, 0.01);
+  EXPECT_NEAR(waves.k * 0.999, lattice_wavenumber(0.5, 0.0).k.real(), 1e-9);
 }
 
 INSTANTIATE_TEST_SUITE_P(Frequencies, OrderedChain,

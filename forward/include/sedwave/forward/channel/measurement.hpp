@@ -117,6 +117,10 @@ struct TwoWaveFit {
 /// Fits the two waves to samples u[n] at z_0 + n h (n = 0..size-1, at least 4). Throws
 /// std::invalid_argument for fewer samples or a zero field.
 [[nodiscard]] TwoWaveFit fit_two_waves(double h, std::span<const std::complex<double>> u);
+/// The same with the wavenumber given (k and alpha, e.g. from fit_attenuation_and_wavenumber): only
+/// a and b are fitted. Far more robust for a noisy (disordered) field, where the three-term
+/// recurrence amplifies the noise.
+[[nodiscard]] TwoWaveFit fit_two_waves(double h, std::span<const std::complex<double>> u, double k, double alpha);
 
 // ---- Which part of each record is a clean steady state --------------------------------------------
 

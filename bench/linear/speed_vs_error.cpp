@@ -1,0 +1,234 @@
+// Speed versus error of the forward models at one (omega_hat, gamma_hat) point, measured in one run
+// (docs/performance.md, "Speed versus error"). Every row: model, size, wall time (median of
+// repeats), alpha_hat, c_hat (with standard errors where the model has them) and the relative error
+// of each against the reference row (the first linear-engine ensemble given with --reference).
+//
+//   bench_speed_vs_error [--omega-hat W] [--gamma-hat G] [--dem N_PERIODS...] PACKING.h5 ...
+//
+// Packings are files written by `sedwave forward --packing-out` (same scene units, Hooke kn given
+// by --kn). Each packing is one linear-engine member; packings with the same grain count form an
+// ensemble. --tile K also times the solve on a channel made of K copies of the first packing stacked
+// along z (the contacts across the joins are not in equilibrium: a cost measurement only).
+// --dem runs the time-domain engine on the first packing for each run length given.
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/channel/acoustic.hpp"
+#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/linear/ensemble.hpp"
+#include "sedwave/forward/linear/ordered_chain.hpp"
+#include "sedwave/forward/theory/continuum.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
+
+namespace {
+
+using namespace sedwave::forward;
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+template <class F>
+double median_seconds(int repeats, F&& f) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    t.push_back(seconds_since(start));
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+struct Row {
+  std::string model;
+  std::string size;
+  double seconds = 0.0;
+  double alpha = 0.0, sigma_alpha = 0.0, c = 0.0, sigma_c = 0.0;
+};
+
+channel::PreparedChannel tiled(const channel::PreparedChannel& p, int copies) {
+  double lo = 1e300, hi = -1e300;
+  for (const dem::Grain& g : p.grains) {
+    if (g.group == channel::kFlowGroup) {
+      lo = std::min(lo, g.position.z - g.radius);
+      hi = std::max(hi, g.position.z + g.radius);
+    }
+  }
+  const double height = hi - lo;
+  channel::PreparedChannel t;
+  t.box = p.box;
+  std::int64_t id = 1;
+  for (const dem::Grain& g : p.grains) {
+    for (int k = 0; k < copies; ++k) {
+      dem::Grain c = g;
+      const bool keep = g.group == channel::kFlowGroup || (g.group == channel::kLowerWallGroup && k == 0) ||
+                        (g.group == channel::kUpperWallGroup && k == copies - 1);
+      if (!keep) continue;
+      c.position.z += k * height;
+      c.id = id++;
+      t.grains.push_back(c);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  channel::DriveSettings drive;
+  drive.omega_hat = 0.5;
+  drive.gamma_hat = 0.1;
+  drive.far_end = channel::FarEnd::absorbing;
+  double kn = 726.0;
+  int tile = 0;
+  std::vector<double> dem_periods;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() { return std::atof(argv[++i]); };
+    if (a == "--omega-hat") drive.omega_hat = next();
+    else if (a == "--gamma-hat") drive.gamma_hat = next();
+    else if (a == "--kn") kn = next();
+    else if (a == "--tile") tile = static_cast<int>(next());
+    else if (a == "--dem") dem_periods.push_back(next());
+    else files.push_back(a);
+  }
+  dem::ContactSpec contact;
+  contact.kn = kn;
+  contact.restitution = 0.9;
+
+  std::vector<Row> rows;
+  // 1D theories: closed forms (median of 1e5 evaluations per repeat).
+  const ContinuumModel continuum;
+  const LatticeModel lattice;
+  for (const auto& [name, model] : std::vector<std::pair<std::string, const DispersionModel*>>{
+           {"1D continuum", &continuum}, {"1D lattice", &lattice}}) {
+    DispersionPoint p{};
+    const double t = median_seconds(5, [&] {
+      for (int r = 0; r < 100000; ++r) p = model->evaluate(drive.omega_hat * (1.0 + 1e-12 * r), drive.gamma_hat);
+    }) / 100000.0;
+    rows.push_back({name, "-", t, p.alpha_hat, 0.0, p.c_hat, 0.0});
+  }
+
+  // The linear engine: members grouped by grain count into ensembles.
+  std::map<std::size_t, std::vector<channel::PreparedChannel>> packings;
+  for (const std::string& f : files) {
+    channel::PreparedChannel p = channel::read_packing(f);
+    std::size_t flow = 0;
+    for (const dem::Grain& g : p.grains) flow += g.group == channel::kFlowGroup ? 1 : 0;
+    packings[flow].push_back(std::move(p));
+  }
+  for (const auto& [n, members_packings] : packings) {
+    std::vector<linear::LinearChannel> members;
+    const auto start = std::chrono::steady_clock::now();
+    for (const auto& p : members_packings) members.emplace_back(p, contact);
+    const double assembly = seconds_since(start);
+    linear::EnsembleResult e;
+    const double t = median_seconds(3, [&] { e = linear::respond(members, drive); });
+    std::printf("# linear N = %zu x %zu: assembly %.3f s, solve %.3f s per member; slabs %zu of <= %ld unknowns;"
+                " %s%s\n",
+                n, members.size(), assembly, t / static_cast<double>(members.size()), members[0].solver().slabs(),
+                static_cast<long>(members[0].solver().largest_slab()), e.problem.c_str(),
+                e.warning.c_str());
+    for (std::size_t k = 0; k < e.members.size(); ++k) {
+      rows.push_back({"3D linear (one packing)", std::to_string(n) + " #" + std::to_string(k),
+                      t / static_cast<double>(members.size()) + assembly / static_cast<double>(members.size()),
+                      e.members[k].fit.alpha, e.members[k].fit.sigma_alpha, e.members[k].fit.c, e.members[k].fit.sigma_c});
+    }
+    if (members.size() > 1) {
+      rows.push_back({"3D linear (ensemble)", std::to_string(n) + " x" + std::to_string(members.size()), t + assembly,
+                      e.alpha_hat, e.sigma_alpha_hat, e.c_hat, e.sigma_c_hat});
+    }
+  }
+  if (tile > 1 && !packings.empty()) {
+    for (int copies = 1; copies <= tile; copies *= 2) {
+      const channel::PreparedChannel big = tiled(packings.begin()->second.front(), copies);
+      const auto start = std::chrono::steady_clock::now();
+      const linear::LinearChannel engine(big, contact);
+      const double assembly = seconds_since(start);
+      const double t = median_seconds(3, [&] { (void)engine.displacement(drive); });
+      std::printf("# cost, tiled x%d: %zu grains, %zu slabs of <= %ld unknowns: assembly %.3f s, solve %.3f s\n", copies,
+                  big.grains.size(), engine.solver().slabs(), static_cast<long>(engine.solver().largest_slab()),
+                  assembly, t);
+    }
+  }
+
+  // The absorbing layer: its reflection measured exactly in an undamped ordered chain (the field
+  // before the layer is two lattice waves), against the layer's length in wavelengths; then the 3D
+  // results' dependence on the layer's settings.
+  {
+    const int n = 1000;
+    const linear::LinearChannel chain(linear::ordered_chain(n, 0.999), contact);
+    std::printf("# absorbing layer in an undamped ordered chain (strength 1): reflection vs length / wavelength\n");
+    for (const double w : {0.05, 0.2, 0.5, 1.0}) {
+      for (const double fraction : {0.02, 0.05, 0.1, 0.3}) {
+        channel::DriveSettings d = drive;
+        d.omega_hat = w;
+        d.gamma_hat = 0.0;
+        d.absorbing_fraction = fraction;
+        const Eigen::VectorXcd u = chain.displacement(d);
+        std::vector<std::complex<double>> field;
+        for (int i = 0; i < static_cast<int>((1.0 - fraction) * n) - 2; ++i) field.push_back(u(3 * i + 2));
+        const channel::TwoWaveFit waves = channel::fit_two_waves(0.999, field);
+        const double wavelength = 2.0 * std::numbers::pi / waves.k;
+        std::printf("#   omega_hat %-5g layer %6.1f d = %6.2f wavelengths: reflection %.2e\n", w, fraction * n,
+                    fraction * n / wavelength, waves.reflection);
+      }
+    }
+  }
+  for (const auto& [n, members_packings] : packings) {
+    std::vector<linear::LinearChannel> members;
+    for (const auto& p : members_packings) members.emplace_back(p, contact);
+    for (const auto& [fraction, strength] : std::vector<std::pair<double, double>>{{0.3, 1.0}, {0.2, 1.0}, {0.4, 1.0}, {0.3, 3.0}, {0.3, 0.3}}) {
+      channel::DriveSettings d = drive;
+      d.absorbing_fraction = fraction;
+      d.absorbing_strength = strength;
+      const linear::EnsembleResult e = linear::respond(members, d);
+      std::printf("# 3D N = %zu x %zu, absorbing fraction %.1f strength %.1f: alpha_hat %.5f +- %.5f  c_hat %.5f +- %.5f %s\n",
+                  n, members.size(), fraction, strength, e.alpha_hat, e.sigma_alpha_hat, e.c_hat, e.sigma_c_hat,
+                  e.problem.c_str());
+    }
+  }
+
+  // The time-domain engine on the first packing, for each run length.
+  for (const double periods : dem_periods) {
+    if (packings.empty()) break;
+    channel::DriveSettings d = drive;
+    d.periods = periods;
+    const auto& [n, ps] = *packings.begin();
+    const auto start = std::chrono::steady_clock::now();
+    const channel::AcousticResult r = channel::run_acoustic(MPI_COMM_WORLD, ps.front(), contact, d);
+    rows.push_back({"3D time-domain DEM", std::to_string(n) + ", " + std::to_string(static_cast<int>(periods)) + " periods",
+                    seconds_since(start), r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c});
+    if (!r.ok()) std::printf("# DEM %g periods: %s\n", periods, r.problem.c_str());
+  }
+
+  // Reference: the last ensemble row (largest grain count), else the last linear row.
+  const Row* reference = nullptr;
+  for (const Row& r : rows) {
+    if (r.model.rfind("3D linear", 0) == 0) reference = &r;
+  }
+  std::printf("omega_hat %.4g, gamma_hat %.4g; errors relative to: %s %s\n", drive.omega_hat, drive.gamma_hat,
+              reference ? reference->model.c_str() : "-", reference ? reference->size.c_str() : "-");
+  std::printf("%-26s %-20s %12s %11s %9s %9s %9s %9s %9s\n", "model", "size", "seconds", "alpha_hat", "+-", "c_hat",
+              "+-", "err_alpha", "err_c");
+  for (const Row& r : rows) {
+    const double ea = reference ? std::abs(r.alpha / reference->alpha - 1.0) : 0.0;
+    const double ec = reference ? std::abs(r.c / reference->c - 1.0) : 0.0;
+    std::printf("%-26s %-20s %12.4g %11.5g %9.2g %9.5g %9.2g %9.2g %9.2g\n", r.model.c_str(), r.size.c_str(), r.seconds,
+                r.alpha, r.sigma_alpha, r.c, r.sigma_c, ea, ec);
+  }
+  MPI_Finalize();
+  return 0;
+}
