@@ -18,7 +18,8 @@ void add_block(Triplets& t, Eigen::Index row, Eigen::Index col, const Eigen::Mat
 
 }  // namespace
 
-DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network, int n_bodies) {
+DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network, int n_bodies,
+                         const PairLinearisation* pairs) {
   DynamicMatrices m;
   for (std::size_t g = 0; g < grains.size(); ++g) {
     if (grains[g].body == dem::kFreeBody) m.grain_of_node.push_back(static_cast<std::int32_t>(g));
@@ -42,25 +43,34 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
 
   Triplets k, c;
   std::vector<Triplets> kb(static_cast<std::size_t>(n_bodies)), cb(static_cast<std::size_t>(n_bodies));
-  for (const StaticPair& p : network.contacts) {
+  const std::size_t n_pairs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
+  if (pairs && (pairs->stiffness.size() != n_pairs || pairs->dashpot.size() != n_pairs)) {
+    throw std::invalid_argument("linear engine: one equivalent stiffness and dashpot per contact and gap needed");
+  }
+  for (std::size_t q = 0; q < n_pairs; ++q) {
+    const bool contact = q < network.contacts.size();
+    const StaticPair& p = contact ? network.contacts[q] : network.gaps[q - network.contacts.size()];
     const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-    const Eigen::Matrix3d nn = n * n.transpose();
-    const Eigen::Matrix3d stiffness = p.stiffness * nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - nn);
+    const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
+    const Eigen::Matrix3d dashpot = (pairs ? pairs->dashpot[q] : 1.0) * n * n.transpose();
+    const Eigen::Matrix3d unit_nn = n * n.transpose();
+    const Eigen::Matrix3d stiffness =
+        normal_stiffness * unit_nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - unit_nn);
     const std::int32_t ni = m.node_of_grain[static_cast<std::size_t>(p.i)];
     const std::int32_t nj = m.node_of_grain[static_cast<std::size_t>(p.j)];
     for (const auto& [node, other] : {std::pair{ni, nj}, std::pair{nj, ni}}) {
       if (node < 0) continue;
       const Eigen::Index row = 3 * static_cast<Eigen::Index>(node);
       add_block(k, row, row, stiffness, 1.0);
-      add_block(c, row, row, nn, 1.0);
+      add_block(c, row, row, dashpot, 1.0);
       if (other >= 0) {
         add_block(k, row, 3 * static_cast<Eigen::Index>(other), stiffness, -1.0);
-        add_block(c, row, 3 * static_cast<Eigen::Index>(other), nn, -1.0);
+        add_block(c, row, 3 * static_cast<Eigen::Index>(other), dashpot, -1.0);
       } else {
         const std::int32_t other_grain = node == ni ? p.j : p.i;
         const auto body = static_cast<std::size_t>(grains[static_cast<std::size_t>(other_grain)].body - 1);
         add_block(kb[body], row, 0, stiffness, -1.0);
-        add_block(cb[body], row, 0, nn, -1.0);
+        add_block(cb[body], row, 0, dashpot, -1.0);
       }
     }
   }

@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "sedwave/forward/channel/geometry.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/linear/equivalent_linearisation.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "sedwave/forward/linear/ordered_chain.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
@@ -257,6 +259,45 @@ TEST_F(Packing, ContactsOpenInProportionToTheAmplitude) {
   }
   EXPECT_EQ(engine.state_changes(u, d, 1e-14).opening, 0);
   EXPECT_GT(engine.state_changes(u, d, 1e-1).opening, 0);
+}
+
+TEST(EquivalentContact, HookeMatchesTheDescribingFunction) {
+  const auto hooke_force = [](double delta) { return 3.0 * delta; };
+  auto closed_form = [](double overlap, double a) {
+    const double theta = std::acos(std::clamp(-overlap / a, -1.0, 1.0));
+    return 3.0 * (theta - std::sin(theta) * std::cos(theta)) / std::numbers::pi;
+  };
+  EXPECT_NEAR(equivalent_contact(hooke_force, 1.0, 0.5, 3.0).stiffness, 3.0, 1e-12);  // never opens
+  EXPECT_NEAR(equivalent_contact(hooke_force, 1.0, 2.0, 3.0).stiffness, closed_form(1.0, 2.0), 1e-10);  // claps
+  EXPECT_NEAR(equivalent_contact(hooke_force, -1.0, 2.0, 3.0).stiffness, closed_form(-1.0, 2.0), 1e-10);  // gap closes
+  EXPECT_NEAR(equivalent_contact(hooke_force, 1.0, 2.0, 3.0).dashpot, closed_form(1.0, 2.0) / 3.0, 1e-14);
+  EXPECT_EQ(equivalent_contact(hooke_force, -1.0, 0.5, 3.0).stiffness, 0.0);  // gap stays open
+}
+
+TEST(EquivalentContact, HertzTendsToTheTangentStiffness) {
+  const auto hertz_force = [](double delta) { return std::pow(delta, 1.5); };
+  const double tangent = 1.5 * std::sqrt(0.01);
+  EXPECT_NEAR(equivalent_contact(hertz_force, 0.01, 1e-5, tangent).stiffness / tangent, 1.0, 1e-6);
+  // Clapping softens it, but far less abruptly than Hooke's: at a = 2 delta0 it keeps most of it.
+  EXPECT_LT(equivalent_contact(hertz_force, 0.01, 0.02, tangent).stiffness, 1.5 * tangent);
+}
+
+TEST_F(Packing, EquivalentLinearisationEqualsPlainWhereNothingClaps) {
+  const LinearChannel engine(*packing_, hooke(kKn));
+  channel::DriveSettings d;
+  d.far_end = channel::FarEnd::absorbing;
+  d.omega_hat = 1.2;
+  d.amplitude = 1e-9;
+  const LinearResult plain = engine.respond(d), equivalent = engine.respond_equivalent(d);
+  ASSERT_EQ(plain.state_changes.opening + plain.state_changes.closing, 0);
+  EXPECT_NEAR(equivalent.fit.alpha, plain.fit.alpha, 1e-9);
+  EXPECT_NEAR(equivalent.fit.c, plain.fit.c, 1e-9);
+  // At a large amplitude contacts clap and the equivalent field is softer and more damped.
+  d.amplitude = 3e-3;
+  const LinearResult clapping = engine.respond_equivalent(d);
+  EXPECT_GT(clapping.state_changes.opening, 0);
+  EXPECT_GT(clapping.iterations, 1);
+  EXPECT_LT(clapping.fit.c, plain.fit.c);
 }
 
 TEST(LinearEngine, RefusesAFrozenFarEnd) {

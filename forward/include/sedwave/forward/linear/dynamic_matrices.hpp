@@ -37,9 +37,18 @@ struct DynamicMatrices {
   [[nodiscard]] Eigen::Index unknowns() const { return mass.size(); }
 };
 
+/// Equivalent linear properties per pair, replacing the tangent ones (equivalent_linearisation.hpp):
+/// for every contact and then every gap, in network order, a normal stiffness [force/length] and a
+/// factor on the unit dashpot.
+struct PairLinearisation {
+  std::vector<double> stiffness;
+  std::vector<double> dashpot;
+};
+
 /// Assembles K, C1, M and the body couplings of `grains` over `network`. `n_bodies` is the number of
-/// rigid bodies (Grain::body runs over 1..n_bodies for their grains).
+/// rigid bodies (Grain::body runs over 1..n_bodies for their grains). Without `pairs`, contacts get
+/// their tangent stiffness and a unit dashpot, gaps nothing; with it, each pair gets its own.
 [[nodiscard]] DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network,
-                                       int n_bodies);
+                                       int n_bodies, const PairLinearisation* pairs = nullptr);
 
 }  // namespace sedwave::forward::linear

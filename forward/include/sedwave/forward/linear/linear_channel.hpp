@@ -52,6 +52,7 @@ struct LinearResult {
   StateChanges state_changes;                     ///< at the drive amplitude
   std::string warning;                            ///< set when the linearisation is doubtful
   double solve_seconds = 0.0;
+  int iterations = 0;                             ///< equivalent linearisation: iterations (0: plain)
   std::string problem;                            ///< empty when alpha and c were measured
   [[nodiscard]] bool ok() const { return problem.empty(); }
 };
@@ -65,6 +66,13 @@ class LinearChannel {
   /// The steady response to `drive` (its omega_hat, gamma_hat, amplitude, axis, far end, layers).
   /// The far end must be absorbing: in a steady state a frozen end reflects everything.
   [[nodiscard]] LinearResult respond(const channel::DriveSettings& drive) const;
+
+  /// The same with every contact and gap replaced by its equivalent linearisation at the drive
+  /// amplitude (equivalent_linearisation.hpp), iterated (under-relaxed) until the field changes by
+  /// less than `tolerance` (relative) between iterations. Closes much of the gap to the time-domain
+  /// engine where contacts clap; identical to respond() where none does.
+  [[nodiscard]] LinearResult respond_equivalent(const channel::DriveSettings& drive, int max_iterations = 40,
+                                                double tolerance = 1e-6) const;
 
   /// Complex displacement amplitudes of the free grains (3 per node, DynamicMatrices order) per unit
   /// wall amplitude.
@@ -82,8 +90,14 @@ class LinearChannel {
 
  private:
   [[nodiscard]] Eigen::VectorXd sponge(const channel::DriveSettings& drive, double omega) const;
+  [[nodiscard]] Eigen::VectorXcd solve(const DynamicMatrices& m, const SlabSolver& s, const channel::DriveSettings& d) const;
+  /// `refuse`: a result with too many state changes is refused (plain linearisation) or only warned
+  /// about (equivalent linearisation, which accounts for them).
+  [[nodiscard]] LinearResult measure(const Eigen::VectorXcd& u, const channel::DriveSettings& d, bool refuse) const;
+  [[nodiscard]] PairLinearisation equivalent_pairs(const Eigen::VectorXcd& u, const channel::DriveSettings& d) const;
 
   std::vector<dem::Grain> grains_;
+  dem::AnyContactModel model_;
   LinearSettings settings_;
   channel::PackingUnits units_;
   ContactNetwork network_;

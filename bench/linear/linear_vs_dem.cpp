@@ -1,0 +1,92 @@
+// The linear engine against the time-domain DEM on the same packings and drive: per packing and
+// frequency, alpha_hat and c_hat from the steady-state solve and from a lock-in of a driven DEM run;
+// then the ensemble means with their standard errors and the difference in units of the combined
+// uncertainty (docs/linear.md, "Against the time-domain engine").
+//
+//   bench_linear_vs_dem [--gamma-hat G] [--amplitude A] [--kn KN] --omega-hat W [--omega-hat W...] PACKING.h5 ...
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/channel/acoustic.hpp"
+#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/linear/linear_channel.hpp"
+
+namespace {
+
+struct Stats {
+  double mean = 0.0, se = 0.0;
+};
+
+Stats mean_and_se(const std::vector<double>& x) {
+  Stats s;
+  const auto n = static_cast<double>(x.size());
+  for (const double v : x) s.mean += v / n;
+  if (x.size() < 2) return s;
+  double var = 0.0;
+  for (const double v : x) var += (v - s.mean) * (v - s.mean) / (n - 1.0);
+  s.se = std::sqrt(var / n);
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace sedwave::forward;
+  MPI_Init(&argc, &argv);
+  channel::DriveSettings drive;
+  drive.gamma_hat = 0.1;
+  drive.far_end = channel::FarEnd::absorbing;
+  double kn = 726.0;
+  std::vector<double> omegas;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() { return std::atof(argv[++i]); };
+    if (a == "--omega-hat") omegas.push_back(next());
+    else if (a == "--gamma-hat") drive.gamma_hat = next();
+    else if (a == "--amplitude") drive.amplitude = next();
+    else if (a == "--kn") kn = next();
+    else files.push_back(a);
+  }
+  dem::ContactSpec contact;
+  contact.kn = kn;
+  contact.restitution = 0.9;
+  std::vector<channel::PreparedChannel> packings;
+  for (const std::string& f : files) packings.push_back(channel::read_packing(f));
+
+  std::printf("gamma_hat %g, amplitude %g d, %zu packings\n", drive.gamma_hat, drive.amplitude, packings.size());
+  std::printf("%-9s %-7s %10s %9s %10s %9s %10s %9s %10s %9s %8s %8s\n", "omega_hat", "packing", "lin_alpha", "+-",
+              "dem_alpha", "+-", "lin_c", "+-", "dem_c", "+-", "lin_s", "dem_s");
+  for (const double w : omegas) {
+    channel::DriveSettings d = drive;
+    d.omega_hat = w;
+    std::vector<double> la, lc, da, dc;
+    for (std::size_t k = 0; k < packings.size(); ++k) {
+      const linear::LinearResult lin = linear::LinearChannel(packings[k], contact).respond(d);
+      const channel::AcousticResult dem = channel::run_acoustic(MPI_COMM_WORLD, packings[k], contact, d);
+      std::printf("%-9g %-7zu %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %8.3f %8.1f %s%s\n", w, k, lin.fit.alpha,
+                  lin.fit.sigma_alpha, dem.fit.alpha, dem.fit.sigma_alpha, lin.fit.c, lin.fit.sigma_c, dem.fit.c,
+                  dem.fit.sigma_c, lin.solve_seconds, dem.wall_seconds, lin.problem.c_str(), dem.problem.c_str());
+      std::fflush(stdout);
+      if (!lin.ok() || !dem.ok()) continue;
+      la.push_back(lin.fit.alpha);
+      lc.push_back(lin.fit.c);
+      da.push_back(dem.fit.alpha);
+      dc.push_back(dem.fit.c);
+    }
+    const Stats a1 = mean_and_se(la), a2 = mean_and_se(da), c1 = mean_and_se(lc), c2 = mean_and_se(dc);
+    std::printf("%-9g mean    %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f   alpha: %.2f sigma apart, c: %.2f "
+                "sigma apart (%zu packings)\n",
+                w, a1.mean, a1.se, a2.mean, a2.se, c1.mean, c1.se, c2.mean, c2.se,
+                std::abs(a1.mean - a2.mean) / std::hypot(a1.se, a2.se), std::abs(c1.mean - c2.mean) / std::hypot(c1.se, c2.se),
+                la.size());
+    std::fflush(stdout);
+  }
+  MPI_Finalize();
+  return 0;
+}
