@@ -60,22 +60,29 @@ int main(int argc, char** argv) {
   for (const std::string& f : files) packings.push_back(channel::read_packing(f));
 
   std::printf("gamma_hat %g, amplitude %g d, %zu packings\n", drive.gamma_hat, drive.amplitude, packings.size());
-  std::printf("%-9s %-7s %10s %9s %10s %9s %10s %9s %10s %9s %8s %8s\n", "omega_hat", "packing", "lin_alpha", "+-",
-              "dem_alpha", "+-", "lin_c", "+-", "dem_c", "+-", "lin_s", "dem_s");
+  std::printf("%-9s %-7s %10s %9s %10s %9s %10s %9s %10s %9s %8s %8s   %s\n", "omega_hat", "packing", "lin_alpha", "+-",
+              "dem_alpha", "+-", "lin_c", "+-", "dem_c", "+-", "lin_s", "dem_s",
+              "[equivalent linearisation: alpha, c, iterations; contacts opening / gaps closing]");
   for (const double w : omegas) {
     channel::DriveSettings d = drive;
     d.omega_hat = w;
-    std::vector<double> la, lc, da, dc;
+    std::vector<double> la, lc, da, dc, ea, ec;
     for (std::size_t k = 0; k < packings.size(); ++k) {
       const linear::LinearResult lin = linear::LinearChannel(packings[k], contact).respond(d);
+      const linear::LinearResult eq = linear::LinearChannel(packings[k], contact).respond_equivalent(d);
       const channel::AcousticResult dem = channel::run_acoustic(MPI_COMM_WORLD, packings[k], contact, d);
-      std::printf("%-9g %-7zu %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %8.3f %8.1f %s%s\n", w, k, lin.fit.alpha,
-                  lin.fit.sigma_alpha, dem.fit.alpha, dem.fit.sigma_alpha, lin.fit.c, lin.fit.sigma_c, dem.fit.c,
-                  dem.fit.sigma_c, lin.solve_seconds, dem.wall_seconds, lin.problem.c_str(), dem.problem.c_str());
+      std::printf("%-9g %-7zu %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %8.3f %8.1f   [%.5f %.5f %d; %lld/%lld %lld/%lld] %s%s\n",
+                  w, k, lin.fit.alpha, lin.fit.sigma_alpha, dem.fit.alpha, dem.fit.sigma_alpha, lin.fit.c, lin.fit.sigma_c,
+                  dem.fit.c, dem.fit.sigma_c, lin.solve_seconds, dem.wall_seconds, eq.fit.alpha, eq.fit.c, eq.iterations,
+                  static_cast<long long>(lin.state_changes.opening), static_cast<long long>(lin.state_changes.contacts),
+                  static_cast<long long>(lin.state_changes.closing), static_cast<long long>(lin.state_changes.gaps),
+                  lin.problem.c_str(), dem.problem.c_str());
       std::fflush(stdout);
       if (!lin.ok() || !dem.ok()) continue;
       la.push_back(lin.fit.alpha);
       lc.push_back(lin.fit.c);
+      ea.push_back(eq.fit.alpha);
+      ec.push_back(eq.fit.c);
       da.push_back(dem.fit.alpha);
       dc.push_back(dem.fit.c);
     }
@@ -85,6 +92,10 @@ int main(int argc, char** argv) {
                 w, a1.mean, a1.se, a2.mean, a2.se, c1.mean, c1.se, c2.mean, c2.se,
                 std::abs(a1.mean - a2.mean) / std::hypot(a1.se, a2.se), std::abs(c1.mean - c2.mean) / std::hypot(c1.se, c2.se),
                 la.size());
+    const Stats e1 = mean_and_se(ea), e2 = mean_and_se(ec);
+    std::printf("%-9g equivalent linearisation: alpha %.5f +- %.5f (%.2f sigma from DEM), c %.5f +- %.5f (%.2f sigma from DEM)\n",
+                w, e1.mean, e1.se, std::abs(e1.mean - a2.mean) / std::hypot(e1.se, a2.se), e2.mean, e2.se,
+                std::abs(e2.mean - c2.mean) / std::hypot(e2.se, c2.se));
     std::fflush(stdout);
   }
   MPI_Finalize();
