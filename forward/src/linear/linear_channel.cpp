@@ -83,27 +83,29 @@ Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver
   return solver.solve(omega, gamma, sponge(d, omega), rhs);
 }
 
-StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
-                                          double amplitude) const {
+std::complex<double> LinearChannel::normal_motion(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                                  const StaticPair& p) const {
   const int axis = axis_index(d.axis);
-  const double scale = amplitude * units_.diameter;
   auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
     const std::int32_t node = matrices_.node_of_grain[static_cast<std::size_t>(grain)];
     if (node >= 0) return u.segment<3>(3 * static_cast<Eigen::Index>(node));
-    Eigen::Vector3cd wall = Eigen::Vector3cd::Zero();
+    Eigen::Vector3cd wall = Eigen::Vector3cd::Zero();  // unit motion of the driven wall, none of the far one
     if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) wall(axis) = 1.0;
     return wall;
   };
-  auto normal_motion = [&](const StaticPair& p) {
-    const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-    return scale * std::abs(n.cast<Complex>().dot(motion(p.i) - motion(p.j)));
-  };
+  const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+  return n.cast<Complex>().dot(motion(p.i) - motion(p.j));
+}
+
+StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                          double amplitude) const {
+  const double scale = amplitude * units_.diameter;
   StateChanges s;
   s.amplitude = amplitude;
   s.contacts = static_cast<std::int64_t>(network_.contacts.size());
   s.gaps = static_cast<std::int64_t>(network_.gaps.size());
-  for (const StaticPair& p : network_.contacts) s.opening += normal_motion(p) > p.overlap ? 1 : 0;
-  for (const StaticPair& p : network_.gaps) s.closing += normal_motion(p) > -p.overlap ? 1 : 0;
+  for (const StaticPair& p : network_.contacts) s.opening += scale * std::abs(normal_motion(u, d, p)) > p.overlap ? 1 : 0;
+  for (const StaticPair& p : network_.gaps) s.closing += scale * std::abs(normal_motion(u, d, p)) > -p.overlap ? 1 : 0;
   return s;
 }
 
@@ -115,25 +117,15 @@ LinearResult LinearChannel::respond(const channel::DriveSettings& d) const {
 }
 
 PairLinearisation LinearChannel::equivalent_pairs(const Eigen::VectorXcd& u, const channel::DriveSettings& d) const {
-  const int axis = axis_index(d.axis);
   const double scale = d.amplitude * units_.diameter;
-  auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
-    const std::int32_t node = matrices_.node_of_grain[static_cast<std::size_t>(grain)];
-    if (node >= 0) return u.segment<3>(3 * static_cast<Eigen::Index>(node));
-    Eigen::Vector3cd wall = Eigen::Vector3cd::Zero();
-    if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) wall(axis) = 1.0;
-    return wall;
-  };
   PairLinearisation pairs;
   auto add = [&](const StaticPair& p) {
-    const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-    const double a = scale * std::abs(n.cast<Complex>().dot(motion(p.i) - motion(p.j)));
     const double r_i = grains_[static_cast<std::size_t>(p.i)].radius, r_j = grains_[static_cast<std::size_t>(p.j)].radius;
     const auto force = [&](double delta) {
       return std::visit(
           [&](const auto& m) { return m.normal.force(dem::ContactPoint{p.normal, delta, 0.0, 1.0, r_i, r_j}); }, model_);
     };
-    const EquivalentContact e = equivalent_contact(force, p.overlap, a, p.stiffness);
+    const EquivalentContact e = equivalent_contact(force, p.overlap, scale * std::abs(normal_motion(u, d, p)), p.stiffness);
     pairs.stiffness.push_back(e.stiffness);
     pairs.dashpot.push_back(e.dashpot);
   };

@@ -94,6 +94,9 @@ class LinearChannel {
   /// `refuse`: a result with too many state changes is refused (plain linearisation) or only warned
   /// about (equivalent linearisation, which accounts for them).
   [[nodiscard]] LinearResult measure(const Eigen::VectorXcd& u, const channel::DriveSettings& d, bool refuse) const;
+  /// n . (U_i - U_j) of a pair per unit wall amplitude (walls: the driven one moves by e_axis).
+  [[nodiscard]] std::complex<double> normal_motion(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                                   const StaticPair& p) const;
   [[nodiscard]] PairLinearisation equivalent_pairs(const Eigen::VectorXcd& u, const channel::DriveSettings& d) const;
 
   std::vector<dem::Grain> grains_;
