@@ -171,6 +171,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   const auto steps_per_sample =
       static_cast<std::int64_t>(std::max(1.0, std::floor(period / (d.samples_per_period * dt))));
   r.sample_dt = static_cast<double>(steps_per_sample) * dt;
+  r.time_step = dt;
   const auto total_steps = static_cast<std::int64_t>(std::ceil(run_time / dt));
 
   auto record = [&](const dem::Engine& e) {

@@ -52,6 +52,7 @@ struct AcousticResult {
   std::vector<double> layer_z;           ///< layer centres, from the driven wall's surface
   std::vector<int> layer_grains;
   double sample_dt = 0.0;
+  double time_step = 0.0;                ///< of the integration [sqrt(m/kappa)]; sample_dt is a multiple
   std::vector<std::vector<double>> displacement;  ///< [layer][sample], along the drive axis
   // Measurement.
   double wave_speed_estimate = 0.0;      ///< from first-peak arrival times (sets the windows)

@@ -74,6 +74,14 @@ class LinearChannel {
   [[nodiscard]] LinearResult respond_equivalent(const channel::DriveSettings& drive, int max_iterations = 40,
                                                 double tolerance = 1e-6) const;
 
+  /// The linearised equations integrated in time exactly as the time-domain engine integrates the
+  /// full ones (velocity Verlet, the wall's sinusoid A sin(omega t), the absorbing layer's drag
+  /// applied exactly after each step), recording each layer's mean displacement along the drive axis
+  /// [d] every `steps_per_sample` steps from t = 0 (as AcousticResult::displacement). With the DEM
+  /// run's time step, the difference between the two records is the nonlinearity alone.
+  [[nodiscard]] std::vector<std::vector<double>> integrate(const channel::DriveSettings& drive, double time_step,
+                                                           std::int64_t steps, std::int64_t steps_per_sample) const;
+
   /// Complex displacement amplitudes of the free grains (3 per node, DynamicMatrices order) per unit
   /// wall amplitude.
   [[nodiscard]] Eigen::VectorXcd displacement(const channel::DriveSettings& drive) const;
