@@ -128,15 +128,12 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   if (!(d.omega_hat > 0.0) || !(d.gamma_hat >= 0.0) || !(d.amplitude > 0.0)) {
     throw std::invalid_argument("acoustic run: omega_hat and amplitude must be positive, gamma_hat non-negative");
   }
-  if (contact.normal != dem::NormalLawKind::hooke) {
-    throw std::invalid_argument("acoustic run: only Hooke contacts are supported so far (kappa = kn)");
-  }
   const PackingUnits u = packing_units(comm, packing, contact);
   const double t0 = u.time();
   const double omega = d.omega_hat / t0;
   contact.restitution.reset();
   contact.lammps_gamma_n.reset();
-  contact.gamma = d.gamma_hat * std::sqrt(u.kappa * u.mass);
+  contact.gamma = d.gamma_hat * u.damping_scale;  // Hooke: gamma; Hertz: the Tsuji alpha
 
   const int axis = d.axis == DriveAxis::longitudinal ? 2 : 0;
   dem::EngineSettings settings;

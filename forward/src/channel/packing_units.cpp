@@ -3,6 +3,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
@@ -29,9 +30,26 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   PackingUnits u;
   u.diameter = s[1] / s[0];
   u.mass = grain_mass(s[2] / s[0], u.diameter);
-  u.kappa = contact.normal == dem::NormalLawKind::hooke ? contact.kn : 1.0;
+  u.kappa = contact.kn;
+  double dashpot = 1.0;  // mean dashpot per unit coefficient
+  if (contact.normal != dem::NormalLawKind::hooke) {
+    double network[2] = {0.0, 0.0};  // mean stiffness, mean dashpot (from the rank holding the grains)
+    int holds = packing.grains.empty() ? 0 : 1;
+    MPI_Allreduce(MPI_IN_PLACE, &holds, 1, MPI_INT, MPI_SUM, comm);
+    if (holds != 1) throw std::invalid_argument("packing units of Hertz contacts: the grains must be on one rank");
+    if (!packing.grains.empty()) {
+      const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
+      network[0] = n.mean_stiffness;
+      network[1] = n.mean_dashpot;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, network, 2, MPI_DOUBLE, MPI_SUM, comm);
+    if (!(network[0] > 0.0)) throw std::invalid_argument("packing units: the packing has no contacts");
+    u.kappa = network[0];
+    dashpot = network[1];
+  }
   u.wall_surface = s[3] / s[4];
   u.column_top = s[5] / s[6];
+  u.damping_scale = std::sqrt(u.kappa * u.mass) / dashpot;
   return u;
 }
 

@@ -52,7 +52,7 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     const StaticPair& p = contact ? network.contacts[q] : network.gaps[q - network.contacts.size()];
     const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
     const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
-    const Eigen::Matrix3d dashpot = (pairs ? pairs->dashpot[q] : 1.0) * n * n.transpose();
+    const Eigen::Matrix3d dashpot = p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * n * n.transpose();
     const Eigen::Matrix3d unit_nn = n * n.transpose();
     const Eigen::Matrix3d stiffness =
         normal_stiffness * unit_nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - unit_nn);

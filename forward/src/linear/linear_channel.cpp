@@ -42,12 +42,10 @@ LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem:
       model_(dem::make_contact_model(contact)),
       settings_(settings),
       units_(channel::packing_units(MPI_COMM_SELF, packing, contact)),
-      network_(find_contacts(grains_, packing.box, model_,
+      network_(channel::find_contacts(grains_, packing.box, contact,
                              settings.gap_search * units_.diameter)),
       matrices_(assemble(grains_, network_, 2)),
       solver_(matrices_, node_heights(grains_, matrices_)) {
-  // Hertz has no single stiffness: kappa is the mean tangent stiffness of the static contacts.
-  if (contact.normal != dem::NormalLawKind::hooke) units_.kappa = network_.mean_stiffness;
 }
 
 Eigen::VectorXd LinearChannel::sponge(const channel::DriveSettings& d, double omega) const {
@@ -74,7 +72,7 @@ Eigen::VectorXcd LinearChannel::displacement(const channel::DriveSettings& d) co
 Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver& solver,
                                       const channel::DriveSettings& d) const {
   const double omega = d.omega_hat / units_.time();
-  const double gamma = d.gamma_hat * std::sqrt(units_.kappa * units_.mass);
+  const double gamma = d.gamma_hat * units_.damping_scale;
   const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
   const int axis = axis_index(d.axis);
   // Unit wall displacement along the axis: force on the free grains -(K_b + i omega gamma C1_b) e_axis.
@@ -232,7 +230,7 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   const double dt = time_step * t0;
   const double omega = d.omega_hat / t0;
   const double amplitude = d.amplitude * units_.diameter;
-  const double gamma = d.gamma_hat * std::sqrt(units_.kappa * units_.mass);
+  const double gamma = d.gamma_hat * units_.damping_scale;
   const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
   const int axis = axis_index(d.axis);
   const Eigen::SparseMatrix<double> c = gamma * matrices_.dashpots;

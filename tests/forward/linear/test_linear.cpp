@@ -209,7 +209,7 @@ TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
   const Eigen::VectorXcd u = engine.displacement(d);
   const channel::PackingUnits& units = engine.units();
   const double omega = d.omega_hat / units.time();
-  const double gamma = d.gamma_hat * std::sqrt(units.kappa * units.mass);
+  const double gamma = d.gamma_hat * units.damping_scale;
   const DynamicMatrices& m = engine.matrices();
   auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
     const std::int32_t node = m.node_of_grain[static_cast<std::size_t>(grain)];
@@ -223,12 +223,12 @@ TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
     const Eigen::Matrix3d kb = p.stiffness * n * n.transpose() -
                                (p.force / p.distance) * (Eigen::Matrix3d::Identity() - n * n.transpose());
     const Eigen::Vector3cd rel = motion(p.i) - motion(p.j);
-    dissipated += 0.5 * omega * omega * gamma * std::norm(n.cast<Complex>().dot(rel));
+    dissipated += 0.5 * omega * omega * gamma * p.dashpot * std::norm(n.cast<Complex>().dot(rel));
     // Force of the driven wall on its partner, times the wall velocity i omega e_z, time-averaged.
     const bool i_wall = engine.grains()[static_cast<std::size_t>(p.i)].body == channel::kLowerWallBody;
     const bool j_wall = engine.grains()[static_cast<std::size_t>(p.j)].body == channel::kLowerWallBody;
     if (i_wall == j_wall) continue;
-    const Eigen::Vector3cd on_wall = -(kb.cast<Complex>() + Complex(0, omega * gamma) * (n * n.transpose()).cast<Complex>()) *
+    const Eigen::Vector3cd on_wall = -(kb.cast<Complex>() + Complex(0, omega * gamma * p.dashpot) * (n * n.transpose()).cast<Complex>()) *
                                      (i_wall ? rel : Eigen::Vector3cd(-rel));
     injected += 0.5 * std::real(std::conj(Complex(0.0, omega)) * -on_wall(2));
   }

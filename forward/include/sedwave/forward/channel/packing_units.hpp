@@ -15,7 +15,11 @@ namespace sedwave::forward::channel {
 struct PackingUnits {
   double diameter = 1.0;      ///< d: mean flow-grain diameter
   double mass = 1.0;          ///< m: mass of a grain of diameter d
-  double kappa = 1.0;         ///< contact stiffness (Hooke: kn)
+  double kappa = 1.0;         ///< contact stiffness (Hooke: kn; Hertz: mean tangent stiffness)
+  /// The contact law's damping coefficient per unit gamma_hat: Hooke sqrt(kappa m) (gamma = gamma_hat
+  /// sqrt(kappa m) on every contact); Hertz-Tsuji sqrt(kappa m) / (mean Tsuji factor), so the mean
+  /// contact's dashpot is gamma_hat sqrt(kappa m).
+  double damping_scale = 1.0;
   double wall_surface = 0.0;  ///< z of the driven (lower) wall's mean surface
   double column_top = 0.0;    ///< z of the far (upper) wall's mean surface
   [[nodiscard]] double time() const { return std::sqrt(mass / kappa); }
@@ -38,8 +42,8 @@ struct LayerGrid {
   }
 };
 
-/// Units of `packing` (its grains on any ranks; collective over comm). kappa is the Hooke kn; for
-/// Hertz contacts (no single stiffness) it is left at 1 for the caller to set. Throws
+/// Units of `packing` (its grains on any one rank; collective over comm). kappa is the Hooke kn, or
+/// for Hertz (no single stiffness) the mean tangent stiffness of the static contacts. Throws
 /// std::invalid_argument when the packing has no flow grains or lacks a wall.
 [[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact);
 

@@ -9,9 +9,9 @@
 //   k n n^T - (f / r) (I - n n^T):
 // the second term is the pre-stress (a compressed contact that rotates loses part of its force
 // along the original line); it is what makes a compressed packing's K differ from a spring network's.
-// The dashpot block is n n^T per unit dashpot coefficient: every contact carries the same dashpot
-// gamma (the thesis's model, as in the driven DEM runs), so C = gamma C1 and K, C1, M are assembled
-// once for any gamma and frequency.
+// The dashpot block is c n n^T, c the contact's dashpot per unit damping coefficient of its law
+// (StaticPair::dashpot: 1 for the thesis's constant Hooke dashpot), so C = coefficient x C1 and K,
+// C1, M are assembled once for any damping and frequency.
 //
 // Units: those of the packing (force/length for K, mass for M; C1 is dimensionless).
 #include <Eigen/Sparse>
@@ -20,9 +20,12 @@
 #include <vector>
 
 #include "sedwave/forward/dem/grains.hpp"
-#include "sedwave/forward/linear/contact_network.hpp"
+#include "sedwave/forward/channel/contact_network.hpp"
 
 namespace sedwave::forward::linear {
+
+using channel::ContactNetwork;
+using channel::StaticPair;
 
 struct DynamicMatrices {
   std::vector<std::int32_t> grain_of_node;   ///< free grains in ascending z (node n: unknowns 3n..3n+2)

@@ -21,7 +21,7 @@
 
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/packing_units.hpp"
-#include "sedwave/forward/linear/contact_network.hpp"
+#include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/linear/dynamic_matrices.hpp"
 #include "sedwave/forward/linear/settings.hpp"
 #include "sedwave/forward/linear/slab_solver.hpp"

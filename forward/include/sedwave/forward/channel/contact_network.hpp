@@ -1,10 +1,11 @@
 #pragma once
-// The static contact network of a prepared packing, contact by contact, with what the linear
-// engine needs of each: geometry, static force and tangent stiffness. Also the nearly touching
-// pairs (gaps), which a drive can close.
+// The static contact network of a prepared packing, contact by contact: geometry, static force,
+// tangent stiffness and dashpot, i.e. each contact linearised about the static state. Also the
+// nearly touching pairs (gaps), which a drive can close. The linear engine assembles its matrices
+// from it; the packing's units (kappa of Hertz contacts) come from it too.
 //
-// Serial: the linear engine solves one packing per rank (the task farm spreads frequencies and
-// packings over ranks). Periodic images follow the box as in the DEM engine: a pair touches through
+// Serial: call it on the rank that holds the grains (the linear engine solves one packing per rank;
+// the task farm spreads frequencies and packings over ranks). Periodic images follow the box as in the DEM engine: a pair touches through
 // every image within reach, each touching image being its own contact. Pairs of grains that are both
 // in rigid bodies (wall-wall) are left out: their relative motion is prescribed.
 //
@@ -18,7 +19,7 @@
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/grains.hpp"
 
-namespace sedwave::forward::linear {
+namespace sedwave::forward::channel {
 
 /// One touching pair, or one nearly touching pair (then force and stiffness are 0).
 struct StaticPair {
@@ -29,6 +30,9 @@ struct StaticPair {
   double overlap = 0.0;    ///< r_i + r_j - distance: > 0 for contacts, < 0 (minus the gap) for gaps
   double force = 0.0;      ///< static normal force (repulsive > 0)
   double stiffness = 0.0;  ///< tangent normal stiffness dF/d(overlap) at the static overlap
+  /// Normal dashpot at the static overlap per unit damping coefficient of the law (Hooke: 1 per
+  /// unit gamma; Hertz-Tsuji: sqrt(m_eff k_h sqrt(delta)) per unit alpha). Gaps: at zero overlap.
+  double dashpot = 0.0;
 };
 
 struct ContactNetwork {
@@ -36,12 +40,14 @@ struct ContactNetwork {
   std::vector<StaticPair> gaps;           ///< pairs closer than the gap search distance
   std::vector<int> contacts_per_grain;    ///< per packing grain
   double mean_stiffness = 0.0;       ///< mean tangent stiffness over contacts
+  double mean_dashpot = 0.0;         ///< mean dashpot per unit damping coefficient over contacts
 };
 
 /// Finds every contact, and every gap narrower than `gap_search` (same length unit), of `grains`
-/// in `box` (periodic in x, y; open in z) under `model`. Throws std::invalid_argument for a box
-/// periodic in z or narrower than twice the largest grain.
+/// in `box` (periodic in x, y; open in z) under the normal law of `contact` (its damping setting is
+/// ignored: dashpots are per unit coefficient). Throws std::invalid_argument for a box periodic in z
+/// or narrower than twice the largest grain.
 [[nodiscard]] ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
-                                           const dem::AnyContactModel& model, double gap_search = 0.0);
+                                           const dem::ContactSpec& contact, double gap_search = 0.0);
 
-}  // namespace sedwave::forward::linear
+}  // namespace sedwave::forward::channel

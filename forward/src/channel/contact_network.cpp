@@ -1,11 +1,11 @@
-#include "sedwave/forward/linear/contact_network.hpp"
+#include "sedwave/forward/channel/contact_network.hpp"
 
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
 #include <variant>
 
-namespace sedwave::forward::linear {
+namespace sedwave::forward::channel {
 namespace {
 
 double effective_mass(const dem::Grain& a, const dem::Grain& b) {
@@ -18,7 +18,13 @@ double effective_mass(const dem::Grain& a, const dem::Grain& b) {
 }  // namespace
 
 ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
-                             const dem::AnyContactModel& model, double gap_search) {
+                             const dem::ContactSpec& contact, double gap_search) {
+  // Unit damping coefficient: a constant dashpot of 1 (Hooke) or alpha = 1 (Hertz-Tsuji).
+  dem::ContactSpec unit = contact;
+  unit.restitution.reset();
+  unit.lammps_gamma_n.reset();
+  unit.gamma = 1.0;
+  const dem::AnyContactModel model = dem::make_contact_model(unit);
   if (box.periodic[2]) throw std::invalid_argument("linear engine: channels must be open along z");
   double max_radius = 0.0;
   for (const dem::Grain& g : grains) max_radius = std::max(max_radius, g.radius);
@@ -39,7 +45,7 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
 
   ContactNetwork net;
   net.contacts_per_grain.assign(grains.size(), 0);
-  double stiffness_sum = 0.0;
+  double stiffness_sum = 0.0, dashpot_sum = 0.0;
   for (std::size_t a = 0; a < order.size(); ++a) {
     const dem::Grain& gi = grains[static_cast<std::size_t>(order[a])];
     for (std::size_t b = a + 1; b < order.size(); ++b) {
@@ -53,29 +59,35 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
           const double distance = dem::norm(d);
           const double overlap = gi.radius + gj.radius - distance;
           if (overlap <= -gap_search) continue;
-          StaticPair p{order[a], order[b], (1.0 / distance) * d, distance, overlap, 0.0, 0.0};
-          if (overlap <= 0.0) {
-            net.gaps.push_back(p);
-            continue;
-          }
+          StaticPair p{order[a], order[b], (1.0 / distance) * d, distance, overlap, 0.0, 0.0, 0.0};
           const double m_eff = effective_mass(gi, gj);
           const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
           std::visit(
               [&](const auto& m) {
+                p.dashpot = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0)).damping;
+                if (overlap <= 0.0) return;
                 p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
                 p.stiffness = m.normal.oscillator(m_eff, r_eff, overlap).stiffness;
               },
               model);
+          if (overlap <= 0.0) {
+            net.gaps.push_back(p);
+            continue;
+          }
           net.contacts.push_back(p);
           ++net.contacts_per_grain[static_cast<std::size_t>(p.i)];
           ++net.contacts_per_grain[static_cast<std::size_t>(p.j)];
           stiffness_sum += p.stiffness;
+          dashpot_sum += p.dashpot;
         }
       }
     }
   }
-  if (!net.contacts.empty()) net.mean_stiffness = stiffness_sum / static_cast<double>(net.contacts.size());
+  if (!net.contacts.empty()) {
+    net.mean_stiffness = stiffness_sum / static_cast<double>(net.contacts.size());
+    net.mean_dashpot = dashpot_sum / static_cast<double>(net.contacts.size());
+  }
   return net;
 }
 
-}  // namespace sedwave::forward::linear
+}  // namespace sedwave::forward::channel
