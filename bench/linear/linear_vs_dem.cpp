@@ -3,7 +3,7 @@
 // then the ensemble means with their standard errors and the difference in units of the combined
 // uncertainty (docs/linear.md, "Against the time-domain engine").
 //
-//   bench_linear_vs_dem [--gamma-hat G] [--amplitude A] [--kn KN] --omega-hat W [--omega-hat W...] PACKING.h5 ...
+//   bench_linear_vs_dem [--gamma-hat G] [--amplitude A] [--periods P] [--kn KN | --hertz E] --omega-hat W [--omega-hat W...] PACKING.h5 ...
 #include <mpi.h>
 
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
+#include "sedwave/forward/units.hpp"
 
 namespace {
 
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
   drive.gamma_hat = 0.1;
   drive.far_end = channel::FarEnd::absorbing;
   double kn = 726.0;
+  double youngs_modulus = 0.0;  // > 0: Hertz contacts of this E (Poisson ratio 2/7, as the scenes)
   std::vector<double> omegas;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
@@ -50,12 +52,18 @@ int main(int argc, char** argv) {
     if (a == "--omega-hat") omegas.push_back(next());
     else if (a == "--gamma-hat") drive.gamma_hat = next();
     else if (a == "--amplitude") drive.amplitude = next();
+    else if (a == "--periods") drive.periods = next();  // DEM run length; default: until echoes could return
     else if (a == "--kn") kn = next();
+    else if (a == "--hertz") youngs_modulus = next();
     else files.push_back(a);
   }
   dem::ContactSpec contact;
   contact.kn = kn;
   contact.restitution = 0.9;
+  if (youngs_modulus > 0.0) {
+    contact.normal = dem::NormalLawKind::hertz;
+    contact.effective_modulus = hertz_effective_modulus(youngs_modulus, 2.0 / 7.0, youngs_modulus, 2.0 / 7.0);
+  }
   std::vector<channel::PreparedChannel> packings;
   for (const std::string& f : files) packings.push_back(channel::read_packing(f));
 

@@ -3,7 +3,7 @@
 // (docs/linear.md, "Trajectories"). The difference is the nonlinearity of the contact network
 // (geometry and contacts that open), so it should shrink in proportion to the amplitude.
 //
-//   bench_trajectory_vs_dem [--omega-hat W] [--gamma-hat G] [--periods P] [--kn KN] --amplitude A [...] PACKING.h5
+//   bench_trajectory_vs_dem [--omega-hat W] [--gamma-hat G] [--periods P] [--kn KN | --hertz E] --amplitude A [...] [--steady-check] PACKING.h5
 #include <mpi.h>
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
+#include "sedwave/forward/units.hpp"
 
 int main(int argc, char** argv) {
   using namespace sedwave::forward;
@@ -27,7 +28,9 @@ int main(int argc, char** argv) {
   drive.far_end = channel::FarEnd::absorbing;
   drive.periods = 20.0;
   double kn = 726.0;
+  double youngs_modulus = 0.0;  // > 0: Hertz contacts of this E (Poisson ratio 2/7, as the scenes)
   std::vector<double> amplitudes;
+  bool steady_check = false;  // also print late-time layer amplitudes against the steady-state solve
   std::string file;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -36,12 +39,18 @@ int main(int argc, char** argv) {
     else if (a == "--gamma-hat") drive.gamma_hat = next();
     else if (a == "--periods") drive.periods = next();
     else if (a == "--kn") kn = next();
+    else if (a == "--hertz") youngs_modulus = next();
     else if (a == "--amplitude") amplitudes.push_back(next());
+    else if (a == "--steady-check") steady_check = true;
     else file = a;
   }
   dem::ContactSpec contact;
   contact.kn = kn;
   contact.restitution = 0.9;
+  if (youngs_modulus > 0.0) {
+    contact.normal = dem::NormalLawKind::hertz;
+    contact.effective_modulus = hertz_effective_modulus(youngs_modulus, 2.0 / 7.0, youngs_modulus, 2.0 / 7.0);
+  }
   const channel::PreparedChannel packing = channel::read_packing(file);
   const linear::LinearChannel engine(packing, contact);
   std::printf("omega_hat %g, gamma_hat %g, %g periods; layer displacement / A, linear (integrated) vs DEM\n",
@@ -67,6 +76,19 @@ int main(int argc, char** argv) {
           near_peak = std::max(near_peak, std::abs(dem.displacement[k][s]));
           near_diff = std::max(near_diff, e);
         }
+      }
+    }
+    if (steady_check) {  // late-time amplitude per layer: integrated, solved, DEM
+      const linear::LinearResult steady = engine.respond(d);
+      const std::size_t per_period = static_cast<std::size_t>(std::llround(2.0 * 3.141592653589793 / d.omega_hat / dem.sample_dt));
+      for (std::size_t k = 2; k < 30 && k < lin.size(); k += 3) {
+        double lo = 1e300, hi = -1e300, dlo = 1e300, dhi = -1e300;
+        for (std::size_t s2 = lin[k].size() - 2 * per_period; s2 < lin[k].size(); ++s2) {
+          lo = std::min(lo, lin[k][s2]); hi = std::max(hi, lin[k][s2]);
+          dlo = std::min(dlo, dem.displacement[k][s2]); dhi = std::max(dhi, dem.displacement[k][s2]);
+        }
+        std::printf("#  layer %zu: integrated %.5g  solved %.5g  DEM %.5g\n", k, 0.5 * (hi - lo) / a,
+                    std::abs(steady.layer_field[k]), 0.5 * (dhi - dlo) / a);
       }
     }
     const linear::StateChanges changes = engine.state_changes(engine.displacement(d), d, a);
