@@ -63,6 +63,14 @@ int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& sc
                   static_cast<long long>(r.state_changes.opening), static_cast<long long>(r.state_changes.contacts),
                   r.solve_seconds);
     }
+    if (!e.members.empty()) {
+      std::printf("contacts opening / gaps closing per cycle (member 0) at A [d] =");
+      for (const auto& c : e.members.front().amplitude_ladder) {
+        std::printf("  %.0e: %lld/%lld", c.amplitude, static_cast<long long>(c.opening), static_cast<long long>(c.closing));
+      }
+      std::printf("  (of %lld contacts, %lld gaps)\n", static_cast<long long>(e.members.front().state_changes.contacts),
+                  static_cast<long long>(e.members.front().state_changes.gaps));
+    }
     if (e.ok()) {
       std::printf("alpha_hat %.6g +- %.2g   c_hat %.6g +- %.2g   (%.2f s of solving)\n", e.alpha_hat,
                   e.sigma_alpha_hat, e.c_hat, e.sigma_c_hat, e.solve_seconds);

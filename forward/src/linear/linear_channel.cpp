@@ -192,6 +192,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
   const auto first = static_cast<std::size_t>(std::max(0, d.skip_layers));
   const auto last = static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(grid.count));
   r.state_changes = state_changes(u, d, d.amplitude);
+  for (double a = 1e-7; a < 2e-2; a *= 10.0) r.amplitude_ladder.push_back(state_changes(u, d, a));
   if (last < first + 4) {
     r.problem = "channel too short: fewer than 4 layers between the near field and the absorbing layer";
   } else {

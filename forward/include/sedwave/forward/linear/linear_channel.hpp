@@ -50,6 +50,9 @@ struct LinearResult {
   channel::TwoWaveFit waves;                      ///< the same layers as forward + reflected wave
   int layers_used = 0;
   StateChanges state_changes;                     ///< at the drive amplitude
+  /// The same at A = 1e-7, 1e-6, ..., 1e-2 d (the response scales with A): where the linearisation
+  /// starts to fail for this packing and frequency.
+  std::vector<StateChanges> amplitude_ladder;
   std::string warning;                            ///< set when the linearisation is doubtful
   double solve_seconds = 0.0;
   int iterations = 0;                             ///< equivalent linearisation: iterations (0: plain)
