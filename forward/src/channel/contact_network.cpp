@@ -59,8 +59,9 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
           const double distance = dem::norm(d);
           const double overlap = gi.radius + gj.radius - distance;
           if (overlap <= -gap_search) continue;
-          StaticPair p{order[a], order[b], (1.0 / distance) * d, distance, overlap, 0.0, 0.0, 0.0};
           const double m_eff = effective_mass(gi, gj);
+          StaticPair p{order[a], order[b], (1.0 / distance) * d, distance, overlap, 0.0, 0.0, 0.0, m_eff,
+                       gi.radius - 0.5 * overlap, gj.radius - 0.5 * overlap};
           const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
           std::visit(
               [&](const auto& m) {

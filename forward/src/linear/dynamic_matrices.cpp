@@ -2,25 +2,75 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <numeric>
 #include <stdexcept>
 
 namespace sedwave::forward::linear {
 namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double>>;
+using Operator = Eigen::Matrix<double, 3, 6>;  // a grain's (translation, rotation) -> a relative motion
 
-void add_block(Triplets& t, Eigen::Index row, Eigen::Index col, const Eigen::Matrix3d& block, double sign) {
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) t.emplace_back(row + a, col + b, sign * block(a, b));
+void add_block(Triplets& t, Eigen::Index row, Eigen::Index col, const Eigen::MatrixXd& block) {
+  for (Eigen::Index a = 0; a < block.rows(); ++a) {
+    for (Eigen::Index b = 0; b < block.cols(); ++b) {
+      if (block(a, b) != 0.0) t.emplace_back(row + a, col + b, block(a, b));
+    }
   }
+}
+
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& n) {
+  Eigen::Matrix3d c;
+  c << 0.0, -n.z(), n.y(), n.z(), 0.0, -n.x(), -n.y(), n.x(), 0.0;
+  return c;
+}
+
+/// Where one pair's forces go: the free unknowns' matrices and each rigid body's couplings.
+struct Targets {
+  Triplets matrix;
+  std::vector<Triplets> body;
+};
+
+/// Adds the energy 1/2 r^T S r of a relative motion r = A_i x_i + A_j x_j (A: 3 x dofs of each
+/// grain, x = its unknowns, or for a rigid-body grain its body's translation) to the matrix.
+void add_pair(Targets& t, const Eigen::Matrix3d& s, const Operator& a_i, const Operator& a_j, std::int32_t node_i,
+              std::int32_t node_j, int body_i, int body_j, int dofs) {
+  const Eigen::MatrixXd ai = a_i.leftCols(dofs), aj = a_j.leftCols(dofs);
+  const std::pair<const Eigen::MatrixXd*, std::int32_t> ends[2] = {{&ai, node_i}, {&aj, node_j}};
+  const int bodies[2] = {body_i, body_j};
+  for (int r = 0; r < 2; ++r) {
+    if (ends[r].second < 0) continue;  // rows only for free grains
+    const Eigen::Index row = dofs * static_cast<Eigen::Index>(ends[r].second);
+    for (int c = 0; c < 2; ++c) {
+      if (ends[c].second >= 0) {
+        add_block(t.matrix, row, dofs * static_cast<Eigen::Index>(ends[c].second),
+                  ends[r].first->transpose() * s * *ends[c].first);
+      } else {
+        // A rigid body's grain moves with the body's translation (its first three columns).
+        add_block(t.body[static_cast<std::size_t>(bodies[c] - 1)], row, 0,
+                  ends[r].first->transpose() * s * ends[c].first->leftCols(3));
+      }
+    }
+  }
+}
+
+Eigen::SparseMatrix<double> from_triplets(const Triplets& t, Eigen::Index rows, Eigen::Index cols) {
+  Eigen::SparseMatrix<double> m(rows, cols);
+  m.setFromTriplets(t.begin(), t.end());
+  return m;
 }
 
 }  // namespace
 
 DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network, int n_bodies,
-                         const PairLinearisation* pairs) {
+                         const dem::ContactSpec& contact, const PairLinearisation* pairs) {
+  if (contact.rolling != dem::RollingLawKind::none || contact.tangential == dem::TangentialLawKind::coulomb_tanh) {
+    throw std::invalid_argument("linear engine: rolling resistance and the Coulomb-tanh law are not linearised; "
+                                "use the time-domain engine");
+  }
+  const bool friction = contact.tangential == dem::TangentialLawKind::spring_history;
   DynamicMatrices m;
+  m.dofs_per_node = friction ? 6 : 3;
+  const int dofs = m.dofs_per_node;
   for (std::size_t g = 0; g < grains.size(); ++g) {
     if (grains[g].body == dem::kFreeBody) m.grain_of_node.push_back(static_cast<std::int32_t>(g));
     else if (grains[g].body < 1 || grains[g].body > n_bodies) {
@@ -35,54 +85,51 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
   for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
     m.node_of_grain[static_cast<std::size_t>(m.grain_of_node[n])] = static_cast<std::int32_t>(n);
   }
-  const auto unknowns = static_cast<Eigen::Index>(3 * m.grain_of_node.size());
+  const auto unknowns = static_cast<Eigen::Index>(dofs * m.grain_of_node.size());
   m.mass.resize(unknowns);
   for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
-    m.mass.segment<3>(static_cast<Eigen::Index>(3 * n)).setConstant(grains[static_cast<std::size_t>(m.grain_of_node[n])].mass);
+    const dem::Grain& g = grains[static_cast<std::size_t>(m.grain_of_node[n])];
+    const auto row = static_cast<Eigen::Index>(dofs * n);
+    m.mass.segment<3>(row).setConstant(g.mass);
+    if (friction) m.mass.segment<3>(row + 3).setConstant(0.4 * g.mass * g.radius * g.radius);  // solid sphere
   }
 
-  Triplets k, c;
-  std::vector<Triplets> kb(static_cast<std::size_t>(n_bodies)), cb(static_cast<std::size_t>(n_bodies));
+  Targets k{{}, std::vector<Triplets>(static_cast<std::size_t>(n_bodies))}, c = k, ct = k;
   const std::size_t n_pairs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
   if (pairs && (pairs->stiffness.size() != n_pairs || pairs->dashpot.size() != n_pairs)) {
     throw std::invalid_argument("linear engine: one equivalent stiffness and dashpot per contact and gap needed");
   }
   for (std::size_t q = 0; q < n_pairs; ++q) {
-    const bool contact = q < network.contacts.size();
-    const StaticPair& p = contact ? network.contacts[q] : network.gaps[q - network.contacts.size()];
+    const bool touching = q < network.contacts.size();
+    const StaticPair& p = touching ? network.contacts[q] : network.gaps[q - network.contacts.size()];
     const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-    const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
-    const Eigen::Matrix3d dashpot = p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * n * n.transpose();
-    const Eigen::Matrix3d unit_nn = n * n.transpose();
-    const Eigen::Matrix3d stiffness =
-        normal_stiffness * unit_nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - unit_nn);
+    const Eigen::Matrix3d nn = n * n.transpose(), tangent_plane = Eigen::Matrix3d::Identity() - nn;
     const std::int32_t ni = m.node_of_grain[static_cast<std::size_t>(p.i)];
     const std::int32_t nj = m.node_of_grain[static_cast<std::size_t>(p.j)];
-    for (const auto& [node, other] : {std::pair{ni, nj}, std::pair{nj, ni}}) {
-      if (node < 0) continue;
-      const Eigen::Index row = 3 * static_cast<Eigen::Index>(node);
-      add_block(k, row, row, stiffness, 1.0);
-      add_block(c, row, row, dashpot, 1.0);
-      if (other >= 0) {
-        add_block(k, row, 3 * static_cast<Eigen::Index>(other), stiffness, -1.0);
-        add_block(c, row, 3 * static_cast<Eigen::Index>(other), dashpot, -1.0);
-      } else {
-        const std::int32_t other_grain = node == ni ? p.j : p.i;
-        const auto body = static_cast<std::size_t>(grains[static_cast<std::size_t>(other_grain)].body - 1);
-        add_block(kb[body], row, 0, stiffness, -1.0);
-        add_block(cb[body], row, 0, dashpot, -1.0);
-      }
-    }
+    const int bi = grains[static_cast<std::size_t>(p.i)].body, bj = grains[static_cast<std::size_t>(p.j)].body;
+    // Normal law on u_i - u_j: tangent stiffness plus pre-stress, and the normal dashpot.
+    Operator translation_i = Operator::Zero(), translation_j = Operator::Zero();
+    translation_i.leftCols<3>().setIdentity();
+    translation_j.leftCols<3>() = -Eigen::Matrix3d::Identity();
+    const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
+    add_pair(k, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, translation_i, translation_j, ni, nj,
+             bi, bj, dofs);
+    add_pair(c, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j, ni, nj, bi, bj, dofs);
+    if (!friction || !touching) continue;
+    // Sticking tangential spring and dashpot on the contact point's tangential displacement.
+    Operator tangential_i, tangential_j;
+    tangential_i << tangent_plane, p.arm_i * cross_matrix(n);
+    tangential_j << -tangent_plane, p.arm_j * cross_matrix(n);
+    add_pair(k, contact.kt * Eigen::Matrix3d::Identity(), tangential_i, tangential_j, ni, nj, bi, bj, dofs);
+    add_pair(ct, contact.gamma_t * p.effective_mass * Eigen::Matrix3d::Identity(), tangential_i, tangential_j, ni, nj,
+             bi, bj, dofs);
   }
-  m.stiffness.resize(unknowns, unknowns);
-  m.stiffness.setFromTriplets(k.begin(), k.end());
-  m.dashpots.resize(unknowns, unknowns);
-  m.dashpots.setFromTriplets(c.begin(), c.end());
-  for (std::size_t b = 0; b < kb.size(); ++b) {
-    m.body_stiffness.emplace_back(unknowns, 3);
-    m.body_stiffness.back().setFromTriplets(kb[b].begin(), kb[b].end());
-    m.body_dashpots.emplace_back(unknowns, 3);
-    m.body_dashpots.back().setFromTriplets(cb[b].begin(), cb[b].end());
+  m.stiffness = from_triplets(k.matrix, unknowns, unknowns);
+  m.dashpots = from_triplets(c.matrix, unknowns, unknowns);
+  m.fixed_dashpots = from_triplets(ct.matrix, unknowns, unknowns);
+  for (std::size_t b = 0; b < static_cast<std::size_t>(n_bodies); ++b) {
+    m.bodies.push_back({from_triplets(k.body[b], unknowns, 3), from_triplets(c.body[b], unknowns, 3),
+                        from_triplets(ct.body[b], unknowns, 3)});
   }
   return m;
 }

@@ -39,12 +39,13 @@ void check_drive(const channel::DriveSettings& d) {
 LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact,
                              LinearSettings settings)
     : grains_(packing.grains),
+      contact_(contact),
       model_(dem::make_contact_model(contact)),
       settings_(settings),
       units_(channel::packing_units(MPI_COMM_SELF, packing, contact)),
       network_(channel::find_contacts(grains_, packing.box, contact,
                              settings.gap_search * units_.diameter)),
-      matrices_(assemble(grains_, network_, 2)),
+      matrices_(assemble(grains_, network_, 2, contact)),
       solver_(matrices_, node_heights(grains_, matrices_)) {
 }
 
@@ -59,7 +60,7 @@ Eigen::VectorXd LinearChannel::sponge(const channel::DriveSettings& d, double om
     const double z = grains_[static_cast<std::size_t>(matrices_.grain_of_node[n])].position.z;
     if (z <= start) continue;
     const double s = (z - start) / (d.absorbing_fraction * length);
-    c.segment<3>(static_cast<Eigen::Index>(3 * n)).setConstant(c_max * s * s);
+    c.segment<3>(static_cast<Eigen::Index>(matrices_.dofs_per_node * n)).setConstant(c_max * s * s);  // translations
   }
   return c;
 }
@@ -76,8 +77,10 @@ Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver
   const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
   const int axis = axis_index(d.axis);
   // Unit wall displacement along the axis: force on the free grains -(K_b + i omega gamma C1_b) e_axis.
-  const Eigen::VectorXcd rhs = -(m.body_stiffness[wall].col(axis).cast<Complex>() +
-                                 Complex(0.0, omega * gamma) * m.body_dashpots[wall].col(axis).cast<Complex>());
+  const BodyCoupling& b = m.bodies[wall];
+  const Eigen::VectorXcd rhs =
+      -(b.stiffness.col(axis).cast<Complex>() + Complex(0.0, omega * gamma) * b.dashpots.col(axis).cast<Complex>() +
+        Complex(0.0, omega) * b.fixed_dashpots.col(axis).cast<Complex>());
   return solver.solve(omega, gamma, sponge(d, omega), rhs);
 }
 
@@ -86,7 +89,7 @@ std::complex<double> LinearChannel::normal_motion(const Eigen::VectorXcd& u, con
   const int axis = axis_index(d.axis);
   auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
     const std::int32_t node = matrices_.node_of_grain[static_cast<std::size_t>(grain)];
-    if (node >= 0) return u.segment<3>(3 * static_cast<Eigen::Index>(node));
+    if (node >= 0) return u.segment<3>(matrices_.dofs_per_node * static_cast<Eigen::Index>(node));
     Eigen::Vector3cd wall = Eigen::Vector3cd::Zero();  // unit motion of the driven wall, none of the far one
     if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) wall(axis) = 1.0;
     return wall;
@@ -150,7 +153,7 @@ LinearResult LinearChannel::respond_equivalent(const channel::DriveSettings& d, 
       }
     }
     pairs = std::move(next);
-    const DynamicMatrices m = assemble(grains_, network_, 2, &pairs);
+    const DynamicMatrices m = assemble(grains_, network_, 2, contact_, &pairs);
     const Eigen::VectorXcd updated = solve(m, SlabSolver(m, z), d);
     change = (updated - u).norm() / u.norm();
     u = updated;
@@ -180,7 +183,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
     const dem::Grain& g = grains_[static_cast<std::size_t>(matrices_.grain_of_node[n])];
     if (g.group != channel::kFlowGroup) continue;
     const auto layer = static_cast<std::size_t>(grid.index(g.position.z));
-    r.layer_field[layer] += u(static_cast<Eigen::Index>(3 * n) + axis);
+    r.layer_field[layer] += u(static_cast<Eigen::Index>(matrices_.dofs_per_node * n) + axis);
     ++r.layer_grains[layer];
   }
   for (int k = 0; k < grid.count; ++k) {
@@ -235,8 +238,10 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
   const int axis = axis_index(d.axis);
   const Eigen::SparseMatrix<double> c = gamma * matrices_.dashpots;
-  const Eigen::VectorXd wall_k = matrices_.body_stiffness[wall].col(axis);
-  const Eigen::VectorXd wall_c = gamma * matrices_.body_dashpots[wall].col(axis);
+  const Eigen::SparseMatrix<double> ct = matrices_.fixed_dashpots;
+  const BodyCoupling& body = matrices_.bodies[wall];
+  const Eigen::VectorXd wall_k = body.stiffness.col(axis);
+  const Eigen::VectorXd wall_c = gamma * body.dashpots.col(axis) + body.fixed_dashpots.col(axis);
   const Eigen::VectorXd inverse_mass = matrices_.mass.cwiseInverse();
   const Eigen::VectorXd drag = (-(sponge(d, omega).array() * inverse_mass.array()) * dt).exp();
 
@@ -255,7 +260,9 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   auto sample = [&]() {
     std::vector<double> sum(record.size(), 0.0);
     for (std::size_t n = 0; n < layer_of_node.size(); ++n) {
-      if (layer_of_node[n] >= 0) sum[static_cast<std::size_t>(layer_of_node[n])] += u(static_cast<Eigen::Index>(3 * n) + axis);
+      if (layer_of_node[n] >= 0) {
+        sum[static_cast<std::size_t>(layer_of_node[n])] += u(static_cast<Eigen::Index>(matrices_.dofs_per_node * n) + axis);
+      }
     }
     for (std::size_t k = 0; k < record.size(); ++k) {
       record[k].push_back(count[k] > 0 ? sum[k] / count[k] / units_.diameter : 0.0);
@@ -263,7 +270,7 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   };
   auto force = [&](double t) -> Eigen::VectorXd {
     const double w = amplitude * std::sin(omega * t), w_dot = amplitude * omega * std::cos(omega * t);
-    return -(matrices_.stiffness * u) - c * v - wall_k * w - wall_c * w_dot;
+    return -(matrices_.stiffness * u) - c * v - ct * v - wall_k * w - wall_c * w_dot;
   };
   // The engine's velocity Verlet: the dashpot sees the half-step velocity, as in the DEM force loop.
   sample();

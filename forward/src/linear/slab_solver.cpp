@@ -9,12 +9,12 @@ namespace sedwave::forward::linear {
 namespace {
 
 /// Largest z distance between two nodes coupled by the matrix.
-double longest_coupling(const Eigen::SparseMatrix<double>& a, std::span<const double> node_z) {
+double longest_coupling(const Eigen::SparseMatrix<double>& a, std::span<const double> node_z, int dofs) {
   double longest = 0.0;
   for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
-      longest = std::max(longest, std::abs(node_z[static_cast<std::size_t>(it.row() / 3)] -
-                                           node_z[static_cast<std::size_t>(col / 3)]));
+      longest = std::max(longest, std::abs(node_z[static_cast<std::size_t>(it.row() / dofs)] -
+                                           node_z[static_cast<std::size_t>(col / dofs)]));
     }
   }
   return longest;
@@ -24,10 +24,11 @@ double longest_coupling(const Eigen::SparseMatrix<double>& a, std::span<const do
 
 SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z) : mass_(m.mass) {
   const auto nodes = static_cast<Eigen::Index>(node_z.size());
-  if (3 * nodes != m.unknowns()) throw std::invalid_argument("slab solver: one z per node is needed");
+  const int dofs = m.dofs_per_node;
+  if (dofs * nodes != m.unknowns()) throw std::invalid_argument("slab solver: one z per node is needed");
   // Slabs of thickness h >= the longest coupling: neighbours in z are at most one slab apart.
   // Slab boundaries fall between nodes; empty slabs are dropped (nothing couples across them).
-  thickness_ = longest_coupling(m.stiffness, node_z) * (1.0 + 1e-9);
+  thickness_ = longest_coupling(m.stiffness, node_z, dofs) * (1.0 + 1e-9);
   std::vector<Eigen::Index> slab_of_node(node_z.size(), 0);
   Eigen::Index slab = -1;
   long previous_cell = 0;
@@ -36,7 +37,7 @@ SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z)
                                        : static_cast<long>(n);
     if (n == 0 || cell != previous_cell) {
       ++slab;
-      offset_.push_back(3 * static_cast<Eigen::Index>(n));
+      offset_.push_back(dofs * static_cast<Eigen::Index>(n));
     }
     previous_cell = cell;
     slab_of_node[n] = slab;
@@ -53,9 +54,9 @@ SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z)
   auto scatter = [&](const Eigen::SparseMatrix<double>& a, std::vector<Eigen::MatrixXd>& diagonal,
                      std::vector<Eigen::MatrixXd>& lower) {
     for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
-      const auto sc = static_cast<std::size_t>(slab_of_node[static_cast<std::size_t>(col / 3)]);
+      const auto sc = static_cast<std::size_t>(slab_of_node[static_cast<std::size_t>(col / dofs)]);
       for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) {
-        const auto sr = static_cast<std::size_t>(slab_of_node[static_cast<std::size_t>(it.row() / 3)]);
+        const auto sr = static_cast<std::size_t>(slab_of_node[static_cast<std::size_t>(it.row() / dofs)]);
         if (sr == sc) {
           diagonal[sr](it.row() - offset_[sr], col - offset_[sc]) += it.value();
         } else if (sr == sc + 1) {
@@ -68,6 +69,13 @@ SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z)
   };
   scatter(m.stiffness, k_diagonal_, k_lower_);
   scatter(m.dashpots, c_diagonal_, c_lower_);
+  if (m.fixed_dashpots.nonZeros() > 0) {
+    t_diagonal_ = c_diagonal_;
+    t_lower_ = c_lower_;
+    for (auto& b : t_diagonal_) b.setZero();
+    for (auto& b : t_lower_) b.setZero();
+    scatter(m.fixed_dashpots, t_diagonal_, t_lower_);
+  }
 }
 
 Eigen::Index SlabSolver::largest_slab() const {
@@ -81,12 +89,16 @@ Eigen::VectorXcd SlabSolver::solve(double omega, double gamma, const Eigen::Vect
   using Complex = std::complex<double>;
   const std::size_t slabs = k_diagonal_.size();
   const Complex i_omega(0.0, omega);
+  const bool tangential = !t_diagonal_.empty();
   auto lower = [&](std::size_t s) -> Eigen::MatrixXcd {
-    return k_lower_[s].cast<Complex>() + (i_omega * gamma) * c_lower_[s].cast<Complex>();
+    Eigen::MatrixXcd z = k_lower_[s].cast<Complex>() + (i_omega * gamma) * c_lower_[s].cast<Complex>();
+    if (tangential) z += i_omega * t_lower_[s].cast<Complex>();
+    return z;
   };
   auto diagonal = [&](std::size_t s) -> Eigen::MatrixXcd {
     const Eigen::Index o = offset_[s], n = offset_[s + 1] - offset_[s];
     Eigen::MatrixXcd z = k_diagonal_[s].cast<Complex>() + (i_omega * gamma) * c_diagonal_[s].cast<Complex>();
+    if (tangential) z += i_omega * t_diagonal_[s].cast<Complex>();
     z.diagonal() -= (omega * omega) * mass_.segment(o, n).cast<Complex>();
     if (extra_damping.size() > 0) z.diagonal() += i_omega * extra_damping.segment(o, n).cast<Complex>();
     return z;

@@ -33,6 +33,9 @@ struct StaticPair {
   /// Normal dashpot at the static overlap per unit damping coefficient of the law (Hooke: 1 per
   /// unit gamma; Hertz-Tsuji: sqrt(m_eff k_h sqrt(delta)) per unit alpha). Gaps: at zero overlap.
   double dashpot = 0.0;
+  double effective_mass = 0.0;  ///< 1 / (1/m_i + 1/m_j); a rigid-wall grain counts as infinitely heavy
+  double arm_i = 0.0;           ///< lever arms to the middle of the overlap, r - overlap / 2, as the DEM
+  double arm_j = 0.0;
 };
 
 struct ContactNetwork {

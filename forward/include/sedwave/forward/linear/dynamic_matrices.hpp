@@ -13,7 +13,15 @@
 // (StaticPair::dashpot: 1 for the thesis's constant Hooke dashpot), so C = coefficient x C1 and K,
 // C1, M are assembled once for any damping and frequency.
 //
-// Units: those of the packing (force/length for K, mass for M; C1 is dimensionless).
+// With friction (a sticking tangential spring kt and dashpot gamma_t per unit m_eff, as the DEM's
+// spring_history law) every grain also rotates: 6 unknowns per grain (translation, rotation). A
+// sticking contact's tangential displacement at the contact point is
+//   d_t = (I - n n^T)(u_i - u_j) + [n]x (arm_i theta_i + arm_j theta_j),
+// the spring acts on it (F_t = -kt d_t on i, torque arm_i (F_t x n)), and its dashpot gamma_t m_eff
+// goes to a second damping matrix that does not scale with gamma (C_t).
+//
+// Units: those of the packing (force/length for K, mass and moment of inertia for M; C1 is
+// dimensionless, C_t in force time/length).
 #include <Eigen/Sparse>
 #include <cstdint>
 #include <span>
@@ -27,15 +35,22 @@ namespace sedwave::forward::linear {
 using channel::ContactNetwork;
 using channel::StaticPair;
 
+/// Couplings of a rigid body's translation (3 columns) to the free unknowns.
+struct BodyCoupling {
+  Eigen::SparseMatrix<double> stiffness;
+  Eigen::SparseMatrix<double> dashpots;        ///< per unit damping coefficient (scales with gamma)
+  Eigen::SparseMatrix<double> fixed_dashpots;  ///< tangential dashpots (do not scale with gamma)
+};
+
 struct DynamicMatrices {
-  std::vector<std::int32_t> grain_of_node;   ///< free grains in ascending z (node n: unknowns 3n..3n+2)
+  int dofs_per_node = 3;                     ///< 3 (translation) or 6 (translation, rotation)
+  std::vector<std::int32_t> grain_of_node;   ///< free grains in ascending z (node n: unknowns dofs n ...)
   std::vector<std::int32_t> node_of_grain;   ///< per packing grain; -1 for grains of rigid bodies
   Eigen::SparseMatrix<double> stiffness;     ///< K, 3n x 3n, symmetric
-  Eigen::SparseMatrix<double> dashpots;      ///< C1, 3n x 3n, symmetric
-  Eigen::VectorXd mass;                      ///< diagonal of M, 3n
-  /// Per rigid body (index body - 1): coupling of its translation (3 columns) to the free unknowns.
-  std::vector<Eigen::SparseMatrix<double>> body_stiffness;
-  std::vector<Eigen::SparseMatrix<double>> body_dashpots;
+  Eigen::SparseMatrix<double> dashpots;      ///< C1, symmetric
+  Eigen::SparseMatrix<double> fixed_dashpots;  ///< C_t, symmetric (empty pattern without friction)
+  Eigen::VectorXd mass;                      ///< diagonal of M: masses, then moments of inertia 2/5 m r^2
+  std::vector<BodyCoupling> bodies;          ///< per rigid body (index body - 1)
 
   [[nodiscard]] Eigen::Index unknowns() const { return mass.size(); }
 };
@@ -48,10 +63,13 @@ struct PairLinearisation {
   std::vector<double> dashpot;
 };
 
-/// Assembles K, C1, M and the body couplings of `grains` over `network`. `n_bodies` is the number of
-/// rigid bodies (Grain::body runs over 1..n_bodies for their grains). Without `pairs`, contacts get
-/// their tangent stiffness and a unit dashpot, gaps nothing; with it, each pair gets its own.
+/// Assembles K, C1, C_t, M and the body couplings of `grains` over `network` for the laws of
+/// `contact` (tangential: none or spring_history; rolling resistance and the Coulomb-tanh law are not
+/// linearised: std::invalid_argument). `n_bodies` is the number of rigid bodies (Grain::body runs
+/// over 1..n_bodies for their grains). Without `pairs`, contacts get their tangent stiffness and a
+/// unit dashpot, gaps nothing; with it, each pair gets its own normal stiffness and dashpot factor.
 [[nodiscard]] DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network,
-                                       int n_bodies, const PairLinearisation* pairs = nullptr);
+                                       int n_bodies, const dem::ContactSpec& contact,
+                                       const PairLinearisation* pairs = nullptr);
 
 }  // namespace sedwave::forward::linear

@@ -111,6 +111,7 @@ class LinearChannel {
   [[nodiscard]] PairLinearisation equivalent_pairs(const Eigen::VectorXcd& u, const channel::DriveSettings& d) const;
 
   std::vector<dem::Grain> grains_;
+  dem::ContactSpec contact_;
   dem::AnyContactModel model_;
   LinearSettings settings_;
   channel::PackingUnits units_;

@@ -1,6 +1,6 @@
 #pragma once
 // Direct solver for the steady response of a long channel,
-//   (K + i omega (gamma C1 + D) - omega^2 M) U = F,
+//   (K + i omega (gamma C1 + C_t + D) - omega^2 M) U = F,
 // exploiting its quasi-1D structure. Unknowns are ordered by z and cut into slabs at least as thick
 // as the longest contact (in z), so every contact joins a slab only to itself or a neighbour: the
 // matrix is block tridiagonal, and block Gaussian elimination along z (the block Thomas algorithm)
@@ -39,6 +39,7 @@ class SlabSolver {
  private:
   std::vector<Eigen::Index> offset_;  ///< first unknown of each slab, plus the total at the end
   std::vector<Eigen::MatrixXd> k_diagonal_, k_lower_, c_diagonal_, c_lower_;  ///< lower[s]: rows s, cols s-1
+  std::vector<Eigen::MatrixXd> t_diagonal_, t_lower_;  ///< C_t blocks (empty without friction)
   Eigen::VectorXd mass_;
   double thickness_ = 0.0;
 };
