@@ -187,6 +187,30 @@ TEST_F(Packing, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
   EXPECT_LT(c_error, 1e-9);
 }
 
+/// Largest difference between two sets of layer records, and the largest value of the first.
+std::pair<double, double> record_difference(const std::vector<std::vector<double>>& a,
+                                            const std::vector<std::vector<double>>& b) {
+  double peak = 0.0, worst = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    for (std::size_t s = 0; s < a[k].size() && s < b[k].size(); ++s) {
+      peak = std::max(peak, std::abs(a[k][s]));
+      worst = std::max(worst, std::abs(a[k][s] - b[k][s]));
+    }
+  }
+  return {worst, peak};
+}
+
+/// A short driven run at a tiny amplitude, for comparing trajectories of the two engines.
+channel::DriveSettings tiny_drive() {
+  channel::DriveSettings d;
+  d.omega_hat = 0.8;
+  d.gamma_hat = 0.2;
+  d.amplitude = 1e-6;
+  d.periods = 4.0;
+  d.far_end = channel::FarEnd::absorbing;
+  return d;
+}
+
 class HertzPacking : public ::testing::Test {
  protected:
   static dem::ContactSpec hertz() {
@@ -225,41 +249,17 @@ TEST_F(HertzPacking, IntegratedLinearEquationsFollowTheDemAtTinyAmplitude) {
   // equations integrated with the same scheme and time step. At A = 1e-6 d the records differ by the
   // nonlinearity, O(A / overlap), and an absolute floor of ~1e-10 d (round-off and the prepared
   // packing's 1e-9 residual forces): a few 1e-4 of the peak. A wrong K, C or drive would be O(1).
-  channel::DriveSettings d;
-  d.omega_hat = 0.8;
-  d.gamma_hat = 0.2;
-  d.amplitude = 1e-6;
-  d.periods = 4.0;
-  d.far_end = channel::FarEnd::absorbing;
+  const channel::DriveSettings d = tiny_drive();
   const channel::AcousticResult dem = channel::run_acoustic(MPI_COMM_SELF, *packing_, hertz(), d);
   const LinearChannel engine(*packing_, hertz());
   EXPECT_NEAR(dem.kappa, engine.network().mean_stiffness, 1e-12 * dem.kappa);
   const auto per_sample = static_cast<std::int64_t>(std::llround(dem.sample_dt / dem.time_step));
   const auto lin = engine.integrate(d, dem.time_step, dem.steps, per_sample);
-  double peak = 0.0, worst = 0.0;
-  for (std::size_t k = 0; k < lin.size(); ++k) {
-    ASSERT_EQ(lin[k].size(), dem.displacement[k].size());
-    for (std::size_t s = 0; s < lin[k].size(); ++s) {
-      peak = std::max(peak, std::abs(dem.displacement[k][s]));
-      worst = std::max(worst, std::abs(lin[k][s] - dem.displacement[k][s]));
-    }
-  }
+  ASSERT_EQ(lin.size(), dem.displacement.size());
+  const auto [worst, peak] = record_difference(dem.displacement, lin);
   std::cout << "Hertz, A = 1e-6 d: largest difference / peak = " << worst / peak << "\n";
   EXPECT_GT(peak, 0.1 * d.amplitude);
   EXPECT_LT(worst, 2e-3 * peak);
-}
-
-/// Largest difference between two sets of layer records, and the largest value of the first.
-std::pair<double, double> record_difference(const std::vector<std::vector<double>>& a,
-                                            const std::vector<std::vector<double>>& b) {
-  double peak = 0.0, worst = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    for (std::size_t s = 0; s < a[k].size() && s < b[k].size(); ++s) {
-      peak = std::max(peak, std::abs(a[k][s]));
-      worst = std::max(worst, std::abs(a[k][s] - b[k][s]));
-    }
-  }
-  return {worst, peak};
 }
 
 TEST_F(Packing, FrictionalContactsRotateAndFollowTheDem) {
@@ -273,12 +273,7 @@ TEST_F(Packing, FrictionalContactsRotateAndFollowTheDem) {
   frictional.kt = 2.0 / 7.0 * kKn;
   frictional.gamma_t = 5.0;
   frictional.friction = 0.5;
-  channel::DriveSettings d;
-  d.omega_hat = 0.8;
-  d.gamma_hat = 0.2;
-  d.amplitude = 1e-6;
-  d.periods = 4.0;
-  d.far_end = channel::FarEnd::absorbing;
+  const channel::DriveSettings d = tiny_drive();
   const channel::AcousticResult dem = channel::run_acoustic(MPI_COMM_SELF, *packing_, frictional, d);
   const LinearChannel engine(*packing_, frictional);
   ASSERT_EQ(engine.matrices().dofs_per_node, 6);
