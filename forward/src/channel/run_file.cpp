@@ -9,10 +9,9 @@
 #include "sedwave/version.hpp"
 
 namespace sedwave::forward::channel {
+
 void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    h5::Handle file = h5::create_file(temporary.string());
+  write_atomically(path, [&](hid_t file) {
     h5::write_string_attribute(file, "sedwave_version", kVersion);
     h5::write_string_attribute(file, "scene", scene_text);
     h5::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
@@ -41,8 +40,7 @@ void write_packing(const std::filesystem::path& path, const PreparedChannel& p, 
     h5::write(box, "periodic", periodic, 3);
     h5::Handle stats = h5::create_group(file, "preparation");
     write_stats(stats, p.report);
-  }
-  std::filesystem::rename(temporary, path);
+  });
   std::vector<dem::Grain> typed = p.grains;
   for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
   std::filesystem::path data = path;
@@ -88,14 +86,8 @@ PreparedChannel read_packing(const std::filesystem::path& path) {
 
 void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
                     const AcousticResult& r) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    h5::Handle file = h5::create_file(temporary.string());
-    h5::write_string_attribute(file, "sedwave_version", kVersion);
-    h5::write_string_attribute(file, "scene", scene.text);
-    h5::write_string_attribute(file, "units",
-                               "dimensionless: lengths in mean grain diameters d, times in sqrt(m/kappa) with m the "
-                               "mass of a grain of diameter d and kappa the contact stiffness");
+  write_atomically(path, [&](hid_t file) {
+    write_run_header(file, scene.text);
     h5::Handle packing = h5::create_group(file, "packing");
     write_stats(packing, preparation);
 
@@ -114,12 +106,9 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     number(results, "omega_hat", r.omega_hat, "1");
     number(results, "gamma_hat", r.gamma_hat, "1");
     number(results, "amplitude", r.amplitude, "d");
-    number(results, "alpha_hat", r.fit.alpha, "Np per d");
-    number(results, "sigma_alpha_hat", r.fit.sigma_alpha, "Np per d");
+    write_fit(results, r.fit);
     number(results, "k_hat", r.fit.k, "rad per d");
     number(results, "sigma_k_hat", r.fit.sigma_k, "rad per d");
-    number(results, "c_hat", r.fit.c, "d sqrt(kappa/m)");
-    number(results, "sigma_c_hat", r.fit.sigma_c, "d sqrt(kappa/m)");
     number(results, "first_peak_alpha_hat", r.first_peak.alpha, "Np per d");
     number(results, "first_peak_c_hat", r.first_peak.speed, "d sqrt(kappa/m)");
     number(results, "wave_speed_estimate", r.wave_speed_estimate, "d sqrt(kappa/m)");
@@ -132,8 +121,7 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     h5::write_attribute(results, "steps", r.steps);
     number(results, "wall_seconds", r.wall_seconds, "s");
     h5::write_string_attribute(results, "problem", r.problem);
-  }
-  std::filesystem::rename(temporary, path);
+  });
 }
 
 }  // namespace sedwave::forward::channel

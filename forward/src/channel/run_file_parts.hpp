@@ -1,16 +1,49 @@
 #pragma once
-// Pieces shared by the run files of both engines (private to forward/): a number with its unit, and
-// the packing statistics of a preparation report.
+// Pieces shared by the packing and run files of both engines (private to forward/): atomic
+// writing, the run files' root attributes, a number with its unit, a propagation fit, and the
+// packing statistics of a preparation report.
+#include <filesystem>
 #include <string>
 
 #include "../io/hdf5.hpp"
+#include "sedwave/forward/channel/measurement.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
+#include "sedwave/version.hpp"
 
 namespace sedwave::forward::channel {
+
+/// Writes an HDF5 file atomically: `fill(file)` writes a temporary file, which then replaces `path`,
+/// so a reader never sees a half-written file.
+template <class Fill>
+void write_atomically(const std::filesystem::path& path, Fill&& fill) {
+  const std::filesystem::path temporary = path.string() + ".tmp";
+  {
+    h5::Handle file = h5::create_file(temporary.string());
+    fill(static_cast<hid_t>(file));
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+/// Root attributes of a run file (either engine): code version, scene text, units.
+inline void write_run_header(hid_t file, const std::string& scene_text) {
+  h5::write_string_attribute(file, "sedwave_version", kVersion);
+  h5::write_string_attribute(file, "scene", scene_text);
+  h5::write_string_attribute(file, "units",
+                             "dimensionless: lengths in mean grain diameters d, times in sqrt(m/kappa) with m the "
+                             "mass of a grain of diameter d and kappa the contact stiffness");
+}
 
 inline void number(hid_t parent, const std::string& name, double value, const std::string& unit) {
   h5::write_attribute(parent, name, value);
   h5::write_string_attribute(parent, name + "_unit", unit);
+}
+
+/// alpha_hat, c_hat and their standard errors from a steady-state fit over layers.
+inline void write_fit(hid_t group, const PropagationFit& fit) {
+  number(group, "alpha_hat", fit.alpha, "Np per d");
+  number(group, "sigma_alpha_hat", fit.sigma_alpha, "Np per d");
+  number(group, "c_hat", fit.c, "d sqrt(kappa/m)");
+  number(group, "sigma_c_hat", fit.sigma_c, "d sqrt(kappa/m)");
 }
 
 inline void write_stats(hid_t parent, const PreparationReport& r) {

@@ -2,7 +2,6 @@
 
 #include "../channel/run_file_parts.hpp"
 #include "../io/hdf5.hpp"
-#include "sedwave/version.hpp"
 
 namespace sedwave::forward::linear {
 
@@ -10,15 +9,9 @@ using channel::number;
 
 void write_linear_run_file(const std::filesystem::path& path, const channel::ChannelScene& scene,
                            const std::vector<channel::PreparationReport>& preparations, const EnsembleResult& e) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    h5::Handle file = h5::create_file(temporary.string());
-    h5::write_string_attribute(file, "sedwave_version", kVersion);
+  channel::write_atomically(path, [&](hid_t file) {
+    channel::write_run_header(file, scene.text);
     h5::write_string_attribute(file, "engine", "linear");
-    h5::write_string_attribute(file, "scene", scene.text);
-    h5::write_string_attribute(file, "units",
-                               "dimensionless: lengths in mean grain diameters d, times in sqrt(m/kappa) with m the "
-                               "mass of a grain of diameter d and kappa the contact stiffness");
     for (std::size_t k = 0; k < e.members.size(); ++k) {
       const LinearResult& r = e.members[k];
       h5::Handle member = h5::create_group(file, "member_" + std::to_string(k));
@@ -39,10 +32,7 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
       h5::write(member, "layer_field_imag", im.data(), im.size());
       h5::write_string_attribute(member, "layer_field_unit",
                                  "wall amplitude A; mean displacement along the drive axis is Re(U exp(i omega t))");
-      number(member, "alpha_hat", r.fit.alpha, "Np per d");
-      number(member, "sigma_alpha_hat", r.fit.sigma_alpha, "Np per d");
-      number(member, "c_hat", r.fit.c, "d sqrt(kappa/m)");
-      number(member, "sigma_c_hat", r.fit.sigma_c, "d sqrt(kappa/m)");
+      channel::write_fit(member, r.fit);
       number(member, "two_wave_alpha_hat", r.waves.alpha, "Np per d");
       number(member, "two_wave_k_hat", r.waves.k, "rad per d");
       number(member, "reflection", r.waves.reflection, "1 (at the absorbing layer's start; indicative only: in a disordered channel with alpha L >> 1 scattering noise dominates it)");
@@ -79,8 +69,7 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
     number(results, "solve_seconds", e.solve_seconds, "s");
     h5::write_string_attribute(results, "problem", e.problem);
     h5::write_string_attribute(results, "warning", e.warning);
-  }
-  std::filesystem::rename(temporary, path);
+  });
 }
 
 }  // namespace sedwave::forward::linear
