@@ -71,11 +71,3 @@ TEST(Preparation, ReachesMechanicalEquilibriumAtThePrescribedPressure) {
 
 }  // namespace
 }  // namespace sedwave::forward::channel
-
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int result = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return result;
-}

@@ -414,11 +414,3 @@ TEST(LinearEngine, RefusesAFrozenFarEnd) {
 
 }  // namespace
 }  // namespace sedwave::forward::linear
-
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int result = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return result;
-}
