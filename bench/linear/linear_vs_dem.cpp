@@ -15,7 +15,7 @@
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
-#include "sedwave/forward/units.hpp"
+#include "bench_contact.hpp"
 
 namespace {
 
@@ -57,13 +57,7 @@ int main(int argc, char** argv) {
     else if (a == "--hertz") youngs_modulus = next();
     else files.push_back(a);
   }
-  dem::ContactSpec contact;
-  contact.kn = kn;
-  contact.restitution = 0.9;
-  if (youngs_modulus > 0.0) {
-    contact.normal = dem::NormalLawKind::hertz;
-    contact.effective_modulus = hertz_effective_modulus(youngs_modulus, 2.0 / 7.0, youngs_modulus, 2.0 / 7.0);
-  }
+  const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, youngs_modulus);
   std::vector<channel::PreparedChannel> packings;
   for (const std::string& f : files) packings.push_back(channel::read_packing(f));
 

@@ -28,6 +28,7 @@
 #include "sedwave/forward/linear/ordered_chain.hpp"
 #include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
+#include "bench_contact.hpp"
 
 namespace {
 
@@ -104,9 +105,7 @@ int main(int argc, char** argv) {
     else if (a == "--dem") dem_periods.push_back(next());
     else files.push_back(a);
   }
-  dem::ContactSpec contact;
-  contact.kn = kn;
-  contact.restitution = 0.9;
+  const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, 0.0);
 
   std::vector<Row> rows;
   // 1D theories: closed forms (median of 1e5 evaluations per repeat).

@@ -17,7 +17,7 @@
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
-#include "sedwave/forward/units.hpp"
+#include "bench_contact.hpp"
 
 int main(int argc, char** argv) {
   using namespace sedwave::forward;
@@ -44,13 +44,7 @@ int main(int argc, char** argv) {
     else if (a == "--steady-check") steady_check = true;
     else file = a;
   }
-  dem::ContactSpec contact;
-  contact.kn = kn;
-  contact.restitution = 0.9;
-  if (youngs_modulus > 0.0) {
-    contact.normal = dem::NormalLawKind::hertz;
-    contact.effective_modulus = hertz_effective_modulus(youngs_modulus, 2.0 / 7.0, youngs_modulus, 2.0 / 7.0);
-  }
+  const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, youngs_modulus);
   const channel::PreparedChannel packing = channel::read_packing(file);
   const linear::LinearChannel engine(packing, contact);
   std::printf("omega_hat %g, gamma_hat %g, %g periods; layer displacement / A, linear (integrated) vs DEM\n",
