@@ -65,10 +65,11 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
           const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
           std::visit(
               [&](const auto& m) {
-                p.dashpot = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0)).damping;
+                const dem::ContactOscillator linearised = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0));
+                p.dashpot = linearised.damping;
                 if (overlap <= 0.0) return;
                 p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
-                p.stiffness = m.normal.oscillator(m_eff, r_eff, overlap).stiffness;
+                p.stiffness = linearised.stiffness;
               },
               model);
           if (overlap <= 0.0) {
