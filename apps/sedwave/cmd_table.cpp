@@ -83,7 +83,8 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const chan
 Command add_table_command(CLI::App& app) {
   auto o = std::make_shared<TableOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "table", "Fill a dispersion table (alpha_hat, c_hat on an omega_hat x gamma_hat grid) with the DEM channel; "
+      "table", "Fill a dispersion table (alpha_hat, c_hat on an omega_hat x gamma_hat grid) with the DEM channel "
+               "or the linear-response engine (--engine); "
                "run under mpirun to share the points among ranks; rerun the same command to resume");
   cmd->add_option("grid", o->grid_file, "grid file (TOML): scene, omega_hat and gamma_hat axes (docs/tables.md)")
       ->required();
