@@ -70,6 +70,7 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
                 if (overlap <= 0.0) return;
                 p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
                 p.stiffness = linearised.stiffness;
+                p.energy = m.normal.energy(overlap, gi.radius, gj.radius);
               },
               model);
           if (overlap <= 0.0) {

@@ -11,6 +11,7 @@
 
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
+#include "sedwave/forward/linear/static_equilibrium.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -57,6 +58,10 @@ std::int64_t compress(dem::Engine& e, const PreparationSettings& p, double targe
   throw std::runtime_error("preparation: the grains never carried the pressure within max_compression_steps");
 }
 
+double residual_ratio(const PackingStats& s) {
+  return s.mean_contact_force > 0.0 ? s.max_residual_force / s.mean_contact_force : INFINITY;
+}
+
 /// FIRE on the free grains; velocities are steered after every velocity-Verlet step.
 class Fire {
  public:
@@ -73,7 +78,7 @@ class Fire {
       engine_.run(chunk);
       steps += chunk;
       const PackingStats s = packing_stats(engine_, mean_diameter, width);
-      ratio = s.mean_contact_force > 0.0 ? s.max_residual_force / s.mean_contact_force : INFINITY;
+      ratio = residual_ratio(s);
       if (ratio < tolerance) break;
       if (s.contacts == 0 && steps >= 10 * chunk) break;  // nothing to relax: the wall must move
     }
@@ -146,6 +151,79 @@ void log_line(const PreparationSettings& p, MPI_Comm comm, const std::string& li
   if (p.log && rank_of(comm) == 0) *p.log << "prepare: " << line << std::endl;
 }
 
+/// FIRE at a frozen wall to `residual_tolerance`, then secant corrections of the wall height until it
+/// carries the target within the pressure tolerance, FIRE again after each.
+void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p, double residual_tolerance,
+                                double target, dem::Engine& relaxer, PreparationReport& report) {
+  Fire fire(relaxer);
+  double shift = 0.0, previous_shift = 0.0, previous_force = 0.0;
+  for (int iteration = 0;; ++iteration) {
+    report.relaxation_steps += fire.relax(residual_tolerance, p.max_relaxation_steps, scene.mean_diameter,
+                                          scene.width, report.residual_ratio);
+    report.wall_force = relaxer.bodies()[1].contact_force().z;
+    const double error = report.wall_force / target - 1.0;
+    log_line(p, scene.comm, "wall force / P W^2 = " + std::to_string(1.0 + error) + ", residual ratio " +
+                                std::to_string(report.residual_ratio));
+    if (std::abs(error) < p.pressure_tolerance || iteration >= p.max_wall_corrections) break;
+    // The wall force falls as the wall rises: secant slope once two points exist, else a column of
+    // W^2 parallel chains of contact springs (stiffness ~ mean force / mean overlap) of its height.
+    double slope = 0.0;
+    if (iteration > 0 && shift != previous_shift) {
+      slope = -(report.wall_force - previous_force) / (shift - previous_shift);
+    }
+    if (!(slope > 0.0)) {
+      const PackingStats s = packing_stats(relaxer, scene.mean_diameter, scene.width);
+      slope = s.mean_contact_force / (s.mean_overlap * scene.mean_diameter) * scene.width * scene.width /
+              std::max(1.0, s.column_height / scene.mean_diameter);
+    }
+    const double step = (report.wall_force - target) / slope;
+    if (!std::isfinite(step)) {
+      throw std::runtime_error("preparation: cannot correct the wall height (wall force " +
+                               std::to_string(report.wall_force) + ", target " + std::to_string(target) + ")");
+    }
+    previous_shift = shift;
+    previous_force = report.wall_force;
+    shift += step;
+    relaxer.set_positions(shifted_upper_wall(relaxer, step));
+    ++report.wall_corrections;
+  }
+}
+
+/// Newton relaxation of the gathered packing on rank 0 (linear/static_equilibrium.hpp); the other
+/// ranks learn whether it converged, so that all of them throw together if it did not.
+void newton_relaxation(const Scene& scene, const PreparationSettings& p, double target,
+                       std::vector<dem::Grain>& grains, PreparationReport& report) {
+  int status[2] = {0, 0};  // usable, iterations
+  std::string failure;
+  if (rank_of(scene.comm) == 0) {
+    try {
+      linear::StaticEquilibriumSettings settings;
+      settings.residual_force_tolerance = p.residual_force_tolerance;
+      settings.wall_force_tolerance = 0.1 * p.pressure_tolerance;
+      settings.max_iterations = p.max_newton_iterations;
+      const linear::LoadedWall wall{kUpperWallBody, target};
+      const linear::StaticEquilibriumReport r =
+          linear::relax_to_equilibrium(grains, scene.box, scene.contact, 2, &wall, settings);
+      // Unconverged but close (a contact at the edge of opening): FIRE finishes.
+      status[0] = r.converged || r.residual_ratio < p.newton_start_tolerance ? 1 : 0;
+      status[1] = r.iterations;
+      if (status[0] == 0) {
+        failure = "residual ratio " + std::to_string(r.residual_ratio) + " after " + std::to_string(r.iterations) +
+                  " Newton steps";
+      }
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+  }
+  MPI_Bcast(status, 2, MPI_INT, 0, scene.comm);
+  report.newton_iterations = status[1];
+  if (status[0] == 0) {
+    throw std::runtime_error("preparation: the Newton relaxation failed (" +
+                             (failure.empty() ? std::string("see rank 0") : failure) +
+                             "); set newton_relaxation = false to relax with FIRE alone");
+  }
+}
+
 }  // namespace
 
 PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start, const dem::ContactSpec& contact,
@@ -179,42 +257,34 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   out.report.compression_steps = compress(*compressor, p, target);
   log_line(p, comm, "compressed in " + std::to_string(out.report.compression_steps) + " steps");
 
-  // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height.
   std::vector<dem::Grain> grains = dem::gather_grains(*compressor);
   compressor.reset();
   for (dem::Grain& g : grains) g.velocity = dem::Vec3{};
+  const bool newton = p.newton_relaxation && contact.tangential == dem::TangentialLawKind::none &&
+                      contact.rolling == dem::RollingLawKind::none;
+  // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height; with Newton to
+  // follow only roughly (the pressure within its tolerance, a loose residual).
   auto relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
-  Fire fire(*relaxer);
-  double shift = 0.0, previous_shift = 0.0, previous_force = 0.0;
-  for (int iteration = 0;; ++iteration) {
-    out.report.relaxation_steps += fire.relax(p.residual_force_tolerance, p.max_relaxation_steps, scene.mean_diameter,
-                                              width, out.report.residual_ratio);
+  fire_with_wall_corrections(scene, p, newton ? p.newton_start_tolerance : p.residual_force_tolerance, target,
+                             *relaxer, out.report);
+  if (newton) {
+    // Stage 3: Newton with the wall's height as an unknown under P W^2 (exact pressure).
+    grains = dem::gather_grains(*relaxer);
+    for (dem::Grain& g : grains) g.velocity = dem::Vec3{};  // at rest: no dashpot forces below
+    newton_relaxation(scene, p, target, grains, out.report);
+    relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
+    relaxer->compute_forces();
     out.report.wall_force = relaxer->bodies()[1].contact_force().z;
-    const double error = out.report.wall_force / target - 1.0;
-    log_line(p, comm, "wall force / P W^2 = " + std::to_string(1.0 + error) + ", residual ratio " +
+    out.report.residual_ratio = residual_ratio(packing_stats(*relaxer, scene.mean_diameter, width));
+    log_line(p, comm, "Newton: " + std::to_string(out.report.newton_iterations) + " steps, residual ratio " +
                           std::to_string(out.report.residual_ratio));
-    if (std::abs(error) < p.pressure_tolerance || iteration >= p.max_wall_corrections) break;
-    // The wall force falls as the wall rises: secant slope once two points exist, else a column of
-    // W^2 parallel chains of contact springs (stiffness ~ mean force / mean overlap) of its height.
-    double slope = 0.0;
-    if (iteration > 0 && shift != previous_shift) {
-      slope = -(out.report.wall_force - previous_force) / (shift - previous_shift);
+    if (!(out.report.residual_ratio < p.residual_force_tolerance)) {
+      Fire fire(*relaxer);
+      out.report.relaxation_steps += fire.relax(p.residual_force_tolerance, p.max_relaxation_steps,
+                                                scene.mean_diameter, width, out.report.residual_ratio);
+      out.report.wall_force = relaxer->bodies()[1].contact_force().z;
+      log_line(p, comm, "FIRE to residual ratio " + std::to_string(out.report.residual_ratio));
     }
-    if (!(slope > 0.0)) {
-      const PackingStats s = packing_stats(*relaxer, scene.mean_diameter, width);
-      slope = s.mean_contact_force / (s.mean_overlap * scene.mean_diameter) * width * width /
-              std::max(1.0, s.column_height / scene.mean_diameter);
-    }
-    const double step = (out.report.wall_force - target) / slope;
-    if (!std::isfinite(step)) {
-      throw std::runtime_error("preparation: cannot correct the wall height (wall force " +
-                               std::to_string(out.report.wall_force) + ", target " + std::to_string(target) + ")");
-    }
-    previous_shift = shift;
-    previous_force = out.report.wall_force;
-    shift += step;
-    relaxer->set_positions(shifted_upper_wall(*relaxer, step));
-    ++out.report.wall_corrections;
   }
   out.report.pressure = out.report.wall_force / (width * width);
   out.report.stats = packing_stats(*relaxer, scene.mean_diameter, width);

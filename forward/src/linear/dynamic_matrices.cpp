@@ -28,6 +28,7 @@ Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& n) {
 struct Targets {
   Triplets matrix;
   std::vector<Triplets> body;
+  std::vector<Eigen::Matrix3d> body_self;  ///< each body's translation on itself
 };
 
 /// Adds the energy 1/2 r^T S r of a relative motion r = A_i x_i + A_j x_j (A: 3 x dofs of each
@@ -38,7 +39,13 @@ void add_pair(Targets& t, const Eigen::Matrix3d& s, const Operator& a_i, const O
   const std::pair<const Eigen::MatrixXd*, std::int32_t> ends[2] = {{&ai, node_i}, {&aj, node_j}};
   const int bodies[2] = {body_i, body_j};
   for (int r = 0; r < 2; ++r) {
-    if (ends[r].second < 0) continue;  // rows only for free grains
+    if (ends[r].second < 0) {
+      // A rigid body's grain: only its body's own translation block (pairs inside a body are never
+      // listed, so the other end is free).
+      t.body_self[static_cast<std::size_t>(bodies[r] - 1)] +=
+          ends[r].first->leftCols(3).transpose() * s * ends[r].first->leftCols(3);
+      continue;
+    }
     const Eigen::Index row = dofs * static_cast<Eigen::Index>(ends[r].second);
     for (int c = 0; c < 2; ++c) {
       if (ends[c].second >= 0) {
@@ -94,7 +101,9 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     if (friction) m.mass.segment<3>(row + 3).setConstant(0.4 * g.mass * g.radius * g.radius);  // solid sphere
   }
 
-  Targets k{{}, std::vector<Triplets>(static_cast<std::size_t>(n_bodies))}, c = k, ct = k;
+  Targets k{{}, std::vector<Triplets>(static_cast<std::size_t>(n_bodies)),
+            std::vector<Eigen::Matrix3d>(static_cast<std::size_t>(n_bodies), Eigen::Matrix3d::Zero())};
+  Targets c = k, ct = k;
   const std::size_t n_pairs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
   if (pairs && (pairs->stiffness.size() != n_pairs || pairs->dashpot.size() != n_pairs)) {
     throw std::invalid_argument("linear engine: one equivalent stiffness and dashpot per contact and gap needed");
@@ -129,7 +138,7 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
   m.fixed_dashpots = from_triplets(ct.matrix, unknowns, unknowns);
   for (std::size_t b = 0; b < static_cast<std::size_t>(n_bodies); ++b) {
     m.bodies.push_back({from_triplets(k.body[b], unknowns, 3), from_triplets(c.body[b], unknowns, 3),
-                        from_triplets(ct.body[b], unknowns, 3)});
+                        from_triplets(ct.body[b], unknowns, 3), k.body_self[b]});
   }
   return m;
 }

@@ -86,31 +86,40 @@ Eigen::Index SlabSolver::largest_slab() const {
 
 Eigen::VectorXcd SlabSolver::solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
                                    const Eigen::VectorXcd& rhs) const {
+  return eliminate({0.0, omega}, {-omega * omega, 0.0}, gamma, extra_damping, rhs);
+}
+
+Eigen::MatrixXd SlabSolver::solve_shifted(double mass_shift, const Eigen::MatrixXd& rhs) const {
+  return eliminate(0.0, mass_shift, 0.0, Eigen::VectorXd(), rhs.cast<std::complex<double>>()).real();
+}
+
+Eigen::MatrixXcd SlabSolver::eliminate(std::complex<double> damping_factor, std::complex<double> mass_factor,
+                                       double gamma, const Eigen::VectorXd& extra_damping,
+                                       const Eigen::MatrixXcd& rhs) const {
   using Complex = std::complex<double>;
   const std::size_t slabs = k_diagonal_.size();
-  const Complex i_omega(0.0, omega);
+  const Complex a = damping_factor;
   const bool tangential = !t_diagonal_.empty();
   auto lower = [&](std::size_t s) -> Eigen::MatrixXcd {
-    Eigen::MatrixXcd z = k_lower_[s].cast<Complex>() + (i_omega * gamma) * c_lower_[s].cast<Complex>();
-    if (tangential) z += i_omega * t_lower_[s].cast<Complex>();
+    Eigen::MatrixXcd z = k_lower_[s].cast<Complex>() + (a * gamma) * c_lower_[s].cast<Complex>();
+    if (tangential) z += a * t_lower_[s].cast<Complex>();
     return z;
   };
   auto diagonal = [&](std::size_t s) -> Eigen::MatrixXcd {
     const Eigen::Index o = offset_[s], n = offset_[s + 1] - offset_[s];
-    Eigen::MatrixXcd z = k_diagonal_[s].cast<Complex>() + (i_omega * gamma) * c_diagonal_[s].cast<Complex>();
-    if (tangential) z += i_omega * t_diagonal_[s].cast<Complex>();
-    z.diagonal() -= (omega * omega) * mass_.segment(o, n).cast<Complex>();
-    if (extra_damping.size() > 0) z.diagonal() += i_omega * extra_damping.segment(o, n).cast<Complex>();
+    Eigen::MatrixXcd z = k_diagonal_[s].cast<Complex>() + (a * gamma) * c_diagonal_[s].cast<Complex>();
+    if (tangential) z += a * t_diagonal_[s].cast<Complex>();
+    z.diagonal() += mass_factor * mass_.segment(o, n).cast<Complex>();
+    if (extra_damping.size() > 0) z.diagonal() += a * extra_damping.segment(o, n).cast<Complex>();
     return z;
   };
   // Forward elimination: Schur complements S_s = Z_s - L_s S_{s-1}^{-1} L_s^T, kept as
-  // X_s = S_{s-1}^{-1} L_s^T and w_s = S_s^{-1} (b_s - L_s w_{s-1}).
-  std::vector<Eigen::MatrixXcd> x(slabs);
-  std::vector<Eigen::VectorXcd> w(slabs);
+  // X_s = S_{s-1}^{-1} L_s^T and W_s = S_s^{-1} (B_s - L_s W_{s-1}).
+  std::vector<Eigen::MatrixXcd> x(slabs), w(slabs);
   Eigen::MatrixXcd next_lower;
   for (std::size_t s = 0; s < slabs; ++s) {
     Eigen::MatrixXcd schur = diagonal(s);
-    Eigen::VectorXcd y = rhs.segment(offset_[s], offset_[s + 1] - offset_[s]);
+    Eigen::MatrixXcd y = rhs.middleRows(offset_[s], offset_[s + 1] - offset_[s]);
     if (s > 0) {
       schur.noalias() -= next_lower * x[s];
       y.noalias() -= next_lower * w[s - 1];
@@ -122,12 +131,12 @@ Eigen::VectorXcd SlabSolver::solve(double omega, double gamma, const Eigen::Vect
       x[s + 1] = lu.solve(next_lower.transpose());
     }
   }
-  // Back substitution: U_s = w_s - X_{s+1} U_{s+1}.
-  Eigen::VectorXcd u(rhs.size());
+  // Back substitution: U_s = W_s - X_{s+1} U_{s+1}.
+  Eigen::MatrixXcd u(rhs.rows(), rhs.cols());
   for (std::size_t s = slabs; s-- > 0;) {
-    Eigen::VectorXcd us = w[s];
-    if (s + 1 < slabs) us.noalias() -= x[s + 1] * u.segment(offset_[s + 1], offset_[s + 2] - offset_[s + 1]);
-    u.segment(offset_[s], offset_[s + 1] - offset_[s]) = us;
+    Eigen::MatrixXcd us = w[s];
+    if (s + 1 < slabs) us.noalias() -= x[s + 1] * u.middleRows(offset_[s + 1], offset_[s + 2] - offset_[s + 1]);
+    u.middleRows(offset_[s], offset_[s + 1] - offset_[s]) = us;
   }
   return u;
 }

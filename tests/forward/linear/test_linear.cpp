@@ -223,14 +223,25 @@ class HertzPacking : public ::testing::Test {
   static void SetUpTestSuite() {
     channel::ChannelGeometry g;
     g.n_grains = 150;
-    g.seed = 7;
+    g.seed = 8;
     packing_ = std::make_unique<channel::PreparedChannel>(channel::prepare_channel(
         MPI_COMM_SELF, channel::generate_channel(g), hertz(), g.width, channel::PreparationSettings{}));
   }
   static void TearDownTestSuite() { packing_.reset(); }
+  /// The smallest contact overlap [d]. A relaxed frictionless packing can hold contacts at the very
+  /// edge of opening (about one packing in two here has one below 1e-8 d); those clap at any drive
+  /// amplitude, so comparisons that assume nothing claps must start from a packing without them.
+  static double smallest_overlap(const channel::PreparedChannel& p) {
+    double smallest = INFINITY;
+    for (const StaticPair& c : channel::find_contacts(p.grains, p.box, hertz()).contacts) {
+      smallest = std::min(smallest, c.overlap);
+    }
+    return smallest;
+  }
   static std::unique_ptr<channel::PreparedChannel> packing_;
 };
 std::unique_ptr<channel::PreparedChannel> HertzPacking::packing_;
+
 
 TEST_F(HertzPacking, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
   ASSERT_TRUE(packing_->report.converged);
@@ -238,6 +249,7 @@ TEST_F(HertzPacking, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
   elastic.restitution.reset();
   damped.restitution.reset();
   damped.gamma = 0.7;  // Tsuji alpha
+  ASSERT_GT(smallest_overlap(*packing_), 1e-5);  // premise: no contact at the edge of opening
   const auto [k_error, c_error] = jacobian_errors(*packing_, elastic, damped, 0.7);
   // Hertz is curved (F ~ delta^1.5): the central difference is good to O(h^2 / delta^2).
   EXPECT_LT(k_error, 1e-5);
@@ -245,6 +257,7 @@ TEST_F(HertzPacking, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
 }
 
 TEST_F(HertzPacking, IntegratedLinearEquationsFollowTheDemAtTinyAmplitude) {
+  ASSERT_GT(smallest_overlap(*packing_), 10 * tiny_drive().amplitude);  // premise: nothing claps
   // The driven DEM run (Hertz: kappa = mean tangent stiffness, Tsuji dashpot) and the linearised
   // equations integrated with the same scheme and time step. At A = 1e-6 d the records differ by the
   // nonlinearity, O(A / overlap), and an absolute floor of ~1e-10 d (round-off and the prepared
@@ -397,12 +410,13 @@ TEST_F(Packing, EquivalentLinearisationEqualsPlainWhereNothingClaps) {
   ASSERT_EQ(plain.state_changes.opening + plain.state_changes.closing, 0);
   EXPECT_NEAR(equivalent.fit.alpha, plain.fit.alpha, 1e-9);
   EXPECT_NEAR(equivalent.fit.c, plain.fit.c, 1e-9);
-  // At a large amplitude contacts clap and the equivalent field is softer and more damped.
+  // At a large amplitude contacts clap and the equivalent field moves away from the plain one
+  // (softer where opening contacts dominate, stiffer where closing gaps do: packing-dependent).
   d.amplitude = 3e-3;
   const LinearResult clapping = engine.respond_equivalent(d);
   EXPECT_GT(clapping.state_changes.opening, 0);
   EXPECT_GT(clapping.iterations, 1);
-  EXPECT_LT(clapping.fit.c, plain.fit.c);
+  EXPECT_GT(std::abs(clapping.fit.c / plain.fit.c - 1.0), 1e-3);
 }
 
 TEST(LinearEngine, RefusesAFrozenFarEnd) {

@@ -36,6 +36,7 @@ struct StaticPair {
   double effective_mass = 0.0;  ///< 1 / (1/m_i + 1/m_j); a rigid-wall grain counts as infinitely heavy
   double arm_i = 0.0;           ///< lever arms to the middle of the overlap, r - overlap / 2, as the DEM
   double arm_j = 0.0;
+  double energy = 0.0;          ///< elastic energy stored in the contact (0 for gaps)
 };
 
 struct ContactNetwork {

@@ -7,10 +7,15 @@
 // al., PRL 97, 170201, 2006) is the standard minimiser for jammed packings: molecular dynamics whose
 // velocities are steered along the force and zeroed whenever the power F.v turns negative.
 //
-// During FIRE the upper wall is frozen (a minimiser needs a fixed energy landscape); its height is
-// then corrected by a secant iteration until the force the grains exert on it is P W^2 within the
-// tolerance, and FIRE runs again. Pressure is force per area: the wall carries P W^2 in total, not
-// P per wall grain.
+// For frictionless packings FIRE only settles the column roughly; Newton's method on the elastic
+// energy (linear/static_equilibrium.hpp) then finishes the job in a few O(N) solves, with the upper
+// wall's height as an unknown under the load P W^2. FIRE's cost to a tight tolerance grows like N^2
+// in a long column (its slowest mode is a wave crossing the column); Newton's like N.
+//
+// With friction, FIRE runs to the tolerance at a frozen upper wall (a minimiser needs a fixed energy
+// landscape); its height is then corrected by a secant iteration until the force the grains exert on
+// it is P W^2 within the tolerance, and FIRE runs again. Pressure is force per area: the wall
+// carries P W^2 in total, not P per wall grain.
 #include <mpi.h>
 
 #include <cstdint>
@@ -42,6 +47,13 @@ struct PreparationSettings {
   double pressure_tolerance = 1e-2;         ///< | wall force / (P W^2) - 1 |
   std::int64_t max_relaxation_steps = 2'000'000;
   int max_wall_corrections = 30;
+  /// Finish with Newton's method (linear/static_equilibrium.hpp) once FIRE has brought the residual
+  /// ratio below newton_start_tolerance: the wall's height becomes an unknown under P W^2, and the
+  /// slowest modes of a long column, which FIRE relaxes in O(N) steps each costing O(N), are solved
+  /// directly. Frictionless packings only; with friction FIRE and wall corrections do everything.
+  bool newton_relaxation = true;
+  double newton_start_tolerance = 1e-3;
+  int max_newton_iterations = 200;
   std::ostream* log = nullptr;              ///< progress lines (rank 0), or nullptr
 };
 
@@ -49,6 +61,7 @@ struct PreparationReport {
   std::int64_t compression_steps = 0;
   std::int64_t relaxation_steps = 0;
   int wall_corrections = 0;
+  int newton_iterations = 0;       ///< Newton steps tried (accepted or not)
   double wall_force = 0.0;         ///< force of the grains on the upper wall at the end
   double target_wall_force = 0.0;  ///< P W^2
   double pressure = 0.0;           ///< wall_force / W^2

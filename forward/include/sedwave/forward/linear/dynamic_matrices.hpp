@@ -22,6 +22,7 @@
 //
 // Units: those of the packing (force/length for K, mass and moment of inertia for M; C1 is
 // dimensionless, C_t in force time/length).
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <cstdint>
 #include <span>
@@ -40,6 +41,9 @@ struct BodyCoupling {
   Eigen::SparseMatrix<double> stiffness;
   Eigen::SparseMatrix<double> dashpots;        ///< per unit damping coefficient (scales with gamma)
   Eigen::SparseMatrix<double> fixed_dashpots;  ///< tangential dashpots (do not scale with gamma)
+  /// The body's own translational stiffness (its contacts with free grains), for a body whose
+  /// translation is an unknown (a wall under a constant force, static_equilibrium.hpp).
+  Eigen::Matrix3d self_stiffness = Eigen::Matrix3d::Zero();
 };
 
 struct DynamicMatrices {

@@ -14,6 +14,7 @@
 //
 // Units: any consistent set (those of DynamicMatrices).
 #include <Eigen/Dense>
+#include <complex>
 #include <span>
 #include <vector>
 
@@ -32,11 +33,22 @@ class SlabSolver {
   [[nodiscard]] Eigen::VectorXcd solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
                                        const Eigen::VectorXcd& rhs) const;
 
+  /// Solves (K + mass_shift M) X = B for every column of B: the static problem (mass_shift = 0 where
+  /// K is regular) or a Levenberg-Marquardt step of a static relaxation (static_equilibrium.hpp).
+  /// Damping plays no part.
+  [[nodiscard]] Eigen::MatrixXd solve_shifted(double mass_shift, const Eigen::MatrixXd& rhs) const;
+
   [[nodiscard]] std::size_t slabs() const { return k_diagonal_.size(); }
   [[nodiscard]] Eigen::Index largest_slab() const;     ///< unknowns in the largest slab
   [[nodiscard]] double slab_thickness() const { return thickness_; }
 
  private:
+  /// Block elimination of K + damping_factor (gamma C1 + C_t + D) + mass_factor M for the columns of
+  /// rhs: damping_factor = i omega, mass_factor = -omega^2 for a steady drive.
+  [[nodiscard]] Eigen::MatrixXcd eliminate(std::complex<double> damping_factor, std::complex<double> mass_factor,
+                                           double gamma, const Eigen::VectorXd& extra_damping,
+                                           const Eigen::MatrixXcd& rhs) const;
+
   std::vector<Eigen::Index> offset_;  ///< first unknown of each slab, plus the total at the end
   std::vector<Eigen::MatrixXd> k_diagonal_, k_lower_, c_diagonal_, c_lower_;  ///< lower[s]: rows s, cols s-1
   std::vector<Eigen::MatrixXd> t_diagonal_, t_lower_;  ///< C_t blocks (empty without friction)
