@@ -61,12 +61,16 @@ void read_contact(Section s, dem::ContactSpec& c, double density) {
 
 void read_preparation(Section s, PreparationSettings& p) {
   p.pressure = s.positive("pressure", p.pressure);
+  p.compression = s.choice("compression", "wall", {"wall", "affine"}) == "wall" ? Compression::wall : Compression::affine;
   p.compression_speed = s.positive("compression_speed", p.compression_speed);
+  p.compression_strain_rate = s.positive("compression_strain_rate", p.compression_strain_rate);
   p.compression_damping = s.number("compression_damping", p.compression_damping);
   p.residual_force_tolerance = s.positive("residual_force_tolerance", p.residual_force_tolerance);
   p.pressure_tolerance = s.positive("pressure_tolerance", p.pressure_tolerance);
   p.max_compression_steps = s.integer("max_compression_steps", p.max_compression_steps);
   p.max_relaxation_steps = s.integer("max_relaxation_steps", p.max_relaxation_steps);
+  p.newton_relaxation = s.boolean("newton_relaxation", p.newton_relaxation);
+  p.newton_start_tolerance = s.positive("newton_start_tolerance", p.newton_start_tolerance);
   s.finish();
 }
 

@@ -109,6 +109,12 @@ class Table {
     if (!v.is_string()) fail<Error>(v, name(key), "must be a string", origin_);
     return v.as_string();
   }
+  bool boolean(const std::string& key, bool fallback) {
+    if (!has(key)) return skip(key, fallback);
+    const toml::value& v = at(key);
+    if (!v.is_boolean()) fail<Error>(v, name(key), "must be true or false", origin_);
+    return v.as_boolean();
+  }
   std::string choice(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed) {
     const std::string s = text(key, fallback);
     if (!allowed.count(s)) {

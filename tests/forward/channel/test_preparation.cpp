@@ -69,5 +69,33 @@ TEST(Preparation, ReachesMechanicalEquilibriumAtThePrescribedPressure) {
   EXPECT_LT(c.report.stats.max_overlap, 0.1);
 }
 
+TEST(Preparation, AffineCompressionTakesStepsIndependentOfTheColumnLength) {
+  // Shrinking every height at once loads the whole column together: a column four times longer
+  // needs about as many compression steps (the wall protocol needs four times as many), and ends in
+  // the same kind of packing.
+  PreparationSettings p;
+  p.pressure = 10.0;
+  p.compression = Compression::affine;
+  ChannelGeometry g;
+  g.seed = 3;
+  std::vector<PreparedChannel> columns;
+  for (const int n : {150, 600}) {
+    g.n_grains = n;
+    columns.push_back(prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p));
+    const PreparationReport& r = columns.back().report;
+    std::cout << n << " grains:\n" << describe(r) << "\n";
+    EXPECT_TRUE(r.converged);
+    EXPECT_LT(r.residual_ratio, 1e-9);
+    EXPECT_NEAR(r.pressure / 10.0, 1.0, 1e-2);
+    EXPECT_GE(r.stats.coordination_without_rattlers, 6.0);
+    EXPECT_LT(r.stats.max_overlap, 0.1);
+  }
+  const double ratio = static_cast<double>(columns[1].report.compression_steps) /
+                       static_cast<double>(columns[0].report.compression_steps);
+  EXPECT_LT(ratio, 1.5);
+  EXPECT_GT(ratio, 0.67);
+  EXPECT_NEAR(columns[1].report.stats.packing_fraction, columns[0].report.stats.packing_fraction, 0.02);
+}
+
 }  // namespace
 }  // namespace sedwave::forward::channel

@@ -7,10 +7,10 @@
 // al., PRL 97, 170201, 2006) is the standard minimiser for jammed packings: molecular dynamics whose
 // velocities are steered along the force and zeroed whenever the power F.v turns negative.
 //
-// For frictionless packings FIRE only settles the column roughly; Newton's method on the elastic
-// energy (linear/static_equilibrium.hpp) then finishes the job in a few O(N) solves, with the upper
-// wall's height as an unknown under the load P W^2. FIRE's cost to a tight tolerance grows like N^2
-// in a long column (its slowest mode is a wave crossing the column); Newton's like N.
+// For frictionless packings FIRE only settles the column roughly (and the wall height to the
+// pressure); Newton's method on the elastic energy (linear/static_equilibrium.hpp) then finishes the
+// job in a few O(N) solves. FIRE's cost to a tight tolerance grows like N^2 in a long column (its
+// slowest mode is a wave crossing the column); Newton's like N.
 //
 // With friction, FIRE runs to the tolerance at a frozen upper wall (a minimiser needs a fixed energy
 // landscape); its height is then corrected by a secant iteration until the force the grains exert on
@@ -29,8 +29,15 @@
 
 namespace sedwave::forward::channel {
 
+/// How the loose column is brought to the pressure (stage 1).
+enum class Compression {
+  wall,    ///< the upper wall descends at compression_speed (the thesis's protocol)
+  affine,  ///< every height shrinks at compression_strain_rate: O(N) for long columns
+};
+
 struct PreparationSettings {
   double pressure = 10.0;             ///< P [force / length^2] on the upper wall
+  Compression compression = Compression::wall;
   /// Compression: the upper wall moves down at this speed, in mean diameters per binary collision
   /// time, until the grains push back with P W^2. A speed cap (rather than the constant force
   /// itself) keeps impacts gentle: a contact hit at speed v overlaps by about v t_col / pi.
@@ -40,6 +47,12 @@ struct PreparationSettings {
   /// target force itself, ending compression long before the grains carry the pressure. The
   /// contact dashpots and FIRE remove the kinetic energy instead.
   double compression_damping = 0.0;
+  /// Affine compression: the rate at which heights above the lower wall shrink, per binary
+  /// collision time. Neighbours one diameter apart approach at this many diameters per t_col (the
+  /// analogue of compression_speed), so a column of any length is compressed in about
+  /// 0.5 / rate collision times (from the initial packing fraction 0.3), where the wall needs its
+  /// length over its speed; a slower rate lets grains rearrange more on the way.
+  double compression_strain_rate = 3e-4;
   double compression_step_fraction = 0.15;  ///< dt / binary collision time while compressing
   std::int64_t max_compression_steps = 5'000'000;
   double relaxation_step_fraction = 0.2;    ///< dt / binary collision time during FIRE
@@ -48,12 +61,11 @@ struct PreparationSettings {
   std::int64_t max_relaxation_steps = 2'000'000;
   int max_wall_corrections = 30;
   /// Finish with Newton's method (linear/static_equilibrium.hpp) once FIRE has brought the residual
-  /// ratio below newton_start_tolerance: the wall's height becomes an unknown under P W^2, and the
-  /// slowest modes of a long column, which FIRE relaxes in O(N) steps each costing O(N), are solved
-  /// directly. Frictionless packings only; with friction FIRE and wall corrections do everything.
+  /// ratio below newton_start_tolerance (and the wall force within pressure_tolerance): the slowest
+  /// modes of a long column, which FIRE relaxes in O(N) steps each costing O(N), are solved
+  /// directly. Frictionless packings only; with friction FIRE does everything.
   bool newton_relaxation = true;
   double newton_start_tolerance = 1e-3;
-  int max_newton_iterations = 200;
   std::ostream* log = nullptr;              ///< progress lines (rank 0), or nullptr
 };
 
