@@ -26,13 +26,17 @@ if [ ! -f "$packing" ]; then
 fi
 printf "%-9s %-26s %-26s %-8s %-11s %-9s\n" omega_hat "alpha_hat (linear)" "c_hat (linear)" "solve_s" alpha_lattice c_lattice
 for w in 0.01 0.02 0.05 0.1 0.2 0.5 1.0; do
-  line=$("$build/bin/sedwave" forward "$scene" --packing "$packing" --omega-hat "$w" --gamma-hat "$gamma" \
-           --out "$work/run.h5" 2>&1 | grep "^  member 0:" || true)
+  out=$("$build/bin/sedwave" forward "$scene" --packing "$packing" --omega-hat "$w" --gamma-hat "$gamma" \
+          --out "$work/run.h5" 2>&1 || true)
   theory=$("$build/bin/sedwave" theory --model lattice --gamma-hat "$gamma" --omega-hat "$w" | tail -1)
-  alpha=$(echo "$line" | sed -n 's/.*alpha_hat \([^ ]*\) +- \([^ ]*\).*/\1 +- \2/p')
+  line=$(echo "$out" | grep "^alpha_hat" || true)
+  alpha=$(echo "$line" | sed -n 's/^alpha_hat \([^ ]*\) +- \([^ ]*\).*/\1 +- \2/p')
   c=$(echo "$line" | sed -n 's/.*c_hat \([^ ]*\) +- \([^ ]*\).*/\1 +- \2/p')
-  secs=$(echo "$line" | sed -n 's/.*; \([0-9.]*\) s).*/\1/p')
-  if [ -z "$alpha" ]; then alpha="unresolved"; c=$(echo "$line" | sed 's/^  member 0: //' | cut -c1-60); fi
+  secs=$(echo "$line" | sed -n 's/.*(\([0-9.]*\) s of solving).*/\1/p')
+  if [ -z "$alpha" ]; then
+    alpha="unresolved"
+    c=$(echo "$out" | sed -n 's/^not measured: //p' | cut -c1-60)
+  fi
   printf "%-9s %-26s %-26s %-8s %-11s %-9s\n" "$w" "$alpha" "$c" "${secs:--}" \
     "$(echo "$theory" | cut -d, -f4)" "$(echo "$theory" | cut -d, -f5)"
 done
