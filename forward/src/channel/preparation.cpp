@@ -85,6 +85,13 @@ double lower_wall_height(std::span<const dem::Grain> grains, MPI_Comm comm) {
   return sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
 }
 
+/// All grains on rank 0 (empty elsewhere), at rest: a static packing has no dashpot forces.
+std::vector<dem::Grain> gathered_at_rest(const dem::Engine& e) {
+  std::vector<dem::Grain> grains = dem::gather_grains(e);
+  for (dem::Grain& g : grains) g.velocity = dem::Vec3{};
+  return grains;
+}
+
 double residual_ratio(const PackingStats& s) {
   return s.mean_contact_force > 0.0 ? s.max_residual_force / s.mean_contact_force : INFINITY;
 }
@@ -286,9 +293,8 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   }
   log_line(p, comm, "compressed in " + std::to_string(out.report.compression_steps) + " steps");
 
-  std::vector<dem::Grain> grains = dem::gather_grains(*compressor);
+  std::vector<dem::Grain> grains = gathered_at_rest(*compressor);
   compressor.reset();
-  for (dem::Grain& g : grains) g.velocity = dem::Vec3{};
   const bool newton = p.newton_relaxation && contact.tangential == dem::TangentialLawKind::none &&
                       contact.rolling == dem::RollingLawKind::none;
   // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height until the pressure is
@@ -309,8 +315,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
     constexpr int kRounds = 20, kNewtonPerRound = 30;
     constexpr std::int64_t kFireBurst = 2000;
     for (int round = 0; round < kRounds; ++round) {
-      grains = dem::gather_grains(*relaxer);
-      for (dem::Grain& g : grains) g.velocity = dem::Vec3{};  // at rest: no dashpot forces below
+      grains = gathered_at_rest(*relaxer);
       newton_relaxation(scene, p, kNewtonPerRound, grains, out.report);
       relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
       relaxer->compute_forces();
@@ -331,8 +336,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   out.report.converged = out.report.residual_ratio < p.residual_force_tolerance &&
                          std::abs(out.report.wall_force / target - 1.0) < p.pressure_tolerance;
   out.box = relaxer->settings().box;
-  out.grains = dem::gather_grains(*relaxer);
-  for (dem::Grain& g : out.grains) g.velocity = dem::Vec3{};
+  out.grains = gathered_at_rest(*relaxer);
   return out;
 }
 

@@ -143,4 +143,11 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
   return m;
 }
 
+std::vector<double> node_heights(std::span<const dem::Grain> grains, const DynamicMatrices& m) {
+  std::vector<double> z;
+  z.reserve(m.grain_of_node.size());
+  for (const std::int32_t g : m.grain_of_node) z.push_back(grains[static_cast<std::size_t>(g)].position.z);
+  return z;
+}
+
 }  // namespace sedwave::forward::linear

@@ -15,13 +15,6 @@ namespace {
 
 using Complex = std::complex<double>;
 
-std::vector<double> node_heights(const std::vector<dem::Grain>& grains, const DynamicMatrices& m) {
-  std::vector<double> z;
-  z.reserve(m.grain_of_node.size());
-  for (const std::int32_t g : m.grain_of_node) z.push_back(grains[static_cast<std::size_t>(g)].position.z);
-  return z;
-}
-
 int axis_index(channel::DriveAxis axis) { return axis == channel::DriveAxis::longitudinal ? 2 : 0; }
 
 void check_drive(const channel::DriveSettings& d) {

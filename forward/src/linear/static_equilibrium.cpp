@@ -59,8 +59,8 @@ struct Step {
   double lift = 0.0;
 };
 
-Step newton_step(const State& s, const DynamicMatrices& m,
-                 const SlabSolver& solver, const LoadedWall* wall, double wall_mass, double shift) {
+Step newton_step(const State& s, const DynamicMatrices& m, const SlabSolver& solver, const LoadedWall* wall,
+                 double wall_mass, double shift) {
   const Eigen::Index n = m.unknowns();
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, wall ? 2 : 1);
   for (std::size_t node = 0; node < m.grain_of_node.size(); ++node) {
@@ -79,9 +79,8 @@ Step newton_step(const State& s, const DynamicMatrices& m,
 }
 
 /// The largest relative displacement across a contact, or of the loaded wall, in a step: the trust
-/// region. A uniform
-/// translation or a long-wavelength strain, which Newton must take in one step, costs nothing;
-/// contacts sliding past or into each other do.
+/// region. A uniform translation or a long-wavelength strain, which Newton must take in one step,
+/// costs nothing; contacts sliding past or into each other do.
 double relative_reach(const ContactNetwork& network, std::span<const dem::Grain> grains, const DynamicMatrices& m,
                       const Step& step, const LoadedWall* wall) {
   auto displacement = [&](std::int32_t g) -> Eigen::Vector3d {
@@ -152,17 +151,14 @@ StaticEquilibriumReport relax_to_equilibrium(std::vector<dem::Grain>& grains, co
   while (!converged(current, wall, settings) && report.iterations < settings.max_iterations &&
          !current.network.contacts.empty() && lambda <= kStalled) {
     const DynamicMatrices m = assemble(grains, current.network, n_bodies, contact);
-    std::vector<double> node_z;
-    node_z.reserve(m.grain_of_node.size());
-    for (const std::int32_t g : m.grain_of_node) node_z.push_back(grains[static_cast<std::size_t>(g)].position.z);
-    const SlabSolver solver(m, node_z);
+    const SlabSolver solver(m, node_heights(grains, m));
     const double stiffness_per_mass = current.network.mean_stiffness / mean_mass;
     // Retry from the same configuration with a larger shift until the energy falls.
     while (report.iterations < settings.max_iterations && lambda <= kStalled) {
       ++report.iterations;
       const Step step = newton_step(current, m, solver, wall, wall_mass, lambda * stiffness_per_mass);
       if (!(relative_reach(current.network, grains, m, step, wall) <= longest_step)) {
-          lambda = std::max(kFirst, lambda * kGrow);
+        lambda = std::max(kFirst, lambda * kGrow);
         continue;
       }
       std::vector<dem::Grain> trial = moved(grains, m, step, box, wall);

@@ -76,4 +76,7 @@ struct PairLinearisation {
                                        int n_bodies, const dem::ContactSpec& contact,
                                        const PairLinearisation* pairs = nullptr);
 
+/// The height z of each node (in node order: ascending), as the slab solver wants them.
+[[nodiscard]] std::vector<double> node_heights(std::span<const dem::Grain> grains, const DynamicMatrices& m);
+
 }  // namespace sedwave::forward::linear
