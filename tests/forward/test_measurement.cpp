@@ -168,6 +168,35 @@ TEST(Propagation, NoisyRecordsWithinReportedErrors) {
   EXPECT_LT(fit.chi2_per_dof_amplitude, 3.0);
 }
 
+TEST(Propagation, ProbesBeyondTheNoiseFloorAreLeftOut) {
+  // A strongly attenuated wave (amplitude e^-0.9 per probe) under noise 1e-6. The lock-in error is
+  // noise sqrt(2 / samples) = 3e-8 (2286 samples), so the wave falls below 10 errors at
+  // z = ln(1 / 3e-7) / 0.9 = 16.7. The amplitude of noise does not decay, so fitting every probe
+  // flattens the decay; the probes above the noise give alpha within their errors.
+  const PlaneWave wave{0.9, 0.7, 0.6};
+  const double dt = 0.07, noise = 1e-6;
+  std::mt19937_64 rng(2026);
+  std::normal_distribution<double> normal(0.0, noise);
+  std::vector<double> z;
+  std::vector<std::vector<double>> records;
+  for (int i = 0; i <= 30; ++i) {
+    z.push_back(i);
+    records.push_back(sample([&](double t) { return wave(z.back(), t) + normal(rng); }, 0.0, dt, 3000));
+  }
+  const auto probes = lock_in_all(records, dt, wave.omega, std::vector<TimeWindow>(z.size(), {20.0, 180.0}));
+  const std::size_t carrying = probes_above_noise(probes);
+  EXPECT_GE(carrying, 15u);
+  EXPECT_LE(carrying, 19u);
+  for (const ProbeWeights weights : {ProbeWeights::lock_in_errors, ProbeWeights::uniform}) {
+    const PropagationFit fit = fit_attenuation_and_wavenumber(std::span(z).first(carrying),
+                                                              std::span(probes).first(carrying), wave.omega, 0.0, weights);
+    EXPECT_LT(std::abs(fit.alpha - wave.alpha), 3.0 * fit.sigma_alpha + 1e-3);
+    EXPECT_LT(std::abs(fit.k - wave.k), 3.0 * fit.sigma_k + 1e-3);
+  }
+  const PropagationFit all = fit_attenuation_and_wavenumber(z, probes, wave.omega, 0.0, ProbeWeights::uniform);
+  EXPECT_LT(all.alpha, 0.7 * wave.alpha);
+}
+
 TEST(Propagation, WidelySpacedProbesNeedAnExpectedK) {
   const PlaneWave wave{0.02, 0.7, 0.6};
   const double dt = 0.07;

@@ -109,13 +109,25 @@ void measure(AcousticResult& r, const DriveSettings& d, const PackingUnits& u, d
     z_used.push_back(r.layer_z[k]);
     used.push_back(r.lock_ins[k]);
   }
-  r.layers_used = static_cast<int>(used.size());
   if (used.size() < 3) {
+    r.layers_used = static_cast<int>(used.size());
     r.problem = "fewer than 3 layers have a steady window before any reflection returns (" +
                 std::to_string(used.size()) + "): lengthen the channel, raise the frequency or absorb the far end";
     return;
   }
-  r.fit = fit_attenuation_and_wavenumber(z_used, used, omega, omega / r.wave_speed_estimate);
+  // A strongly attenuated wave reaches the noise floor inside the channel; the layers beyond would
+  // flatten the fitted decay.
+  const std::size_t carrying = probes_above_noise(used);
+  used.resize(carrying);
+  z_used.resize(carrying);
+  r.layers_used = static_cast<int>(carrying);
+  if (carrying < 3) {
+    r.problem = "the wave sinks into the noise floor within " + std::to_string(carrying) +
+                " layers (amplitude < " + std::to_string(kMinSignalToNoise) +
+                " lock-in errors): raise the drive amplitude or lower the frequency";
+    return;
+  }
+  r.fit = fit_attenuation_and_wavenumber(z_used, used, omega, omega / r.wave_speed_estimate, ProbeWeights::uniform);
   r.problem = resolution_problem(r.fit, z_used.back() - z_used.front(),
                                  d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0);
 }

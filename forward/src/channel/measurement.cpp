@@ -174,11 +174,11 @@ LockIn lock_in(const SampledSignal& signal, double omega, TimeWindow window, Dri
 }
 
 PropagationFit fit_attenuation_and_wavenumber(std::span<const double> z, std::span<const LockIn> probes, double omega,
-                                              double expected_k) {
+                                              double expected_k, ProbeWeights weights) {
   require_ascending(z, probes.size(), "fit_attenuation_and_wavenumber");
   const std::size_t n = z.size();
   std::vector<double> log_amplitude(n), sigma_log_amplitude(n), phase(n), sigma_phase(n);
-  bool weighted = true;
+  bool weighted = weights == ProbeWeights::lock_in_errors;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(probes[i].amplitude > 0.0)) throw std::invalid_argument("fit_attenuation_and_wavenumber: zero amplitude");
     log_amplitude[i] = std::log(probes[i].amplitude);
@@ -202,6 +202,12 @@ PropagationFit fit_attenuation_and_wavenumber(std::span<const double> z, std::sp
   fit.chi2_per_dof_phase = phase_line.chi2_per_dof;
   fit.unwrapped_phase = std::move(phase);
   return fit;
+}
+
+std::size_t probes_above_noise(std::span<const LockIn> probes, double min_snr) {
+  std::size_t n = 0;
+  while (n < probes.size() && probes[n].amplitude >= min_snr * probes[n].sigma_amplitude) ++n;
+  return n;
 }
 
 std::vector<ProbeWindow> measurement_windows(std::span<const double> z, const ChannelTiming& timing) {
@@ -330,9 +336,17 @@ std::string resolution_problem(const PropagationFit& fit, double span, double ab
     return "the probes span " + std::to_string(span) + " d, less than one wavelength (" + std::to_string(wavelength) +
            " d); lengthen the channel";
   }
-  if (absorbing_length > 0.0 && absorbing_length < wavelength) {
-    return "the absorbing layer (" + std::to_string(absorbing_length) + " d) is shorter than one wavelength (" +
-           std::to_string(wavelength) + " d) and reflects";
+  if (absorbing_length > 0.0 && absorbing_length < kAbsorbingWavelengths * wavelength) {
+    // Measured on the exact ordered chain (docs/linear.md, "The absorbing layer"): the layer's
+    // reflection stays below both the round-trip damping exp(-2 alpha L) of the medium over the
+    // layer and 1 % once the layer is 2.5 wavelengths long.
+    const double echo = std::exp(-2.0 * std::max(fit.alpha, 0.0) * absorbing_length);
+    if (echo > kTolerableEcho) {
+      return "the absorbing layer (" + std::to_string(absorbing_length) + " d) is " +
+             std::to_string(absorbing_length / wavelength) + " wavelengths long (" + std::to_string(wavelength) +
+             " d each) and the medium damps the round trip through it only to " + std::to_string(echo) +
+             "; it may reflect more than 1 %: lengthen the channel or raise the absorbing fraction";
+    }
   }
   return {};
 }

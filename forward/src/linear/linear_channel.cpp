@@ -202,7 +202,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
     r.layers_used = static_cast<int>(probes.size());
     const std::span<const double> z(r.layer_z.data() + first, last - first);
     const double expected_k = d.omega_hat / LatticeModel().evaluate(d.omega_hat, d.gamma_hat).c_hat;
-    r.fit = channel::fit_attenuation_and_wavenumber(z, probes, d.omega_hat, expected_k);
+    r.fit = channel::fit_attenuation_and_wavenumber(z, probes, d.omega_hat, expected_k, channel::ProbeWeights::uniform);
     r.waves = channel::fit_two_waves(d.layer_thickness, std::span(r.layer_field.data() + first, last - first),
                                      r.fit.k, r.fit.alpha);
     r.problem = channel::resolution_problem(r.fit, z.back() - z.front(), d.absorbing_fraction * units_.column_length());

@@ -41,6 +41,7 @@ TEST_F(SmallChannel, AttenuationGrowsWithFrequencyAndSpeedIsFinite) {
   DriveSettings d;
   d.gamma_hat = 0.1;
   d.far_end = FarEnd::absorbing;
+  d.absorbing_fraction = 0.4;  // 36 d: 2.7 wavelengths at omega_hat = 0.3, as resolution_problem asks
   std::vector<AcousticResult> results;
   for (double w : {0.3, 0.8}) {
     d.omega_hat = w;

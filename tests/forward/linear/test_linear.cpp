@@ -99,6 +99,41 @@ TEST(OrderedChainSponge, AbsorbingLayerOfTwoWavelengthsReflectsUnderOnePercent) 
   EXPECT_NEAR(waves.k * 0.999, lattice_wavenumber(0.5, 0.0).k.real(), 1e-9);
 }
 
+TEST(OrderedChainSponge, LayersTheResolutionRuleAcceptsReflectUnderOnePercent) {
+  // The rule of resolution_problem against the exact chain: layers from a quarter to 2.5
+  // wavelengths, from undamped to overdamped contacts. Every layer the rule accepts reflects < 1 %,
+  // and the rule does accept the short layers of strongly damped media (it is not just "2.5 lambda").
+  int accepted_below_rule = 0;
+  for (const auto& [omega_hat, gamma_hat] :
+       {std::pair{0.01, 100.0}, std::pair{0.05, 10.0}, std::pair{0.1, 1.0}, std::pair{0.5, 0.0}}) {
+    const ComplexWavenumber exact = lattice_wavenumber(omega_hat, gamma_hat);
+    const double spacing = 0.999;
+    const double wavelength = 2.0 * std::numbers::pi / exact.k.real() * spacing;
+    for (const double layers : {0.25, 0.5, 1.0, 1.5, 2.5}) {
+      const int n_layer = static_cast<int>(layers * wavelength / spacing) + 1;
+      const int n = n_layer + std::max(200, static_cast<int>(wavelength / spacing));
+      const LinearChannel engine(chain(n, spacing), hooke(1.0));
+      channel::DriveSettings d = frozen_end_drive(omega_hat, gamma_hat);
+      d.absorbing_strength = 1.0;
+      d.absorbing_fraction = static_cast<double>(n_layer) / (n + 1);  // of the column, wall to wall
+      const Eigen::VectorXcd u = engine.displacement(d);
+      std::vector<Complex> field;
+      for (int i = 20; i < n - n_layer; ++i) field.push_back(u(3 * i + 2));
+      const double k = exact.k.real() / spacing, alpha = exact.k.imag() / spacing;
+      const channel::TwoWaveFit waves = channel::fit_two_waves(spacing, field, k, alpha);
+      channel::PropagationFit fit;
+      fit.k = k;
+      fit.alpha = alpha;
+      const double layer_length = n_layer * spacing;
+      if (!channel::resolution_problem(fit, 10.0 * wavelength, layer_length).empty()) continue;
+      EXPECT_LT(waves.reflection, 0.01) << "omega_hat " << omega_hat << ", gamma_hat " << gamma_hat << ", layer of "
+                                        << layers << " wavelengths";
+      if (layers < channel::kAbsorbingWavelengths) ++accepted_below_rule;
+    }
+  }
+  EXPECT_GE(accepted_below_rule, 2);  // gamma_hat 100: layers of 1 and 1.5 wavelengths
+}
+
 INSTANTIATE_TEST_SUITE_P(Frequencies, OrderedChain,
                          ::testing::Values(std::pair{0.05, 0.0}, std::pair{0.3, 0.2}, std::pair{1.0, 0.05},
                                            std::pair{1.5, 1.0}, std::pair{0.01, 100.0}));

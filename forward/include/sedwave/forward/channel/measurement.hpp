@@ -79,22 +79,49 @@ struct PropagationFit {
   std::vector<double> unwrapped_phase;  ///< phase per probe after unwrapping along z
 };
 
-/// Weighted least squares over probes at strictly ascending positions z: ln A = const - alpha z and
-/// phi = const + k z. Weights are 1/sigma^2 from the lock-ins; if any lock-in sigma is zero (a
-/// noise-free record), all probes weigh the same and the errors come from the line's own scatter.
+/// How fit_attenuation_and_wavenumber weighs its probes.
+enum class ProbeWeights {
+  /// 1/sigma^2 from each lock-in: right when the probes differ only by measurement noise.
+  lock_in_errors,
+  /// All probes alike, errors from the line's own scatter. Right for the layers of a disordered
+  /// packing, whose deviations from the line (scattering, structure: ~0.1 in ln A) dwarf their
+  /// lock-in errors (~1e-3): lock-in weights would let the two nearest layers, in the near field,
+  /// decide the slope.
+  uniform,
+};
+
+/// Least squares over probes at strictly ascending positions z: ln A = const - alpha z and
+/// phi = const + k z. With ProbeWeights::lock_in_errors the weights are 1/sigma^2 from the lock-ins;
+/// if any lock-in sigma is zero (a noise-free record), or with ProbeWeights::uniform, all probes
+/// weigh the same and the errors come from the line's own scatter.
 ///
 /// Unwrapping assumption: the phase is unwrapped along z by choosing, at each probe, the branch
 /// closest to the previous phase plus expected_k (z_i - z_{i-1}). With expected_k = 0 this needs
 /// adjacent probes closer than half a wavelength; with a rough estimate of k (within
 /// pi / max spacing of the truth) any spacing works.
 [[nodiscard]] PropagationFit fit_attenuation_and_wavenumber(std::span<const double> z, std::span<const LockIn> probes,
-                                                            double omega, double expected_k = 0.0);
+                                                            double omega, double expected_k = 0.0,
+                                                            ProbeWeights weights = ProbeWeights::lock_in_errors);
+
+/// Probes whose lock-in amplitude is at least this many times its standard error carry the wave.
+inline constexpr double kMinSignalToNoise = 10.0;
+
+/// How many leading probes carry the wave: the count before the first whose amplitude is below
+/// min_snr times its lock-in error. Beyond it the wave has decayed into the noise floor, and a
+/// fit of ln A there would flatten the decay (|noise| does not decay).
+[[nodiscard]] std::size_t probes_above_noise(std::span<const LockIn> probes, double min_snr = kMinSignalToNoise);
+
+/// An absorbing layer at least this many wavelengths long reflects less than 1 % of the wave.
+inline constexpr double kAbsorbingWavelengths = 2.5;
+/// A shorter layer is accepted when the medium itself damps the round trip through it below this.
+inline constexpr double kTolerableEcho = 0.01;
 
 /// Why a steady-state fit over probes spanning `span` cannot be trusted, or empty if it can. A fit
-/// over less than a wavelength cannot separate the travelling wave from near field and reflections,
-/// and an absorbing layer (of length `absorbing_length`; 0 for none) shorter than a wavelength
-/// reflects much of what reaches it. What a channel cannot resolve is reported, not filled with
-/// numbers.
+/// over less than a wavelength cannot separate the travelling wave from near field and reflections.
+/// An absorbing layer (of length `absorbing_length`; 0 for none) shorter than kAbsorbingWavelengths
+/// may reflect more than 1 % of what reaches it, unless the fitted attenuation damps the round trip
+/// through the layer, exp(-2 alpha L), below kTolerableEcho. What a channel cannot resolve is
+/// reported, not filled with numbers.
 [[nodiscard]] std::string resolution_problem(const PropagationFit& fit, double span, double absorbing_length);
 
 // ---- A steady complex field: forward and reflected wave ---------------------------------------------
