@@ -3,7 +3,7 @@
 // then the ensemble means with their standard errors and the difference in units of the combined
 // uncertainty (docs/linear.md, "Against the time-domain engine").
 //
-//   bench_linear_vs_dem [--gamma-hat G] [--amplitude A] [--periods P] [--kn KN | --hertz E] --omega-hat W [--omega-hat W...] PACKING.h5 ...
+//   bench_linear_vs_dem [--gamma-hat G] [--amplitude A] [--absorbing-fraction F] [--periods P] [--kn KN | --hertz E] --omega-hat W [--omega-hat W...] PACKING.h5 ...
 #include <mpi.h>
 
 #include <cmath>
@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
     if (a == "--omega-hat") omegas.push_back(next());
     else if (a == "--gamma-hat") drive.gamma_hat = next();
     else if (a == "--amplitude") drive.amplitude = next();
+    else if (a == "--absorbing-fraction") drive.absorbing_fraction = next();
     else if (a == "--periods") drive.periods = next();  // DEM run length; default: until echoes could return
     else if (a == "--kn") kn = next();
     else if (a == "--hertz") youngs_modulus = next();

@@ -14,5 +14,5 @@ if [ ! -f "$work/packing.member4.h5" ]; then
 fi
 packings=("$work/packing.h5")
 for k in 1 2 3 4; do packings+=("$work/packing.member$k.h5"); done
-"$build/bin/bench_linear_vs_dem" --gamma-hat 0.1 --amplitude 1e-4 --omega-hat 0.3 --omega-hat 0.6 --omega-hat 1.0 \
+"$build/bin/bench_linear_vs_dem" --gamma-hat 0.1 --amplitude 1e-4 --absorbing-fraction 0.45 --omega-hat 0.3 --omega-hat 0.6 --omega-hat 1.0 \
   "${packings[@]}"

@@ -117,13 +117,19 @@ void measure(AcousticResult& r, const DriveSettings& d, const PackingUnits& u, d
   }
   // A strongly attenuated wave reaches the noise floor inside the channel; the layers beyond would
   // flatten the fitted decay.
-  const std::size_t carrying = probes_above_noise(used);
-  used.resize(carrying);
-  z_used.resize(carrying);
-  r.layers_used = static_cast<int>(carrying);
-  if (carrying < 3) {
-    r.problem = "the wave sinks into the noise floor within " + std::to_string(carrying) +
-                " layers (amplitude < " + std::to_string(kMinSignalToNoise) +
+  const std::size_t steady = used.size();
+  std::vector<LockIn> carrying;
+  std::vector<double> z_carrying;
+  for (const std::size_t i : probes_above_noise(used)) {
+    carrying.push_back(used[i]);
+    z_carrying.push_back(z_used[i]);
+  }
+  used = std::move(carrying);
+  z_used = std::move(z_carrying);
+  r.layers_used = static_cast<int>(used.size());
+  if (used.size() < 3) {
+    r.problem = "only " + std::to_string(used.size()) + " of " + std::to_string(steady) +
+                " layers carry the wave above the noise floor (amplitude >= " + std::to_string(kMinSignalToNoise) +
                 " lock-in errors): raise the drive amplitude or lower the frequency";
     return;
   }

@@ -204,10 +204,12 @@ PropagationFit fit_attenuation_and_wavenumber(std::span<const double> z, std::sp
   return fit;
 }
 
-std::size_t probes_above_noise(std::span<const LockIn> probes, double min_snr) {
-  std::size_t n = 0;
-  while (n < probes.size() && probes[n].amplitude >= min_snr * probes[n].sigma_amplitude) ++n;
-  return n;
+std::vector<std::size_t> probes_above_noise(std::span<const LockIn> probes, double min_snr) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    if (probes[i].amplitude >= min_snr * probes[i].sigma_amplitude) kept.push_back(i);
+  }
+  return kept;
 }
 
 std::vector<ProbeWindow> measurement_windows(std::span<const double> z, const ChannelTiming& timing) {

@@ -106,10 +106,12 @@ enum class ProbeWeights {
 /// Probes whose lock-in amplitude is at least this many times its standard error carry the wave.
 inline constexpr double kMinSignalToNoise = 10.0;
 
-/// How many leading probes carry the wave: the count before the first whose amplitude is below
-/// min_snr times its lock-in error. Beyond it the wave has decayed into the noise floor, and a
-/// fit of ln A there would flatten the decay (|noise| does not decay).
-[[nodiscard]] std::size_t probes_above_noise(std::span<const LockIn> probes, double min_snr = kMinSignalToNoise);
+/// Indices of the probes that carry the wave: amplitude at least min_snr times its lock-in error.
+/// Where a strongly attenuated wave has decayed into the noise floor, ln A of the noise would flatten
+/// the fitted decay (|noise| does not decay); a layer at a speckle node of a disordered packing is
+/// left out alone, the layers behind it stay.
+[[nodiscard]] std::vector<std::size_t> probes_above_noise(std::span<const LockIn> probes,
+                                                         double min_snr = kMinSignalToNoise);
 
 /// An absorbing layer at least this many wavelengths long reflects less than 1 % of the wave.
 inline constexpr double kAbsorbingWavelengths = 2.5;
