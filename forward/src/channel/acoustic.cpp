@@ -71,7 +71,18 @@ void apply_sponge(dem::Engine& e, const PackingUnits& u, const DriveSettings& d,
   }
 }
 
-void measure(AcousticResult& r, const DriveSettings& d, const PackingUnits& u, double run_time, double c_guess) {
+/// The 1D lattice speed at the drive frequency: a guess of the packing's (of the same order) that
+/// sets the run length and the first windows.
+double speed_guess(const DriveSettings& d) { return LatticeModel().evaluate(d.omega_hat, d.gamma_hat).c_hat; }
+
+}  // namespace
+
+void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
+  if (r.displacement.empty() || r.displacement.size() != r.layer_z.size() || !(r.sample_dt > 0.0)) {
+    throw std::invalid_argument("measure_layer_records: need one record per layer and sample_dt > 0");
+  }
+  const double run_time = static_cast<double>(r.displacement.front().size() - 1) * r.sample_dt;
+  const double c_guess = speed_guess(d);
   const double omega = r.omega_hat;  // dimensionless from here on: z in d, t in sqrt(m/kappa)
   std::vector<SampledSignal> signals;
   for (const auto& record : r.displacement) signals.push_back({record, 0.0, r.sample_dt});
@@ -138,8 +149,6 @@ void measure(AcousticResult& r, const DriveSettings& d, const PackingUnits& u, d
                                  d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0);
 }
 
-}  // namespace
-
 AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
                             const DriveSettings& d) {
   const auto started = std::chrono::steady_clock::now();
@@ -178,7 +187,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
 
   // Run length: long enough for an echo from the far end to return to the first layers, estimated
   // with the 1D lattice speed at this frequency (the 3D packing's speed is of the same order).
-  const double c_guess = LatticeModel().evaluate(d.omega_hat, d.gamma_hat).c_hat;
+  const double c_guess = speed_guess(d);
   const double length = (u.column_top - u.wall_surface) / u.diameter;
   const double period = 2.0 * std::numbers::pi / d.omega_hat;
   const double run_time = d.periods > 0.0 ? d.periods * period : 2.0 * length / c_guess + (d.settle_periods + 4.0) * period;
@@ -200,7 +209,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   }
   engine.run(total_steps);
   r.steps = total_steps;
-  measure(r, d, u, static_cast<double>(r.displacement.front().size() - 1) * r.sample_dt, c_guess);
+  measure_layer_records(r, d, u);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

@@ -41,11 +41,15 @@ void write_packing(const std::filesystem::path& path, const PreparedChannel& p, 
     h5::Handle stats = h5::create_group(file, "preparation");
     write_stats(stats, p.report);
   });
-  std::vector<dem::Grain> typed = p.grains;
-  for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
   std::filesystem::path data = path;
   data.replace_extension(".data");
-  dem::write_lammps_data(data.string(), p.box, typed);
+  write_packing_lammps_data(data, p);
+}
+
+void write_packing_lammps_data(const std::filesystem::path& path, const PreparedChannel& p) {
+  std::vector<dem::Grain> typed = p.grains;
+  for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
+  dem::write_lammps_data(path.string(), p.box, typed);
 }
 
 PreparedChannel read_packing(const std::filesystem::path& path) {

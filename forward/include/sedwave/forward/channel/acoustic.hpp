@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "sedwave/forward/channel/measurement.hpp"
+#include "sedwave/forward/channel/packing_units.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
 
 namespace sedwave::forward::channel {
@@ -71,5 +72,12 @@ struct AcousticResult {
 /// (its damping is replaced by gamma_hat) and measures alpha_hat and c_hat. Collective over comm.
 [[nodiscard]] AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
                                           const DriveSettings& drive);
+
+/// Measures alpha_hat and c_hat from layer records already in `r` (omega_hat, gamma_hat, layer_z,
+/// displacement [layer][sample] from t = 0 in steps of sample_dt): the windows, lock-ins and fit of
+/// run_acoustic, for records made elsewhere, e.g. by LAMMPS on the same packing and drive
+/// (bench/channel/lammps_acoustic.sh). Sets wave_speed_estimate, windows, lock_ins, fit,
+/// first_peak, layers_used and problem.
+void measure_layer_records(AcousticResult& r, const DriveSettings& drive, const PackingUnits& units);
 
 }  // namespace sedwave::forward::channel
