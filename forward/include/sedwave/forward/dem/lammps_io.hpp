@@ -36,6 +36,9 @@ struct LammpsData {
 [[nodiscard]] LammpsData read_lammps_data(const std::string& path,
                                           const std::function<bool(const Grain&)>& keep = {});
 /// Writes a data file (atom_style sphere) with velocities; serial (one rank, all grains given).
+/// The atom type is Grain::group, and groups below 1 are written as type 1 (LAMMPS types start at
+/// 1), so groups 0 and 1 merge: channel packings, whose flow group is 0, go through
+/// channel::write_packing_lammps_data, which shifts every group by one.
 void write_lammps_data(const std::string& path, const Box& box, std::span<const Grain> grains);
 
 struct DumpFrame {
