@@ -155,8 +155,7 @@ double largest_difference(const std::string& path, const std::vector<std::vector
 /// Layer-averaged z displacement per dump frame, layers as in run_acoustic (LayerGrid from the
 /// driven wall's surface, reference = the packing's own positions).
 std::vector<std::vector<double>> layer_records(const std::string& dump, const channel::PreparedChannel& packing,
-                                               const channel::PackingUnits& u, double thickness) {
-  const channel::LayerGrid grid(u, thickness);
+                                               const channel::LayerGrid& grid, double diameter) {
   std::unordered_map<std::int64_t, std::pair<int, double>> member;
   std::vector<int> count(static_cast<std::size_t>(grid.count), 0);
   for (const dem::Grain& g : packing.grains) {
@@ -193,7 +192,7 @@ std::vector<std::vector<double>> layer_records(const std::string& dump, const ch
       sum[static_cast<std::size_t>(it->second.first)] += z - it->second.second;
     }
     for (std::size_t k = 0; k < records.size(); ++k) {
-      records[k].push_back(count[k] > 0 ? sum[k] / count[k] / u.diameter : 0.0);
+      records[k].push_back(count[k] > 0 ? sum[k] / count[k] / diameter : 0.0);
     }
   }
   if (records.front().size() < 2) throw std::runtime_error(dump + ": fewer than two frames");
@@ -227,10 +226,9 @@ int main(int argc, char** argv) {
       r.omega_hat = o.drive.omega_hat;
       r.gamma_hat = o.drive.gamma_hat;
       r.amplitude = o.drive.amplitude;
-      r.displacement = layer_records(o.dir + "/dump.z", packing, u, o.drive.layer_thickness);
-      for (std::size_t k = 0; k < r.displacement.size(); ++k) {
-        r.layer_z.push_back((static_cast<double>(k) + 0.5) * o.drive.layer_thickness);
-      }
+      const channel::LayerGrid grid(u, o.drive.layer_thickness);
+      r.displacement = layer_records(o.dir + "/dump.z", packing, grid, u.diameter);
+      r.layer_z = grid.centres();
       r.sample_dt = static_cast<double>(p.steps_per_sample) * p.time_step / u.time();
       channel::measure_layer_records(r, o.drive, u);
       print_result("LAMMPS", r);

@@ -19,6 +19,7 @@ namespace {
 /// far too small to move grains between ranks (load balancing is off), so this stays valid.
 struct Layers {
   int count = 0;
+  std::vector<double> centres;  // [d from the driven wall's surface]
   std::unordered_map<std::int64_t, std::pair<int, double>> member;  // id -> (layer, reference coordinate)
   std::vector<int> grains_per_layer;
 };
@@ -27,6 +28,7 @@ Layers assign_layers(const dem::Engine& e, const PackingUnits& u, double thickne
   const LayerGrid grid(u, thickness);
   Layers l;
   l.count = grid.count;
+  l.centres = grid.centres();
   l.grains_per_layer.assign(static_cast<std::size_t>(l.count), 0);
   const dem::GrainArrays& g = e.grains();
   for (std::size_t i = 0; i < e.n_local(); ++i) {
@@ -181,7 +183,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   r.grain_mass = u.mass;
   r.mean_diameter = u.diameter;
   const Layers layers = assign_layers(engine, u, d.layer_thickness, axis);
-  for (int k = 0; k < layers.count; ++k) r.layer_z.push_back((k + 0.5) * d.layer_thickness);
+  r.layer_z = layers.centres;
   r.layer_grains = layers.grains_per_layer;
   r.displacement.assign(static_cast<std::size_t>(layers.count), {});
 

@@ -182,8 +182,8 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
   for (int k = 0; k < grid.count; ++k) {
     const auto layer = static_cast<std::size_t>(k);
     if (r.layer_grains[layer] > 0) r.layer_field[layer] /= static_cast<double>(r.layer_grains[layer]);
-    r.layer_z.push_back((k + 0.5) * d.layer_thickness);
   }
+  r.layer_z = grid.centres();
 
   const auto first = static_cast<std::size_t>(std::max(0, d.skip_layers));
   const auto last = static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(grid.count));

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "sedwave/forward/channel/preparation.hpp"
 
@@ -32,13 +33,20 @@ struct PackingUnits {
 struct LayerGrid {
   double origin = 0.0;     ///< z of the driven wall's surface [length]
   double thickness = 1.0;  ///< [length]
+  double thickness_in_diameters = 1.0;
   int count = 1;
 
-  LayerGrid(const PackingUnits& u, double thickness_in_diameters)
-      : origin(u.wall_surface), thickness(thickness_in_diameters * u.diameter),
+  LayerGrid(const PackingUnits& u, double thickness_d)
+      : origin(u.wall_surface), thickness(thickness_d * u.diameter), thickness_in_diameters(thickness_d),
         count(std::max(1, static_cast<int>(std::floor((u.column_top - u.wall_surface) / thickness)))) {}
   [[nodiscard]] int index(double z) const {
     return std::clamp(static_cast<int>(std::floor((z - origin) / thickness)), 0, count - 1);
+  }
+  /// Layer centres [mean diameters from the driven wall's surface]: the z of the layer fits.
+  [[nodiscard]] std::vector<double> centres() const {
+    std::vector<double> z;
+    for (int k = 0; k < count; ++k) z.push_back((k + 0.5) * thickness_in_diameters);
+    return z;
   }
 };
 
