@@ -96,16 +96,21 @@ double residual_ratio(const PackingStats& s) {
   return s.mean_contact_force > 0.0 ? s.max_residual_force / s.mean_contact_force : INFINITY;
 }
 
-/// FIRE on the free grains; velocities are steered after every velocity-Verlet step.
+/// FIRE on the free grains; velocities are steered after every velocity-Verlet step of relax().
+/// The steering callback lives as long as the engine, so its state is shared with it and it steers
+/// only while relax() runs: an engine that outlives its Fire, or runs later, is not steered.
 class Fire {
  public:
-  explicit Fire(dem::Engine& e) : engine_(e) {
-    e.add_step_callback(1, [this](const dem::Engine&) { mix(); });
+  explicit Fire(dem::Engine& e) : engine_(e), state_(std::make_shared<State>()) {
+    e.add_step_callback(1, [&e, state = state_](const dem::Engine&) {
+      if (state->active) mix(e, *state);
+    });
   }
 
   /// Runs until max |F| < tolerance x mean contact force or the step budget is spent.
   std::int64_t relax(double tolerance, std::int64_t max_steps, double mean_diameter, double width, double& ratio) {
-    restart();
+    state_->restart();
+    state_->active = true;
     std::int64_t steps = 0;
     const std::int64_t chunk = 200;
     while (steps < max_steps) {
@@ -116,6 +121,7 @@ class Fire {
       if (ratio < tolerance) break;
       if (s.contacts == 0 && steps >= 10 * chunk) break;  // nothing to relax: the wall must move
     }
+    state_->active = false;
     return steps;
   }
 
@@ -124,14 +130,19 @@ class Fire {
   static constexpr double kAlphaShrink = 0.99;
   static constexpr int kMinPositiveSteps = 5;
 
-  void restart() {
-    alpha_ = kAlphaStart;
-    positive_steps_ = 0;
-  }
+  struct State {
+    double alpha = kAlphaStart;
+    int positive_steps = 0;
+    bool active = false;
+    void restart() {
+      alpha = kAlphaStart;
+      positive_steps = 0;
+    }
+  };
 
-  void mix() {
-    dem::GrainArrays& g = engine_.grains();
-    const std::size_t n = engine_.n_local();
+  static void mix(dem::Engine& engine, State& state) {
+    dem::GrainArrays& g = engine.grains();
+    const std::size_t n = engine.n_local();
     double sums[3] = {0.0, 0.0, 0.0};  // F.v, v.v, F.F over free grains
     for (std::size_t i = 0; i < n; ++i) {
       if (g.body[i] != dem::kFreeBody) continue;
@@ -139,26 +150,25 @@ class Fire {
       sums[1] += dem::norm2(g.velocity[i]);
       sums[2] += dem::norm2(g.force[i]);
     }
-    MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, engine_.domain().comm());
+    MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, engine.domain().comm());
     if (sums[0] > 0.0) {
       // v <- (1 - alpha) v + alpha |v| F/|F|: turn the motion towards the force.
-      const double steer = sums[2] > 0.0 ? alpha_ * std::sqrt(sums[1] / sums[2]) : 0.0;
+      const double steer = sums[2] > 0.0 ? state.alpha * std::sqrt(sums[1] / sums[2]) : 0.0;
       for (std::size_t i = 0; i < n; ++i) {
-        if (g.body[i] == dem::kFreeBody) g.velocity[i] = (1.0 - alpha_) * g.velocity[i] + steer * g.force[i];
+        if (g.body[i] == dem::kFreeBody) g.velocity[i] = (1.0 - state.alpha) * g.velocity[i] + steer * g.force[i];
       }
-      if (++positive_steps_ > kMinPositiveSteps) alpha_ *= kAlphaShrink;
+      if (++state.positive_steps > kMinPositiveSteps) state.alpha *= kAlphaShrink;
     } else {
       // Uphill: stop everything and start over.
       for (std::size_t i = 0; i < n; ++i) {
         if (g.body[i] == dem::kFreeBody) g.velocity[i] = dem::Vec3{};
       }
-      restart();
+      state.restart();
     }
   }
 
   dem::Engine& engine_;
-  double alpha_ = kAlphaStart;
-  int positive_steps_ = 0;
+  std::shared_ptr<State> state_;
 };
 
 /// Positions of the upper wall's grains shifted by dz (on every rank; walls have few grains).
