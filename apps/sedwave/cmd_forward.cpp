@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -83,10 +84,28 @@ int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& sc
   return e.ok() ? 0 : 3;
 }
 
+/// A pulse run: one line per frequency of the band.
+void print_spectrum(const forward::channel::AcousticResult& r) {
+  std::printf("pulse: %zu frequencies from one run\n", r.spectrum.size());
+  for (const forward::channel::SpectralResult& p : r.spectrum) {
+    if (p.ok()) {
+      std::printf("  omega_hat %-9.4g alpha_hat %.6g +- %.2g   c_hat %.6g +- %.2g   (%d layers)\n", p.omega_hat,
+                  p.fit.alpha, p.fit.sigma_alpha, p.fit.c, p.fit.sigma_c, p.layers_used);
+    } else {
+      std::printf("  omega_hat %-9.4g not measured: %s\n", p.omega_hat, p.problem.c_str());
+    }
+  }
+  std::printf("at the band's centre:\n");
+}
+
 int run_forward(const ForwardOptions& o) {
   using namespace forward::channel;
   const MpiSession mpi;
   ChannelScene scene = read_scene(o.scene);
+  if (o.omega_hat && scene.drive.pulse) {
+    throw std::invalid_argument(o.scene + ": --omega-hat sets a sinusoid's frequency; this scene drives a pulse "
+                                "(set [drive] omega_hat_min/omega_hat_max instead)");
+  }
   if (o.omega_hat) scene.drive.omega_hat = *o.omega_hat;
   if (o.gamma_hat) scene.drive.gamma_hat = *o.gamma_hat;
   const bool talk = mpi.rank() == 0 && !o.quiet;
@@ -109,6 +128,7 @@ int run_forward(const ForwardOptions& o) {
     write_run_file(o.out, scene, packing.report, r);
     if (talk) {
       std::printf("omega_hat %.6g  gamma_hat %.6g\n", r.omega_hat, r.gamma_hat);
+      if (!r.spectrum.empty()) print_spectrum(r);
       if (r.ok()) {
         std::printf("alpha_hat %.6g +- %.2g   c_hat %.6g +- %.2g   (%d layers, %lld steps, %.1f s)\n", r.fit.alpha,
                     r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c, r.layers_used, static_cast<long long>(r.steps),

@@ -1,7 +1,7 @@
 // Channel measurements on synthetic records with known alpha and k: the lock-in (exact for any
 // samples per period; errors that match the scatter), the probe fit, the steady-state window that
-// keeps the echo out, the thesis's first-peak method, and the broadband transfer function against
-// the lattice theory. Dimensionless units throughout (lengths in d, times in sqrt(m/kappa)).
+// keeps the echo out, the thesis's first-peak method, and the broadband transfer function and
+// transient spectra against the lattice theory. Dimensionless units throughout (lengths in d, times in sqrt(m/kappa)).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -298,18 +298,17 @@ TEST(FirstPeak, RecoversAlphaAndSpeedOfANonDispersivePulse) {
   EXPECT_NEAR(fit.peaks[3].time, 5.0 + 3.0 / speed, 1e-6);
 }
 
-TEST(TransferFunction, RecoversTheLatticeDispersionOfAPulse) {
-  // A Gaussian-windowed tone (centre 0.8, spectral width 0.15) propagated dz = 20 d through the
-  // lattice chain in the frequency domain; the measured alpha_hat and c_hat must be the theory's.
-  const double gamma_hat = 0.3, dz = 20.0, dt = 0.25, centre = 0.8, width = 1.0 / 0.15, t_centre = 100.0;
-  const std::size_t n = 4096;
-  const auto ref = sample(
+/// A Gaussian-windowed tone (centre `centre`, spectral width 1/width) sent dz through the lattice
+/// chain with dashpot gamma_hat, exactly in the frequency domain; the record starts and ends quiet.
+std::vector<double> lattice_pulse(double dz, double gamma_hat, double dt, std::size_t n) {
+  const double centre = 0.8, width = 1.0 / 0.15, t_centre = 100.0;
+  const auto source = sample(
       [&](double t) {
         const double s = (t - t_centre) / width;
         return std::exp(-0.5 * s * s) * std::cos(centre * (t - t_centre));
       },
       0.0, dt, n);
-  auto spectrum = real_spectrum(ref, n, FourierSign::positive);
+  auto spectrum = real_spectrum(source, n, FourierSign::positive);
   for (std::size_t m = 1; m < n / 2; ++m) {
     const double omega = 2.0 * kPi * double(m) / (double(n) * dt);
     spectrum[m] *= std::exp(std::complex<double>(0.0, 1.0) * lattice_wavenumber(omega, gamma_hat).k * dz);
@@ -317,8 +316,18 @@ TEST(TransferFunction, RecoversTheLatticeDispersionOfAPulse) {
   }
   spectrum[n / 2] = 0.0;
   fft_in_place(spectrum, FourierSign::negative);
-  std::vector<double> probe(n);
-  for (std::size_t j = 0; j < n; ++j) probe[j] = spectrum[j].real() / double(n);
+  std::vector<double> out(n);
+  for (std::size_t j = 0; j < n; ++j) out[j] = spectrum[j].real() / double(n);
+  return out;
+}
+
+TEST(TransferFunction, RecoversTheLatticeDispersionOfAPulse) {
+  // A Gaussian-windowed tone (centre 0.8, spectral width 0.15) propagated dz = 20 d through the
+  // lattice chain in the frequency domain; the measured alpha_hat and c_hat must be the theory's.
+  const double gamma_hat = 0.3, dz = 20.0, dt = 0.25;
+  const std::size_t n = 4096;
+  const auto ref = lattice_pulse(0.0, gamma_hat, dt, n);
+  const auto probe = lattice_pulse(dz, gamma_hat, dt, n);
 
   TransferOptions options;
   options.speed_guess = 1.0;  // k dz ~ 8 rad at the band's low edge: the branch needs a guess
@@ -335,6 +344,53 @@ TEST(TransferFunction, RecoversTheLatticeDispersionOfAPulse) {
   EXPECT_LT(worst, 1e-6);
   EXPECT_LT(low, 0.4);  // the band with signal spans the pulse's spectrum
   EXPECT_GT(high, 1.2);
+}
+
+TEST(TransientSpectrum, FitOverProbesRecoversTheLatticeDispersionOffTheFftBins) {
+  // Probes every d along the lattice chain; at frequencies that are no FFT bin of the record, the
+  // transforms' amplitudes and phases fitted over z give the theory's alpha_hat and c_hat.
+  const double gamma_hat = 0.3, dt = 0.25;
+  const std::size_t n = 4096;
+  std::vector<std::vector<double>> records;
+  std::vector<double> z;
+  for (int i = 0; i <= 12; ++i) {
+    z.push_back(i);
+    records.push_back(lattice_pulse(i, gamma_hat, dt, n));
+  }
+  const LatticeModel lattice;
+  for (const double omega : {0.45, 0.6137, 0.8, 1.1}) {
+    std::vector<LockIn> probes;
+    for (const auto& r : records) probes.push_back(transient_spectrum({r, 0.0, dt}, omega));
+    const PropagationFit fit = fit_attenuation_and_wavenumber(z, probes, omega, 0.0, ProbeWeights::uniform);
+    const DispersionPoint theory = lattice.evaluate(omega, gamma_hat);
+    EXPECT_NEAR(fit.alpha / theory.alpha_hat, 1.0, 1e-6) << "omega " << omega;
+    EXPECT_NEAR(fit.c / theory.c_hat, 1.0, 1e-6) << "omega " << omega;
+  }
+}
+
+TEST(TransientSpectrum, ADelayAddsOmegaTauToThePhase) {
+  const double dt = 0.01, omega = 2.3, tau = 1.7;
+  auto bump = [](double t) { return std::exp(-0.5 * (t - 8.0) * (t - 8.0)); };  // quiet at both ends
+  const auto x = sample(bump, 0.0, dt, 2000);
+  const auto late = sample([&](double t) { return 0.5 * bump(t - tau); }, 0.0, dt, 2000);
+  const LockIn a = transient_spectrum({x, 0.0, dt}, omega), b = transient_spectrum({late, 0.0, dt}, omega);
+  // Continuous transform of the Gaussian bump: sqrt(2 pi) exp(-omega^2 / 2).
+  EXPECT_NEAR(a.amplitude, std::sqrt(2.0 * kPi) * std::exp(-0.5 * omega * omega), 1e-10);
+  EXPECT_NEAR(b.amplitude / a.amplitude, 0.5, 1e-10);
+  EXPECT_NEAR(std::remainder(b.phase - a.phase - omega * tau, 2.0 * kPi), 0.0, 1e-9);
+}
+
+TEST(TransientSpectrum, NoiseLevelMatchesWhiteNoise) {
+  // |X| of white noise of rms sigma over N samples has rms dt sigma sqrt(N).
+  const double dt = 0.1, sigma = 1e-3;
+  const std::size_t n = 20000;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, sigma);
+  std::vector<double> x(n);
+  for (double& v : x) v = normal(rng);
+  const double level = transient_noise({x, 0.0, dt}, 3.0, 64);
+  EXPECT_NEAR(level / (dt * sigma * std::sqrt(double(n))), 1.0, 0.2);
+  EXPECT_THROW(static_cast<void>(transient_noise({x, 0.0, dt}, 20.0)), std::invalid_argument);  // above Nyquist/2
 }
 
 }  // namespace

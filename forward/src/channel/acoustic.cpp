@@ -73,11 +73,204 @@ void apply_sponge(dem::Engine& e, const PackingUnits& u, const DriveSettings& d,
   }
 }
 
-/// The 1D lattice speed at the drive frequency: a guess of the packing's (of the same order) that
-/// sets the run length and the first windows.
-double speed_guess(const DriveSettings& d) { return LatticeModel().evaluate(d.omega_hat, d.gamma_hat).c_hat; }
+/// The wall's broadband pulse, dimensionless (t in sqrt(m/kappa), u in d):
+///   u(t) = A w(t) sin(omega_c (t - t_c)),
+/// a Gaussian window w of standard deviation sigma_t = 1 / sigma_omega centred at t_c = 5 sigma_t,
+/// lowered by its end value and rescaled, so the wall starts and ends exactly at rest at 0
+/// (w = 0 outside [0, 2 t_c]).
+struct Pulse {
+  static constexpr double kHalfWidths = 5.0;  // t_c in sigma_t: the window's end value is exp(-12.5)
+  static constexpr double kBandEdges = 2.5;   // the band's edges in spectral standard deviations
+  double amplitude, omega_c, sigma_omega, sigma_t, t_c, floor;
+
+  Pulse(const PulseBand& b, double amplitude_d)
+      : amplitude(amplitude_d),
+        omega_c(0.5 * (b.omega_hat_min + b.omega_hat_max)),
+        sigma_omega((b.omega_hat_max - b.omega_hat_min) / (2.0 * kBandEdges)),
+        sigma_t(1.0 / sigma_omega),
+        t_c(kHalfWidths * sigma_t),
+        floor(std::exp(-0.5 * kHalfWidths * kHalfWidths)) {}
+
+  [[nodiscard]] double duration() const { return 2.0 * t_c; }
+  [[nodiscard]] double displacement(double t) const {
+    if (t <= 0.0 || t >= duration()) return 0.0;
+    return amplitude * window(t) * std::sin(omega_c * (t - t_c));
+  }
+  [[nodiscard]] double velocity(double t) const {
+    if (t <= 0.0 || t >= duration()) return 0.0;
+    const double s = (t - t_c) / sigma_t;
+    const double window_rate = -s / sigma_t * std::exp(-0.5 * s * s) / (1.0 - floor);
+    return amplitude * (window_rate * std::sin(omega_c * (t - t_c)) + window(t) * omega_c * std::cos(omega_c * (t - t_c)));
+  }
+
+ private:
+  [[nodiscard]] double window(double t) const {
+    const double s = (t - t_c) / sigma_t;
+    return (std::exp(-0.5 * s * s) - floor) / (1.0 - floor);
+  }
+};
+
+/// Above this frequency the pulse's spectrum is below 1e-9 of its peak: what the records hold there
+/// is noise (transient_noise).
+double quiet_frequency(const Pulse& p) { return p.omega_c + 9.0 * p.sigma_omega; }
+
+/// The lower wall's motion: the sinusoid (LAMMPS wiggle) or the pulse, in scene units.
+dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int axis) {
+  const double t0 = u.time();
+  if (!d.pulse) return dem::Wiggle{axis, d.amplitude * u.diameter, 2.0 * std::numbers::pi * t0 / d.omega_hat};
+  const Pulse pulse(*d.pulse, d.amplitude * u.diameter);
+  auto along = [axis](double x) {
+    dem::Vec3 v;
+    v[axis] = x;
+    return v;
+  };
+  return dem::PrescribedMotion{[=](double t) { return along(pulse.displacement(t / t0)); },
+                               [=](double t) { return along(pulse.velocity(t / t0) / t0); }};
+}
+
+/// The layers a fit may use: beyond the near field, before the absorbing layer.
+struct FitRange {
+  std::size_t first = 0, end = 0;
+};
+FitRange fit_range(const DriveSettings& d, std::size_t layers) {
+  FitRange range;
+  range.first = static_cast<std::size_t>(std::max(0, d.skip_layers));
+  range.end = d.far_end == FarEnd::absorbing
+                  ? static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(layers))
+                  : layers;
+  return range;
+}
+
+/// The ascending indices up to the first gap of more than one missing index. Where layers fall
+/// below the noise floor (or the unsettled tail) in runs, what lies beyond is a few layers that
+/// passed by chance, across gaps too long to unwrap the phase through.
+std::vector<std::size_t> leading_run(const std::vector<std::size_t>& indices) {
+  std::vector<std::size_t> run;
+  for (const std::size_t i : indices) {
+    if (!run.empty() && i > run.back() + 2) break;
+    run.push_back(i);
+  }
+  return run;
+}
+
+/// Broadband measurement: at each frequency of the band, the Fourier transform of every layer's
+/// record (the transfer function from the wall to the layer, up to the drive's spectrum, which is
+/// the same for all layers) and the straight-line fits over layers, as for the lock-ins.
+void measure_pulse(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
+                   std::span<const SampledSignal> signals, FitRange range) {
+  const Pulse pulse(*d.pulse, d.amplitude);
+  const double omega_quiet = quiet_frequency(pulse);
+  std::vector<double> noise;
+  for (std::size_t k = range.first; k < range.end; ++k) noise.push_back(transient_noise(signals[k], omega_quiet));
+  const double absorbing_length = d.absorbing_fraction * u.column_length();
+  for (const double omega : d.pulse->omega_hats()) {
+    SpectralResult point;
+    point.omega_hat = omega;
+    std::vector<LockIn> probes;
+    for (std::size_t k = range.first; k < range.end; ++k) {
+      // What the record's last quarter adds to X: a response still running when the run ends
+      // (slow, weakly damped low frequencies; scattering coda) makes X uncertain by about as much.
+      const SampledSignal& record = signals[k];
+      const std::size_t tail_start = record.values.size() - record.values.size() / 4;
+      const SampledSignal tail{record.values.subspan(tail_start),
+                               record.t_first + record.dt * static_cast<double>(tail_start), record.dt};
+      const double unsettled = transient_spectrum(tail, omega).amplitude;
+      probes.push_back(transient_spectrum(record, omega, std::hypot(noise[k - range.first], unsettled)));
+    }
+    std::vector<double> z;
+    std::vector<LockIn> carrying;
+    for (const std::size_t i : leading_run(probes_above_noise(probes))) {
+      z.push_back(r.layer_z[range.first + i]);
+      carrying.push_back(probes[i]);
+    }
+    point.layers_used = static_cast<int>(carrying.size());
+    if (carrying.size() < 3) {
+      point.problem = "only " + std::to_string(carrying.size()) + " of " + std::to_string(probes.size()) +
+                      " layers carry this frequency clear of the noise floor and of the records' unsettled "
+                      "tails (amplitude >= " + std::to_string(kMinSignalToNoise) +
+                      " times both): lengthen the run (drive.periods), narrow the band or raise the amplitude";
+    } else {
+      point.fit = fit_attenuation_and_wavenumber(z, carrying, omega, omega / r.wave_speed_estimate, ProbeWeights::uniform);
+      point.problem = resolution_problem(point.fit, z.back() - z.front(), absorbing_length);
+    }
+    r.spectrum.push_back(std::move(point));
+  }
+  // The headline numbers: the measured frequency nearest the band's centre.
+  const SpectralResult* centre = nullptr;
+  for (const SpectralResult& p : r.spectrum) {
+    if (p.ok() && (centre == nullptr || std::abs(p.omega_hat - pulse.omega_c) < std::abs(centre->omega_hat - pulse.omega_c))) {
+      centre = &p;
+    }
+  }
+  if (centre == nullptr) {
+    r.problem = "no frequency of the band could be measured; at omega_hat " + std::to_string(r.spectrum.front().omega_hat) +
+                ": " + r.spectrum.front().problem;
+    return;
+  }
+  r.omega_hat = centre->omega_hat;
+  r.fit = centre->fit;
+  r.layers_used = centre->layers_used;
+}
+
+void check_pulse(const DriveSettings& d) {
+  const PulseBand& b = *d.pulse;
+  if (!(b.omega_hat_min > 0.0) || !(b.omega_hat_max > b.omega_hat_min) || b.frequencies < 1) {
+    throw std::invalid_argument("acoustic run: a pulse needs 0 < omega_hat_min < omega_hat_max and frequencies >= 1");
+  }
+  if (d.far_end != FarEnd::absorbing) {
+    throw std::invalid_argument("acoustic run: a pulse needs far_end = absorbing (a frozen end sends the whole pulse "
+                                "back through the layers being measured)");
+  }
+}
+
+double centre_omega_hat(const DriveSettings& d) { return d.pulse ? Pulse(*d.pulse, 1.0).omega_c : d.omega_hat; }
+
+/// The 1D lattice speed at the drive's (centre) frequency: a guess of the packing's (of the same
+/// order) that sets the run length and the first windows.
+double speed_guess(const DriveSettings& d) { return LatticeModel().evaluate(centre_omega_hat(d), d.gamma_hat).c_hat; }
+
+/// How long to run and how often to sample (dimensionless).
+struct RunLength {
+  double run_time = 0.0;
+  double sample_dt = 0.0;
+};
+
+constexpr double kRingDownPeriods = 3.0;
+
+RunLength run_length(const DriveSettings& d, const PackingUnits& u) {
+  const double length = (u.column_top - u.wall_surface) / u.diameter;
+  if (!d.pulse) {
+    // Long enough for an echo from the far end to return to the first layers, estimated with the
+    // 1D lattice speed at this frequency (the 3D packing's speed is of the same order).
+    const double period = 2.0 * std::numbers::pi / d.omega_hat;
+    return {d.periods > 0.0 ? d.periods * period : 2.0 * length / speed_guess(d) + (d.settle_periods + 4.0) * period,
+            period / d.samples_per_period};
+  }
+  // The pulse, then its slowest part across the measured layers (3D packings run at 0.6-0.8 of the
+  // lattice speed, which is at least 1 for omega_hat <= 2: half of it is a safe floor), then the
+  // pulse's length again and a few periods of the band's lowest frequency for the coda that
+  // scattering leaves behind. measure_pulse checks what is still running at the end.
+  const Pulse pulse(*d.pulse, d.amplitude);
+  const double measured = (1.0 - d.absorbing_fraction) * length;
+  const double run_time = d.periods > 0.0 ? d.periods * 2.0 * std::numbers::pi / pulse.omega_c
+                                          : 2.0 * pulse.duration() + measured / 0.5 +
+                                                kRingDownPeriods * 2.0 * std::numbers::pi / d.pulse->omega_hat_min;
+  // Samples fine enough for the band's top and for the noise probe above it (transient_noise).
+  const double sample_dt = std::min(2.0 * std::numbers::pi / (d.pulse->omega_hat_max * d.samples_per_period),
+                                    0.25 * std::numbers::pi / quiet_frequency(pulse));
+  return {run_time, sample_dt};
+}
 
 }  // namespace
+
+std::vector<double> PulseBand::omega_hats() const {
+  std::vector<double> out;
+  for (int i = 0; i < frequencies; ++i) {
+    const double s = frequencies == 1 ? 0.5 : static_cast<double>(i) / (frequencies - 1);
+    out.push_back(omega_hat_min * std::pow(omega_hat_max / omega_hat_min, s));
+  }
+  return out;
+}
 
 void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
   if (r.displacement.empty() || r.displacement.size() != r.layer_z.size() || !(r.sample_dt > 0.0)) {
@@ -88,10 +281,8 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   const double omega = r.omega_hat;  // dimensionless from here on: z in d, t in sqrt(m/kappa)
   std::vector<SampledSignal> signals;
   for (const auto& record : r.displacement) signals.push_back({record, 0.0, r.sample_dt});
-  const std::size_t first = static_cast<std::size_t>(std::max(0, d.skip_layers));
-  const std::size_t last_driven = d.far_end == FarEnd::absorbing
-                                      ? static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(r.layer_z.size()))
-                                      : r.layer_z.size();
+  const FitRange range = fit_range(d, r.layer_z.size());
+  const std::size_t first = range.first, last_driven = range.end;
   if (last_driven <= first + 2) {
     r.problem = "channel too short: fewer than 3 layers between the near field and the far end";
     return;
@@ -104,6 +295,10 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
     if (r.first_peak.speed > 0.0 && std::isfinite(r.first_peak.speed)) r.wave_speed_estimate = r.first_peak.speed;
   } catch (const std::exception&) {
     // No clear first peak (strong damping smears the front): keep the theory's estimate.
+  }
+  if (d.pulse) {
+    measure_pulse(r, d, u, signals, range);
+    return;
   }
   ChannelTiming timing;
   timing.wave_speed = r.wave_speed_estimate;
@@ -157,9 +352,10 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   if (!(d.omega_hat > 0.0) || !(d.gamma_hat >= 0.0) || !(d.amplitude > 0.0)) {
     throw std::invalid_argument("acoustic run: omega_hat and amplitude must be positive, gamma_hat non-negative");
   }
+  if (d.pulse) check_pulse(d);
   const PackingUnits u = packing_units(comm, packing, contact);
   const double t0 = u.time();
-  const double omega = d.omega_hat / t0;
+  const double omega = centre_omega_hat(d) / t0;  // sets the absorbing layer's drag
   contact.restitution.reset();
   contact.lammps_gamma_n.reset();
   contact.gamma = d.gamma_hat * u.damping_scale;  // Hooke: gamma; Hertz: the Tsuji alpha
@@ -170,13 +366,12 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   settings.contact = contact;
   settings.time_step_fraction = d.time_step_fraction;
   settings.balance.every_rebuilds = 0;
-  std::vector<dem::RigidBody> bodies{
-      dem::RigidBody("lower_wall", dem::Wiggle{axis, d.amplitude * u.diameter, 2.0 * std::numbers::pi / omega}),
-      dem::RigidBody("upper_wall", dem::Frozen{})};
+  std::vector<dem::RigidBody> bodies{dem::RigidBody("lower_wall", wall_motion(d, u, axis)),
+                                     dem::RigidBody("upper_wall", dem::Frozen{})};
   dem::Engine engine(comm, settings, packing.grains, std::move(bodies));
 
   AcousticResult r;
-  r.omega_hat = d.omega_hat;
+  r.omega_hat = centre_omega_hat(d);
   r.gamma_hat = d.gamma_hat;
   r.amplitude = d.amplitude;
   r.kappa = u.kappa;
@@ -187,15 +382,11 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   r.layer_grains = layers.grains_per_layer;
   r.displacement.assign(static_cast<std::size_t>(layers.count), {});
 
-  // Run length: long enough for an echo from the far end to return to the first layers, estimated
-  // with the 1D lattice speed at this frequency (the 3D packing's speed is of the same order).
-  const double c_guess = speed_guess(d);
-  const double length = (u.column_top - u.wall_surface) / u.diameter;
-  const double period = 2.0 * std::numbers::pi / d.omega_hat;
-  const double run_time = d.periods > 0.0 ? d.periods * period : 2.0 * length / c_guess + (d.settle_periods + 4.0) * period;
   const double dt = engine.time_step() / t0;
+  const RunLength length = run_length(d, u);
   const auto steps_per_sample =
-      static_cast<std::int64_t>(std::max(1.0, std::floor(period / (d.samples_per_period * dt))));
+      static_cast<std::int64_t>(std::max(1.0, std::floor(length.sample_dt / dt)));
+  const double run_time = length.run_time;
   r.sample_dt = static_cast<double>(steps_per_sample) * dt;
   r.time_step = dt;
   const auto total_steps = static_cast<std::int64_t>(std::ceil(run_time / dt));

@@ -280,6 +280,43 @@ FirstPeakFit first_peak_attenuation(std::span<const double> z, std::span<const S
   return fit;
 }
 
+LockIn transient_spectrum(const SampledSignal& signal, double omega, double noise) {
+  if (!(omega > 0.0) || !(signal.dt > 0.0) || signal.values.empty()) {
+    throw std::invalid_argument("transient_spectrum: need omega > 0, dt > 0 and a non-empty record");
+  }
+  // exp(i omega t_n) by a rotating phasor, renormalised now and then so round-off cannot build up.
+  const std::complex<double> step = std::polar(1.0, omega * signal.dt);
+  std::complex<double> phasor = std::polar(1.0, omega * signal.t_first);
+  std::complex<double> sum = 0.0;
+  for (std::size_t n = 0; n < signal.values.size(); ++n) {
+    sum += signal.values[n] * phasor;
+    phasor *= step;
+    if (n % 1024 == 1023) phasor = std::polar(1.0, omega * (signal.t_first + signal.dt * static_cast<double>(n + 1)));
+  }
+  const std::complex<double> x = signal.dt * sum;
+  LockIn result;
+  result.amplitude = std::abs(x);
+  result.phase = std::arg(x);
+  result.sigma_amplitude = noise;
+  result.sigma_phase = result.amplitude > 0.0 ? noise / result.amplitude : std::numbers::pi;
+  result.samples = signal.values.size();
+  return result;
+}
+
+double transient_noise(const SampledSignal& signal, double omega_quiet, int count) {
+  if (!(omega_quiet > 0.0) || count < 1 || 2.0 * omega_quiet >= std::numbers::pi / signal.dt) {
+    throw std::invalid_argument("transient_noise: need 0 < omega_quiet < pi / (2 dt) and count >= 1, got omega_quiet " +
+                                str(omega_quiet) + ", dt " + str(signal.dt));
+  }
+  double sum2 = 0.0;
+  for (int m = 0; m < count; ++m) {
+    const double omega = omega_quiet * (1.0 + (m + 0.5) / count);
+    const double a = transient_spectrum(signal, omega).amplitude;
+    sum2 += a * a;
+  }
+  return std::sqrt(sum2 / count);
+}
+
 std::vector<SpectralPoint> transfer_function(std::span<const double> x_ref, std::span<const double> x_probe, double dt,
                                              double dz, const TransferOptions& options) {
   if (x_ref.size() != x_probe.size() || x_ref.size() < 4) {

@@ -88,6 +88,34 @@ PreparedChannel read_packing(const std::filesystem::path& path) {
   return p;
 }
 
+namespace {
+
+/// A pulse run's results per frequency: one row each, columns as named datasets; the problems as
+/// one line per frequency (empty where measured).
+void write_spectrum(hid_t results, const std::vector<SpectralResult>& spectrum) {
+  h5::Handle group = h5::create_group(results, "spectrum");
+  auto column = [&](const std::string& name, auto value, const std::string& unit) {
+    std::vector<double> values;
+    for (const SpectralResult& p : spectrum) values.push_back(value(p));
+    h5::write(group, name, values.data(), values.size());
+    h5::write_string_attribute(group, name + "_unit", unit);
+  };
+  column("omega_hat", [](const SpectralResult& p) { return p.omega_hat; }, "1");
+  column("alpha_hat", [](const SpectralResult& p) { return p.fit.alpha; }, "Np per d");
+  column("sigma_alpha_hat", [](const SpectralResult& p) { return p.fit.sigma_alpha; }, "Np per d");
+  column("c_hat", [](const SpectralResult& p) { return p.fit.c; }, "d sqrt(kappa/m)");
+  column("sigma_c_hat", [](const SpectralResult& p) { return p.fit.sigma_c; }, "d sqrt(kappa/m)");
+  column("layers_used", [](const SpectralResult& p) { return static_cast<double>(p.layers_used); }, "1");
+  std::string problems;
+  for (const SpectralResult& p : spectrum) problems += p.problem + "\n";
+  h5::write_string_attribute(group, "problems", problems);
+  h5::write_string_attribute(group, "about",
+                             "broadband (pulse) drive: alpha_hat and c_hat per frequency from the layer records' "
+                             "Fourier transforms; a row with a non-empty line in 'problems' was not measured");
+}
+
+}  // namespace
+
 void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
                     const AcousticResult& r) {
   write_atomically(path, [&](hid_t file) {
@@ -125,6 +153,7 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     h5::write_attribute(results, "steps", r.steps);
     number(results, "wall_seconds", r.wall_seconds, "s");
     h5::write_string_attribute(results, "problem", r.problem);
+    if (!r.spectrum.empty()) write_spectrum(results, r.spectrum);
   });
 }
 

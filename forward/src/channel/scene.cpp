@@ -77,7 +77,17 @@ void read_preparation(Section s, PreparationSettings& p) {
 void read_drive(Section s, DriveSettings& d) {
   d.axis = s.choice("axis", "z", {"z", "x"}) == "z" ? DriveAxis::longitudinal : DriveAxis::transverse;
   d.amplitude = s.positive("amplitude", d.amplitude);
-  d.omega_hat = s.positive("omega_hat", d.omega_hat);
+  if (s.choice("signal", "sinusoid", {"sinusoid", "pulse"}) == "pulse") {
+    if (s.has("omega_hat")) s.fail_table("a pulse spans omega_hat_min..omega_hat_max; 'omega_hat' is for signal = \"sinusoid\"");
+    PulseBand band;
+    band.omega_hat_min = s.positive("omega_hat_min", band.omega_hat_min);
+    band.omega_hat_max = s.positive("omega_hat_max", band.omega_hat_max);
+    band.frequencies = static_cast<int>(s.integer("frequencies", band.frequencies, 1));
+    if (!(band.omega_hat_max > band.omega_hat_min)) s.fail_table("omega_hat_max must exceed omega_hat_min");
+    d.pulse = band;
+  } else {
+    d.omega_hat = s.positive("omega_hat", d.omega_hat);
+  }
   if (s.has("gamma_hat") && s.has("restitution")) s.fail_table("give 'gamma_hat' or 'restitution', not both");
   if (s.has("restitution")) {
     const double e = s.positive("restitution", 0.9);
@@ -119,6 +129,14 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   read_preparation(top.sub("preparation"), scene.preparation);
   read_drive(top.sub("drive"), scene.drive);
   read_linear(top.sub("linear"), scene.linear);
+  if (scene.drive.pulse && scene.engine == EngineKind::linear) {
+    top.sub("drive").fail_table("signal: the linear engine solves each frequency directly; a pulse is for the "
+                                "time-domain engine");
+  }
+  if (scene.drive.pulse && scene.drive.far_end != FarEnd::absorbing) {
+    top.sub("drive").fail_table("far_end: a pulse needs far_end = \"absorbing\" (a frozen end sends the whole pulse "
+                                "back through the layers being measured)");
+  }
   if (scene.engine == EngineKind::linear && scene.drive.far_end != FarEnd::absorbing) {
     top.sub("drive").fail_table("far_end: the linear engine computes the steady state, in which a frozen end "
                                          "reflects the whole wave: use far_end = \"absorbing\"");

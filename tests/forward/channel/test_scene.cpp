@@ -2,7 +2,9 @@
 // file, the line and the key.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "sedwave/forward/channel/scene.hpp"
 
@@ -66,7 +68,24 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"[contakt]\nkn = 726\n", "bad.toml:1: key 'contakt': unknown key"},
                       BadScene{"engine = \"fast\"\n[contact]\nkn = 726\n", "bad.toml:1: key 'engine': must be one of linear, time_domain"},
                       BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[linear]\nensemble = 0\n", "bad.toml:5: key 'linear.ensemble': must be at least 1"},
-                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nfar_end = \"frozen\"\n", "bad.toml:4: [drive]: far_end: the linear engine"}));
+                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nfar_end = \"frozen\"\n", "bad.toml:4: [drive]: far_end: the linear engine"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat = 0.5\n", "bad.toml:3: [drive]: a pulse spans omega_hat_min..omega_hat_max"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat_min = 1\nomega_hat_max = 0.5\n", "[drive]: omega_hat_max must exceed omega_hat_min"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nfar_end = \"frozen\"\n", "[drive]: far_end: a pulse needs far_end = \"absorbing\""},
+                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\n", "[drive]: signal: the linear engine solves each frequency"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\n", "bad.toml:4: key 'drive.signal': must be one of pulse, sinusoid"}));
+
+TEST(Scene, PulseDriveReadsItsBand) {
+  const ChannelScene s = parse_scene(
+      "[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat_min = 0.1\nomega_hat_max = 1\nfrequencies = 3\n", "x.toml");
+  ASSERT_TRUE(s.drive.pulse.has_value());
+  const std::vector<double> w = s.drive.pulse->omega_hats();
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_NEAR(w[0], 0.1, 1e-15);
+  EXPECT_NEAR(w[1], std::sqrt(0.1), 1e-15);
+  EXPECT_NEAR(w[2], 1.0, 1e-15);
+  EXPECT_FALSE(parse_scene("[contact]\nkn = 726\n", "x.toml").drive.pulse.has_value());
+}
 
 }  // namespace
 }  // namespace sedwave::forward::channel

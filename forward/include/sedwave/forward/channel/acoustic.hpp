@@ -15,6 +15,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,16 +28,32 @@ namespace sedwave::forward::channel {
 enum class DriveAxis { longitudinal, transverse };
 enum class FarEnd { frozen, absorbing };
 
+/// A broadband drive: the wall moves by one Gaussian-windowed tone burst whose spectrum spans
+/// [omega_hat_min, omega_hat_max] (centred on the middle; the band's edges lie 2.5 spectral standard
+/// deviations out, where the drive spectrum is 4 % of its peak). alpha_hat and c_hat are measured
+/// at `frequencies` log-spaced frequencies over the band, from the Fourier transforms of the layer
+/// records (transient_spectrum): one run, many frequencies. Needs an absorbing far end.
+struct PulseBand {
+  double omega_hat_min = 0.2;
+  double omega_hat_max = 1.8;
+  int frequencies = 12;
+  /// The measured frequencies, log-spaced from omega_hat_min to omega_hat_max.
+  [[nodiscard]] std::vector<double> omega_hats() const;
+};
+
 struct DriveSettings {
   DriveAxis axis = DriveAxis::longitudinal;
   double amplitude = 1e-4;   ///< A [mean diameters] (thesis: 1e-4)
-  double omega_hat = 0.5;    ///< drive angular frequency [1/sqrt(m/kappa)]
+  double omega_hat = 0.5;    ///< drive angular frequency [1/sqrt(m/kappa)] (sinusoidal drive)
+  std::optional<PulseBand> pulse;  ///< set: a broadband pulse instead of the sinusoid at omega_hat
   double gamma_hat = 0.05;   ///< contact dashpot gamma / sqrt(kappa m)
   FarEnd far_end = FarEnd::frozen;
   double absorbing_fraction = 0.3;  ///< of the column, at the far end
   /// Drag at the far end of the absorbing layer, in units of m omega; it grows quadratically from 0.
   double absorbing_strength = 1.0;
-  double periods = 0.0;             ///< run length in drive periods; 0: until echoes could return
+  /// Run length in drive periods (pulse: periods of the band's centre); 0: until echoes could
+  /// return (pulse: until the pulse has passed the last measured layer).
+  double periods = 0.0;
   int samples_per_period = 32;
   double layer_thickness = 1.0;     ///< [mean diameters]
   int skip_layers = 2;              ///< layers next to the driven wall left out of the fit (near field)
@@ -44,7 +61,19 @@ struct DriveSettings {
   double time_step_fraction = 0.01; ///< dt / binary collision time (thesis: 0.01)
 };
 
+/// alpha_hat and c_hat at one frequency of a broadband (pulse) run.
+struct SpectralResult {
+  double omega_hat = 0.0;
+  PropagationFit fit;
+  int layers_used = 0;
+  std::string problem;  ///< empty when alpha and c were measured at this frequency
+  [[nodiscard]] bool ok() const { return problem.empty(); }
+};
+
 /// Everything measured in one driven run (rank 0 holds the records; results are on every rank).
+/// For a pulse, fit, layers_used and problem are those of the measured frequency nearest the band's
+/// centre (omega_hat says which), and `spectrum` holds every frequency; problem is set only when no
+/// frequency could be measured.
 struct AcousticResult {
   // Inputs resolved to dimensionless numbers.
   double omega_hat = 0.0, gamma_hat = 0.0, amplitude = 0.0;
@@ -61,6 +90,7 @@ struct AcousticResult {
   std::vector<LockIn> lock_ins;          ///< per layer (zero amplitude where no window)
   PropagationFit fit;                    ///< over layers with valid windows beyond skip_layers
   FirstPeakFit first_peak;               ///< the thesis's method, for comparison
+  std::vector<SpectralResult> spectrum;  ///< pulse drives: one entry per measured frequency
   int layers_used = 0;
   std::int64_t steps = 0;
   double wall_seconds = 0.0;

@@ -207,6 +207,24 @@ struct FirstPeakFit {
 [[nodiscard]] FirstPeakFit first_peak_attenuation(std::span<const double> z, std::span<const SampledSignal> signals,
                                                   double relative_threshold = 0.5);
 
+// ---- Broadband: a transient record at any frequency ------------------------------------------------
+
+/// Fourier transform of a transient record at angular frequency omega,
+///   X(omega) = dt sum_n x_n exp(i omega t_n),
+/// returned as a LockIn with amplitude |X| and phase arg X (the lock-in's convention: a delay tau
+/// adds omega tau to the phase). The record must hold the whole transient (quiet at both ends);
+/// X is then the continuous transform at any omega, not only at FFT bins, and X_probe / X_ref is
+/// the transfer function between two probes. `noise` is |X| of the record's noise at omega (see
+/// transient_noise); it becomes sigma_amplitude, and noise / |X| sigma_phase, so probes_above_noise
+/// and the fits treat these like lock-ins.
+[[nodiscard]] LockIn transient_spectrum(const SampledSignal& signal, double omega, double noise = 0.0);
+
+/// Noise level of |X| for a record whose signal has no content above omega_quiet: the rms of |X| at
+/// `count` frequencies spread over [omega_quiet, 2 omega_quiet]. Whatever is there (round-off,
+/// residual motion of the packing, harmonics made by contacts that clap) is not the linear response
+/// to the drive. omega_quiet must lie below the record's Nyquist frequency pi / dt.
+[[nodiscard]] double transient_noise(const SampledSignal& signal, double omega_quiet, int count = 16);
+
 // ---- Broadband: transfer function between two layers -----------------------------------------------
 
 struct TransferOptions {
