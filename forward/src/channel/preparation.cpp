@@ -369,8 +369,9 @@ std::string describe(const PreparationReport& r) {
     << "), rattler fraction " << p.rattler_fraction << "\n"
     << "overlap / d: mean " << p.mean_overlap << ", max " << p.max_overlap << "\n"
     << "max residual force / mean contact force " << r.residual_ratio << "\n"
-    << "steps: compression " << r.compression_steps << ", relaxation " << r.relaxation_steps << ", wall corrections "
-    << r.wall_corrections << (r.converged ? ", converged" : ", NOT converged");
+    << "steps: compression " << r.compression_steps << ", relaxation " << r.relaxation_steps << ", Newton "
+    << r.newton_iterations << ", wall corrections " << r.wall_corrections
+    << (r.converged ? ", converged" : ", NOT converged");
   return s.str();
 }
 

@@ -61,6 +61,9 @@ inline void write_stats(hid_t parent, const PreparationReport& r) {
   number(parent, "mean_contact_force", s.mean_contact_force, "force unit of the scene");
   h5::write_attribute(parent, "contacts", s.contacts);
   h5::write_attribute(parent, "converged", static_cast<std::int32_t>(r.converged));
+  h5::write_attribute(parent, "compression_steps", static_cast<std::int64_t>(r.compression_steps));
+  h5::write_attribute(parent, "relaxation_steps", static_cast<std::int64_t>(r.relaxation_steps));
+  h5::write_attribute(parent, "newton_iterations", static_cast<std::int32_t>(r.newton_iterations));
   h5::write(parent, "overlap_histogram", s.overlap_histogram.data(), s.overlap_histogram.size());
   h5::write(parent, "gap_histogram", s.gap_histogram.data(), s.gap_histogram.size());
   h5::write_string_attribute(parent, "histogram_bins",
