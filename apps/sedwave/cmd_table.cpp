@@ -102,6 +102,11 @@ Command add_table_command(CLI::App& app) {
     channel::ChannelScene scene = channel::read_scene(grid.scene_path);
     if (!o->engine.empty()) {
       scene.engine = o->engine == "linear" ? channel::EngineKind::linear : channel::EngineKind::time_domain;
+      if (scene.engine == channel::EngineKind::linear && scene.drive.pulse) {
+        throw std::invalid_argument(grid.scene_path.string() +
+                                    ": --engine linear solves each frequency directly; the scene's pulse drive "
+                                    "is for the time-domain engine (use signal = \"sinusoid\")");
+      }
       if (scene.engine == channel::EngineKind::linear && scene.drive.far_end != channel::FarEnd::absorbing) {
         throw std::invalid_argument(grid.scene_path.string() +
                                     ": --engine linear needs [drive] far_end = \"absorbing\" (a steady state "
@@ -134,7 +139,7 @@ Command add_table_command(CLI::App& app) {
       channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
       table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
       report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance),
-                                    table::dem_point_function(packing, scene.contact, scene.drive), settings);
+                                    table::dem_point_function(packing, scene.contact, scene.drive, grid.grid), settings);
     }
     if (mpi.rank() == 0) {
       const double busy = report.wall_seconds > 0.0 ? report.point_seconds / (report.wall_seconds * mpi.size()) : 0.0;

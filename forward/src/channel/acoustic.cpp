@@ -217,6 +217,13 @@ void check_pulse(const DriveSettings& d) {
   if (!(b.omega_hat_min > 0.0) || !(b.omega_hat_max > b.omega_hat_min) || b.frequencies < 1) {
     throw std::invalid_argument("acoustic run: a pulse needs 0 < omega_hat_min < omega_hat_max and frequencies >= 1");
   }
+  for (const double w : b.measured) {
+    if (!(w >= b.omega_hat_min && w <= b.omega_hat_max)) {
+      throw std::invalid_argument("acoustic run: the pulse's measured frequency " + std::to_string(w) +
+                                  " lies outside its band [" + std::to_string(b.omega_hat_min) + ", " +
+                                  std::to_string(b.omega_hat_max) + "]");
+    }
+  }
   if (d.far_end != FarEnd::absorbing) {
     throw std::invalid_argument("acoustic run: a pulse needs far_end = absorbing (a frozen end sends the whole pulse "
                                 "back through the layers being measured)");
@@ -264,6 +271,7 @@ RunLength run_length(const DriveSettings& d, const PackingUnits& u) {
 }  // namespace
 
 std::vector<double> PulseBand::omega_hats() const {
+  if (!measured.empty()) return measured;
   std::vector<double> out;
   for (int i = 0; i < frequencies; ++i) {
     const double s = frequencies == 1 ? 0.5 : static_cast<double>(i) / (frequencies - 1);

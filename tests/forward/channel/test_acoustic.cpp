@@ -70,7 +70,7 @@ TEST_F(SmallChannel, OnePulseMeasuresWhatSinusoidsMeasureFrequencyByFrequency) {
   d.gamma_hat = 1.0;
   d.far_end = FarEnd::absorbing;
   d.absorbing_fraction = 0.4;
-  d.pulse = PulseBand{0.25, 1.2, 6};
+  d.pulse = PulseBand{.omega_hat_min = 0.25, .omega_hat_max = 1.2, .frequencies = 6, .measured = {}};
   const AcousticResult pulse = run_acoustic(MPI_COMM_WORLD, *packing_, hooke(726.0), d);
   ASSERT_TRUE(pulse.ok()) << pulse.problem;
   ASSERT_EQ(pulse.spectrum.size(), 6u);

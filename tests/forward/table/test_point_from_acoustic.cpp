@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "sedwave/forward/table/task_farm.hpp"
 
@@ -51,6 +52,22 @@ TEST(PointFromAcoustic, RunProblemIsUnresolvedWithItsReason) {
 TEST(PointFromAcoustic, NonFiniteFitIsUnresolved) {
   const PointResult p = point_from_acoustic(measured(0.02, NAN, 0.9, 0.01));
   EXPECT_EQ(p.status, PointStatus::unresolved);
+}
+
+TEST(PulseBands, CutTheGridIntoBandsOneGaussianPulseCovers) {
+  const std::vector<std::vector<double>> bands = pulse_bands(log_spaced(1e-3, 1.0, 10));
+  ASSERT_FALSE(bands.empty());
+  std::size_t total = 0;
+  double previous = 0.0;
+  for (const auto& band : bands) {
+    EXPECT_LE(band.back() / band.front(), kPulseBandRatio * (1.0 + 1e-12));
+    EXPECT_GT(band.front(), previous);  // consecutive, nothing repeated
+    previous = band.back();
+    total += band.size();
+  }
+  EXPECT_EQ(total, 10u);
+  EXPECT_EQ(bands.size(), 4u);  // 3 decades in bands of at most a factor 8: 4 bands
+  EXPECT_EQ(pulse_bands({0.5}).size(), 1u);
 }
 
 }  // namespace

@@ -37,7 +37,10 @@ struct PulseBand {
   double omega_hat_min = 0.2;
   double omega_hat_max = 1.8;
   int frequencies = 12;
-  /// The measured frequencies, log-spaced from omega_hat_min to omega_hat_max.
+  /// If not empty: the frequencies to measure (inside the band), e.g. a table's grid values,
+  /// instead of `frequencies` log-spaced ones.
+  std::vector<double> measured;
+  /// The measured frequencies: `measured`, or log-spaced from omega_hat_min to omega_hat_max.
   [[nodiscard]] std::vector<double> omega_hats() const;
 };
 

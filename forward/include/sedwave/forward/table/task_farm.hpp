@@ -19,8 +19,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
-#include <string>
 #include <iosfwd>
+#include <string>
+#include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/table/table.hpp"
@@ -68,10 +69,22 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
 /// of every group of ranks_per_point ranks, which run_acoustic needs. Collective over `world`.
 void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point);
 
+/// A pulse covers a band well up to this ratio of its highest to its lowest frequency.
+inline constexpr double kPulseBandRatio = 8.0;
+
+/// The grid's omega_hat values (ascending) cut into consecutive bands, each spanning at most
+/// kPulseBandRatio.
+[[nodiscard]] std::vector<std::vector<double>> pulse_bands(const std::vector<double>& omega_hats);
+
 /// The DEM point function: every point drives the same prepared packing (which must be on rank 0 of
 /// each group; other ranks may hold an empty one) with `drive`, its omega_hat and gamma_hat replaced
-/// by the grid point's. The references must outlive the farm.
+/// by the grid point's. With a pulse drive (`drive.pulse` set; its own band is ignored), the first
+/// point of a (gamma_hat, band of pulse_bands(grid.omega_hat)) that a group meets runs one pulse
+/// measuring every grid frequency of that band, and the group's next points of the same band are
+/// read from it: the farm hands out points gamma_hat-major, so with G groups a table row costs at
+/// most G pulse runs per band instead of one run per point. The references must outlive the farm.
 [[nodiscard]] PointFunction dem_point_function(const channel::PreparedChannel& packing,
-                                               const dem::ContactSpec& contact, const channel::DriveSettings& drive);
+                                               const dem::ContactSpec& contact, const channel::DriveSettings& drive,
+                                               const TableGrid& grid);
 
 }  // namespace sedwave::forward::table
