@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <functional>
 #include <numbers>
 #include <random>
@@ -41,6 +42,23 @@ struct PlaneWave {
     return std::exp(-alpha * z) * std::cos(omega * t - k * z + phi0);
   }
 };
+
+/// Probes at z = 0, 1, ..., last: 3000 samples of `wave` from t = 0 in steps dt, plus white noise
+/// of rms `noise` (seeded).
+struct ProbeRecords {
+  std::vector<double> z;
+  std::vector<std::vector<double>> records;
+};
+ProbeRecords noisy_probe_records(const PlaneWave& wave, double noise, std::uint64_t seed, int last, double dt) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, noise);
+  ProbeRecords p;
+  for (int i = 0; i <= last; ++i) {
+    p.z.push_back(i);
+    p.records.push_back(sample([&](double t) { return wave(p.z.back(), t) + normal(rng); }, 0.0, dt, 3000));
+  }
+  return p;
+}
 
 std::vector<LockIn> lock_in_all(const std::vector<std::vector<double>>& records, double dt, double omega,
                                 const std::vector<TimeWindow>& windows) {
@@ -149,14 +167,7 @@ TEST(Propagation, RecoversAlphaAndKExactlyWithoutNoise) {
 TEST(Propagation, NoisyRecordsWithinReportedErrors) {
   const PlaneWave wave{0.05, 0.7, 0.6};
   const double dt = 0.07, noise = 1e-3;  // absolute, against A0 = 1 (far probe: 0.37)
-  std::mt19937_64 rng(12345);
-  std::normal_distribution<double> normal(0.0, noise);
-  std::vector<double> z;
-  std::vector<std::vector<double>> records;
-  for (int i = 0; i <= 20; ++i) {
-    z.push_back(i);
-    records.push_back(sample([&](double t) { return wave(z.back(), t) + normal(rng); }, 0.0, dt, 3000));
-  }
+  const auto [z, records] = noisy_probe_records(wave, noise, 12345, 20, dt);
   const auto probes = lock_in_all(records, dt, wave.omega, std::vector<TimeWindow>(z.size(), {20.0, 180.0}));
   const PropagationFit fit = fit_attenuation_and_wavenumber(z, probes, wave.omega);
   EXPECT_LT(std::abs(fit.alpha - wave.alpha), 3.0 * fit.sigma_alpha);
@@ -175,14 +186,7 @@ TEST(Propagation, ProbesBeyondTheNoiseFloorAreLeftOut) {
   // flattens the decay; the probes above the noise give alpha within their errors.
   const PlaneWave wave{0.9, 0.7, 0.6};
   const double dt = 0.07, noise = 1e-6;
-  std::mt19937_64 rng(2026);
-  std::normal_distribution<double> normal(0.0, noise);
-  std::vector<double> z;
-  std::vector<std::vector<double>> records;
-  for (int i = 0; i <= 30; ++i) {
-    z.push_back(i);
-    records.push_back(sample([&](double t) { return wave(z.back(), t) + normal(rng); }, 0.0, dt, 3000));
-  }
+  const auto [z, records] = noisy_probe_records(wave, noise, 2026, 30, dt);
   const auto probes = lock_in_all(records, dt, wave.omega, std::vector<TimeWindow>(z.size(), {20.0, 180.0}));
   const std::vector<std::size_t> carrying = probes_above_noise(probes);
   EXPECT_GE(carrying.size(), 15u);

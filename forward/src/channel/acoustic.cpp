@@ -9,6 +9,7 @@
 
 #include "sedwave/forward/channel/packing_units.hpp"
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/table/table.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 #include "sedwave/forward/units.hpp"
 
@@ -160,22 +161,27 @@ void measure_pulse(AcousticResult& r, const DriveSettings& d, const PackingUnits
                    std::span<const SampledSignal> signals, FitRange range) {
   const Pulse pulse(*d.pulse, d.amplitude);
   const double omega_quiet = quiet_frequency(pulse);
+  // Per layer: the noise level, and the record's last quarter, whose share of X at each frequency
+  // is a response still running when the run ends (slow, weakly damped low frequencies; scattering
+  // coda) and makes X uncertain by about as much.
   std::vector<double> noise;
-  for (std::size_t k = range.first; k < range.end; ++k) noise.push_back(transient_noise(signals[k], omega_quiet));
+  std::vector<SampledSignal> tails;
+  for (std::size_t k = range.first; k < range.end; ++k) {
+    const SampledSignal& record = signals[k];
+    noise.push_back(transient_noise(record, omega_quiet));
+    const std::size_t tail_start = record.values.size() - record.values.size() / 4;
+    tails.push_back({record.values.subspan(tail_start), record.t_first + record.dt * static_cast<double>(tail_start),
+                     record.dt});
+  }
   const double absorbing_length = d.absorbing_fraction * u.column_length();
   for (const double omega : d.pulse->omega_hats()) {
     SpectralResult point;
     point.omega_hat = omega;
     std::vector<LockIn> probes;
     for (std::size_t k = range.first; k < range.end; ++k) {
-      // What the record's last quarter adds to X: a response still running when the run ends
-      // (slow, weakly damped low frequencies; scattering coda) makes X uncertain by about as much.
-      const SampledSignal& record = signals[k];
-      const std::size_t tail_start = record.values.size() - record.values.size() / 4;
-      const SampledSignal tail{record.values.subspan(tail_start),
-                               record.t_first + record.dt * static_cast<double>(tail_start), record.dt};
-      const double unsettled = transient_spectrum(tail, omega).amplitude;
-      probes.push_back(transient_spectrum(record, omega, std::hypot(noise[k - range.first], unsettled)));
+      const std::size_t i = k - range.first;
+      const double unsettled = transient_spectrum(tails[i], omega).amplitude;
+      probes.push_back(transient_spectrum(signals[k], omega, std::hypot(noise[i], unsettled)));
     }
     std::vector<double> z;
     std::vector<LockIn> carrying;
@@ -272,12 +278,8 @@ RunLength run_length(const DriveSettings& d, const PackingUnits& u) {
 
 std::vector<double> PulseBand::omega_hats() const {
   if (!measured.empty()) return measured;
-  std::vector<double> out;
-  for (int i = 0; i < frequencies; ++i) {
-    const double s = frequencies == 1 ? 0.5 : static_cast<double>(i) / (frequencies - 1);
-    out.push_back(omega_hat_min * std::pow(omega_hat_max / omega_hat_min, s));
-  }
-  return out;
+  if (frequencies == 1) return {std::sqrt(omega_hat_min * omega_hat_max)};
+  return table::log_spaced(omega_hat_min, omega_hat_max, static_cast<std::size_t>(frequencies));
 }
 
 void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
