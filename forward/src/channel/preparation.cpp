@@ -320,8 +320,9 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
     // poorly; the secant iteration above has already brought the pressure within its tolerance.)
     //
     // Rounds of Newton steps and short FIRE bursts: Newton relaxes the long-wavelength part of the
-    // residual in a few solves, but stalls where contacts at the edge of opening flip in and out
-    // (many of them in a long column); FIRE settles those locally in a few hundred steps.
+    // residual in a few solves and converges quadratically once the packing is near its minimum,
+    // but crawls while a soft spot is still collapsing (an unstable transverse mode of a few hundred
+    // grains in a long W = 3 column); FIRE follows such a rearrangement dynamically.
     constexpr int kRounds = 20, kNewtonPerRound = 30;
     constexpr std::int64_t kFireBurst = 2000;
     for (int round = 0; round < kRounds; ++round) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 namespace sedwave::forward::linear {
 namespace {
@@ -18,6 +20,45 @@ double longest_coupling(const Eigen::SparseMatrix<double>& a, std::span<const do
     }
   }
   return longest;
+}
+
+/// Block Gaussian elimination of a symmetric block-tridiagonal matrix (the block Thomas algorithm):
+/// Schur complements S_s = Z_s - L_s S_{s-1}^{-1} L_s^T, kept as X_s = S_{s-1}^{-1} L_s^T and
+/// W_s = S_s^{-1} (B_s - L_s W_{s-1}); then U_s = W_s - X_{s+1} U_{s+1}. Slab s holds unknowns
+/// offset[s] .. offset[s+1]; diagonal(s) is Z_s, lower(s) the block of rows s, columns s-1.
+/// Factorisation is Eigen::LLT (real symmetric positive definite; returns nullopt at the first
+/// block that is not, so the matrix is not) or Eigen::PartialPivLU (any regular matrix).
+template <class Factorisation, class Matrix, class Diagonal, class Lower>
+std::optional<Matrix> block_thomas(std::span<const Eigen::Index> offset, Diagonal diagonal, Lower lower,
+                                   const Matrix& rhs) {
+  const std::size_t slabs = offset.size() - 1;
+  auto rows = [&](std::size_t s) { return offset[s + 1] - offset[s]; };
+  std::vector<Matrix> x(slabs), w(slabs);
+  Matrix next_lower;
+  for (std::size_t s = 0; s < slabs; ++s) {
+    Matrix schur = diagonal(s);
+    Matrix y = rhs.middleRows(offset[s], rows(s));
+    if (s > 0) {
+      schur.noalias() -= next_lower * x[s];
+      y.noalias() -= next_lower * w[s - 1];
+    }
+    const Factorisation factor(schur);
+    if constexpr (std::is_same_v<Factorisation, Eigen::LLT<Matrix>>) {
+      if (factor.info() != Eigen::Success) return std::nullopt;
+    }
+    w[s] = factor.solve(y);
+    if (s + 1 < slabs) {
+      next_lower = lower(s + 1);
+      x[s + 1] = factor.solve(next_lower.transpose());
+    }
+  }
+  Matrix u(rhs.rows(), rhs.cols());
+  for (std::size_t s = slabs; s-- > 0;) {
+    Matrix us = w[s];
+    if (s + 1 < slabs) us.noalias() -= x[s + 1] * u.middleRows(offset[s + 1], rows(s + 1));
+    u.middleRows(offset[s], rows(s)) = us;
+  }
+  return u;
 }
 
 }  // namespace
@@ -89,15 +130,20 @@ Eigen::VectorXcd SlabSolver::solve(double omega, double gamma, const Eigen::Vect
   return eliminate({0.0, omega}, {-omega * omega, 0.0}, gamma, extra_damping, rhs);
 }
 
-Eigen::MatrixXd SlabSolver::solve_shifted(double mass_shift, const Eigen::MatrixXd& rhs) const {
-  return eliminate(0.0, mass_shift, 0.0, Eigen::VectorXd(), rhs.cast<std::complex<double>>()).real();
+std::optional<Eigen::MatrixXd> SlabSolver::solve_shifted(double mass_shift, const Eigen::MatrixXd& rhs) const {
+  auto lower = [&](std::size_t s) -> const Eigen::MatrixXd& { return k_lower_[s]; };
+  auto diagonal = [&](std::size_t s) -> Eigen::MatrixXd {
+    Eigen::MatrixXd z = k_diagonal_[s];
+    z.diagonal() += mass_shift * mass_.segment(offset_[s], offset_[s + 1] - offset_[s]);
+    return z;
+  };
+  return block_thomas<Eigen::LLT<Eigen::MatrixXd>>(offset_, diagonal, lower, rhs);
 }
 
 Eigen::MatrixXcd SlabSolver::eliminate(std::complex<double> damping_factor, std::complex<double> mass_factor,
                                        double gamma, const Eigen::VectorXd& extra_damping,
                                        const Eigen::MatrixXcd& rhs) const {
   using Complex = std::complex<double>;
-  const std::size_t slabs = k_diagonal_.size();
   const Complex a = damping_factor;
   const bool tangential = !t_diagonal_.empty();
   auto lower = [&](std::size_t s) -> Eigen::MatrixXcd {
@@ -113,32 +159,8 @@ Eigen::MatrixXcd SlabSolver::eliminate(std::complex<double> damping_factor, std:
     if (extra_damping.size() > 0) z.diagonal() += a * extra_damping.segment(o, n).cast<Complex>();
     return z;
   };
-  // Forward elimination: Schur complements S_s = Z_s - L_s S_{s-1}^{-1} L_s^T, kept as
-  // X_s = S_{s-1}^{-1} L_s^T and W_s = S_s^{-1} (B_s - L_s W_{s-1}).
-  std::vector<Eigen::MatrixXcd> x(slabs), w(slabs);
-  Eigen::MatrixXcd next_lower;
-  for (std::size_t s = 0; s < slabs; ++s) {
-    Eigen::MatrixXcd schur = diagonal(s);
-    Eigen::MatrixXcd y = rhs.middleRows(offset_[s], offset_[s + 1] - offset_[s]);
-    if (s > 0) {
-      schur.noalias() -= next_lower * x[s];
-      y.noalias() -= next_lower * w[s - 1];
-    }
-    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(schur);
-    w[s] = lu.solve(y);
-    if (s + 1 < slabs) {
-      next_lower = lower(s + 1);
-      x[s + 1] = lu.solve(next_lower.transpose());
-    }
-  }
-  // Back substitution: U_s = W_s - X_{s+1} U_{s+1}.
-  Eigen::MatrixXcd u(rhs.rows(), rhs.cols());
-  for (std::size_t s = slabs; s-- > 0;) {
-    Eigen::MatrixXcd us = w[s];
-    if (s + 1 < slabs) us.noalias() -= x[s + 1] * u.middleRows(offset_[s + 1], offset_[s + 2] - offset_[s + 1]);
-    u.middleRows(offset_[s], offset_[s + 1] - offset_[s]) = us;
-  }
-  return u;
+  // LU never refuses a block: a singular one gives inf/NaN, which the caller's checks see.
+  return *block_thomas<Eigen::PartialPivLU<Eigen::MatrixXcd>>(offset_, diagonal, lower, rhs);
 }
 
 }  // namespace sedwave::forward::linear

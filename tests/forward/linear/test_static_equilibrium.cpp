@@ -48,9 +48,9 @@ TEST(StaticEquilibrium, OrderedChainUnderALoadTakesTheClosedFormOverlaps) {
   for (const dem::Grain& g : chain.grains) {
     EXPECT_NEAR(g.position.z, static_cast<double>(g.id - 1) * spacing, 1e-11) << "grain " << g.id;
   }
-  EXPECT_NEAR(r.wall_force, load, 1e-12);
+  EXPECT_NEAR(r.wall_force, load, tight.wall_force_tolerance * load);  // what was asked for
   EXPECT_GT(r.energy_drop, 0.0);
-  EXPECT_LT(r.iterations, 40);
+  EXPECT_LT(r.iterations, 10);  // a few Newton steps, not a slow descent
 }
 
 TEST(StaticEquilibrium, ShakenPackingRelaxesToWhatTheDemEngineCallsStatic) {

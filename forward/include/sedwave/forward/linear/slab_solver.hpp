@@ -15,6 +15,7 @@
 // Units: any consistent set (those of DynamicMatrices).
 #include <Eigen/Dense>
 #include <complex>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -33,10 +34,11 @@ class SlabSolver {
   [[nodiscard]] Eigen::VectorXcd solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
                                        const Eigen::VectorXcd& rhs) const;
 
-  /// Solves (K + mass_shift M) X = B for every column of B: the static problem (mass_shift = 0 where
-  /// K is regular) or a Levenberg-Marquardt step of a static relaxation (static_equilibrium.hpp).
-  /// Damping plays no part.
-  [[nodiscard]] Eigen::MatrixXd solve_shifted(double mass_shift, const Eigen::MatrixXd& rhs) const;
+  /// Solves (K + mass_shift M) X = B for every column of B by block Cholesky: a step of a static
+  /// relaxation (static_equilibrium.hpp). Returns nullopt when K + mass_shift M is not positive
+  /// definite (a packing away from a minimum has unstable directions, and rattlers make K singular),
+  /// which tells the caller to shift further. Damping plays no part.
+  [[nodiscard]] std::optional<Eigen::MatrixXd> solve_shifted(double mass_shift, const Eigen::MatrixXd& rhs) const;
 
   [[nodiscard]] std::size_t slabs() const { return k_diagonal_.size(); }
   [[nodiscard]] Eigen::Index largest_slab() const;     ///< unknowns in the largest slab

@@ -11,14 +11,22 @@
 // constant force F (a pressure P on a W x W wall: F = P W^2). Its gradient is minus the forces, its
 // Hessian the linear engine's stiffness K (with the pre-stress term), so a step solves
 //   (K + mu M) du = F(u),
-// bordered by one row and column for the loaded wall's height, its own unknown. mu is a
-// Levenberg-Marquardt shift: a step is accepted when the energy falls, and mu shrinks towards pure
-// Newton (quadratic convergence) as steps succeed; it grows when a step fails, turning the step into
-// a short gradient step. It also keeps rattlers and floppy grains (zero rows of K) regular.
-// Contacts that open or close are found anew at every trial step. A frictionless Hooke packing can
-// hold a contact at the very edge of opening (its energy has a kink there), which Newton cannot
-// settle below some residual; the relaxation then stops unconverged with the residual it reached,
-// and the caller finishes with FIRE, which needs no derivatives (channel/preparation.cpp).
+// bordered by one row and column for the loaded wall's height, its own unknown, by block Cholesky
+// with the slab solver. Three things make this work on long, disordered columns:
+//  * Active set. The energy is piecewise quadratic with kinks (a Hooke contact keeps its stiffness
+//    down to zero overlap, then has none), so Newton with the present contacts overshoots wherever a
+//    step opens a contact or closes a gap. Each step's model holds touching the pairs (contacts and
+//    nearby gaps) that its own solution overlaps, re-solved until that set stops changing.
+//  * A positive definite model. Where K is indefinite (the pre-stress -f/r makes a compressed chain
+//    buckle sideways, and a packing on its way to a minimum has unstable soft spots) the model drops
+//    the pre-stress, which keeps the step downhill and every long-wavelength mode exact. mu only
+//    regularises rattlers: a fixed Levenberg-Marquardt floor would stall the longest modes of a long
+//    column, whose stiffness per mass is of order (d / L)^2.
+//  * A backtracking line search on the true energy (Armijo), inside a trust region on the relative
+//    displacement across contacts.
+// Where a packing is still rearranging (a soft spot collapsing), Newton's steps crawl; the caller
+// then alternates with FIRE, which follows the instability dynamically (channel/preparation.cpp).
+// Measured: docs/linear.md, "Preparing long channels".
 //
 // Only normal laws enter (no tangential history, no rolling): a frictionless packing, as the thesis's
 // model and the preparation's compression stage. Serial (the packing on one rank, as the linear
@@ -47,7 +55,8 @@ struct StaticEquilibriumSettings {
 };
 
 struct StaticEquilibriumReport {
-  int iterations = 0;            ///< trial steps taken
+  int iterations = 0;            ///< trial steps taken (energy evaluations)
+  int directions = 0;            ///< Newton directions solved for (factorisations that succeeded)
   int accepted = 0;              ///< of which accepted
   double residual_ratio = 0.0;   ///< max |F| on a free grain / mean contact force at the end
   double wall_force = 0.0;       ///< force of the grains on the loaded wall (along +z) at the end
