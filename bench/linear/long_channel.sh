@@ -4,7 +4,9 @@
 # once (affine compression, FIRE, Newton: docs/scenes.md) and reused for every frequency.
 #
 #   bench/linear/long_channel.sh [GRAINS] [GAMMA_HAT]      (defaults 10000, 0.1)
-#   PACKING=FILE.h5 reuses (or writes) the packing there; BUILD=DIR picks the build (default build).
+#   PACKING=FILE.h5 reuses (or writes) the packing there; BUILD=DIR picks the build (default build);
+#   ABSORBING=F sets the absorbing layer's share of the column (default 0.3); OMEGAS="..." the
+#   frequencies (default 0.01 0.02 0.05 0.1 0.2 0.5 1.0).
 #
 # Prints the preparation report, then one row per frequency: omega_hat, the linear engine's
 # alpha_hat and c_hat with their standard errors (or "unresolved" with the reason), the solve time,
@@ -16,7 +18,8 @@ gamma=${2:-0.1}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 scene=$work/scene.toml
-sed -e "s/^grains = .*/grains = $grains/" bench/linear/long_scene.toml > "$scene"
+sed -e "s/^grains = .*/grains = $grains/" -e "s/^absorbing_fraction = .*/absorbing_fraction = ${ABSORBING:-0.3}/" \
+  bench/linear/long_scene.toml > "$scene"
 packing=${PACKING:-$work/packing.h5}
 if [ ! -f "$packing" ]; then
   echo "# preparing $grains grains (written to $packing)"
@@ -25,7 +28,7 @@ if [ ! -f "$packing" ]; then
   echo "# preparation: $(( $(date +%s) - start )) s wall"
 fi
 printf "%-9s %-26s %-26s %-8s %-11s %-9s\n" omega_hat "alpha_hat (linear)" "c_hat (linear)" "solve_s" alpha_lattice c_lattice
-for w in 0.01 0.02 0.05 0.1 0.2 0.5 1.0; do
+for w in ${OMEGAS:-0.01 0.02 0.05 0.1 0.2 0.5 1.0}; do
   out=$("$build/bin/sedwave" forward "$scene" --packing "$packing" --omega-hat "$w" --gamma-hat "$gamma" \
           --out "$work/run.h5" 2>&1 || true)
   theory=$("$build/bin/sedwave" theory --model lattice --gamma-hat "$gamma" --omega-hat "$w" | tail -1)
