@@ -1,5 +1,7 @@
 // sedwave: geoacoustic inversion with discrete-element and 1D chain forward models.
 #include <CLI/CLI.hpp>
+#include <glog/logging.h>
+
 #include <exception>
 #include <iostream>
 #include <vector>
@@ -17,6 +19,10 @@ int main(int argc, char** argv) {
                                                     sedwave::app::add_dem_command(app),
                                                     sedwave::app::add_forward_command(app),
                                                     sedwave::app::add_table_command(app)};
+  // Ceres logs through glog a line for every failed evaluation of a local fit, even with its own
+  // logging silent (a model evaluated outside a table's range, for one). The fits check and report
+  // every failure themselves, so only glog's fatal messages reach the terminal.
+  FLAGS_minloglevel = google::GLOG_FATAL;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
