@@ -10,6 +10,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <complex>
 #include <iostream>
 #include <memory>
@@ -349,6 +350,25 @@ TEST_F(Packing, SlabSolverEqualsSparseLu) {
   const Eigen::VectorXcd reference = lu.solve(rhs);
   EXPECT_LT((slab - reference).norm(), 1e-10 * reference.norm());
   EXPECT_GT(engine.solver().slabs(), 3u);
+}
+
+// The static solve (block Cholesky, for the relaxation's Newton steps) against a sparse LU, and its
+// refusal of a matrix that is not positive definite: a negative mass shift pushes the rattlers' and
+// the softest modes' eigenvalues below zero.
+TEST_F(Packing, ShiftedStaticSolveEqualsSparseLuAndRefusesIndefiniteMatrices) {
+  const LinearChannel engine(*packing_, hooke(kKn));
+  const DynamicMatrices& m = engine.matrices();
+  const double shift = 1e-2 * kKn;
+  const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(m.unknowns(), 2);
+  const std::optional<Eigen::MatrixXd> slab = engine.solver().solve_shifted(shift, rhs);
+  ASSERT_TRUE(slab.has_value());
+  Eigen::SparseMatrix<double> z = m.stiffness;
+  for (Eigen::Index i = 0; i < m.unknowns(); ++i) z.coeffRef(i, i) += shift * m.mass(i);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(z);
+  ASSERT_EQ(lu.info(), Eigen::Success);
+  const Eigen::MatrixXd reference = lu.solve(rhs);
+  EXPECT_LT((*slab - reference).norm(), 1e-10 * reference.norm());
+  EXPECT_FALSE(engine.solver().solve_shifted(-1e-2 * kKn, rhs).has_value());
 }
 
 TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
