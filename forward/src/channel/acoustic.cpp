@@ -142,6 +142,11 @@ FitRange fit_range(const DriveSettings& d, std::size_t layers) {
   return range;
 }
 
+/// Length of the absorbing layer [d]; 0 with a frozen far end.
+double absorbing_length(const DriveSettings& d, const PackingUnits& u) {
+  return d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0;
+}
+
 /// The ascending indices up to the first gap of more than one missing index. Where layers fall
 /// below the noise floor (or the unsettled tail) in runs, what lies beyond is a few layers that
 /// passed by chance, across gaps too long to unwrap the phase through.
@@ -173,7 +178,6 @@ void measure_pulse(AcousticResult& r, const DriveSettings& d, const PackingUnits
     tails.push_back({record.values.subspan(tail_start), record.t_first + record.dt * static_cast<double>(tail_start),
                      record.dt});
   }
-  const double absorbing_length = d.absorbing_fraction * u.column_length();
   for (const double omega : d.pulse->omega_hats()) {
     SpectralResult point;
     point.omega_hat = omega;
@@ -197,7 +201,7 @@ void measure_pulse(AcousticResult& r, const DriveSettings& d, const PackingUnits
                       " times both): lengthen the run (drive.periods), narrow the band or raise the amplitude";
     } else {
       point.fit = fit_attenuation_and_wavenumber(z, carrying, omega, omega / r.wave_speed_estimate, ProbeWeights::uniform);
-      point.problem = resolution_problem(point.fit, z.back() - z.front(), absorbing_length);
+      point.problem = resolution_problem(point.fit, z.back() - z.front(), absorbing_length(d, u));
     }
     r.spectrum.push_back(std::move(point));
   }
@@ -251,7 +255,7 @@ struct RunLength {
 constexpr double kRingDownPeriods = 3.0;
 
 RunLength run_length(const DriveSettings& d, const PackingUnits& u) {
-  const double length = (u.column_top - u.wall_surface) / u.diameter;
+  const double length = u.column_length();
   if (!d.pulse) {
     // Long enough for an echo from the far end to return to the first layers, estimated with the
     // 1D lattice speed at this frequency (the 3D packing's speed is of the same order).
@@ -313,7 +317,7 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   ChannelTiming timing;
   timing.wave_speed = r.wave_speed_estimate;
   timing.speed_uncertainty = 0.2;
-  timing.channel_length = d.far_end == FarEnd::frozen ? (u.column_top - u.wall_surface) / u.diameter : 1e300;
+  timing.channel_length = d.far_end == FarEnd::frozen ? u.column_length() : 1e300;
   timing.period = 2.0 * std::numbers::pi / omega;
   timing.settle_periods = d.settle_periods;
   timing.run_end = run_time;
@@ -352,8 +356,7 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
     return;
   }
   r.fit = fit_attenuation_and_wavenumber(z_used, used, omega, omega / r.wave_speed_estimate, ProbeWeights::uniform);
-  r.problem = resolution_problem(r.fit, z_used.back() - z_used.front(),
-                                 d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0);
+  r.problem = resolution_problem(r.fit, z_used.back() - z_used.front(), absorbing_length(d, u));
 }
 
 AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
