@@ -208,7 +208,9 @@ class Relaxation {
     }
     mean_mass_ = n_free > 0 ? free_mass / static_cast<double>(n_free) : 1.0;
     longest_step_ = kLongestStep * (n_free > 0 ? free_radius / static_cast<double>(n_free) : 0.5);
-    current_ = evaluate(grains_, box_, contact_, longest_step_, wall_, lift_);
+    // Only Hooke gaps enter the step's model (contacts_only); Hertz ones need not be searched.
+    gap_search_ = contact.normal == dem::NormalLawKind::hooke ? longest_step_ : 0.0;
+    current_ = evaluate(grains_, box_, contact_, gap_search_, wall_, lift_);
     start_energy_ = current_.energy;
   }
 
@@ -263,9 +265,12 @@ class Relaxation {
       std::optional<Step> step = model_step(active, m);
       if (!step) return std::nullopt;
       ++report_.directions;
-      if (!d) d = Direction{*m, *step, *step, false};
-      d->matrices = std::move(*m);
-      d->step = *step;
+      if (!d) {
+        d = Direction{std::move(*m), *step, *step, false};
+      } else {
+        d->matrices = std::move(*m);
+        d->step = *step;
+      }
       std::vector<bool> touching(active.touching.size());
       const std::size_t n_contacts = current_.network.contacts.size();
       for (std::size_t q = 0; q < touching.size(); ++q) {
@@ -292,20 +297,23 @@ class Relaxation {
       pairs.dashpot.push_back(0.0);
     }
     const double stiffness_per_mass = current_.network.mean_stiffness / mean_mass_;
-    auto solve = [&](bool prestress) {
+    auto matrices = [&](bool prestress) {
       ContactNetwork model = current_.network;
       for (std::size_t q = 0; q < model.contacts.size(); ++q) {
         if (!prestress || !active.touching[q]) model.contacts[q].force = 0.0;
       }
-      m = assemble(grains_, model, n_bodies_, contact_, &pairs);
-      const SlabSolver solver(*m, node_heights(grains_, *m));
-      return newton_step(active, *m, solver, wall_, wall_mass_, shift_ * stiffness_per_mass);
+      return assemble(grains_, model, n_bodies_, contact_, &pairs);
     };
-    std::optional<Step> step = solve(true);
-    if (!step) step = solve(false);
+    m = matrices(true);
+    std::optional<Step> step = newton_step(active, *m, SlabSolver(*m, node_heights(grains_, *m)), wall_, wall_mass_,
+                                           shift_ * stiffness_per_mass);
+    if (step) return step;
+    m = matrices(false);
+    const SlabSolver solver(*m, node_heights(grains_, *m));
+    step = newton_step(active, *m, solver, wall_, wall_mass_, shift_ * stiffness_per_mass);
     while (!step && shift_ <= kStalled) {  // floppy grains: a larger shift regularises them
       shift_ *= kGrow;
-      step = solve(false);
+      step = newton_step(active, *m, solver, wall_, wall_mass_, shift_ * stiffness_per_mass);
     }
     return step;
   }
@@ -320,7 +328,7 @@ class Relaxation {
       ++report_.iterations;
       const Step scaled{t * direction.displacement, t * direction.lift};
       std::vector<dem::Grain> trial = moved(grains_, m, scaled, box_, wall_);
-      State next = evaluate(trial, box_, contact_, longest_step_, wall_, lift_ + scaled.lift);
+      State next = evaluate(trial, box_, contact_, gap_search_, wall_, lift_ + scaled.lift);
       // Near the minimum the energy change sinks below round-off; the residual then decides.
       const double round_off = 1e-12 * std::abs(current_.contact_energy);
       const bool downhill = next.energy <= current_.energy + kArmijo * t * full_slope - round_off ||
@@ -349,6 +357,7 @@ class Relaxation {
   // step, so a step never carries grains through each other (the pair energy is bounded). Gaps
   // narrower than it can close within a step, so the model watches them.
   double longest_step_ = 0.0;
+  double gap_search_ = 0.0;  ///< gaps this narrow can close within a step
   double shift_ = kSmallest;
   double lift_ = 0.0;  ///< of the loaded wall, from where it started
   State current_;
