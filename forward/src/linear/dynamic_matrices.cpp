@@ -9,8 +9,12 @@ namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double>>;
 using Operator = Eigen::Matrix<double, 3, 6>;  // a grain's (translation, rotation) -> a relative motion
+// Blocks of 3 or 6 columns with their storage inline: add_pair runs per contact, and heap-allocated
+// temporaries there took most of the assembly time.
+using OperatorColumns = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6>;
+using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 
-void add_block(Triplets& t, Eigen::Index row, Eigen::Index col, const Eigen::MatrixXd& block) {
+void add_block(Triplets& t, Eigen::Index row, Eigen::Index col, const Block& block) {
   for (Eigen::Index a = 0; a < block.rows(); ++a) {
     for (Eigen::Index b = 0; b < block.cols(); ++b) {
       if (block(a, b) != 0.0) t.emplace_back(row + a, col + b, block(a, b));
@@ -35,8 +39,8 @@ struct Targets {
 /// grain, x = its unknowns, or for a rigid-body grain its body's translation) to the matrix.
 void add_pair(Targets& t, const Eigen::Matrix3d& s, const Operator& a_i, const Operator& a_j, std::int32_t node_i,
               std::int32_t node_j, int body_i, int body_j, int dofs) {
-  const Eigen::MatrixXd ai = a_i.leftCols(dofs), aj = a_j.leftCols(dofs);
-  const std::pair<const Eigen::MatrixXd*, std::int32_t> ends[2] = {{&ai, node_i}, {&aj, node_j}};
+  const OperatorColumns ai = a_i.leftCols(dofs), aj = a_j.leftCols(dofs);
+  const std::pair<const OperatorColumns*, std::int32_t> ends[2] = {{&ai, node_i}, {&aj, node_j}};
   const int bodies[2] = {body_i, body_j};
   for (int r = 0; r < 2; ++r) {
     if (ends[r].second < 0) {
@@ -50,11 +54,11 @@ void add_pair(Targets& t, const Eigen::Matrix3d& s, const Operator& a_i, const O
     for (int c = 0; c < 2; ++c) {
       if (ends[c].second >= 0) {
         add_block(t.matrix, row, dofs * static_cast<Eigen::Index>(ends[c].second),
-                  ends[r].first->transpose() * s * *ends[c].first);
+                  Block(ends[r].first->transpose() * s * *ends[c].first));
       } else {
         // A rigid body's grain moves with the body's translation (its first three columns).
         add_block(t.body[static_cast<std::size_t>(bodies[c] - 1)], row, 0,
-                  ends[r].first->transpose() * s * ends[c].first->leftCols(3));
+                  Block(ends[r].first->transpose() * s * ends[c].first->leftCols(3)));
       }
     }
   }

@@ -23,6 +23,12 @@
 
 namespace sedwave::forward::linear {
 
+/// Which unknowns the block below the diagonal joins: rows[s] (local to slab s) and cols[s] (local
+/// to slab s-1) are those of grains with a contact across the boundary between slabs s-1 and s.
+struct SlabCoupling {
+  std::vector<std::vector<Eigen::Index>> rows, cols;
+};
+
 class SlabSolver {
  public:
   /// `node_z`: z of each node (ascending, as DynamicMatrices orders them). Throws std::logic_error if
@@ -51,8 +57,13 @@ class SlabSolver {
                                            double gamma, const Eigen::VectorXd& extra_damping,
                                            const Eigen::MatrixXcd& rhs) const;
 
+  /// Cuts the blocks below the diagonal down to their coupled rows and columns (coupling_).
+  void keep_coupled_corners();
+
   std::vector<Eigen::Index> offset_;  ///< first unknown of each slab, plus the total at the end
-  std::vector<Eigen::MatrixXd> k_diagonal_, k_lower_, c_diagonal_, c_lower_;  ///< lower[s]: rows s, cols s-1
+  SlabCoupling coupling_;
+  /// lower[s]: rows s, cols s-1, restricted to coupling_.rows[s] x coupling_.cols[s]
+  std::vector<Eigen::MatrixXd> k_diagonal_, k_lower_, c_diagonal_, c_lower_;
   std::vector<Eigen::MatrixXd> t_diagonal_, t_lower_;  ///< C_t blocks (empty without friction)
   Eigen::VectorXd mass_;
   double thickness_ = 0.0;
