@@ -58,16 +58,17 @@ int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& sc
                 scene.drive.omega_hat, scene.drive.gamma_hat);
     for (std::size_t k = 0; k < e.members.size(); ++k) {
       const forward::linear::LinearResult& r = e.members[k];
-      std::printf("  member %zu: alpha_hat %.6g +- %.2g  c_hat %.6g +- %.2g  (%d layers; %lld of "
-                  "%lld contacts open; %.2f s)\n",
+      std::printf("  member %zu: alpha_hat %.6g +- %.2g  c_hat %.6g +- %.2g  (%d layers; of %lld contacts "
+                  "%lld open, %lld slide; %.2f s)\n",
                   k, r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c, r.layers_used,
-                  static_cast<long long>(r.state_changes.opening), static_cast<long long>(r.state_changes.contacts),
-                  r.solve_seconds);
+                  static_cast<long long>(r.state_changes.contacts), static_cast<long long>(r.state_changes.opening),
+                  static_cast<long long>(r.state_changes.sliding), r.solve_seconds);
     }
     if (!e.members.empty()) {
-      std::printf("contacts opening / gaps closing per cycle (member 0) at A [d] =");
+      std::printf("contacts opening / sliding / gaps closing per cycle (member 0) at A [d] =");
       for (const auto& c : e.members.front().amplitude_ladder) {
-        std::printf("  %.0e: %lld/%lld", c.amplitude, static_cast<long long>(c.opening), static_cast<long long>(c.closing));
+        std::printf("  %.0e: %lld/%lld/%lld", c.amplitude, static_cast<long long>(c.opening),
+                    static_cast<long long>(c.sliding), static_cast<long long>(c.closing));
       }
       std::printf("  (of %lld contacts, %lld gaps)\n", static_cast<long long>(e.members.front().state_changes.contacts),
                   static_cast<long long>(e.members.front().state_changes.gaps));

@@ -7,7 +7,7 @@
 //
 // Packings are files written by `sedwave forward --packing-out` (same scene units, Hooke kn given
 // by --kn). Each packing is one linear-engine member; packings with the same grain count form an
-// ensemble. --tile K also times the solve on a channel made of K copies of the first packing stacked
+// ensemble. --tile K also times the solve on channels made of 1, 2, 4, ... and K copies of the first packing stacked
 // along z (the contacts across the joins are not in equilibrium: a cost measurement only).
 // --dem runs the time-domain engine on the first packing for each run length given.
 #include <mpi.h>
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
     }
   }
   if (tile > 1 && !packings.empty()) {
-    for (int copies = 1; copies <= tile; copies *= 2) {
+    for (int copies = 1; copies <= tile; copies = copies < tile && 2 * copies > tile ? tile : 2 * copies) {
       const channel::PreparedChannel big = tiled(packings.begin()->second.front(), copies);
       const auto start = std::chrono::steady_clock::now();
       const linear::LinearChannel engine(big, contact);

@@ -125,8 +125,7 @@ dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int a
     v[axis] = x;
     return v;
   };
-  return dem::PrescribedMotion{[=](double t) { return along(pulse.displacement(t / t0)); },
-                               [=](double t) { return along(pulse.velocity(t / t0) / t0); }};
+  return dem::PrescribedMotion{[=](double t) { return along(pulse.displacement(t / t0)); }};
 }
 
 /// The layers a fit may use: beyond the near field, before the absorbing layer.

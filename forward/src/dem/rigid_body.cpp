@@ -20,23 +20,29 @@ Vec3 RigidBody::acceleration() const {
 }
 
 void RigidBody::begin_step(double t, double dt) {
-  // Prescribed paths are evaluated, not integrated: the wall stays on its path without drift.
-  auto path = [&](const Vec3& u_new, const Vec3& v_new) {
+  // Prescribed paths are evaluated, not integrated: the wall stays on its path without drift. Its
+  // grains move during the step with the step's mean velocity, as a free grain's half-step velocity
+  // equals its step displacement / dt: dashpots see walls and free grains at the same instant, and a
+  // tangential spring's history (which integrates velocities) follows the wall's path exactly. The
+  // end-of-step velocity (LAMMPS fix move) would lead the path by half a step: for a sinusoid, a
+  // phase error omega dt / 2 in every spring history touching the wall.
+  auto path = [&](const Vec3& u_new) {
     step_displacement_ = u_new - displacement_;
     displacement_ = u_new;
-    velocity_ = v_new;
+    velocity_ = (1.0 / dt) * step_displacement_;
   };
   std::visit(Overloaded{
-                 [&](const Frozen&) { path({}, {}); },
-                 [&](const LinearMotion& m) { path((t + dt) * m.velocity, m.velocity); },
-                 [&](const Wiggle& m) {
-                   const double w = 2.0 * std::numbers::pi / m.period;
-                   Vec3 u, v;
-                   u[m.axis] = m.amplitude * std::sin(w * (t + dt));
-                   v[m.axis] = m.amplitude * w * std::cos(w * (t + dt));
-                   path(u, v);
+                 [&](const Frozen&) { path({}); },
+                 [&](const LinearMotion& m) {
+                   path((t + dt) * m.velocity);
+                   velocity_ = m.velocity;  // the same mean, without the round-off of the difference
                  },
-                 [&](const PrescribedMotion& m) { path(m.displacement(t + dt), m.velocity(t + dt)); },
+                 [&](const Wiggle& m) {
+                   Vec3 u;
+                   u[m.axis] = m.amplitude * std::sin(2.0 * std::numbers::pi / m.period * (t + dt));
+                   path(u);
+                 },
+                 [&](const PrescribedMotion& m) { path(m.displacement(t + dt)); },
                  [&](const ConstantForce&) {
                    velocity_ += (0.5 * dt) * acceleration();
                    step_displacement_ = dt * velocity_;

@@ -1,7 +1,9 @@
 #include "sedwave/forward/linear/linear_channel.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <variant>
@@ -77,18 +79,52 @@ Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver
   return solver.solve(omega, gamma, sponge(d, omega), rhs);
 }
 
+Eigen::Matrix<std::complex<double>, 6, 1> LinearChannel::grain_motion(const Eigen::VectorXcd& u,
+                                                                       const channel::DriveSettings& d,
+                                                                       std::int32_t grain) const {
+  Eigen::Matrix<Complex, 6, 1> motion = Eigen::Matrix<Complex, 6, 1>::Zero();
+  const std::int32_t node = matrices_.node_of_grain[static_cast<std::size_t>(grain)];
+  if (node >= 0) {
+    const int dofs = matrices_.dofs_per_node;
+    motion.head(dofs) = u.segment(dofs * static_cast<Eigen::Index>(node), dofs);
+  } else if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) {
+    motion(axis_index(d.axis)) = 1.0;  // unit motion of the driven wall; none of the far one
+  }
+  return motion;
+}
+
 std::complex<double> LinearChannel::normal_motion(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
                                                   const StaticPair& p) const {
-  const int axis = axis_index(d.axis);
-  auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
-    const std::int32_t node = matrices_.node_of_grain[static_cast<std::size_t>(grain)];
-    if (node >= 0) return u.segment<3>(matrices_.dofs_per_node * static_cast<Eigen::Index>(node));
-    Eigen::Vector3cd wall = Eigen::Vector3cd::Zero();  // unit motion of the driven wall, none of the far one
-    if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) wall(axis) = 1.0;
-    return wall;
-  };
   const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-  return n.cast<Complex>().dot(motion(p.i) - motion(p.j));
+  return n.cast<Complex>().dot((grain_motion(u, d, p.i) - grain_motion(u, d, p.j)).head<3>());
+}
+
+double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                    const StaticPair& p) const {
+  if (contact_.tangential != dem::TangentialLawKind::spring_history) return std::numeric_limits<double>::infinity();
+  const double omega = d.omega_hat / units_.time();
+  const double gamma = d.gamma_hat * units_.damping_scale;
+  const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+  const Eigen::Matrix<Complex, 6, 1> mi = grain_motion(u, d, p.i), mj = grain_motion(u, d, p.j);
+  // Per unit wall amplitude: the contact point's tangential slip (as assemble()'s tangential
+  // operator) and the normal force, spring and dashpot (the overlap shrinks as n . (u_i - u_j) grows).
+  const Eigen::Matrix3cd tangent_plane = (Eigen::Matrix3d::Identity() - n * n.transpose()).cast<Complex>();
+  const Eigen::Vector3cd nc = n.cast<Complex>();
+  const Eigen::Vector3cd slip = tangent_plane * (mi.head<3>() - mj.head<3>()) +
+                                p.arm_i * nc.cross(mi.tail<3>()) + p.arm_j * nc.cross(mj.tail<3>());
+  const Eigen::Vector3cd tangential = (contact_.kt + Complex(0.0, omega * contact_.gamma_t * p.effective_mass)) * slip;
+  const Complex normal = -(p.stiffness + Complex(0.0, omega * gamma * p.dashpot)) * nc.dot(mi.head<3>() - mj.head<3>());
+  // At phase theta the contact sticks while A |Re(F_t e^{i theta})| <= mu (F_0 + A Re(F_n e^{i theta})),
+  // linear in A at each phase: the onset is mu F_0 / max over theta of (|Re F_t e^{i theta}| - mu Re F_n e^{i theta}),
+  // taken over 256 phases (the maximum of a smooth periodic function: error ~ (2 pi / 256)^2 / 8).
+  const double mu = contact_.friction;
+  double worst = 0.0;
+  constexpr int kPhases = 256;
+  for (int k = 0; k < kPhases; ++k) {
+    const Complex turn = std::polar(1.0, 2.0 * std::numbers::pi * k / kPhases);
+    worst = std::max(worst, (tangential * turn).real().norm() - mu * (normal * turn).real());
+  }
+  return worst > 0.0 ? mu * p.force / worst : std::numeric_limits<double>::infinity();
 }
 
 StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
@@ -98,7 +134,13 @@ StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const chann
   s.amplitude = amplitude;
   s.contacts = static_cast<std::int64_t>(network_.contacts.size());
   s.gaps = static_cast<std::int64_t>(network_.gaps.size());
-  for (const StaticPair& p : network_.contacts) s.opening += scale * std::abs(normal_motion(u, d, p)) > p.overlap ? 1 : 0;
+  for (const StaticPair& p : network_.contacts) {
+    if (scale * std::abs(normal_motion(u, d, p)) > p.overlap) {
+      ++s.opening;
+    } else if (scale > sliding_onset(u, d, p)) {
+      ++s.sliding;
+    }
+  }
   for (const StaticPair& p : network_.gaps) s.closing += scale * std::abs(normal_motion(u, d, p)) > -p.overlap ? 1 : 0;
   return s;
 }
@@ -208,8 +250,12 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
     r.problem = channel::resolution_problem(r.fit, z.back() - z.front(), d.absorbing_fraction * units_.column_length());
   }
   const double changed = r.state_changes.fraction();
+  const std::string sliding =
+      contact_.tangential == dem::TangentialLawKind::spring_history
+          ? ", " + std::to_string(r.state_changes.sliding) + " slide"
+          : std::string();
   const std::string changes = std::to_string(r.state_changes.opening) + " of " +
-                              std::to_string(r.state_changes.contacts) + " contacts open and " +
+                              std::to_string(r.state_changes.contacts) + " contacts open" + sliding + " and " +
                               std::to_string(r.state_changes.closing) + " gaps close at A = " +
                               std::to_string(d.amplitude) + " d";
   if (refuse && changed > settings_.refuse_state_changes && r.problem.empty()) {
@@ -261,8 +307,12 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
       record[k].push_back(count[k] > 0 ? sum[k] / count[k] / units_.diameter : 0.0);
     }
   };
+  // The wall as the engine moves it: on its path at the end of each step, with the step's mean
+  // velocity (dem::RigidBody), which is what the dashpots see, as they see free grains' half-step
+  // velocities.
+  auto wall_path = [&](double t) { return amplitude * std::sin(omega * t); };
   auto force = [&](double t) -> Eigen::VectorXd {
-    const double w = amplitude * std::sin(omega * t), w_dot = amplitude * omega * std::cos(omega * t);
+    const double w = wall_path(t), w_dot = t > 0.0 ? (w - wall_path(t - dt)) / dt : 0.0;  // at rest at t = 0
     return -(matrices_.stiffness * u) - c * v - wall_k * w - wall_c * w_dot;
   };
   // The engine's velocity Verlet: the dashpot sees the half-step velocity, as in the DEM force loop.

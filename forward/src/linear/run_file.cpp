@@ -38,18 +38,21 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
       number(member, "reflection", r.waves.reflection, "1 (at the absorbing layer's start; indicative only: in a disordered channel with alpha L >> 1 scattering noise dominates it)");
       h5::write_attribute(member, "contacts", r.state_changes.contacts);
       h5::write_attribute(member, "contacts_opening", r.state_changes.opening);
+      h5::write_attribute(member, "contacts_sliding", r.state_changes.sliding);
       h5::write_attribute(member, "gaps", r.state_changes.gaps);
       h5::write_attribute(member, "gaps_closing", r.state_changes.closing);
       std::vector<double> ladder_a;
-      std::vector<std::int64_t> ladder_open, ladder_close;
+      std::vector<std::int64_t> ladder_open, ladder_slide, ladder_close;
       for (const StateChanges& c : r.amplitude_ladder) {
         ladder_a.push_back(c.amplitude);
         ladder_open.push_back(c.opening);
+        ladder_slide.push_back(c.sliding);
         ladder_close.push_back(c.closing);
       }
       h5::write(member, "ladder_amplitude", ladder_a.data(), ladder_a.size());
       h5::write_string_attribute(member, "ladder_amplitude_unit", "d (drive amplitudes at which state changes are counted)");
       h5::write(member, "ladder_contacts_opening", ladder_open.data(), ladder_open.size());
+      h5::write(member, "ladder_contacts_sliding", ladder_slide.data(), ladder_slide.size());
       h5::write(member, "ladder_gaps_closing", ladder_close.data(), ladder_close.size());
       number(member, "solve_seconds", r.solve_seconds, "s");
       h5::write_string_attribute(member, "problem", r.problem);

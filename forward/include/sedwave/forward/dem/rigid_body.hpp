@@ -23,10 +23,9 @@ struct Wiggle {
   double amplitude = 0.0;
   double period = 1.0;
 };
-/// Any displacement u(t) (with u(0) = 0) and its derivative.
+/// Any displacement u(t) (with u(0) = 0).
 struct PrescribedMotion {
   std::function<Vec3(double)> displacement;
-  std::function<Vec3(double)> velocity;
 };
 /// Newton's law for the body: M V' = F_applied + (contact forces on its grains), on the free axes.
 struct ConstantForce {
@@ -45,7 +44,8 @@ class RigidBody {
   [[nodiscard]] const BodyMotion& motion() const { return motion_; }
   /// Total displacement since t = 0.
   [[nodiscard]] const Vec3& displacement() const { return displacement_; }
-  /// Velocity given to its grains during the current step.
+  /// Velocity given to its grains during the current step: a prescribed path's mean over the step
+  /// (step_displacement() / dt), a constant-force body's half-step velocity.
   [[nodiscard]] const Vec3& velocity() const { return velocity_; }
   /// Total contact force on its grains (summed over ranks) at the last force evaluation.
   [[nodiscard]] const Vec3& contact_force() const { return contact_force_; }

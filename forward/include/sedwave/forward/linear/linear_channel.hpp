@@ -28,16 +28,18 @@
 
 namespace sedwave::forward::linear {
 
-/// Contacts that open and gaps that close at some drive amplitude (peak relative normal motion
-/// beyond the static overlap or gap).
+/// Contacts that open, contacts that slide and gaps that close at some drive amplitude: peak
+/// relative normal motion beyond the static overlap or gap; with friction, a tangential force
+/// (spring and dashpot) beyond mu times the normal force at some phase of the cycle.
 struct StateChanges {
   double amplitude = 0.0;       ///< [mean diameters]
   std::int64_t contacts = 0;
   std::int64_t opening = 0;
+  std::int64_t sliding = 0;     ///< contacts that stay closed but reach the Coulomb limit
   std::int64_t gaps = 0;        ///< gaps narrower than LinearSettings::gap_search
   std::int64_t closing = 0;
   [[nodiscard]] double fraction() const {
-    return contacts > 0 ? static_cast<double>(opening + closing) / static_cast<double>(contacts) : 0.0;
+    return contacts > 0 ? static_cast<double>(opening + sliding + closing) / static_cast<double>(contacts) : 0.0;
   }
 };
 
@@ -88,8 +90,8 @@ class LinearChannel {
   /// Complex displacement amplitudes of the free grains (3 per node, DynamicMatrices order) per unit
   /// wall amplitude.
   [[nodiscard]] Eigen::VectorXcd displacement(const channel::DriveSettings& drive) const;
-  /// Which contacts open and gaps close at wall amplitude `amplitude` [d], given the response `u` per
-  /// unit wall amplitude.
+  /// Which contacts open or slide and gaps close at wall amplitude `amplitude` [d], given the
+  /// response `u` per unit wall amplitude.
   [[nodiscard]] StateChanges state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& drive,
                                            double amplitude) const;
 
@@ -108,6 +110,14 @@ class LinearChannel {
   /// n . (U_i - U_j) of a pair per unit wall amplitude (walls: the driven one moves by e_axis).
   [[nodiscard]] std::complex<double> normal_motion(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
                                                    const StaticPair& p) const;
+  /// A grain's (translation, rotation) per unit wall amplitude: its unknowns, or its wall's motion.
+  [[nodiscard]] Eigen::Matrix<std::complex<double>, 6, 1> grain_motion(const Eigen::VectorXcd& u,
+                                                                      const channel::DriveSettings& d,
+                                                                      std::int32_t grain) const;
+  /// The wall amplitude [length] at which contact p's tangential force first reaches mu times its
+  /// normal force during the cycle (infinity: never, or no friction).
+  [[nodiscard]] double sliding_onset(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                     const StaticPair& p) const;
   [[nodiscard]] PairLinearisation equivalent_pairs(const Eigen::VectorXcd& u, const channel::DriveSettings& d) const;
 
   std::vector<dem::Grain> grains_;
