@@ -97,12 +97,6 @@ struct Pulse {
     if (t <= 0.0 || t >= duration()) return 0.0;
     return amplitude * window(t) * std::sin(omega_c * (t - t_c));
   }
-  [[nodiscard]] double velocity(double t) const {
-    if (t <= 0.0 || t >= duration()) return 0.0;
-    const double s = (t - t_c) / sigma_t;
-    const double window_rate = -s / sigma_t * std::exp(-0.5 * s * s) / (1.0 - floor);
-    return amplitude * (window_rate * std::sin(omega_c * (t - t_c)) + window(t) * omega_c * std::cos(omega_c * (t - t_c)));
-  }
 
  private:
   [[nodiscard]] double window(double t) const {
