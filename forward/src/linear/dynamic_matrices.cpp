@@ -130,12 +130,10 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     add_pair(c, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j, ni, nj, bi, bj, dofs);
     if (!friction || !touching) continue;
     // Sticking tangential spring and dashpot on the contact point's tangential displacement.
-    Operator tangential_i, tangential_j;
-    tangential_i << tangent_plane, p.arm_i * cross_matrix(n);
-    tangential_j << -tangent_plane, p.arm_j * cross_matrix(n);
-    add_pair(k, contact.kt * Eigen::Matrix3d::Identity(), tangential_i, tangential_j, ni, nj, bi, bj, dofs);
-    add_pair(ct, contact.gamma_t * p.effective_mass * Eigen::Matrix3d::Identity(), tangential_i, tangential_j, ni, nj,
-             bi, bj, dofs);
+    const SlipOperators slip = slip_operators(p);
+    add_pair(k, contact.kt * Eigen::Matrix3d::Identity(), slip.i, slip.j, ni, nj, bi, bj, dofs);
+    add_pair(ct, contact.gamma_t * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i, slip.j, ni, nj, bi, bj,
+             dofs);
   }
   m.stiffness = from_triplets(k.matrix, unknowns, unknowns);
   m.dashpots = from_triplets(c.matrix, unknowns, unknowns);
@@ -145,6 +143,15 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
                         from_triplets(ct.body[b], unknowns, 3), k.body_self[b]});
   }
   return m;
+}
+
+SlipOperators slip_operators(const StaticPair& p) {
+  const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+  const Eigen::Matrix3d tangent_plane = Eigen::Matrix3d::Identity() - n * n.transpose();
+  SlipOperators s;
+  s.i << tangent_plane, p.arm_i * cross_matrix(n);
+  s.j << -tangent_plane, p.arm_j * cross_matrix(n);
+  return s;
 }
 
 std::vector<double> node_heights(std::span<const dem::Grain> grains, const DynamicMatrices& m) {

@@ -104,16 +104,13 @@ double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::Dr
   if (contact_.tangential != dem::TangentialLawKind::spring_history) return std::numeric_limits<double>::infinity();
   const double omega = d.omega_hat / units_.time();
   const double gamma = d.gamma_hat * units_.damping_scale;
-  const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
   const Eigen::Matrix<Complex, 6, 1> mi = grain_motion(u, d, p.i), mj = grain_motion(u, d, p.j);
-  // Per unit wall amplitude: the contact point's tangential slip (as assemble()'s tangential
-  // operator) and the normal force, spring and dashpot (the overlap shrinks as n . (u_i - u_j) grows).
-  const Eigen::Matrix3cd tangent_plane = (Eigen::Matrix3d::Identity() - n * n.transpose()).cast<Complex>();
-  const Eigen::Vector3cd nc = n.cast<Complex>();
-  const Eigen::Vector3cd slip = tangent_plane * (mi.head<3>() - mj.head<3>()) +
-                                p.arm_i * nc.cross(mi.tail<3>()) + p.arm_j * nc.cross(mj.tail<3>());
+  // Per unit wall amplitude: the contact point's slip and the normal force, spring and dashpot (the
+  // overlap shrinks as n . (u_i - u_j) grows).
+  const SlipOperators t = slip_operators(p);
+  const Eigen::Vector3cd slip = t.i.cast<Complex>() * mi + t.j.cast<Complex>() * mj;
   const Eigen::Vector3cd tangential = (contact_.kt + Complex(0.0, omega * contact_.gamma_t * p.effective_mass)) * slip;
-  const Complex normal = -(p.stiffness + Complex(0.0, omega * gamma * p.dashpot)) * nc.dot(mi.head<3>() - mj.head<3>());
+  const Complex normal = -(p.stiffness + Complex(0.0, omega * gamma * p.dashpot)) * normal_motion(u, d, p);
   // At phase theta the contact sticks while A |Re(F_t e^{i theta})| <= mu (F_0 + A Re(F_n e^{i theta})),
   // linear in A at each phase: the onset is mu F_0 / max over theta of (|Re F_t e^{i theta}| - mu Re F_n e^{i theta}),
   // taken over 256 phases (the maximum of a smooth periodic function: error ~ (2 pi / 256)^2 / 8).

@@ -76,6 +76,14 @@ struct PairLinearisation {
                                        int n_bodies, const dem::ContactSpec& contact,
                                        const PairLinearisation* pairs = nullptr);
 
+/// The slip of a contact, the relative tangential displacement of its contact point, as
+/// i * x_i + j * x_j, x = a grain's (translation, rotation): d_t above. The tangential spring and
+/// dashpot act on it (assemble), and it decides whether a contact slides (linear_channel.hpp).
+struct SlipOperators {
+  Eigen::Matrix<double, 3, 6> i, j;
+};
+[[nodiscard]] SlipOperators slip_operators(const StaticPair& p);
+
 /// The height z of each node (in node order: ascending), as the slab solver wants them.
 [[nodiscard]] std::vector<double> node_heights(std::span<const dem::Grain> grains, const DynamicMatrices& m);
 
