@@ -14,6 +14,20 @@
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
+
+double absorbing_length(const DriveSettings& d, const PackingUnits& u) {
+  return d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0;
+}
+
+double absorbing_drag(const DriveSettings& d, const PackingUnits& u, double omega, double z) {
+  const double length = u.column_top - u.wall_surface;
+  const double start = u.wall_surface + (1.0 - d.absorbing_fraction) * length;
+  if (z <= start) return 0.0;
+  const double c_max = d.absorbing_strength * u.mass * omega;
+  const double s = (z - start) / (d.absorbing_fraction * length);
+  return c_max * s * s;
+}
+
 namespace {
 
 /// Fixed layer membership and reference coordinate of each local flow grain, by id. The drive is
@@ -60,17 +74,14 @@ std::vector<double> layer_displacements(const dem::Engine& e, const Layers& l, i
   return sum;
 }
 
-/// Graded drag in the absorbing layer, integrated exactly over each step (operator splitting):
-/// v <- v exp(-c(z) dt / m), with c growing quadratically from 0 at the layer's start.
+/// Graded drag in the absorbing layer (absorbing_drag), integrated exactly over each step
+/// (operator splitting): v <- v exp(-c(z) dt / m).
 void apply_sponge(dem::Engine& e, const PackingUnits& u, const DriveSettings& d, double omega) {
-  const double length = u.column_top - u.wall_surface;
-  const double start = u.wall_surface + (1.0 - d.absorbing_fraction) * length;
-  const double c_max = d.absorbing_strength * u.mass * omega;
   dem::GrainArrays& g = e.grains();
   for (std::size_t i = 0; i < e.n_local(); ++i) {
-    if (g.body[i] != dem::kFreeBody || g.position[i].z <= start) continue;
-    const double s = (g.position[i].z - start) / (d.absorbing_fraction * length);
-    g.velocity[i] *= std::exp(-c_max * s * s * e.time_step() / g.mass[i]);
+    if (g.body[i] != dem::kFreeBody) continue;
+    const double c = absorbing_drag(d, u, omega, g.position[i].z);
+    if (c > 0.0) g.velocity[i] *= std::exp(-c * e.time_step() / g.mass[i]);
   }
 }
 
@@ -133,11 +144,6 @@ FitRange fit_range(const DriveSettings& d, std::size_t layers) {
                   ? static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(layers))
                   : layers;
   return range;
-}
-
-/// Length of the absorbing layer [d]; 0 with a frozen far end.
-double absorbing_length(const DriveSettings& d, const PackingUnits& u) {
-  return d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0;
 }
 
 /// The ascending indices up to the first gap of more than one missing index. Where layers fall

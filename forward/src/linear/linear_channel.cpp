@@ -45,17 +45,12 @@ LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem:
 }
 
 Eigen::VectorXd LinearChannel::sponge(const channel::DriveSettings& d, double omega) const {
-  // As the time-domain engine's absorbing layer: drag c(z) = strength m omega s^2 on every free
-  // grain, s rising from 0 to 1 over the last absorbing_fraction of the column.
-  const double length = units_.column_top - units_.wall_surface;
-  const double start = units_.wall_surface + (1.0 - d.absorbing_fraction) * length;
-  const double c_max = d.absorbing_strength * units_.mass * omega;
+  // The time-domain engine's absorbing layer, on every free grain's translations.
   Eigen::VectorXd c = Eigen::VectorXd::Zero(matrices_.unknowns());
   for (std::size_t n = 0; n < matrices_.grain_of_node.size(); ++n) {
     const double z = grains_[static_cast<std::size_t>(matrices_.grain_of_node[n])].position.z;
-    if (z <= start) continue;
-    const double s = (z - start) / (d.absorbing_fraction * length);
-    c.segment<3>(static_cast<Eigen::Index>(matrices_.dofs_per_node * n)).setConstant(c_max * s * s);  // translations
+    c.segment<3>(static_cast<Eigen::Index>(matrices_.dofs_per_node * n))
+        .setConstant(channel::absorbing_drag(d, units_, omega, z));
   }
   return c;
 }
@@ -244,7 +239,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
     r.fit = channel::fit_attenuation_and_wavenumber(z, probes, d.omega_hat, expected_k, channel::ProbeWeights::uniform);
     r.waves = channel::fit_two_waves(d.layer_thickness, std::span(r.layer_field.data() + first, last - first),
                                      r.fit.k, r.fit.alpha);
-    r.problem = channel::resolution_problem(r.fit, z.back() - z.front(), d.absorbing_fraction * units_.column_length());
+    r.problem = channel::resolution_problem(r.fit, z.back() - z.front(), channel::absorbing_length(d, units_));
   }
   const double changed = r.state_changes.fraction();
   const std::string sliding =

@@ -101,6 +101,13 @@ struct AcousticResult {
   [[nodiscard]] bool ok() const { return problem.empty(); }
 };
 
+/// Length of the absorbing layer [d]; 0 with a frozen far end.
+[[nodiscard]] double absorbing_length(const DriveSettings& d, const PackingUnits& u);
+/// The absorbing layer's drag coefficient [force time / length] on a free grain at height z [length]
+/// for a drive at omega [1/time]: strength m omega s^2, s rising from 0 to 1 over the last
+/// absorbing_fraction of the column, 0 below. Both engines apply exactly this.
+[[nodiscard]] double absorbing_drag(const DriveSettings& d, const PackingUnits& u, double omega, double z);
+
 /// Drives `packing` (grains on rank 0; other ranks may pass an empty one) with contact law `contact`
 /// (its damping is replaced by gamma_hat) and measures alpha_hat and c_hat. Collective over comm.
 [[nodiscard]] AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
