@@ -171,7 +171,6 @@ class Fire {
   std::shared_ptr<State> state_;
 };
 
-/// Positions of the upper wall's grains shifted by dz (on every rank; walls have few grains).
 /// Raises the upper wall by dz and stretches the free grains' heights above the lower wall in
 /// proportion, as a uniformly strained column responds (collective). Moving the wall alone would put
 /// the whole correction into the contacts at the wall: in a long column, many times their overlap,
