@@ -307,7 +307,7 @@ TEST_F(HertzPacking, IntegratedLinearEquationsFollowTheDemAtTinyAmplitude) {
   // The driven DEM run (Hertz: kappa = mean tangent stiffness, Tsuji dashpot) and the linearised
   // equations integrated with the same scheme and time step. At A = 1e-6 d the records differ by the
   // nonlinearity, O(A / overlap), and an absolute floor of ~1e-10 d (round-off and the prepared
-  // packing's 1e-9 residual forces): 9e-5 of the peak. A wrong K, C or drive would be O(1).
+  // packing's 1e-9 residual forces): 1.2e-4 of the peak. A wrong K, C or drive would be O(1).
   const channel::DriveSettings d = tiny_drive();
   const channel::AcousticResult dem = channel::run_acoustic(MPI_COMM_SELF, *packing_, hertz(), d);
   const LinearChannel engine(*packing_, hertz());
@@ -324,8 +324,8 @@ TEST_F(HertzPacking, IntegratedLinearEquationsFollowTheDemAtTinyAmplitude) {
 TEST_F(Packing, FrictionalContactsRotateAndFollowTheDem) {
   // Sticking tangential springs (spring_history, as LAMMPS gran/hooke/history) and rotations:
   // 6 unknowns per grain. The driven DEM with friction and the linearised equations, integrated
-  // alike, agree at a tiny amplitude (no contact slides: 1.2e-6 of the peak at A = 1e-6 d), and
-  // friction changes the response (by 0.44 of the peak). Both see the wall with its mean velocity
+  // alike, agree at a tiny amplitude (no contact slides: 1.0e-6 of the peak at A = 1e-6 d), and
+  // friction changes the response (by 0.50 of the peak). Both see the wall with its mean velocity
   // over each step; with its end-of-step velocity (LAMMPS fix move) the DEM's tangential spring
   // histories led the wall's path by half a step, and the records differed by 1e-3 (9e-3 driven
   // transversely).
