@@ -166,7 +166,7 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--digitized", o->digitized_specs,
                   "QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA] for --digitized-file (one for all, or one each)");
   cmd->add_option("--model", o->model,
-                  "forward model: continuum | lattice | table:FILE.h5[?extrapolate=theory] (docs/tables.md)")
+                  "forward model: continuum | lattice | table:FILE.h5[?extrapolate=theory|long-wavelength] (docs/tables.md)")
       ->capture_default_str();
   cmd->add_option("--fit", o->fit, "free parameters among kappa,d,gamma|en (others fixed)")->capture_default_str();
   cmd->add_option("--method", o->method, "ceres (local) | nlopt (global search) | global (search + polish)")->capture_default_str()
@@ -202,23 +202,34 @@ Command add_invert_command(CLI::App& app) {
             const std::filesystem::path out(o->out);
             std::filesystem::create_directories(out);
             nlohmann::json report = inversion::fit_report(result, data);
-            // A table model may have answered some evaluations with the 1D theory outside its range:
-            // the report must say so, or a theory fit would pass for a table fit.
+            // A table model may have answered some evaluations with the 1D theory or its long-wavelength
+            // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
             if (const auto* table = dynamic_cast<const forward::table::TableModel*>(model.get())) {
               report["table_fallback_evaluations"] = table->fallback_count();
+              report["table_long_wavelength_evaluations"] = table->extrapolated_count();
               if (table->fallback_count() > 0) {
                 std::printf("note: %llu model evaluations fell outside the table and used the 1D lattice theory\n",
                             static_cast<unsigned long long>(table->fallback_count()));
               }
+              if (table->extrapolated_count() > 0) {
+                std::printf("note: %llu model evaluations lay below the table's lowest omega_hat and used its "
+                            "long-wavelength limit (docs/tables.md)\n",
+                            static_cast<unsigned long long>(table->extrapolated_count()));
+              }
             }
             std::ofstream(out / "fit.json") << report.dump(2) << "\n";
-            inversion::write_curves_csv(out / "curves.csv",
-                                        inversion::model_curves(result, *model, inversion::curve_frequencies(data)),
-                                        data.water_sound_speed);
+            const std::vector<double> frequencies = inversion::curve_frequencies(data);
+            const std::vector<inversion::CurvePoint> curves = inversion::model_curves(result, *model, frequencies);
+            if (curves.size() < frequencies.size()) {
+              std::printf("note: the model curves leave out %zu of %zu frequencies, where %s does not answer\n",
+                          frequencies.size() - curves.size(), frequencies.size(), result.model.c_str());
+            }
+            inversion::write_curves_csv(out / "curves.csv", curves, data.water_sound_speed);
             inversion::write_observations_table(out / "observations.csv", data, result);
             inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
             if (o->plot) {
-              plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model + " chain model",
+              plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model +
+                                                       (result.model.starts_with("table:") ? "" : " chain model"),
                                               data.water_sound_speed.has_value());
             }
             print_summary(result, plot, o->out);

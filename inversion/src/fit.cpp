@@ -461,7 +461,12 @@ std::vector<CurvePoint> model_curves(const FitResult& result, const forward::Dis
   };
   std::vector<CurvePoint> curves;
   for (double f : frequencies_hz) {
-    const Prediction<Jet3> p = predictor(t[0], t[1], t[2], f);
+    Prediction<Jet3> p;
+    try {
+      p = predictor(t[0], t[1], t[2], f);
+    } catch (const std::domain_error&) {
+      continue;
+    }
     curves.push_back({f, p.omega_hat.a, p.gamma_hat.a, p.hat.alpha_hat.a, p.hat.c_hat.a, p.alpha.a, sigma_of(p.alpha),
                       p.speed.a, sigma_of(p.speed)});
   }

@@ -84,7 +84,12 @@ TableModel::TableModel(DispersionTable table, std::string name, OutsideTable out
     : table_(std::move(table)),
       name_(std::move(name)),
       outside_(outside),
-      interpolant_(std::make_shared<const Interpolant>(Interpolant::build(table_))) {}
+      interpolant_(std::make_shared<const Interpolant>(Interpolant::build(table_))) {
+  if (outside_ == OutsideTable::long_wavelength && (table_.n_omega() < 2 || table_.n_gamma() < 2)) {
+    throw std::invalid_argument(name_ + ": the long-wavelength extrapolation needs at least two omega_hat and two "
+                                "gamma_hat in the table");
+  }
+}
 
 std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
   constexpr std::string_view prefix = "table:";
@@ -97,9 +102,12 @@ std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
     const std::string_view option = spec.substr(question + 1);
     if (option == "extrapolate=theory") {
       outside = OutsideTable::lattice_theory;
+    } else if (option == "extrapolate=long-wavelength") {
+      outside = OutsideTable::long_wavelength;
     } else if (option != "extrapolate=none") {
       throw std::invalid_argument("table model option '" + std::string(option) +
-                                  "' not understood (accepted: extrapolate=none, extrapolate=theory)");
+                                  "' not understood (accepted: extrapolate=none, extrapolate=theory, "
+                                  "extrapolate=long-wavelength)");
     }
   }
   if (path.empty()) throw std::invalid_argument("table model needs a file: table:FILE.h5");
@@ -107,18 +115,30 @@ std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
 }
 
 DispersionPoint TableModel::evaluate(double omega_hat, double gamma_hat) const {
+  std::string why;
+  if (const auto p = inside(omega_hat, gamma_hat, why)) return *p;
+  if (outside_ == OutsideTable::long_wavelength && omega_hat > 0.0 && gamma_hat > 0.0) {
+    if (const auto p = long_wavelength(omega_hat, gamma_hat, why)) return *p;
+  }
+  return outside(omega_hat, gamma_hat, why);
+}
+
+std::optional<DispersionPoint> TableModel::inside(double omega_hat, double gamma_hat, std::string& why) const {
   const Interpolant& in = *interpolant_;
   const auto x = omega_hat > 0.0 ? locate(in.log_omega, std::log(omega_hat)) : std::nullopt;
   const auto y = gamma_hat > 0.0 ? locate(in.log_gamma, std::log(gamma_hat)) : std::nullopt;
-  if (!x || !y) return outside(omega_hat, gamma_hat, "is outside the table");
+  if (!x || !y) {
+    why = "is outside the table";
+    return std::nullopt;
+  }
   const GridCell cell{*x, *y};
   if (const auto corner = in.unusable_corner(cell)) {
     const std::size_t g = *corner / table_.n_omega(), w = *corner % table_.n_omega();
     const PointResult& p = table_.at(g, w);
-    return outside(omega_hat, gamma_hat,
-                   "falls in a cell whose corner (omega_hat=" + str(table_.grid().omega_hat[w]) +
-                       ", gamma_hat=" + str(table_.grid().gamma_hat[g]) + ") is " + std::string(to_string(p.status)) +
-                       (p.reason.empty() ? "" : " (" + p.reason + ")"));
+    why = "falls in a cell whose corner (omega_hat=" + str(table_.grid().omega_hat[w]) +
+          ", gamma_hat=" + str(table_.grid().gamma_hat[g]) + ") is " + std::string(to_string(p.status)) +
+          (p.reason.empty() ? "" : " (" + p.reason + ")");
+    return std::nullopt;
   }
   // Interpolated in logs: alpha = exp(L), so d alpha / d omega_hat = alpha dL/d ln(omega_hat) / omega_hat.
   const SurfaceSample a = in.log_alpha(cell);
@@ -133,6 +153,47 @@ DispersionPoint TableModel::evaluate(double omega_hat, double gamma_hat) const {
   return p;
 }
 
+std::optional<DispersionPoint> TableModel::long_wavelength(double omega_hat, double gamma_hat, std::string& why) const {
+  // The images of the point on columns k and k + 1: the table's points at the same
+  // x = omega_hat gamma_hat, alpha_hat scaled by omega_hat / w. Column k is the lowest above the point
+  // where both images are resolved (a channel resolves less of the low-omega_hat end as x and with it
+  // the wavelength grows, so the table's usable edge is ragged).
+  const std::vector<double>& columns = table_.grid().omega_hat;
+  const double x = omega_hat * gamma_hat;
+  std::string first_miss;
+  for (std::size_t k = 0; k + 1 < columns.size(); ++k) {
+    const double w0 = columns[k], w1 = columns[k + 1];
+    if (w0 <= omega_hat) continue;
+    std::string miss;
+    const auto p0 = inside(w0, x / w0, miss);
+    const auto p1 = p0 ? inside(w1, x / w1, miss) : std::nullopt;
+    if (!p0 || !p1) {
+      if (first_miss.empty()) {
+        first_miss = "; its long-wavelength image (omega_hat=" + str(p0 ? w1 : w0) + ", gamma_hat=" + str(x / (p0 ? w1 : w0)) +
+                     ") " + miss + ", and no higher column resolves both images";
+      }
+      continue;
+    }
+    const double s0 = omega_hat / w0, s1 = omega_hat / w1;
+    // With g0 = x / w0: d g0 / d omega_hat = gamma_hat / w0, d g0 / d gamma_hat = s0.
+    const double dg_dw = gamma_hat / w0;
+    DispersionPoint p;
+    p.alpha_hat = s0 * p0->alpha_hat;
+    p.c_hat = p0->c_hat;
+    p.d_alpha_hat = {p0->alpha_hat / w0 + s0 * p0->d_alpha_hat.d_gamma_hat * dg_dw, s0 * p0->d_alpha_hat.d_gamma_hat * s0};
+    p.d_c_hat = {p0->d_c_hat.d_gamma_hat * dg_dw, p0->d_c_hat.d_gamma_hat * s0};
+    // The distance of column k from the limit, if it shrinks like omega_hat^2 (the leading correction
+    // of a lattice's dispersion): the images differ by D = f1 - f0, and f0 - f(0) = D w0^2 / (w1^2 - w0^2).
+    const double to_limit = w0 * w0 / (w1 * w1 - w0 * w0);
+    p.sigma_alpha_hat = std::hypot(s0 * p0->sigma_alpha_hat, to_limit * (s1 * p1->alpha_hat - p.alpha_hat));
+    p.sigma_c_hat = std::hypot(p0->sigma_c_hat, to_limit * (p1->c_hat - p.c_hat));
+    extrapolated_.fetch_add(1, std::memory_order_relaxed);
+    return p;
+  }
+  why += first_miss.empty() ? "; no column above it to take a long-wavelength image from" : first_miss;
+  return std::nullopt;
+}
+
 DispersionPoint TableModel::outside(double omega_hat, double gamma_hat, const std::string& why) const {
   if (outside_ == OutsideTable::lattice_theory) {
     fallbacks_.fetch_add(1, std::memory_order_relaxed);
@@ -142,8 +203,12 @@ DispersionPoint TableModel::outside(double omega_hat, double gamma_hat, const st
   throw std::domain_error(name_ + ": (omega_hat=" + str(omega_hat) + ", gamma_hat=" + str(gamma_hat) + ") " + why +
                           "; the table covers omega_hat in [" + str(grid.omega_hat.front()) + ", " +
                           str(grid.omega_hat.back()) + "], gamma_hat in [" + str(grid.gamma_hat.front()) + ", " +
-                          str(grid.gamma_hat.back()) + "] (use " + name_ +
-                          "?extrapolate=theory to fall back to the lattice theory)");
+                          str(grid.gamma_hat.back()) + "]" +
+                          (outside_ == OutsideTable::error
+                               ? " (" + name_ + "?extrapolate=theory falls back to the lattice theory; " + name_ +
+                                     "?extrapolate=long-wavelength continues below the resolved omega_hat with the "
+                                     "table's continuum limit)"
+                               : ""));
 }
 
 }  // namespace sedwave::forward::table

@@ -8,7 +8,7 @@
 
 namespace sedwave::forward {
 
-/// "continuum" or "lattice" (the 1D chain theories), or "table:FILE.h5[?extrapolate=theory]" (a
+/// "continuum" or "lattice" (the 1D chain theories), or "table:FILE.h5[?extrapolate=theory|long-wavelength]" (a
 /// precomputed table, docs/tables.md). Throws std::invalid_argument naming the accepted
 /// specifications for anything else.
 [[nodiscard]] std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec);

@@ -127,6 +127,8 @@ struct CurvePoint {
   double alpha, alpha_sigma;
   double speed, speed_sigma;
 };
+/// The fitted model at each frequency; frequencies outside the model's domain (a table's range) are
+/// left out, so the curve stops where the model does.
 [[nodiscard]] std::vector<CurvePoint> model_curves(const FitResult& result, const forward::DispersionModel& model,
                                                    const std::vector<double>& frequencies_hz);
 

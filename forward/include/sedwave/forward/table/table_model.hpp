@@ -13,14 +13,29 @@
 // outside. A table with a single gamma_hat (or omega_hat) interpolates along the other axis only and
 // accepts only that gamma_hat (its d/d gamma_hat is 0).
 //
-// Outside the table: std::domain_error naming the point and the table's range, or (option) the
-// lattice theory, counted by fallback_count(). The theory is not matched to the table at its edge,
-// so a fit that wanders outside sees a jump: the report should say how often that happened.
+// Outside the table: std::domain_error naming the point and the table's range, or (options)
+//  - the lattice theory, counted by fallback_count(). The theory is not matched to the table at its
+//    edge, so a fit that wanders outside sees a jump: the report should say how often that happened;
+//  - below the table's resolved omega_hat, its long-wavelength limit, counted by extrapolated_count().
+//    When the wavelength is many grains, no grain's inertia matters inside a wavelength: the packing
+//    acts as a continuum whose complex modulus is a function of K + i omega C, and since every
+//    dashpot is gamma times a fixed matrix, of omega * gamma alone. So alpha_hat / omega_hat and
+//    c_hat depend on x = omega_hat * gamma_hat only (exact for the 1D continuum theory). The model
+//    therefore answers (omega_hat, gamma_hat) below the table from its image on the lowest column w0
+//    above omega_hat that resolves the same x:
+//      alpha_hat = (omega_hat / w0) alpha_table(w0, x / w0),  c_hat = c_table(w0, x / w0).
+//    How far the table's lowest column still is from that limit is estimated, not assumed: the same
+//    mapping from the next column, w1, gives a second estimate f1, and if the distance shrinks like
+//    omega_hat^2 (a lattice's dispersion does), column 0 lies (f1 - f0) w0^2 / (w1^2 - w0^2) from the
+//    limit. That is added to the sigmas in quadrature (on the lattice theory the true miss is 0.5-1.7
+//    of it). The value is continuous where the table ends, its gradient is not; where the column
+//    used changes (a ragged edge), the value jumps by about that sigma.
 //
 // Units: dimensionless throughout (dispersion.hpp). Thread-safe: evaluate() only reads.
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,6 +49,7 @@ namespace sedwave::forward::table {
 enum class OutsideTable {
   error,           ///< throw std::domain_error
   lattice_theory,  ///< evaluate the 1D lattice theory instead and count it
+  long_wavelength, ///< below the resolved omega_hat: the table's continuum limit (above); else error
 };
 
 class TableModel final : public DispersionModel {
@@ -42,7 +58,8 @@ class TableModel final : public DispersionModel {
   /// sigma that is negative or not finite.
   TableModel(DispersionTable table, std::string name, OutsideTable outside = OutsideTable::error);
 
-  /// From a command-line specification "table:FILE" or "table:FILE?extrapolate=theory".
+  /// From a command-line specification "table:FILE" or "table:FILE?extrapolate=theory" or
+  /// "table:FILE?extrapolate=long-wavelength".
   [[nodiscard]] static std::unique_ptr<TableModel> from_spec(std::string_view spec);
 
   [[nodiscard]] std::string name() const override { return name_; }
@@ -50,11 +67,17 @@ class TableModel final : public DispersionModel {
 
   /// How many evaluations fell back to the lattice theory so far.
   [[nodiscard]] std::uint64_t fallback_count() const { return fallbacks_.load(std::memory_order_relaxed); }
+  /// How many evaluations used the long-wavelength limit so far.
+  [[nodiscard]] std::uint64_t extrapolated_count() const { return extrapolated_.load(std::memory_order_relaxed); }
   [[nodiscard]] const DispersionTable& table() const { return table_; }
 
  private:
   struct Interpolant;
 
+  /// The interpolant inside the table, or nothing and the reason the table does not cover the point.
+  [[nodiscard]] std::optional<DispersionPoint> inside(double omega_hat, double gamma_hat, std::string& why) const;
+  /// The long-wavelength limit (above), or nothing and why appended to `why`.
+  [[nodiscard]] std::optional<DispersionPoint> long_wavelength(double omega_hat, double gamma_hat, std::string& why) const;
   [[nodiscard]] DispersionPoint outside(double omega_hat, double gamma_hat, const std::string& why) const;
 
   DispersionTable table_;
@@ -62,6 +85,7 @@ class TableModel final : public DispersionModel {
   OutsideTable outside_;
   std::shared_ptr<const Interpolant> interpolant_;
   mutable std::atomic<std::uint64_t> fallbacks_{0};
+  mutable std::atomic<std::uint64_t> extrapolated_{0};
 };
 
 }  // namespace sedwave::forward::table
