@@ -1,6 +1,7 @@
 // `sedwave table`: fills a dispersion table (alpha_hat, c_hat on an omega_hat x gamma_hat grid) with
-// the DEM channel (one driven run per grid point) or the linear-response engine (one solve per
-// point and ensemble member), shared among MPI ranks by a task farm. One
+// the DEM channel (one driven run per grid point), the linear-response engine (one solve per
+// point and ensemble member) or the packing's long-wavelength limit (one quasi-static solve per
+// point and member, linear/long_wavelength.hpp), shared among MPI ranks by a task farm. One
 // prepared packing serves every point. A killed run, restarted with the same command, continues
 // where it stopped (docs/tables.md).
 #include <mpi.h>
@@ -18,6 +19,7 @@
 #include "sedwave/forward/channel/scene.hpp"
 #include "sedwave/forward/table/grid_file.hpp"
 #include "sedwave/forward/linear/ensemble.hpp"
+#include "sedwave/forward/linear/long_wavelength.hpp"
 #include "sedwave/forward/table/task_farm.hpp"
 #include "scene_packings.hpp"
 
@@ -31,7 +33,7 @@ struct TableOptions {
   std::string grid_file;
   std::string out;
   std::string packing;
-  std::string engine;  ///< "time_domain" or "linear"; empty: the scene's
+  std::string engine;  ///< "time_domain", "linear" or "long_wavelength"; empty: the scene's
   bool quiet = false;
   bool retry_failed = false;
 };
@@ -66,10 +68,11 @@ channel::PreparedChannel packing_for_table(const channel::ChannelScene& scene, c
 }
 
 table::TableMetadata table_metadata(const table::TableGridFile& grid, const channel::ChannelScene& scene,
-                                    const std::string& packing_provenance) {
+                                    const std::string& packing_provenance, bool long_wavelength) {
   table::TableMetadata m;
   m.scene_toml = scene.text;
-  m.engine = scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem";
+  m.engine = long_wavelength ? "sedwave-long-wavelength"
+                             : (scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem");
   std::ostringstream definitions;
   definitions << table::standard_definitions() << "; " << grid.describe_axes() << "; " << packing_provenance
               << ".\nGrid file " << grid.path.string() << " (verbatim):\n"
@@ -91,8 +94,10 @@ Command add_table_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "table file (HDF5) to create, or to resume if it exists")->required();
   cmd->add_option("--packing", o->packing,
                   "packing file (HDF5): reused if it exists, else the prepared packing is saved there");
-  cmd->add_option("--engine", o->engine, "override the scene's engine: time_domain (DEM) or linear (linear response)")
-      ->check(CLI::IsMember({"time_domain", "linear"}));
+  cmd->add_option("--engine", o->engine,
+                  "override the scene's engine: time_domain (DEM), linear (linear response) or long_wavelength "
+                  "(the packing's omega_hat -> 0 limit at fixed omega_hat*gamma_hat, for field frequencies)")
+      ->check(CLI::IsMember({"time_domain", "linear", "long_wavelength"}));
   cmd->add_flag("--retry-failed", o->retry_failed, "when resuming, compute failed points again");
   cmd->add_flag("--quiet", o->quiet, "no progress lines");
   return {cmd, [o]() {
@@ -100,14 +105,16 @@ Command add_table_command(CLI::App& app) {
     // Every rank reads both files: they are small, and errors then stop all ranks alike.
     const table::TableGridFile grid = table::read_grid_file(o->grid_file);
     channel::ChannelScene scene = channel::read_scene(grid.scene_path);
+    const bool long_wavelength = o->engine == "long_wavelength";
     if (!o->engine.empty()) {
-      scene.engine = o->engine == "linear" ? channel::EngineKind::linear : channel::EngineKind::time_domain;
+      scene.engine = o->engine == "time_domain" ? channel::EngineKind::time_domain : channel::EngineKind::linear;
       if (scene.engine == channel::EngineKind::linear && scene.drive.pulse) {
         throw std::invalid_argument(grid.scene_path.string() +
                                     ": --engine linear solves each frequency directly; the scene's pulse drive "
                                     "is for the time-domain engine (use signal = \"sinusoid\")");
       }
-      if (scene.engine == channel::EngineKind::linear && scene.drive.far_end != channel::FarEnd::absorbing) {
+      if (scene.engine == channel::EngineKind::linear && !long_wavelength &&
+          scene.drive.far_end != channel::FarEnd::absorbing) {
         throw std::invalid_argument(grid.scene_path.string() +
                                     ": --engine linear needs [drive] far_end = \"absorbing\" (a steady state "
                                     "with a frozen end is a standing wave)");
@@ -132,13 +139,16 @@ Command add_table_command(CLI::App& app) {
         members.emplace_back(packing, scene.contact, scene.linear);
         provenance += (k > 0 ? "; " : "") + member_provenance;
       }
-      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance),
-                                    forward::linear::linear_point_function(members, scene.drive), settings);
+      const table::PointFunction point =
+          long_wavelength ? forward::linear::long_wavelength_point_function(members, scene.drive.axis)
+                          : forward::linear::linear_point_function(members, scene.drive);
+      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid,
+                                    table_metadata(grid, scene, provenance, long_wavelength), point, settings);
     } else {
       std::string provenance;
       channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
       table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
-      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance),
+      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance, false),
                                     table::dem_point_function(packing, scene.contact, scene.drive, grid.grid), settings);
     }
     if (mpi.rank() == 0) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace sedwave::forward::linear {
 
@@ -20,24 +21,33 @@ EnsembleResult respond(const std::vector<LinearChannel>& members, const channel:
     if (e.members.empty()) e.problem = "empty ensemble";
     return e;
   }
-  const auto n = static_cast<double>(e.members.size());
+  std::vector<double> alpha, c;
   for (const LinearResult& r : e.members) {
-    e.alpha_hat += r.fit.alpha / n;
-    e.c_hat += r.fit.c / n;
+    alpha.push_back(r.fit.alpha);
+    c.push_back(r.fit.c);
   }
-  if (e.members.size() == 1) {
+  const MeanAndError a = mean_and_standard_error(alpha), v = mean_and_standard_error(c);
+  e.alpha_hat = a.mean;
+  e.c_hat = v.mean;
+  if (e.members.size() == 1) {  // a single member keeps its own fit errors
     e.sigma_alpha_hat = e.members.front().fit.sigma_alpha;
     e.sigma_c_hat = e.members.front().fit.sigma_c;
-    return e;
+  } else {
+    e.sigma_alpha_hat = a.standard_error;
+    e.sigma_c_hat = v.standard_error;
   }
-  double var_alpha = 0.0, var_c = 0.0;
-  for (const LinearResult& r : e.members) {
-    var_alpha += (r.fit.alpha - e.alpha_hat) * (r.fit.alpha - e.alpha_hat) / (n - 1.0);
-    var_c += (r.fit.c - e.c_hat) * (r.fit.c - e.c_hat) / (n - 1.0);
-  }
-  e.sigma_alpha_hat = std::sqrt(var_alpha / n);
-  e.sigma_c_hat = std::sqrt(var_c / n);
   return e;
+}
+
+MeanAndError mean_and_standard_error(std::span<const double> values) {
+  MeanAndError r;
+  const auto n = static_cast<double>(values.size());
+  for (const double v : values) r.mean += v / n;
+  if (values.size() < 2) return r;
+  double variance = 0.0;
+  for (const double v : values) variance += (v - r.mean) * (v - r.mean) / (n - 1.0);
+  r.standard_error = std::sqrt(variance / n);
+  return r;
 }
 
 table::PointResult point_from_ensemble(const EnsembleResult& e) {

@@ -34,6 +34,7 @@ void check_drive(const channel::DriveSettings& d) {
 LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact,
                              LinearSettings settings)
     : grains_(packing.grains),
+      cross_section_(packing.box.length(0) * packing.box.length(1)),
       contact_(contact),
       model_(dem::make_contact_model(contact)),
       settings_(settings),

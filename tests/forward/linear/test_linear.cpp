@@ -24,7 +24,9 @@
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/linear/equivalent_linearisation.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
+#include "sedwave/forward/linear/long_wavelength.hpp"
 #include "sedwave/forward/linear/ordered_chain.hpp"
+#include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 
 namespace sedwave::forward::linear {
@@ -134,6 +136,27 @@ TEST(OrderedChainSponge, LayersTheResolutionRuleAcceptsReflectUnderOnePercent) {
     }
   }
   EXPECT_GE(accepted_below_rule, 2);  // gamma_hat 100: layers of 1 and 1.5 wavelengths
+}
+
+// The long-wavelength limit of an ordered chain (spacing a) is the 1D continuum theory:
+// c_complex = a sqrt(1 + i x) in units d sqrt(kappa/m), whatever the wall contacts do, because the
+// strain is measured away from them. The density divides the mass by the column between the walls'
+// surfaces, (n + 1) a - 1 rather than n a: 2.5e-5 more here, hence the tolerance.
+TEST(LongWavelength, OrderedChainIsTheContinuumTheory) {
+  const double a = 1.0 - 1e-3;
+  const LinearChannel engine(chain(40, a), hooke(1.0));
+  const ContinuumModel continuum;
+  for (const double x : {0.0, 0.01, 0.3, 1.0, 10.0, 1e3}) {
+    const LongWavelengthLimit l = long_wavelength_limit(engine, x, channel::DriveAxis::longitudinal);
+    EXPECT_NEAR(std::abs(l.modulus / l.density / (a * a * Complex(1.0, x)) - 1.0), 0.0, 3e-5) << "x = " << x;
+    // The continuum theory (spacing d) at any omega_hat with gamma_hat = x / omega_hat.
+    const double w = 1e-4;
+    const DispersionPoint p = continuum.evaluate(w, x / w);
+    EXPECT_NEAR(l.c_hat / a, p.c_hat, 3e-5 * p.c_hat) << "x = " << x;
+    EXPECT_NEAR(l.alpha_over_omega * a, p.alpha_hat / w, 3e-5 * p.alpha_hat / w + 1e-12) << "x = " << x;
+    EXPECT_LT(l.non_affinity, 1e-6);
+  }
+  EXPECT_THROW((void)long_wavelength_limit(engine, -1.0, channel::DriveAxis::longitudinal), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Frequencies, OrderedChain,

@@ -6,6 +6,7 @@
 //
 // Also the linear engine's table point function, for the same task farm and table format as the
 // time-domain engine (table/task_farm.hpp).
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,14 @@ struct EnsembleResult {
   double solve_seconds = 0.0;
   [[nodiscard]] bool ok() const { return problem.empty(); }
 };
+
+/// The mean of one number over the members and its standard error (the spread between members over
+/// sqrt(n); 0 for a single member).
+struct MeanAndError {
+  double mean = 0.0;
+  double standard_error = 0.0;
+};
+[[nodiscard]] MeanAndError mean_and_standard_error(std::span<const double> values);
 
 /// Drives every member with `drive` and combines the results.
 [[nodiscard]] EnsembleResult respond(const std::vector<LinearChannel>& members, const channel::DriveSettings& drive);

@@ -100,6 +100,9 @@ class LinearChannel {
   [[nodiscard]] const DynamicMatrices& matrices() const { return matrices_; }
   [[nodiscard]] const SlabSolver& solver() const { return solver_; }
   [[nodiscard]] const std::vector<dem::Grain>& grains() const { return grains_; }
+  [[nodiscard]] const dem::ContactSpec& contact() const { return contact_; }
+  /// The channel's cross-section, the periodic box's x by y extent [length^2].
+  [[nodiscard]] double cross_section() const { return cross_section_; }
 
  private:
   [[nodiscard]] Eigen::VectorXd sponge(const channel::DriveSettings& drive, double omega) const;
@@ -121,6 +124,7 @@ class LinearChannel {
   [[nodiscard]] PairLinearisation equivalent_pairs(const Eigen::VectorXcd& u, const channel::DriveSettings& d) const;
 
   std::vector<dem::Grain> grains_;
+  double cross_section_;
   dem::ContactSpec contact_;
   dem::AnyContactModel model_;
   LinearSettings settings_;

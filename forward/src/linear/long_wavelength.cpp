@@ -1,0 +1,161 @@
+#include "sedwave/forward/linear/long_wavelength.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "sedwave/forward/linear/ensemble.hpp"
+
+namespace sedwave::forward::linear {
+namespace {
+
+using Complex = std::complex<double>;
+using Motion = Eigen::Matrix<Complex, 6, 1>;
+
+/// A grain's (translation, rotation) per unit wall displacement along `axis`.
+Motion motion_of(const LinearChannel& c, const Eigen::VectorXcd& u, std::int32_t grain, int axis) {
+  Motion m = Motion::Zero();
+  const DynamicMatrices& matrices = c.matrices();
+  const std::int32_t node = matrices.node_of_grain[static_cast<std::size_t>(grain)];
+  if (node >= 0) {
+    m.head(matrices.dofs_per_node) = u.segment(matrices.dofs_per_node * static_cast<Eigen::Index>(node),
+                                               matrices.dofs_per_node);
+  } else if (c.grains()[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) {
+    m(axis) = 1.0;
+  }
+  return m;
+}
+
+/// The force of the free grains on the driven wall, per unit wall displacement: the linearised
+/// contact forces as assemble() builds them (normal spring and dashpot, the pre-stress turning a
+/// loaded contact, and with friction the sticking tangential spring and dashpot).
+Eigen::Vector3cd force_on_driven_wall(const LinearChannel& c, const Eigen::VectorXcd& u, int axis, double omega,
+                                      double gamma) {
+  const bool friction = c.matrices().dofs_per_node == 6;
+  const dem::ContactSpec& contact = c.contact();
+  Eigen::Vector3cd total = Eigen::Vector3cd::Zero();
+  for (const StaticPair& p : c.network().contacts) {
+    const bool i_wall = c.grains()[static_cast<std::size_t>(p.i)].body == channel::kLowerWallBody;
+    const bool j_wall = c.grains()[static_cast<std::size_t>(p.j)].body == channel::kLowerWallBody;
+    if (i_wall == j_wall) continue;
+    const Motion mi = motion_of(c, u, p.i, axis), mj = motion_of(c, u, p.j, axis);
+    const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+    const Eigen::Matrix3d nn = n * n.transpose();
+    const Eigen::Matrix3cd normal = (p.stiffness * nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - nn))
+                                        .cast<Complex>() +
+                                    Complex(0.0, omega * gamma * p.dashpot) * nn.cast<Complex>();
+    Eigen::Vector3cd on_i = -normal * (mi.head<3>() - mj.head<3>());
+    if (friction) {
+      const SlipOperators s = slip_operators(p);
+      on_i -= (contact.kt + Complex(0.0, omega * contact.gamma_t * p.effective_mass)) *
+              (s.i.cast<Complex>() * mi + s.j.cast<Complex>() * mj);
+    }
+    total += i_wall ? on_i : Eigen::Vector3cd(-on_i);
+  }
+  return total;
+}
+
+}  // namespace
+
+LongWavelengthLimit long_wavelength_limit(const LinearChannel& c, double x, channel::DriveAxis axis_kind) {
+  if (!(x >= 0.0) || !std::isfinite(x)) throw std::invalid_argument("long-wavelength limit: x must be >= 0");
+  const auto start = std::chrono::steady_clock::now();
+  const channel::PackingUnits& units = c.units();
+  // A frequency at which the column is a thousandth of a wavelength (c_hat of a packing is O(1) and
+  // grows with x): inertia changes the profile by ~(k L)^2 ~ 1e-6, yet the mass matrix still pins
+  // grains the contacts leave free (rattlers) at zero.
+  channel::DriveSettings d;
+  d.axis = axis_kind;
+  d.omega_hat = 1e-3 / units.column_length();
+  d.gamma_hat = x / d.omega_hat;
+  d.far_end = channel::FarEnd::absorbing;
+  d.absorbing_strength = 0.0;  // no drag: the far wall is simply fixed
+  const Eigen::VectorXcd u = c.displacement(d);
+  const int axis = axis_kind == channel::DriveAxis::longitudinal ? 2 : 0;
+  const double omega = d.omega_hat / units.time(), gamma = d.gamma_hat * units.damping_scale;
+  const Complex force = force_on_driven_wall(c, u, axis, omega, gamma)(axis);
+
+  // Strain: least-squares slope of the displacement of every grain with a contact over the interior
+  // 60 % of the column (rattlers have none and stay at rest). Density: their mass per volume.
+  std::vector<int> contacts(c.grains().size(), 0);
+  for (const StaticPair& p : c.network().contacts) {
+    ++contacts[static_cast<std::size_t>(p.i)];
+    ++contacts[static_cast<std::size_t>(p.j)];
+  }
+  const DynamicMatrices& m = c.matrices();
+  const double length = units.column_top - units.wall_surface;
+  const double lo = units.wall_surface + 0.2 * length, hi = units.wall_surface + 0.8 * length;
+  std::vector<double> z;
+  std::vector<Complex> w;
+  double mass = 0.0;
+  for (std::size_t node = 0; node < m.grain_of_node.size(); ++node) {
+    const auto g = static_cast<std::size_t>(m.grain_of_node[node]);
+    if (contacts[g] == 0) continue;
+    mass += c.grains()[g].mass;
+    const double zg = c.grains()[g].position.z;
+    if (zg < lo || zg > hi) continue;
+    z.push_back(zg);
+    w.push_back(u(m.dofs_per_node * static_cast<Eigen::Index>(node) + axis));
+  }
+  if (z.size() < 4) {
+    throw std::invalid_argument("long-wavelength limit: fewer than 4 grains with contacts in the column's interior");
+  }
+  double z_mean = 0.0;
+  Complex w_mean = 0.0;
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    z_mean += z[k] / static_cast<double>(z.size());
+    w_mean += w[k] / static_cast<double>(z.size());
+  }
+  double szz = 0.0;
+  Complex szw = 0.0;
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    szz += (z[k] - z_mean) * (z[k] - z_mean);
+    szw += (z[k] - z_mean) * (w[k] - w_mean);
+  }
+  const Complex slope = szw / szz;
+  double residual = 0.0;
+  for (std::size_t k = 0; k < z.size(); ++k) residual += std::norm(w[k] - w_mean - slope * (z[k] - z_mean));
+
+  LongWavelengthLimit r;
+  r.x = x;
+  // Compression (or shear) of the column pushes the wall back: stress -F / A, strain -slope.
+  r.modulus = force / (c.cross_section() * slope) / (units.kappa / units.diameter);
+  r.density = mass / (c.cross_section() * length) / (units.mass / std::pow(units.diameter, 3));
+  const Complex inverse_speed = 1.0 / std::sqrt(r.modulus / r.density);
+  r.alpha_over_omega = -inverse_speed.imag();
+  r.c_hat = 1.0 / inverse_speed.real();
+  r.non_affinity = std::sqrt(residual / static_cast<double>(z.size())) / std::abs(slope * (hi - lo));
+  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+table::PointFunction long_wavelength_point_function(const std::vector<LinearChannel>& members,
+                                                    channel::DriveAxis axis) {
+  // Every point on a diagonal of a log grid with equal steps on both axes has the same x: solve each
+  // x once (keyed to 1e-9 in ln x, far below any grid's spacing).
+  auto solved = std::make_shared<std::map<long long, std::vector<LongWavelengthLimit>>>();
+  return [&members, axis, solved](MPI_Comm, double omega_hat, double gamma_hat) {
+    const double x = omega_hat * gamma_hat;
+    const long long key = x > 0.0 ? std::llround(std::log(x) * 1e9) : std::numeric_limits<long long>::min();
+    auto [entry, fresh] = solved->try_emplace(key);
+    if (fresh) {
+      for (const LinearChannel& member : members) entry->second.push_back(long_wavelength_limit(member, x, axis));
+    }
+    std::vector<double> alpha, c;
+    double seconds = 0.0;
+    for (const LongWavelengthLimit& l : entry->second) {
+      alpha.push_back(omega_hat * l.alpha_over_omega);
+      c.push_back(l.c_hat);
+      if (fresh) seconds += l.solve_seconds;
+    }
+    const MeanAndError a = mean_and_standard_error(alpha), v = mean_and_standard_error(c);
+    return table::point_from_measurement(members.empty() ? "empty ensemble" : "", a.mean, a.standard_error, v.mean,
+                                         v.standard_error, seconds);
+  };
+}
+
+}  // namespace sedwave::forward::linear
