@@ -14,27 +14,9 @@
 
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "bench_contact.hpp"
-
-namespace {
-
-struct Stats {
-  double mean = 0.0, se = 0.0;
-};
-
-Stats mean_and_se(const std::vector<double>& x) {
-  Stats s;
-  const auto n = static_cast<double>(x.size());
-  for (const double v : x) s.mean += v / n;
-  if (x.size() < 2) return s;
-  double var = 0.0;
-  for (const double v : x) var += (v - s.mean) * (v - s.mean) / (n - 1.0);
-  s.se = std::sqrt(var / n);
-  return s;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace sedwave::forward;
@@ -89,16 +71,19 @@ int main(int argc, char** argv) {
       da.push_back(dem.fit.alpha);
       dc.push_back(dem.fit.c);
     }
-    const Stats a1 = mean_and_se(la), a2 = mean_and_se(da), c1 = mean_and_se(lc), c2 = mean_and_se(dc);
+    const auto stats = [](const std::vector<double>& v) { return linear::mean_and_standard_error(v); };
+    const auto apart = [](const linear::MeanAndError& a, const linear::MeanAndError& b) {
+      return std::abs(a.mean - b.mean) / std::hypot(a.standard_error, b.standard_error);
+    };
+    const linear::MeanAndError a1 = stats(la), a2 = stats(da), c1 = stats(lc), c2 = stats(dc);
     std::printf("%-9g mean    %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f %10.5f %9.5f   alpha: %.2f sigma apart, c: %.2f "
                 "sigma apart (%zu packings)\n",
-                w, a1.mean, a1.se, a2.mean, a2.se, c1.mean, c1.se, c2.mean, c2.se,
-                std::abs(a1.mean - a2.mean) / std::hypot(a1.se, a2.se), std::abs(c1.mean - c2.mean) / std::hypot(c1.se, c2.se),
-                la.size());
-    const Stats e1 = mean_and_se(ea), e2 = mean_and_se(ec);
-    std::printf("%-9g equivalent linearisation: alpha %.5f +- %.5f (%.2f sigma from DEM), c %.5f +- %.5f (%.2f sigma from DEM)\n",
-                w, e1.mean, e1.se, std::abs(e1.mean - a2.mean) / std::hypot(e1.se, a2.se), e2.mean, e2.se,
-                std::abs(e2.mean - c2.mean) / std::hypot(e2.se, c2.se));
+                w, a1.mean, a1.standard_error, a2.mean, a2.standard_error, c1.mean, c1.standard_error, c2.mean,
+                c2.standard_error, apart(a1, a2), apart(c1, c2), la.size());
+    const linear::MeanAndError e1 = stats(ea), e2 = stats(ec);
+    std::printf("%-9g equivalent linearisation: alpha %.5f +- %.5f (%.2f sigma from DEM), c %.5f +- %.5f (%.2f sigma "
+                "from DEM)\n",
+                w, e1.mean, e1.standard_error, apart(e1, a2), e2.mean, e2.standard_error, apart(e2, c2));
     std::fflush(stdout);
   }
   MPI_Finalize();
