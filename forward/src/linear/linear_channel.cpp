@@ -100,12 +100,9 @@ double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::Dr
   if (contact_.tangential != dem::TangentialLawKind::spring_history) return std::numeric_limits<double>::infinity();
   const double omega = d.omega_hat / units_.time();
   const double gamma = d.gamma_hat * units_.damping_scale;
-  const Eigen::Matrix<Complex, 6, 1> mi = grain_motion(u, d, p.i), mj = grain_motion(u, d, p.j);
-  // Per unit wall amplitude: the contact point's slip and the normal force, spring and dashpot (the
+  // Per unit wall amplitude: the tangential force and the normal force, spring and dashpot (the
   // overlap shrinks as n . (u_i - u_j) grows).
-  const SlipOperators t = slip_operators(p);
-  const Eigen::Vector3cd slip = t.i.cast<Complex>() * mi + t.j.cast<Complex>() * mj;
-  const Eigen::Vector3cd tangential = (contact_.kt + Complex(0.0, omega * contact_.gamma_t * p.effective_mass)) * slip;
+  const Eigen::Vector3cd tangential = tangential_force(u, d, p);
   const Complex normal = -(p.stiffness + Complex(0.0, omega * gamma * p.dashpot)) * normal_motion(u, d, p);
   // At phase theta the contact sticks while A |Re(F_t e^{i theta})| <= mu (F_0 + A Re(F_n e^{i theta})),
   // linear in A at each phase: the onset is mu F_0 / max over theta of (|Re F_t e^{i theta}| - mu Re F_n e^{i theta}),
@@ -118,6 +115,28 @@ double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::Dr
     worst = std::max(worst, (tangential * turn).real().norm() - mu * (normal * turn).real());
   }
   return worst > 0.0 ? mu * p.force / worst : std::numeric_limits<double>::infinity();
+}
+
+Eigen::Vector3cd LinearChannel::tangential_force(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                                const StaticPair& p) const {
+  const double omega = d.omega_hat / units_.time();
+  const SlipOperators t = slip_operators(p);
+  const Eigen::Vector3cd slip = t.i.cast<Complex>() * grain_motion(u, d, p.i) + t.j.cast<Complex>() * grain_motion(u, d, p.j);
+  return -(contact_.kt + Complex(0.0, omega * contact_.gamma_t * p.effective_mass)) * slip;
+}
+
+Eigen::Vector3cd LinearChannel::contact_force(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                              const StaticPair& p) const {
+  const double omega = d.omega_hat / units_.time();
+  const double gamma = d.gamma_hat * units_.damping_scale;
+  const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
+  const Eigen::Matrix3d nn = n * n.transpose();
+  const Eigen::Matrix3cd normal =
+      (p.stiffness * nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - nn)).cast<Complex>() +
+      Complex(0.0, omega * gamma * p.dashpot) * nn.cast<Complex>();
+  Eigen::Vector3cd f = -normal * (grain_motion(u, d, p.i) - grain_motion(u, d, p.j)).head<3>();
+  if (matrices_.dofs_per_node == 6) f += tangential_force(u, d, p);
+  return f;
 }
 
 StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,

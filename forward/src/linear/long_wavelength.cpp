@@ -14,46 +14,16 @@ namespace sedwave::forward::linear {
 namespace {
 
 using Complex = std::complex<double>;
-using Motion = Eigen::Matrix<Complex, 6, 1>;
 
-/// A grain's (translation, rotation) per unit wall displacement along `axis`.
-Motion motion_of(const LinearChannel& c, const Eigen::VectorXcd& u, std::int32_t grain, int axis) {
-  Motion m = Motion::Zero();
-  const DynamicMatrices& matrices = c.matrices();
-  const std::int32_t node = matrices.node_of_grain[static_cast<std::size_t>(grain)];
-  if (node >= 0) {
-    m.head(matrices.dofs_per_node) = u.segment(matrices.dofs_per_node * static_cast<Eigen::Index>(node),
-                                               matrices.dofs_per_node);
-  } else if (c.grains()[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) {
-    m(axis) = 1.0;
-  }
-  return m;
-}
-
-/// The force of the free grains on the driven wall, per unit wall displacement: the linearised
-/// contact forces as assemble() builds them (normal spring and dashpot, the pre-stress turning a
-/// loaded contact, and with friction the sticking tangential spring and dashpot).
-Eigen::Vector3cd force_on_driven_wall(const LinearChannel& c, const Eigen::VectorXcd& u, int axis, double omega,
-                                      double gamma) {
-  const bool friction = c.matrices().dofs_per_node == 6;
-  const dem::ContactSpec& contact = c.contact();
+/// The force of the free grains on the driven wall per unit wall displacement.
+Eigen::Vector3cd force_on_driven_wall(const LinearChannel& c, const Eigen::VectorXcd& u,
+                                      const channel::DriveSettings& d) {
   Eigen::Vector3cd total = Eigen::Vector3cd::Zero();
   for (const StaticPair& p : c.network().contacts) {
     const bool i_wall = c.grains()[static_cast<std::size_t>(p.i)].body == channel::kLowerWallBody;
     const bool j_wall = c.grains()[static_cast<std::size_t>(p.j)].body == channel::kLowerWallBody;
     if (i_wall == j_wall) continue;
-    const Motion mi = motion_of(c, u, p.i, axis), mj = motion_of(c, u, p.j, axis);
-    const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-    const Eigen::Matrix3d nn = n * n.transpose();
-    const Eigen::Matrix3cd normal = (p.stiffness * nn - (p.force / p.distance) * (Eigen::Matrix3d::Identity() - nn))
-                                        .cast<Complex>() +
-                                    Complex(0.0, omega * gamma * p.dashpot) * nn.cast<Complex>();
-    Eigen::Vector3cd on_i = -normal * (mi.head<3>() - mj.head<3>());
-    if (friction) {
-      const SlipOperators s = slip_operators(p);
-      on_i -= (contact.kt + Complex(0.0, omega * contact.gamma_t * p.effective_mass)) *
-              (s.i.cast<Complex>() * mi + s.j.cast<Complex>() * mj);
-    }
+    const Eigen::Vector3cd on_i = c.contact_force(u, d, p);
     total += i_wall ? on_i : Eigen::Vector3cd(-on_i);
   }
   return total;
@@ -76,16 +46,11 @@ LongWavelengthLimit long_wavelength_limit(const LinearChannel& c, double x, chan
   d.absorbing_strength = 0.0;  // no drag: the far wall is simply fixed
   const Eigen::VectorXcd u = c.displacement(d);
   const int axis = axis_kind == channel::DriveAxis::longitudinal ? 2 : 0;
-  const double omega = d.omega_hat / units.time(), gamma = d.gamma_hat * units.damping_scale;
-  const Complex force = force_on_driven_wall(c, u, axis, omega, gamma)(axis);
+  const Complex force = force_on_driven_wall(c, u, d)(axis);
 
   // Strain: least-squares slope of the displacement of every grain with a contact over the interior
   // 60 % of the column (rattlers have none and stay at rest). Density: their mass per volume.
-  std::vector<int> contacts(c.grains().size(), 0);
-  for (const StaticPair& p : c.network().contacts) {
-    ++contacts[static_cast<std::size_t>(p.i)];
-    ++contacts[static_cast<std::size_t>(p.j)];
-  }
+  const std::vector<int>& contacts = c.network().contacts_per_grain;
   const DynamicMatrices& m = c.matrices();
   const double length = units.column_top - units.wall_surface;
   const double lo = units.wall_surface + 0.2 * length, hi = units.wall_surface + 0.8 * length;

@@ -460,25 +460,17 @@ TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
   const double omega = d.omega_hat / units.time();
   const double gamma = d.gamma_hat * units.damping_scale;
   const DynamicMatrices& m = engine.matrices();
-  auto motion = [&](std::int32_t grain) -> Eigen::Vector3cd {
-    const std::int32_t node = m.node_of_grain[static_cast<std::size_t>(grain)];
-    if (node >= 0) return u.segment<3>(3 * node);
-    return engine.grains()[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody
-               ? Eigen::Vector3cd(0, 0, 1) : Eigen::Vector3cd::Zero();
-  };
   double injected = 0.0, dissipated = 0.0;
   for (const StaticPair& p : engine.network().contacts) {
     const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
-    const Eigen::Matrix3d kb = p.stiffness * n * n.transpose() -
-                               (p.force / p.distance) * (Eigen::Matrix3d::Identity() - n * n.transpose());
-    const Eigen::Vector3cd rel = motion(p.i) - motion(p.j);
+    const Eigen::Vector3cd rel = (engine.grain_motion(u, d, p.i) - engine.grain_motion(u, d, p.j)).head<3>();
     dissipated += 0.5 * omega * omega * gamma * p.dashpot * std::norm(n.cast<Complex>().dot(rel));
     // Force of the driven wall on its partner, times the wall velocity i omega e_z, time-averaged.
     const bool i_wall = engine.grains()[static_cast<std::size_t>(p.i)].body == channel::kLowerWallBody;
     const bool j_wall = engine.grains()[static_cast<std::size_t>(p.j)].body == channel::kLowerWallBody;
     if (i_wall == j_wall) continue;
-    const Eigen::Vector3cd on_wall = -(kb.cast<Complex>() + Complex(0, omega * gamma * p.dashpot) * (n * n.transpose()).cast<Complex>()) *
-                                     (i_wall ? rel : Eigen::Vector3cd(-rel));
+    const Eigen::Vector3cd on_i = engine.contact_force(u, d, p);
+    const Eigen::Vector3cd on_wall = i_wall ? on_i : Eigen::Vector3cd(-on_i);
     injected += 0.5 * std::real(std::conj(Complex(0.0, omega)) * -on_wall(2));
   }
   for (std::size_t node = 0; node < m.grain_of_node.size(); ++node) {

@@ -95,6 +95,16 @@ class LinearChannel {
   [[nodiscard]] StateChanges state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& drive,
                                            double amplitude) const;
 
+  /// A grain's (translation, rotation) per unit wall amplitude: its unknowns, or its wall's motion.
+  [[nodiscard]] Eigen::Matrix<std::complex<double>, 6, 1> grain_motion(const Eigen::VectorXcd& u,
+                                                                      const channel::DriveSettings& drive,
+                                                                      std::int32_t grain) const;
+  /// The linearised force of contact p on its grain i per unit wall amplitude, as assemble()'s K and C
+  /// act on the response u: normal spring and dashpot, the pre-stress turning a loaded contact, and
+  /// with friction the sticking tangential spring and dashpot.
+  [[nodiscard]] Eigen::Vector3cd contact_force(const Eigen::VectorXcd& u, const channel::DriveSettings& drive,
+                                               const StaticPair& p) const;
+
   [[nodiscard]] const channel::PackingUnits& units() const { return units_; }
   [[nodiscard]] const ContactNetwork& network() const { return network_; }
   [[nodiscard]] const DynamicMatrices& matrices() const { return matrices_; }
@@ -113,10 +123,10 @@ class LinearChannel {
   /// n . (U_i - U_j) of a pair per unit wall amplitude (walls: the driven one moves by e_axis).
   [[nodiscard]] std::complex<double> normal_motion(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
                                                    const StaticPair& p) const;
-  /// A grain's (translation, rotation) per unit wall amplitude: its unknowns, or its wall's motion.
-  [[nodiscard]] Eigen::Matrix<std::complex<double>, 6, 1> grain_motion(const Eigen::VectorXcd& u,
-                                                                      const channel::DriveSettings& d,
-                                                                      std::int32_t grain) const;
+  /// The sticking tangential spring and dashpot's force on grain i of contact p per unit wall
+  /// amplitude (friction only).
+  [[nodiscard]] Eigen::Vector3cd tangential_force(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                                  const StaticPair& p) const;
   /// The wall amplitude [length] at which contact p's tangential force first reaches mu times its
   /// normal force during the cycle (infinity: never, or no friction).
   [[nodiscard]] double sliding_onset(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
