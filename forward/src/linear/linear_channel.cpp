@@ -121,7 +121,8 @@ Eigen::Vector3cd LinearChannel::tangential_force(const Eigen::VectorXcd& u, cons
                                                 const StaticPair& p) const {
   const double omega = d.omega_hat / units_.time();
   const SlipOperators t = slip_operators(p);
-  const Eigen::Vector3cd slip = t.i.cast<Complex>() * grain_motion(u, d, p.i) + t.j.cast<Complex>() * grain_motion(u, d, p.j);
+  const Eigen::Vector3cd slip =
+      t.i.cast<Complex>() * grain_motion(u, d, p.i) + t.j.cast<Complex>() * grain_motion(u, d, p.j);
   return -(contact_.kt + Complex(0.0, omega * contact_.gamma_t * p.effective_mass)) * slip;
 }
 
@@ -141,20 +142,38 @@ Eigen::Vector3cd LinearChannel::contact_force(const Eigen::VectorXcd& u, const c
 
 StateChanges LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
                                           double amplitude) const {
-  const double scale = amplitude * units_.diameter;
-  StateChanges s;
-  s.amplitude = amplitude;
-  s.contacts = static_cast<std::int64_t>(network_.contacts.size());
-  s.gaps = static_cast<std::int64_t>(network_.gaps.size());
+  return state_changes(u, d, std::span(&amplitude, 1)).front();
+}
+
+std::vector<StateChanges> LinearChannel::state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
+                                                       std::span<const double> amplitudes) const {
+  // A pair's normal motion and sliding onset per unit amplitude do not depend on the amplitude.
+  std::vector<double> contact_motion, onset, gap_motion;
   for (const StaticPair& p : network_.contacts) {
-    if (scale * std::abs(normal_motion(u, d, p)) > p.overlap) {
-      ++s.opening;
-    } else if (scale > sliding_onset(u, d, p)) {
-      ++s.sliding;
-    }
+    contact_motion.push_back(std::abs(normal_motion(u, d, p)));
+    onset.push_back(sliding_onset(u, d, p));
   }
-  for (const StaticPair& p : network_.gaps) s.closing += scale * std::abs(normal_motion(u, d, p)) > -p.overlap ? 1 : 0;
-  return s;
+  for (const StaticPair& p : network_.gaps) gap_motion.push_back(std::abs(normal_motion(u, d, p)));
+  std::vector<StateChanges> changes;
+  for (const double amplitude : amplitudes) {
+    const double scale = amplitude * units_.diameter;
+    StateChanges s;
+    s.amplitude = amplitude;
+    s.contacts = static_cast<std::int64_t>(network_.contacts.size());
+    s.gaps = static_cast<std::int64_t>(network_.gaps.size());
+    for (std::size_t k = 0; k < network_.contacts.size(); ++k) {
+      if (scale * contact_motion[k] > network_.contacts[k].overlap) {
+        ++s.opening;
+      } else if (scale > onset[k]) {
+        ++s.sliding;
+      }
+    }
+    for (std::size_t k = 0; k < network_.gaps.size(); ++k) {
+      s.closing += scale * gap_motion[k] > -network_.gaps[k].overlap ? 1 : 0;
+    }
+    changes.push_back(s);
+  }
+  return changes;
 }
 
 LinearResult LinearChannel::respond(const channel::DriveSettings& d) const {
@@ -241,8 +260,11 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
 
   const auto first = static_cast<std::size_t>(std::max(0, d.skip_layers));
   const auto last = static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(grid.count));
-  r.state_changes = state_changes(u, d, d.amplitude);
-  for (double a = 1e-7; a < 2e-2; a *= 10.0) r.amplitude_ladder.push_back(state_changes(u, d, a));
+  std::vector<double> amplitudes{d.amplitude};
+  for (double a = 1e-7; a < 2e-2; a *= 10.0) amplitudes.push_back(a);
+  const std::vector<StateChanges> counted = state_changes(u, d, amplitudes);
+  r.state_changes = counted.front();
+  r.amplitude_ladder.assign(counted.begin() + 1, counted.end());
   if (last < first + 4) {
     r.problem = "channel too short: fewer than 4 layers between the near field and the absorbing layer";
   } else {

@@ -16,6 +16,7 @@
 // tangent stiffness of the contacts for Hertz).
 #include <complex>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,9 @@ class LinearChannel {
   /// response `u` per unit wall amplitude.
   [[nodiscard]] StateChanges state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& drive,
                                            double amplitude) const;
+  /// The same at several amplitudes, each pair's motion and sliding onset computed once.
+  [[nodiscard]] std::vector<StateChanges> state_changes(const Eigen::VectorXcd& u, const channel::DriveSettings& drive,
+                                                        std::span<const double> amplitudes) const;
 
   /// A grain's (translation, rotation) per unit wall amplitude: its unknowns, or its wall's motion.
   [[nodiscard]] Eigen::Matrix<std::complex<double>, 6, 1> grain_motion(const Eigen::VectorXcd& u,
