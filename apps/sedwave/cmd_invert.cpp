@@ -212,7 +212,7 @@ Command add_invert_command(CLI::App& app) {
                             static_cast<unsigned long long>(table->fallback_count()));
               }
               if (table->extrapolated_count() > 0) {
-                std::printf("note: %llu model evaluations lay below the table's lowest omega_hat and used its "
+                std::printf("note: %llu model evaluations lay below the table's resolved omega_hat and used its "
                             "long-wavelength limit (docs/tables.md)\n",
                             static_cast<unsigned long long>(table->extrapolated_count()));
               }
