@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/channel/packing_units.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/table/table.hpp"
@@ -26,6 +27,13 @@ double absorbing_drag(const DriveSettings& d, const PackingUnits& u, double omeg
   const double c_max = d.absorbing_strength * u.mass * omega;
   const double s = (z - start) / (d.absorbing_fraction * length);
   return c_max * s * s;
+}
+
+double loaded_wall_mass(const DriveSettings& d, const PackingUnits& u, std::span<const dem::Grain> grains) {
+  if (d.far_wall_mass > 0.0) return d.far_wall_mass * u.mass;
+  double mass = 0.0;
+  for (const dem::Grain& g : grains) mass += g.body == kUpperWallBody ? g.mass : 0.0;
+  return mass;
 }
 
 namespace {
@@ -131,6 +139,23 @@ dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int a
     return v;
   };
   return dem::PrescribedMotion{[=](double t) { return along(pulse.displacement(t / t0)); }};
+}
+
+/// The upper wall's motion: frozen, or free along z under the constant force that balances the
+/// grains' static force on it (so the drive starts from rest), with loaded_wall_mass.
+dem::BodyMotion far_wall_motion(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
+                                const DriveSettings& d, const PackingUnits& u) {
+  if (d.far_wall == FarWall::frozen) return dem::Frozen{};
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  double load[2] = {0.0, 0.0};  // the grains' static force along z, the wall's mass (rank 0 holds the grains)
+  if (rank == 0) {
+    const ContactNetwork network = find_contacts(packing.grains, packing.box, contact);
+    load[0] = static_body_force(packing.grains, network, kUpperWallBody).z;
+    load[1] = loaded_wall_mass(d, u, packing.grains);
+  }
+  MPI_Bcast(load, 2, MPI_DOUBLE, 0, comm);
+  return dem::ConstantForce{{0.0, 0.0, -load[0]}, load[1], {false, false, true}};
 }
 
 /// The layers a fit may use: beyond the near field, before the absorbing layer.
@@ -379,7 +404,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   settings.time_step_fraction = d.time_step_fraction;
   settings.balance.every_rebuilds = 0;
   std::vector<dem::RigidBody> bodies{dem::RigidBody("lower_wall", wall_motion(d, u, axis)),
-                                     dem::RigidBody("upper_wall", dem::Frozen{})};
+                                     dem::RigidBody("upper_wall", far_wall_motion(comm, packing, contact, d, u))};
   dem::Engine engine(comm, settings, packing.grains, std::move(bodies));
 
   AcousticResult r;

@@ -93,4 +93,14 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
   return net;
 }
 
+dem::Vec3 static_body_force(std::span<const dem::Grain> grains, const ContactNetwork& network, int body) {
+  dem::Vec3 f;
+  for (const StaticPair& p : network.contacts) {
+    // The normal points from j to i; the force pushes i along it and j against it.
+    if (grains[static_cast<std::size_t>(p.i)].body == body) f += p.force * p.normal;
+    if (grains[static_cast<std::size_t>(p.j)].body == body) f -= p.force * p.normal;
+  }
+  return f;
+}
+
 }  // namespace sedwave::forward::channel

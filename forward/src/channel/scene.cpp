@@ -96,6 +96,11 @@ void read_drive(Section s, DriveSettings& d) {
     d.gamma_hat = s.number("gamma_hat", d.gamma_hat);
   }
   d.far_end = s.choice("far_end", "absorbing", {"frozen", "absorbing"}) == "frozen" ? FarEnd::frozen : FarEnd::absorbing;
+  d.far_wall = s.choice("far_wall", "frozen", {"frozen", "loaded"}) == "loaded" ? FarWall::loaded : FarWall::frozen;
+  if (s.has("far_wall_mass")) {
+    if (d.far_wall != FarWall::loaded) s.fail_table("far_wall_mass is for far_wall = \"loaded\"");
+    d.far_wall_mass = s.positive("far_wall_mass", 1.0);
+  }
   d.absorbing_fraction = s.positive("absorbing_fraction", d.absorbing_fraction);
   d.absorbing_strength = s.positive("absorbing_strength", d.absorbing_strength);
   d.periods = s.number("periods", d.periods);

@@ -140,7 +140,8 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
   m.fixed_dashpots = from_triplets(ct.matrix, unknowns, unknowns);
   for (std::size_t b = 0; b < static_cast<std::size_t>(n_bodies); ++b) {
     m.bodies.push_back({from_triplets(k.body[b], unknowns, 3), from_triplets(c.body[b], unknowns, 3),
-                        from_triplets(ct.body[b], unknowns, 3), k.body_self[b]});
+                        from_triplets(ct.body[b], unknowns, 3), k.body_self[b], c.body_self[b],
+                        ct.body_self[b]});
   }
   return m;
 }

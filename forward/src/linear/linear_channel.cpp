@@ -19,6 +19,25 @@ using Complex = std::complex<double>;
 
 int axis_index(channel::DriveAxis axis) { return axis == channel::DriveAxis::longitudinal ? 2 : 0; }
 
+/// [a b; b^T self]: a symmetric matrix bordered by one more unknown.
+Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b, double self) {
+  const Eigen::Index n = a.rows();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(a.nonZeros() + 2 * n + 1));
+  for (Eigen::Index col = 0; col < a.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, col); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (b(i) == 0.0) continue;
+    t.emplace_back(i, n, b(i));
+    t.emplace_back(n, i, b(i));
+  }
+  t.emplace_back(n, n, self);
+  Eigen::SparseMatrix<double> m(n + 1, n + 1);
+  m.setFromTriplets(t.begin(), t.end());
+  return m;
+}
+
 void check_drive(const channel::DriveSettings& d) {
   if (!(d.omega_hat > 0.0) || !(d.gamma_hat >= 0.0) || !(d.amplitude > 0.0)) {
     throw std::invalid_argument("linear engine: omega_hat and amplitude must be positive, gamma_hat non-negative");
@@ -65,14 +84,32 @@ Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver
                                       const channel::DriveSettings& d) const {
   const double omega = d.omega_hat / units_.time();
   const double gamma = d.gamma_hat * units_.damping_scale;
-  const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
-  const int axis = axis_index(d.axis);
-  // Unit wall displacement along the axis: force on the free grains -(K_b + i omega gamma C1_b) e_axis.
-  const BodyCoupling& b = m.bodies[wall];
-  const Eigen::VectorXcd rhs =
-      -(b.stiffness.col(axis).cast<Complex>() + Complex(0.0, omega * gamma) * b.dashpots.col(axis).cast<Complex>() +
-        Complex(0.0, omega) * b.fixed_dashpots.col(axis).cast<Complex>());
-  return solver.solve(omega, gamma, sponge(d, omega), rhs);
+  // A body's translation along `axis` pulls the free grains with (K_b + i omega (gamma C1_b + C_t,b)) e_axis.
+  auto coupling = [&](const BodyCoupling& b, int axis) -> Eigen::VectorXcd {
+    return b.stiffness.col(axis).cast<Complex>() + Complex(0.0, omega * gamma) * b.dashpots.col(axis).cast<Complex>() +
+           Complex(0.0, omega) * b.fixed_dashpots.col(axis).cast<Complex>();
+  };
+  const Eigen::VectorXcd drive = -coupling(m.bodies[channel::kLowerWallBody - 1], axis_index(d.axis));
+  const Eigen::VectorXd drag = sponge(d, omega);
+  if (d.far_wall == channel::FarWall::frozen) return solver.solve(omega, gamma, drag, drive);
+
+  // A loaded far wall's z translation w borders the grains' system A u = f:
+  //   [A b; b^T a] [u; w] = [f; 0],
+  // b its coupling column, a its own dynamic stiffness (the matrices are complex symmetric, so the
+  // border's row is b^T, not b^H). Both columns go through one elimination, x = A^-1 [f b]; then
+  // w = -b^T x_f / (a - b^T x_b) and u = x_f - x_b w. The slabs' band stays as it is.
+  const BodyCoupling& top = m.bodies[channel::kUpperWallBody - 1];
+  Eigen::MatrixXcd rhs(m.unknowns(), 2);
+  rhs.col(0) = drive;
+  rhs.col(1) = coupling(top, 2);
+  const Eigen::MatrixXcd x = solver.solve(omega, gamma, drag, rhs);
+  const Complex a = top.self_stiffness(2, 2) +
+                    Complex(0.0, omega) * (gamma * top.self_dashpots(2, 2) + top.self_fixed_dashpots(2, 2)) -
+                    omega * omega * channel::loaded_wall_mass(d, units_, grains_);
+  const Complex w = -(rhs.col(1).transpose() * x.col(0)).value() / (a - (rhs.col(1).transpose() * x.col(1)).value());
+  Eigen::VectorXcd u(m.unknowns() + 1);
+  u << x.col(0) - w * x.col(1), w;
+  return u;
 }
 
 Eigen::Matrix<std::complex<double>, 6, 1> LinearChannel::grain_motion(const Eigen::VectorXcd& u,
@@ -84,7 +121,9 @@ Eigen::Matrix<std::complex<double>, 6, 1> LinearChannel::grain_motion(const Eige
     const int dofs = matrices_.dofs_per_node;
     motion.head(dofs) = u.segment(dofs * static_cast<Eigen::Index>(node), dofs);
   } else if (grains_[static_cast<std::size_t>(grain)].body == channel::kLowerWallBody) {
-    motion(axis_index(d.axis)) = 1.0;  // unit motion of the driven wall; none of the far one
+    motion(axis_index(d.axis)) = 1.0;  // unit motion of the driven wall
+  } else if (d.far_wall == channel::FarWall::loaded) {
+    motion(2) = u(matrices_.unknowns());  // the loaded far wall's unknown, after the grains'
   }
   return motion;
 }
@@ -311,12 +350,26 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
   const int axis = axis_index(d.axis);
   // All dashpots in one matrix: one product per step in the loop below.
-  const Eigen::SparseMatrix<double> c = gamma * matrices_.dashpots + matrices_.fixed_dashpots;
+  Eigen::SparseMatrix<double> stiffness = matrices_.stiffness;
+  Eigen::SparseMatrix<double> c = gamma * matrices_.dashpots + matrices_.fixed_dashpots;
   const BodyCoupling& body = matrices_.bodies[wall];
-  const Eigen::VectorXd wall_k = body.stiffness.col(axis);
-  const Eigen::VectorXd wall_c = gamma * body.dashpots.col(axis) + body.fixed_dashpots.col(axis);
-  const Eigen::VectorXd inverse_mass = matrices_.mass.cwiseInverse();
-  const Eigen::VectorXd drag = (-(sponge(d, omega).array() * inverse_mass.array()) * dt).exp();
+  Eigen::VectorXd wall_k = body.stiffness.col(axis);
+  Eigen::VectorXd wall_c = gamma * body.dashpots.col(axis) + body.fixed_dashpots.col(axis);
+  Eigen::VectorXd mass = matrices_.mass;
+  Eigen::VectorXd sponge_drag = sponge(d, omega);
+  if (d.far_wall == channel::FarWall::loaded) {
+    // The loaded far wall's z translation is one more unknown, after the grains' (as displacement()).
+    const BodyCoupling& top = matrices_.bodies[channel::kUpperWallBody - 1];
+    stiffness = bordered(stiffness, top.stiffness.col(2), top.self_stiffness(2, 2));
+    c = bordered(c, gamma * top.dashpots.col(2) + top.fixed_dashpots.col(2),
+                 gamma * top.self_dashpots(2, 2) + top.self_fixed_dashpots(2, 2));
+    const Eigen::Index n = mass.size();
+    for (Eigen::VectorXd* v : {&wall_k, &wall_c, &mass, &sponge_drag}) v->conservativeResize(n + 1);
+    wall_k(n) = wall_c(n) = sponge_drag(n) = 0.0;  // the two walls never touch; no drag on the wall
+    mass(n) = channel::loaded_wall_mass(d, units_, grains_);
+  }
+  const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
+  const Eigen::VectorXd drag = (-(sponge_drag.array() * inverse_mass.array()) * dt).exp();
 
   // Layers as the time-domain engine forms them: flow grains only, fixed membership.
   const channel::LayerGrid grid(units_, d.layer_thickness);
@@ -329,7 +382,7 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
     ++count[static_cast<std::size_t>(layer_of_node[n])];
   }
   std::vector<std::vector<double>> record(static_cast<std::size_t>(grid.count));
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(matrices_.unknowns()), v = u;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(mass.size()), v = u;
   auto sample = [&]() {
     std::vector<double> sum(record.size(), 0.0);
     for (std::size_t n = 0; n < layer_of_node.size(); ++n) {
@@ -347,7 +400,7 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   auto wall_path = [&](double t) { return amplitude * std::sin(omega * t); };
   auto force = [&](double t) -> Eigen::VectorXd {
     const double w = wall_path(t), w_dot = t > 0.0 ? (w - wall_path(t - dt)) / dt : 0.0;  // at rest at t = 0
-    return -(matrices_.stiffness * u) - c * v - wall_k * w - wall_c * w_dot;
+    return -(stiffness * u) - c * v - wall_k * w - wall_c * w_dot;
   };
   // The engine's velocity Verlet: the dashpot sees the half-step velocity, as in the DEM force loop.
   sample();

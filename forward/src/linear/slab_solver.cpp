@@ -240,8 +240,8 @@ Eigen::Index SlabSolver::largest_slab() const {
   return largest;
 }
 
-Eigen::VectorXcd SlabSolver::solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
-                                   const Eigen::VectorXcd& rhs) const {
+Eigen::MatrixXcd SlabSolver::solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
+                                   const Eigen::MatrixXcd& rhs) const {
   return eliminate({0.0, omega}, {-omega * omega, 0.0}, gamma, extra_damping, rhs);
 }
 

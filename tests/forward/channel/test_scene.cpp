@@ -73,7 +73,17 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat_min = 1\nomega_hat_max = 0.5\n", "[drive]: omega_hat_max must exceed omega_hat_min"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nfar_end = \"frozen\"\n", "[drive]: far_end: a pulse needs far_end = \"absorbing\""},
                       BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\n", "[drive]: signal: the linear engine solves each frequency"},
-                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\n", "bad.toml:4: key 'drive.signal': must be one of pulse, sinusoid"}));
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\n", "bad.toml:4: key 'drive.signal': must be one of pulse, sinusoid"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall = \"free\"\n", "bad.toml:4: key 'drive.far_wall': must be one of frozen, loaded"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall_mass = 3\n", "bad.toml:3: [drive]: far_wall_mass is for far_wall = \"loaded\""}));
+
+TEST(Scene, LoadedFarWallReadsItsMass) {
+  const ChannelScene s =
+      parse_scene("[contact]\nkn = 726\n[drive]\nfar_wall = \"loaded\"\nfar_wall_mass = 3.5\n", "x.toml");
+  EXPECT_EQ(s.drive.far_wall, FarWall::loaded);
+  EXPECT_EQ(s.drive.far_wall_mass, 3.5);
+  EXPECT_EQ(parse_scene("[contact]\nkn = 726\n", "x.toml").drive.far_wall, FarWall::frozen);
+}
 
 TEST(Scene, PulseDriveReadsItsBand) {
   const ChannelScene s = parse_scene(

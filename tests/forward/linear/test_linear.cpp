@@ -87,6 +87,40 @@ TEST_P(OrderedChain, MatchesTheExactLatticeSolution) {
   EXPECT_NEAR(waves.reflection / std::exp(-2.0 * exact.k.imag()), 1.0, 1e-5);
 }
 
+// A loaded far wall (mass M, free along z under its static load) instead of a frozen one: grains
+// 0 (driven wall) .. n + 1 (loaded wall) carry u_i = a e^{-iqi} + b e^{iqi} (the same lattice waves),
+// with u_0 = 1 and the wall's own equation -omega^2 M u_{n+1} = s (u_n - u_{n+1}), s = kappa + i omega
+// gamma. The wall is the linear engine's extra unknown; a very heavy one is the frozen end.
+TEST_P(OrderedChain, WithALoadedFarWallMatchesTheExactLatticeSolution) {
+  const auto [omega_hat, gamma_hat] = GetParam();
+  const int n = 40;
+  const LinearChannel engine(chain(n, 1.0 - 1e-3), hooke(1.0));
+  channel::DriveSettings d = frozen_end_drive(omega_hat, gamma_hat);
+  d.far_wall = channel::FarWall::loaded;
+  d.far_wall_mass = 3.0;
+  const Eigen::VectorXcd u = engine.displacement(d);
+  ASSERT_EQ(u.size(), 3 * n + 1);
+
+  const Complex q = std::conj(lattice_wavenumber(omega_hat, gamma_hat).k);
+  const Complex s(1.0, omega_hat * gamma_hat), wall = s - omega_hat * omega_hat * d.far_wall_mass;
+  auto wave = [](Complex sign_q, int i) { return std::exp(Complex(0.0, -1.0) * sign_q * static_cast<double>(i)); };
+  const Complex p = wall * wave(q, n + 1) - s * wave(q, n), r = wall * wave(-q, n + 1) - s * wave(-q, n);
+  const Complex a = r / (r - p), b = -p / (r - p);
+  double worst = 0.0;
+  for (int i = 1; i <= n; ++i) worst = std::max(worst, std::abs(u(3 * (i - 1) + 2) - (a * wave(q, i) + b * wave(-q, i))));
+  const Complex exact_wall = a * wave(q, n + 1) + b * wave(-q, n + 1);
+  EXPECT_LT(worst, 1e-10);
+  EXPECT_LT(std::abs(u(3 * n) - exact_wall), 1e-10);
+  EXPECT_GT(std::abs(exact_wall), 0.1 * std::abs(u(3 * (n - 1) + 2)));  // premise: the wall moves with the wave
+
+  // Its grain moves with it, and a very heavy wall is the frozen end.
+  EXPECT_EQ(engine.grain_motion(u, d, n + 1)(2), u(3 * n));
+  d.far_wall_mass = 1e14;
+  const Eigen::VectorXcd heavy = engine.displacement(d);
+  const Eigen::VectorXcd frozen = engine.displacement(frozen_end_drive(omega_hat, gamma_hat));
+  EXPECT_LT((heavy.head(3 * n) - frozen).norm(), 1e-9 * frozen.norm());
+}
+
 TEST(OrderedChainSponge, AbsorbingLayerOfTwoWavelengthsReflectsUnderOnePercent) {
   // Undamped chain: every bit of the backward wave comes from the absorbing layer, and the field
   // before it is exactly two lattice waves, so the two-wave fit measures the layer's reflection.
@@ -367,6 +401,30 @@ TEST_F(Packing, FrictionalContactsRotateAndFollowTheDem) {
   EXPECT_GT(effect, 50.0 * worst);
 }
 
+// The far wall free along z under its static load (dem::ConstantForce in the DEM, one more unknown
+// in the linear engine), with friction so that the wall's tangential springs and dashpots count
+// too. Without drag in the absorbing layer the wave reaches the wall and comes back within the run.
+TEST_F(Packing, LoadedFarWallFollowsTheDem) {
+  const dem::ContactSpec frictional = frictional_hooke();
+  channel::DriveSettings d = tiny_drive();
+  d.periods = 10.0;
+  d.absorbing_strength = 0.0;
+  d.far_wall = channel::FarWall::loaded;
+  d.far_wall_mass = 2.0;
+  const channel::AcousticResult dem = channel::run_acoustic(MPI_COMM_SELF, *packing_, frictional, d);
+  const LinearChannel engine(*packing_, frictional);
+  const auto per_sample = static_cast<std::int64_t>(std::llround(dem.sample_dt / dem.time_step));
+  const auto [worst, peak] = record_difference(dem.displacement, engine.integrate(d, dem.time_step, dem.steps, per_sample));
+  channel::DriveSettings frozen = d;
+  frozen.far_wall = channel::FarWall::frozen;
+  const auto [effect, unused] =
+      record_difference(dem.displacement, channel::run_acoustic(MPI_COMM_SELF, *packing_, frictional, frozen).displacement);
+  std::cout << "loaded far wall: linear vs DEM " << worst / peak << " of the peak; loading the wall changes the records by "
+            << effect / peak << "\n";
+  EXPECT_LT(worst, 1e-4 * peak);
+  EXPECT_GT(effect, 50.0 * worst);
+}
+
 // Sliding: the linear engine counts the contacts whose tangential force (spring and dashpot) would
 // reach mu times the normal force during the cycle. Checked against the frictional DEM run twice,
 // with mu and with a mu no force reaches: the two runs are identical until some contact hits its
@@ -447,15 +505,29 @@ TEST_F(Packing, ShiftedStaticSolveEqualsSparseLuAndRefusesIndefiniteMatrices) {
   EXPECT_FALSE(engine.solver().solve_shifted(-1e-2 * kKn, rhs).has_value());
 }
 
-TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
+class PackingPower : public Packing, public ::testing::WithParamInterface<channel::FarWall> {};
+
+TEST_P(PackingPower, InjectedByTheWallIsDissipated) {
   // Steady state: the time-averaged power the wall puts in equals what the contact dashpots and the
-  // absorbing layer take out. A conservation law the solve must satisfy, whatever the packing.
+  // absorbing layer take out. A conservation law the solve must satisfy, whatever the packing. A
+  // loaded far wall (a weak absorbing layer lets the wave reach it) does no net work over a cycle,
+  // but its contacts' dashpots dissipate with its motion: a wrong row for it breaks the balance.
   const LinearChannel engine(*packing_, hooke(kKn));
   channel::DriveSettings d;
   d.omega_hat = 0.8;
   d.gamma_hat = 0.3;
   d.far_end = channel::FarEnd::absorbing;
+  d.far_wall = GetParam();
+  d.absorbing_strength = 0.05;
+  d.far_wall_mass = 2.0;
   const Eigen::VectorXcd u = engine.displacement(d);
+  if (d.far_wall == channel::FarWall::loaded) {
+    channel::DriveSettings frozen = d;
+    frozen.far_wall = channel::FarWall::frozen;
+    // premise: the wall moves, and its motion changes the field
+    EXPECT_GT(std::abs(u(u.size() - 1)), 1e-3 * u.head(u.size() - 1).cwiseAbs().maxCoeff());
+    EXPECT_GT((u.head(u.size() - 1) - engine.displacement(frozen)).norm(), 1e-3 * u.norm());
+  }
   const channel::PackingUnits& units = engine.units();
   const double omega = d.omega_hat / units.time();
   const double gamma = d.gamma_hat * units.damping_scale;
@@ -481,6 +553,8 @@ TEST_F(Packing, PowerInjectedByTheWallIsDissipated) {
   EXPECT_GT(injected, 0.0);
   EXPECT_NEAR(dissipated / injected, 1.0, 1e-9);
 }
+INSTANTIATE_TEST_SUITE_P(FarWalls, PackingPower, ::testing::Values(channel::FarWall::frozen, channel::FarWall::loaded),
+                         [](const auto& wall) { return wall.param == channel::FarWall::loaded ? "Loaded" : "Frozen"; });
 
 TEST_F(Packing, ContactsOpenInProportionToTheAmplitude) {
   const LinearChannel engine(*packing_, hooke(kKn));

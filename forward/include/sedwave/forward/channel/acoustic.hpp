@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ namespace sedwave::forward::channel {
 
 enum class DriveAxis { longitudinal, transverse };
 enum class FarEnd { frozen, absorbing };
+/// The far (upper) wall during a drive: held in place (the thesis), or loaded: a rigid body free
+/// to move along z under the constant force that holds the packing at its static state (the
+/// grains' static force on it), like a sediment under an overburden. `FarEnd` decides separately
+/// whether an absorbing layer lies in front of it.
+enum class FarWall { frozen, loaded };
 
 /// A broadband drive: the wall moves by one Gaussian-windowed tone burst whose spectrum spans
 /// [omega_hat_min, omega_hat_max] (centred on the middle; the band's edges lie 2.5 spectral standard
@@ -51,6 +57,8 @@ struct DriveSettings {
   std::optional<PulseBand> pulse;  ///< set: a broadband pulse instead of the sinusoid at omega_hat
   double gamma_hat = 0.05;   ///< contact dashpot gamma / sqrt(kappa m)
   FarEnd far_end = FarEnd::frozen;
+  FarWall far_wall = FarWall::frozen;
+  double far_wall_mass = 0.0;  ///< of a loaded far wall [mean grain masses]; 0: its grains' total mass
   double absorbing_fraction = 0.3;  ///< of the column, at the far end
   /// Drag at the far end of the absorbing layer, in units of m omega; it grows quadratically from 0.
   double absorbing_strength = 1.0;
@@ -107,6 +115,9 @@ struct AcousticResult {
 /// for a drive at omega [1/time]: strength m omega s^2, s rising from 0 to 1 over the last
 /// absorbing_fraction of the column, 0 below. Both engines apply exactly this.
 [[nodiscard]] double absorbing_drag(const DriveSettings& d, const PackingUnits& u, double omega, double z);
+/// The mass of a loaded far wall [mass]: far_wall_mass mean grain masses, or else the total mass of
+/// the upper wall's grains. Both engines use exactly this.
+[[nodiscard]] double loaded_wall_mass(const DriveSettings& d, const PackingUnits& u, std::span<const dem::Grain> grains);
 
 /// Drives `packing` (grains on rank 0; other ranks may pass an empty one) with contact law `contact`
 /// (its damping is replaced by gamma_hat) and measures alpha_hat and c_hat. Collective over comm.

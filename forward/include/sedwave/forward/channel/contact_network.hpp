@@ -54,4 +54,8 @@ struct ContactNetwork {
 [[nodiscard]] ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
                                            const dem::ContactSpec& contact, double gap_search = 0.0);
 
+/// The static force of the other grains on rigid body `body` (Grain::body), summed over the
+/// network's contacts: what holds a wall in place.
+[[nodiscard]] dem::Vec3 static_body_force(std::span<const dem::Grain> grains, const ContactNetwork& network, int body);
+
 }  // namespace sedwave::forward::channel

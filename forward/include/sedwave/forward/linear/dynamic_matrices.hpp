@@ -41,9 +41,12 @@ struct BodyCoupling {
   Eigen::SparseMatrix<double> stiffness;
   Eigen::SparseMatrix<double> dashpots;        ///< per unit damping coefficient (scales with gamma)
   Eigen::SparseMatrix<double> fixed_dashpots;  ///< tangential dashpots (do not scale with gamma)
-  /// The body's own translational stiffness (its contacts with free grains), for a body whose
-  /// translation is an unknown (a wall under a constant force, static_equilibrium.hpp).
+  /// The body's own translational stiffness and dashpots (its contacts with free grains), for a
+  /// body whose translation is an unknown (a wall under a constant force: static_equilibrium.hpp,
+  /// and the loaded far wall of a drive, linear_channel.hpp).
   Eigen::Matrix3d self_stiffness = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d self_dashpots = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d self_fixed_dashpots = Eigen::Matrix3d::Zero();
 };
 
 struct DynamicMatrices {

@@ -2,7 +2,8 @@
 // The linear-response engine: the steady small-amplitude response of a prepared channel to its
 // lower wall oscillating at omega, from one sparse complex solve
 //   (K + i omega (gamma C1 + D_sponge) - omega^2 M) U = -(K_wall + i omega gamma C1_wall) A e_axis,
-// instead of hundreds of thousands of time steps. Same packing, drive settings, layers and
+// instead of hundreds of thousands of time steps. A loaded far wall (free along z under its static
+// load) borders the system with its height as one more unknown. Same packing, drive settings, layers and
 // measurement as the time-domain engine (channel/acoustic.hpp), so the two are directly comparable:
 // layer-averaged complex displacements along the drive axis, alpha = -d ln|U| / dz and
 // k = -d arg U / dz by least squares over the layers between the near field and the absorbing layer.
@@ -88,8 +89,9 @@ class LinearChannel {
   [[nodiscard]] std::vector<std::vector<double>> integrate(const channel::DriveSettings& drive, double time_step,
                                                            std::int64_t steps, std::int64_t steps_per_sample) const;
 
-  /// Complex displacement amplitudes of the free grains (3 per node, DynamicMatrices order) per unit
-  /// wall amplitude.
+  /// Complex displacement amplitudes of the free grains (3 or 6 per node, DynamicMatrices order) per
+  /// unit wall amplitude; with a loaded far wall (DriveSettings::far_wall) its z displacement follows
+  /// as one more entry.
   [[nodiscard]] Eigen::VectorXcd displacement(const channel::DriveSettings& drive) const;
   /// Which contacts open or slide and gaps close at wall amplitude `amplitude` [d], given the
   /// response `u` per unit wall amplitude.

@@ -35,10 +35,10 @@ class SlabSolver {
   /// the matrices couple slabs that are not neighbours (cannot happen for contacts found in z).
   SlabSolver(const DynamicMatrices& matrices, std::span<const double> node_z);
 
-  /// Solves for one right-hand side. `extra_damping` is a diagonal damping per unknown (e.g. an
-  /// absorbing layer), or empty for none.
-  [[nodiscard]] Eigen::VectorXcd solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
-                                       const Eigen::VectorXcd& rhs) const;
+  /// Solves for every column of `rhs` (one elimination). `extra_damping` is a diagonal damping per
+  /// unknown (e.g. an absorbing layer), or empty for none.
+  [[nodiscard]] Eigen::MatrixXcd solve(double omega, double gamma, const Eigen::VectorXd& extra_damping,
+                                       const Eigen::MatrixXcd& rhs) const;
 
   /// Solves (K + mass_shift M) X = B for every column of B by block Cholesky: a step of a static
   /// relaxation (static_equilibrium.hpp). Returns nullopt when K + mass_shift M is not positive
