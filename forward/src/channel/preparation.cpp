@@ -303,7 +303,16 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   if (p.compression == Compression::wall) {
     const dem::LinearMotion lower{{0.0, 0.0, -p.compression_speed * scene.mean_diameter / t_col}};
     compressor = make_engine(scene, start.grains, lower, p.compression_step_fraction, drag);
-    out.report.compression_steps = compress(*compressor, p, target, 200);
+    try {
+      out.report.compression_steps = compress(*compressor, p, target, 200);
+    } catch (const dem::GuardError& e) {
+      // The wall keeps descending for 3 force checks (0.9 d apart at the default speed) after the
+      // grains first carry P W^2, which a short column cannot absorb (N = 150, W = 3, seed 11 trips
+      // the guard; compression_speed = 0.01 or the affine protocol prepare it).
+      throw dem::GuardError(std::string(e.what()) +
+                            " (during wall compression: a short column can be over-compressed by the descending "
+                            "wall; set [preparation] compression = \"affine\" or a lower compression_speed)");
+    }
   } else {
     compressor = make_engine(scene, start.grains, dem::Frozen{}, p.compression_step_fraction, drag);
     const std::int64_t every = 10;

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "sedwave/forward/channel/preparation.hpp"
+#include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
@@ -95,6 +96,29 @@ TEST(Preparation, AffineCompressionTakesStepsIndependentOfTheColumnLength) {
   EXPECT_LT(ratio, 1.5);
   EXPECT_GT(ratio, 0.67);
   EXPECT_NEAR(columns[1].report.stats.packing_fraction, columns[0].report.stats.packing_fraction, 0.02);
+}
+
+// A hard case: after the grains first carry P W^2 the descending wall keeps going for three force
+// checks (0.9 d), which this short column cannot absorb, and the overlap guard stops the run. The
+// error says so and names the remedies; the affine protocol prepares the same column.
+TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
+  ChannelGeometry g;
+  g.n_grains = 150;
+  g.seed = 11;
+  dem::ContactSpec c;
+  c.kn = 726.0;
+  c.restitution = 0.9;
+  PreparationSettings p;
+  p.pressure = 10.0;
+  try {
+    (void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p);
+    FAIL() << "the wall protocol was expected to over-compress this column";
+  } catch (const dem::GuardError& e) {
+    EXPECT_NE(std::string(e.what()).find("compression = \"affine\""), std::string::npos) << e.what();
+  }
+  p.compression = Compression::affine;
+  const PreparedChannel affine = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p);
+  EXPECT_TRUE(affine.report.converged);
 }
 
 }  // namespace
