@@ -5,6 +5,7 @@
 
 #include <iostream>
 #include <numbers>
+#include <sstream>
 
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/engine.hpp"
@@ -96,6 +97,27 @@ TEST(Preparation, AffineCompressionTakesStepsIndependentOfTheColumnLength) {
   EXPECT_LT(ratio, 1.5);
   EXPECT_GT(ratio, 0.67);
   EXPECT_NEAR(columns[1].report.stats.packing_fraction, columns[0].report.stats.packing_fraction, 0.02);
+}
+
+// Newton relaxes the residual forces at a frozen wall, and that moves the wall force. With a tight
+// pressure tolerance it leaves it: the wall is corrected and the packing relaxed again, until both
+// the residual and the pressure are within their tolerances.
+TEST(Preparation, WallIsCorrectedAgainWhenNewtonMovesThePressure) {
+  ChannelGeometry g;
+  g.n_grains = 200;
+  g.seed = 7;
+  PreparationSettings p;
+  p.pressure = 10.0;
+  p.pressure_tolerance = 1e-3;
+  p.compression = Compression::affine;
+  p.newton_start_tolerance = 0.1;  // FIRE hands over far from equilibrium: Newton has more to move
+  std::ostringstream log;
+  p.log = &log;
+  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p);
+  std::cout << log.str() << describe(c.report) << "\n";
+  EXPECT_TRUE(c.report.converged);
+  EXPECT_LT(c.report.residual_ratio, 1e-9);
+  EXPECT_NEAR(c.report.pressure / 10.0, 1.0, 1e-3);
 }
 
 // A hard case: after the grains first carry P W^2 the descending wall keeps going for three force
