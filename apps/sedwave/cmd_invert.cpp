@@ -145,7 +145,13 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
                 "errors;\n         the sigmas above are formal (scaled by sqrt(reduced chi2) they grow %.2gx)\n",
                 reduced, std::sqrt(reduced));
   }
-  if (r.global) {
+  if (r.global && !std::isfinite(r.global->chi2_local_from_start)) {
+    // The start values lie where the model does not answer (e.g. outside a table): only the global
+    // search could start there, so there is no comparison to make.
+    std::printf("global search (%s, %d evaluations); a local fit from the start values could not start (the model "
+                "has no value there)\n",
+                r.global->algorithm.c_str(), r.global->evaluations);
+  } else if (r.global) {
     std::printf("global search (%s, %d evaluations) and local fit from the start values %s (chi2 %.6g vs %.6g)\n",
                 r.global->algorithm.c_str(), r.global->evaluations,
                 r.global->local_and_global_agree ? "agree" : "DISAGREE", r.global->chi2_polished,
