@@ -8,6 +8,8 @@
 // --point-ms makes each point take MS milliseconds, so several ranks really share the work.
 // --die-after K: world rank 0 kills its process (std::_Exit, no clean-up, like SIGKILL for the
 // file) when asked for its (K+1)-th point, so mpirun takes down the whole run mid-table.
+// Meanwhile the other ranks take 10x as long per point: otherwise a rank 0 starved by a busy machine
+// could let them finish the whole table before its (K+1)-th point, and the run would not die.
 // Points with omega_hat > 1.5 are reported unresolved and those with omega_hat >= 1.9 throw, so
 // every status and the reasons travel through the farm too.
 #include <mpi.h>
@@ -83,7 +85,8 @@ int fill(int argc, char** argv) {
       std::cerr << "farm_driver: dying on purpose after " << die_after << " points\n";
       std::_Exit(3);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(point_ms));
+    const bool outrun_rank_0 = die_after >= 0 && rank != 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(outrun_rank_0 ? 10 * point_ms : point_ms));
     // Collective over the group, as the DEM is: every rank of a group must take part.
     double value[2] = {lattice.evaluate(omega_hat, gamma_hat).alpha_hat, lattice.evaluate(omega_hat, gamma_hat).c_hat};
     MPI_Allreduce(MPI_IN_PLACE, value, 2, MPI_DOUBLE, MPI_MAX, group);
