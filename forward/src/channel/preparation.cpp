@@ -280,12 +280,12 @@ void newton_relaxation(const Scene& scene, const PreparationSettings& p, int ite
 /// but crawls while a soft spot is still collapsing (an unstable transverse mode of a few hundred
 /// grains in a long W = 3 column); FIRE follows such a rearrangement dynamically. Replaces
 /// `relaxer` by an engine on the relaxed grains and sets the report's residual and wall force.
-void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::vector<dem::Grain>& grains,
-                       std::unique_ptr<dem::Engine>& relaxer, PreparationReport& report) {
+void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::unique_ptr<dem::Engine>& relaxer,
+                       PreparationReport& report) {
   constexpr int kRounds = 20, kNewtonPerRound = 30;
   constexpr std::int64_t kFireBurst = 2000;
   for (int round = 0; round < kRounds; ++round) {
-    grains = gathered_at_rest(*relaxer);
+    std::vector<dem::Grain> grains = gathered_at_rest(*relaxer);
     newton_relaxation(scene, p, kNewtonPerRound, grains, report);
     relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
     relaxer->compute_forces();
@@ -370,7 +370,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   for (int settle = 0;; ++settle) {
     fire_with_wall_corrections(scene, rough, target, *relaxer, out.report);
     if (!newton) break;
-    relax_with_newton(scene, p, grains, relaxer, out.report);
+    relax_with_newton(scene, p, relaxer, out.report);
     const double error = out.report.wall_force / target - 1.0;
     if (std::abs(error) < p.pressure_tolerance || out.report.residual_ratio >= p.residual_force_tolerance ||
         settle + 1 >= kSettles) {
