@@ -108,13 +108,14 @@ Command add_table_command(CLI::App& app) {
     const bool long_wavelength = o->engine == "long_wavelength";
     if (!o->engine.empty()) {
       scene.engine = o->engine == "time_domain" ? channel::EngineKind::time_domain : channel::EngineKind::linear;
-      if (scene.engine == channel::EngineKind::linear && scene.drive.pulse) {
+      // The long-wavelength engine solves a quasi-static problem: it reads neither the drive's
+      // signal nor its far end, so only the driven linear engine checks them.
+      if (o->engine == "linear" && scene.drive.pulse) {
         throw std::invalid_argument(grid.scene_path.string() +
                                     ": --engine linear solves each frequency directly; the scene's pulse drive "
                                     "is for the time-domain engine (use signal = \"sinusoid\")");
       }
-      if (scene.engine == channel::EngineKind::linear && !long_wavelength &&
-          scene.drive.far_end != channel::FarEnd::absorbing) {
+      if (o->engine == "linear" && scene.drive.far_end != channel::FarEnd::absorbing) {
         throw std::invalid_argument(grid.scene_path.string() +
                                     ": --engine linear needs [drive] far_end = \"absorbing\" (a steady state "
                                     "with a frozen end is a standing wave)");

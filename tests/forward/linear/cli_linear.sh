@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The linear engine end to end from the command line: `sedwave forward` on a linear scene (an
 # ensemble of two packings, saved), then `sedwave table --engine linear` on two MPI ranks reusing
-# those packings, then the same table command again, which must find every point finished.
+# those packings, then the same table command again, which must find every point finished; and
+# `--engine long_wavelength` on a pulse scene with the same packing.
 # usage: cli_linear.sh MPIEXEC SEDWAVE DATA_DIR WORK_DIR
 set -euo pipefail
 mpiexec=$1 sedwave=$2 data=$3 work=$4
@@ -18,4 +19,9 @@ table | tee "$work/table.log"
 grep -q "4 points, 0 already finished, 4 computed" "$work/table.log"
 table | tee "$work/resume.log"
 grep -q "4 points, 4 already finished, 0 computed" "$work/resume.log"
+
+# The long-wavelength engine on a pulse scene: it ignores the drive, so the scene is accepted.
+"$sedwave" table "$data/tiny_pulse_grid.toml" --engine long_wavelength --out "$work/limit.h5" \
+    --packing "$work/packing.h5" --quiet | tee "$work/limit.log"
+grep -q "4 points, 0 already finished, 4 computed (4 ok" "$work/limit.log"
 echo "cli_linear: forward and table with the linear engine work, and the table resumes"
