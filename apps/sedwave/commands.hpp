@@ -16,5 +16,6 @@ Command add_invert_command(CLI::App& app);
 Command add_dem_command(CLI::App& app);
 Command add_forward_command(CLI::App& app);
 Command add_table_command(CLI::App& app);
+Command add_synthesize_command(CLI::App& app);
 
 }  // namespace sedwave::app

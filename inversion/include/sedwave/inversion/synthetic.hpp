@@ -1,0 +1,41 @@
+#pragma once
+// Synthetic observations: what a forward model predicts for known parameters over a planned band,
+// with Gaussian noise. This is experiment design: fit the synthetic set back and the report says
+// which parameters a measurement of that band and precision would determine (docs/inversion.md).
+//
+//   const ObservationSet lab = synthetic_observations(model, truth, {1e5, 1e6, 12, 0.1, 0.01, 1});
+//   const FitResult r = fit(lab, model, start);   // r.parameters[kDiameter].determined ?
+//
+// Units: SI (frequencies in Hz, attenuation in Np/m, sound speed in m/s); noise levels relative.
+#include <filesystem>
+
+#include "sedwave/forward/dispersion.hpp"
+#include "sedwave/inversion/observations.hpp"
+#include "sedwave/inversion/parameters.hpp"
+
+namespace sedwave::inversion {
+
+/// A planned measurement: log-spaced frequencies and the relative precision of each quantity.
+struct SyntheticDesign {
+  double lowest_hz = 10.0;      ///< first frequency [Hz]
+  double highest_hz = 1.0e6;    ///< last frequency [Hz] (inclusive)
+  int points = 25;              ///< frequencies, log-spaced; one attenuation and one speed at each
+  double alpha_noise = 0.05;    ///< relative 1-sigma of the attenuation: the noise drawn and the sigma stated
+  double speed_noise = 0.05;    ///< the same for the sound speed
+  unsigned seed = 1;            ///< of the noise (std::mt19937_64): the same seed gives the same set
+};
+
+/// Attenuation and sound speed predicted by `model` at the values of `truth` (free or not), each
+/// multiplied by (1 + noise * N(0, 1)), with sigma = noise * the noise-free value. Throws
+/// std::invalid_argument for a design that is not a band of >= 2 positive frequencies, and whatever
+/// the model throws where it has no value (a table: std::domain_error).
+[[nodiscard]] ObservationSet synthetic_observations(const forward::DispersionModel& model, const FitParameters& truth,
+                                                    const SyntheticDesign& design);
+
+/// Writes observations as a sedwave observation CSV (docs/file-formats.md) in SI units (Hz, Np/m,
+/// m/s), at full precision, with `header` lines written as "# " comments before the column names.
+/// Throws std::runtime_error if the file cannot be written.
+void write_observation_csv(const std::filesystem::path& path, const ObservationSet& set,
+                           const std::vector<std::string>& header);
+
+}  // namespace sedwave::inversion
