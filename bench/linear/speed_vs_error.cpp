@@ -9,7 +9,8 @@
 // by --kn). Each packing is one linear-engine member; packings with the same grain count form an
 // ensemble. --tile K also times the solve on channels made of 1, 2, 4, ... and K copies of the first packing stacked
 // along z (the contacts across the joins are not in equilibrium: a cost measurement only).
-// --dem runs the time-domain engine on the first packing for each run length given.
+// --dem runs the time-domain engine on the first packing of each size for each run length given
+// (in periods; 0: until echoes could return). --rows FILE also writes the rows tab-separated.
 // --fit-layers L adds, per linear member, the fit over the layers skip_layers..L-1 only: the
 // stretch a short DEM run's lock-in windows reach (its "layers used"), for a like-for-like
 // comparison on the same packing.
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
   int tile = 0;
   std::vector<double> dem_periods;
   int fit_layers = 0;
+  std::string rows_file;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -108,6 +110,7 @@ int main(int argc, char** argv) {
     else if (a == "--tile") tile = static_cast<int>(next());
     else if (a == "--dem") dem_periods.push_back(next());
     else if (a == "--fit-layers") fit_layers = static_cast<int>(next());
+    else if (a == "--rows") rows_file = argv[++i];
     else files.push_back(a);
   }
   const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, 0.0);
@@ -221,17 +224,19 @@ int main(int argc, char** argv) {
     }
   }
 
-  // The time-domain engine on the first packing, for each run length.
-  for (const double periods : dem_periods) {
-    if (packings.empty()) break;
-    channel::DriveSettings d = drive;
-    d.periods = periods;
-    const auto& [n, ps] = *packings.begin();
-    const auto start = std::chrono::steady_clock::now();
-    const channel::AcousticResult r = channel::run_acoustic(MPI_COMM_WORLD, ps.front(), contact, d);
-    rows.push_back({"3D time-domain DEM", std::to_string(n) + ", " + std::to_string(static_cast<int>(periods)) + " periods",
-                    seconds_since(start), r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c});
-    if (!r.ok()) std::printf("# DEM %g periods: %s\n", periods, r.problem.c_str());
+  // The time-domain engine on the first packing of each size, for each run length.
+  for (const auto& [n, ps] : packings) {
+    for (const double periods : dem_periods) {
+      channel::DriveSettings d = drive;
+      d.periods = periods;
+      const auto start = std::chrono::steady_clock::now();
+      const channel::AcousticResult r = channel::run_acoustic(MPI_COMM_WORLD, ps.front(), contact, d);
+      rows.push_back({"3D time-domain DEM",
+                      std::to_string(n) + " #0, " + (periods > 0.0 ? std::to_string(static_cast<int>(periods)) + " periods"
+                                                                    : std::string("until echoes")),
+                      seconds_since(start), r.fit.alpha, r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c});
+      if (!r.ok()) std::printf("# DEM N = %zu, %g periods: %s\n", n, periods, r.problem.c_str());
+    }
   }
 
   // Reference: the last ensemble row (largest grain count), else the last linear row.
@@ -248,6 +253,23 @@ int main(int argc, char** argv) {
     const double ec = reference ? std::abs(r.c / reference->c - 1.0) : 0.0;
     std::printf("%-26s %-20s %12.4g %11.5g %9.2g %9.5g %9.2g %9.2g %9.2g\n", r.model.c_str(), r.size.c_str(), r.seconds,
                 r.alpha, r.sigma_alpha, r.c, r.sigma_c, ea, ec);
+  }
+  if (!rows_file.empty()) {
+    // Tab-separated, for plotting: relative errors against the reference, and each row's own
+    // relative standard error (0 where the model states none).
+    std::FILE* out = std::fopen(rows_file.c_str(), "w");
+    if (out == nullptr) {
+      std::fprintf(stderr, "cannot write %s\n", rows_file.c_str());
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    std::fprintf(out, "# model\tsize\tseconds\terr_alpha\terr_c\trel_sigma_alpha\trel_sigma_c\n");
+    for (const Row& r : rows) {
+      const double ea = reference ? std::abs(r.alpha / reference->alpha - 1.0) : 0.0;
+      const double ec = reference ? std::abs(r.c / reference->c - 1.0) : 0.0;
+      std::fprintf(out, "%s\t%s\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", r.model.c_str(), r.size.c_str(), r.seconds, ea, ec,
+                   r.sigma_alpha / r.alpha, r.sigma_c / r.c);
+    }
+    std::fclose(out);
   }
   MPI_Finalize();
   return 0;

@@ -95,9 +95,8 @@ Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver
 
   // A loaded far wall's z translation w borders the grains' system A u = f:
   //   [A b; b^T a] [u; w] = [f; 0],
-  // b its coupling column, a its own dynamic stiffness (the matrices are complex symmetric, so the
-  // border's row is b^T, not b^H). Both columns go through one elimination, x = A^-1 [f b]; then
-  // w = -b^T x_f / (a - b^T x_b) and u = x_f - x_b w. The slabs' band stays as it is.
+  // b its coupling column, a its own dynamic stiffness. Both columns go through one elimination;
+  // the slabs' band stays as it is.
   const BodyCoupling& top = m.bodies[channel::kUpperWallBody - 1];
   Eigen::MatrixXcd rhs(m.unknowns(), 2);
   rhs.col(0) = drive;
@@ -106,9 +105,10 @@ Eigen::VectorXcd LinearChannel::solve(const DynamicMatrices& m, const SlabSolver
   const Complex a = top.self_stiffness(2, 2) +
                     Complex(0.0, omega) * (gamma * top.self_dashpots(2, 2) + top.self_fixed_dashpots(2, 2)) -
                     omega * omega * channel::loaded_wall_mass(d, units_, grains_);
-  const Complex w = -(rhs.col(1).transpose() * x.col(0)).value() / (a - (rhs.col(1).transpose() * x.col(1)).value());
+  const Eigen::VectorXcd border = rhs.col(1);
+  const BorderedSolution<Complex> s = eliminate_border<Complex>(x, border, a, Complex(0.0));
   Eigen::VectorXcd u(m.unknowns() + 1);
-  u << x.col(0) - w * x.col(1), w;
+  u << s.u, s.w;
   return u;
 }
 
@@ -350,7 +350,9 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   const auto wall = static_cast<std::size_t>(channel::kLowerWallBody - 1);
   const int axis = axis_index(d.axis);
   // All dashpots in one matrix: one product per step in the loop below.
-  Eigen::SparseMatrix<double> stiffness = matrices_.stiffness;
+  // The grains' K, or a bordered copy of it with a loaded far wall.
+  Eigen::SparseMatrix<double> bordered_stiffness;
+  const Eigen::SparseMatrix<double>* stiffness = &matrices_.stiffness;
   Eigen::SparseMatrix<double> c = gamma * matrices_.dashpots + matrices_.fixed_dashpots;
   const BodyCoupling& body = matrices_.bodies[wall];
   Eigen::VectorXd wall_k = body.stiffness.col(axis);
@@ -360,7 +362,8 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   if (d.far_wall == channel::FarWall::loaded) {
     // The loaded far wall's z translation is one more unknown, after the grains' (as displacement()).
     const BodyCoupling& top = matrices_.bodies[channel::kUpperWallBody - 1];
-    stiffness = bordered(stiffness, top.stiffness.col(2), top.self_stiffness(2, 2));
+    bordered_stiffness = bordered(matrices_.stiffness, top.stiffness.col(2), top.self_stiffness(2, 2));
+    stiffness = &bordered_stiffness;
     c = bordered(c, gamma * top.dashpots.col(2) + top.fixed_dashpots.col(2),
                  gamma * top.self_dashpots(2, 2) + top.self_fixed_dashpots(2, 2));
     const Eigen::Index n = mass.size();
@@ -400,7 +403,7 @@ std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSe
   auto wall_path = [&](double t) { return amplitude * std::sin(omega * t); };
   auto force = [&](double t) -> Eigen::VectorXd {
     const double w = wall_path(t), w_dot = t > 0.0 ? (w - wall_path(t - dt)) / dt : 0.0;  // at rest at t = 0
-    return -(stiffness * u) - c * v - wall_k * w - wall_c * w_dot;
+    return -(*stiffness * u) - c * v - wall_k * w - wall_c * w_dot;
   };
   // The engine's velocity Verlet: the dashpot sees the half-step velocity, as in the DEM force loop.
   sample();

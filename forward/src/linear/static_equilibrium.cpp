@@ -138,16 +138,17 @@ std::optional<Step> newton_step(const ActiveSet& a, const DynamicMatrices& m, co
     if (!x) return std::nullopt;
     return Step{x->col(0), 0.0};
   }
-  // Bordered system [K b; b^T c] [du; dZ] = [F; F_wall - F]: eliminate the wall's row. It is
-  // positive definite when K is and the wall's pivot (a Schur complement) is positive.
+  // Bordered system [K b; b^T c] [du; dZ] = [F; F_wall - F]. It is positive definite when K is and
+  // the wall's pivot (a Schur complement) is positive.
   const BodyCoupling& coupling = m.bodies[static_cast<std::size_t>(wall->body - 1)];
   rhs.col(1) = Eigen::VectorXd(coupling.stiffness.col(2));
   const std::optional<Eigen::MatrixXd> x = solver.solve_shifted(shift, rhs);
   if (!x) return std::nullopt;
-  const double pivot = coupling.self_stiffness(2, 2) + shift * wall_mass - rhs.col(1).dot(x->col(1));
-  if (!(pivot > 0.0)) return std::nullopt;
-  const double lift = (a.wall_force - wall->force - rhs.col(1).dot(x->col(0))) / pivot;
-  return Step{x->col(0) - lift * x->col(1), lift};
+  const Eigen::VectorXd border = rhs.col(1);
+  const BorderedSolution<double> s = eliminate_border<double>(
+      *x, border, coupling.self_stiffness(2, 2) + shift * wall_mass, a.wall_force - wall->force);
+  if (!(s.pivot > 0.0)) return std::nullopt;
+  return Step{s.u, s.w};
 }
 
 /// Rate of change of the true energy along the step (minus the work of the true forces).

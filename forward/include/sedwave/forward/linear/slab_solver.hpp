@@ -69,4 +69,25 @@ class SlabSolver {
   double thickness_ = 0.0;
 };
 
+/// One unknown w bordering a solved system (a loaded wall's translation):
+///   [A b; b^T a] [u; w] = [f; g].
+/// Given x = A^-1 [f b] (both columns from one elimination), w = (g - b^T x_f) / pivot with the
+/// Schur complement pivot = a - b^T x_b, and u = x_f - w x_b. The matrices are symmetric (complex
+/// symmetric for a steady drive), so the border's row is b^T, not b^H.
+template <class Scalar>
+struct BorderedSolution {
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> u;
+  Scalar w;
+  Scalar pivot;
+};
+
+template <class Scalar>
+[[nodiscard]] BorderedSolution<Scalar> eliminate_border(const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& x,
+                                                        const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& b, Scalar a,
+                                                        Scalar g) {
+  const Scalar pivot = a - (b.transpose() * x.col(1)).value();
+  const Scalar w = (g - (b.transpose() * x.col(0)).value()) / pivot;
+  return {x.col(0) - w * x.col(1), w, pivot};
+}
+
 }  // namespace sedwave::forward::linear
