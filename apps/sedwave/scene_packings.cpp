@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "sedwave/forward/channel/periodic_cell.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 
 namespace sedwave::app {
@@ -15,6 +16,10 @@ forward::channel::ChannelConfiguration initial_column(const forward::channel::Ch
   if (!scene.import_lammps_data) {
     ChannelGeometry geometry = scene.geometry;
     geometry.seed += static_cast<std::uint64_t>(k);
+    if (scene.tiling) {
+      geometry.n_grains = scene.tiling->cell_grains;
+      geometry.periodic = true;
+    }
     return generate_channel(geometry);
   }
   if (k > 0) throw std::invalid_argument(scene.path.string() + ": an imported packing cannot form an ensemble");
@@ -47,8 +52,15 @@ forward::channel::PreparedChannel prepare_member(const forward::channel::Channel
                                                  std::ostream* log) {
   forward::channel::PreparationSettings settings = scene.preparation;
   settings.log = log;
-  return forward::channel::prepare_channel(MPI_COMM_WORLD, initial_column(scene, k, rank), scene.contact,
-                                           scene.geometry.width, settings);
+  forward::channel::PreparedChannel packing = forward::channel::prepare_channel(
+      MPI_COMM_WORLD, initial_column(scene, k, rank), scene.contact, scene.geometry.width, settings);
+  if (!scene.tiling) return packing;
+  if (log) *log << "periodic cell:\n" << forward::channel::describe(packing.report) << "\n";
+  const int copies = scene.geometry.n_grains / scene.tiling->cell_grains;
+  forward::channel::PreparedChannel channel = forward::channel::tile_periodic_cell(
+      MPI_COMM_WORLD, packing, scene.contact, copies, scene.tiling->wall_thickness);
+  if (log) *log << "tiled " << copies << " copies of the cell into a channel of " << scene.geometry.n_grains << " grains\n";
+  return channel;
 }
 
 }  // namespace sedwave::app

@@ -25,14 +25,17 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
   unit.lammps_gamma_n.reset();
   unit.gamma = 1.0;
   const dem::AnyContactModel model = dem::make_contact_model(unit);
-  if (box.periodic[2]) throw std::invalid_argument("linear engine: channels must be open along z");
   double max_radius = 0.0;
   for (const dem::Grain& g : grains) max_radius = std::max(max_radius, g.radius);
   const double reach = 2.0 * max_radius + gap_search;
   for (int a = 0; a < 2; ++a) {
     if (box.periodic[static_cast<std::size_t>(a)] && box.length(a) < reach) {
-      throw std::invalid_argument("linear engine: the periodic box is narrower than two grain diameters");
+      throw std::invalid_argument("contact network: the periodic box is narrower than two grain diameters");
     }
+  }
+  // Along z a pair may touch through one image at most, so every image is found once.
+  if (box.periodic[2] && box.length(2) < 2.0 * reach) {
+    throw std::invalid_argument("contact network: a z-periodic box must be at least four grain diameters long");
   }
   // Sweep along z: every pair within `reach` in z, each periodic image tested.
   std::vector<std::int32_t> order(grains.size());
@@ -46,44 +49,53 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
   ContactNetwork net;
   net.contacts_per_grain.assign(grains.size(), 0);
   double stiffness_sum = 0.0, dashpot_sum = 0.0;
-  for (std::size_t a = 0; a < order.size(); ++a) {
-    const dem::Grain& gi = grains[static_cast<std::size_t>(order[a])];
-    for (std::size_t b = a + 1; b < order.size(); ++b) {
-      const dem::Grain& gj = grains[static_cast<std::size_t>(order[b])];
-      if (gj.position.z - gi.position.z > reach) break;
-      if (gi.body != dem::kFreeBody && gj.body != dem::kFreeBody) continue;
-      for (int ix = -sx; ix <= sx; ++ix) {
-        for (int iy = -sy; iy <= sy; ++iy) {
-          const dem::Vec3 shift{ix * box.length(0), iy * box.length(1), 0.0};
-          const dem::Vec3 d = gi.position - (gj.position + shift);
-          const double distance = dem::norm(d);
-          const double overlap = gi.radius + gj.radius - distance;
-          if (overlap <= -gap_search) continue;
-          const double m_eff = effective_mass(gi, gj);
-          StaticPair p{order[a], order[b], (1.0 / distance) * d, distance, overlap, 0.0, 0.0, 0.0, m_eff,
-                       gi.radius - 0.5 * overlap, gj.radius - 0.5 * overlap};
-          const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
-          std::visit(
-              [&](const auto& m) {
-                const dem::ContactOscillator linearised = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0));
-                p.dashpot = linearised.damping;
-                if (overlap <= 0.0) return;
-                p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
-                p.stiffness = linearised.stiffness;
-                p.energy = m.normal.energy(overlap, gi.radius, gj.radius);
-              },
-              model);
-          if (overlap <= 0.0) {
-            net.gaps.push_back(p);
-            continue;
-          }
-          net.contacts.push_back(p);
-          ++net.contacts_per_grain[static_cast<std::size_t>(p.i)];
-          ++net.contacts_per_grain[static_cast<std::size_t>(p.j)];
-          stiffness_sum += p.stiffness;
-          dashpot_sum += p.dashpot;
+  // Tests grain i against every x-y image of grain j lifted by shift_z.
+  const auto test_pair = [&](std::int32_t i, std::int32_t j, double shift_z) {
+    const dem::Grain& gi = grains[static_cast<std::size_t>(i)];
+    const dem::Grain& gj = grains[static_cast<std::size_t>(j)];
+    if (gi.body != dem::kFreeBody && gj.body != dem::kFreeBody) return;
+    for (int ix = -sx; ix <= sx; ++ix) {
+      for (int iy = -sy; iy <= sy; ++iy) {
+        const dem::Vec3 shift{ix * box.length(0), iy * box.length(1), shift_z};
+        const dem::Vec3 d = gi.position - (gj.position + shift);
+        const double distance = dem::norm(d);
+        const double overlap = gi.radius + gj.radius - distance;
+        if (overlap <= -gap_search) continue;
+        const double m_eff = effective_mass(gi, gj);
+        StaticPair p{i, j, (1.0 / distance) * d, distance, overlap, 0.0, 0.0, 0.0, m_eff,
+                     gi.radius - 0.5 * overlap, gj.radius - 0.5 * overlap};
+        const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
+        std::visit(
+            [&](const auto& m) {
+              const dem::ContactOscillator linearised = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0));
+              p.dashpot = linearised.damping;
+              if (overlap <= 0.0) return;
+              p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
+              p.stiffness = linearised.stiffness;
+              p.energy = m.normal.energy(overlap, gi.radius, gj.radius);
+            },
+            model);
+        if (overlap <= 0.0) {
+          net.gaps.push_back(p);
+          continue;
         }
+        net.contacts.push_back(p);
+        ++net.contacts_per_grain[static_cast<std::size_t>(p.i)];
+        ++net.contacts_per_grain[static_cast<std::size_t>(p.j)];
+        stiffness_sum += p.stiffness;
+        dashpot_sum += p.dashpot;
       }
+    }
+  };
+  const auto z_of = [&](std::size_t a) { return grains[static_cast<std::size_t>(order[a])].position.z; };
+  for (std::size_t a = 0; a < order.size(); ++a) {
+    for (std::size_t b = a + 1; b < order.size() && z_of(b) - z_of(a) <= reach; ++b) test_pair(order[a], order[b], 0.0);
+  }
+  if (box.periodic[2]) {
+    // Across the periodic end: grains near the top against the images of those near the bottom.
+    const double length = box.length(2);
+    for (std::size_t a = order.size(); a-- > 0 && z_of(a) >= box.hi.z - reach;) {
+      for (std::size_t b = 0; b < a && z_of(b) + length - z_of(a) <= reach; ++b) test_pair(order[a], order[b], length);
     }
   }
   if (!net.contacts.empty()) {

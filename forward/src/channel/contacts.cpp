@@ -64,7 +64,7 @@ PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, doub
   const MPI_Comm comm = engine.domain().comm();
   // Sums: contacts (weighted), force sum, overlap sum, flow grains, contact ends on flow grains,
   // rattlers, contact ends on non-rattlers, non-rattlers, flow volume, wall z sums and counts.
-  enum { kContacts, kForce, kOverlap, kFlow, kEnds, kRattlers, kEndsKept, kKept, kVolume, kLowZ, kLowR, kLowN,
+  enum { kContacts, kForce, kVirial, kOverlap, kFlow, kEnds, kRattlers, kEndsKept, kKept, kVolume, kLowZ, kLowR, kLowN,
          kHighZ, kHighR, kHighN, kSums };
   std::array<double, kSums> sum{};
   std::array<double, 2> maxima{};  // residual force, overlap
@@ -76,7 +76,9 @@ PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, doub
     const double weight = ghost ? 0.5 : 1.0;
     if (overlap > 0.0) {
       sum[kContacts] += weight;
-      sum[kForce] += weight * static_normal_force(engine.contact_model(), d, distance, overlap, g.radius[i], g.radius[j]);
+      const double force = static_normal_force(engine.contact_model(), d, distance, overlap, g.radius[i], g.radius[j]);
+      sum[kForce] += weight * force;
+      sum[kVirial] += weight * force * d.z * d.z / distance;
       sum[kOverlap] += weight * overlap / mean_diameter;
       maxima[1] = std::max(maxima[1], overlap / mean_diameter);
       // Histograms count each contact once: cross-boundary pairs only from the lower global id.
@@ -132,8 +134,11 @@ PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, doub
   if (sum[kLowN] > 0 && sum[kHighN] > 0) {
     // Between the walls' mean surfaces: mean centre heights, less one mean wall-grain radius each.
     s.column_height = (sum[kHighZ] - sum[kHighR]) / sum[kHighN] - (sum[kLowZ] + sum[kLowR]) / sum[kLowN];
-    s.packing_fraction = sum[kVolume] / (width * width * s.column_height);
+  } else if (engine.settings().box.periodic[2]) {
+    s.column_height = engine.settings().box.length(2);
   }
+  if (s.column_height > 0.0) s.packing_fraction = sum[kVolume] / (width * width * s.column_height);
+  s.virial_zz = sum[kVirial];
   s.overlap_histogram = overlaps;
   s.gap_histogram = gaps;
   return s;

@@ -38,23 +38,30 @@ class NormalSource {
 /// Uniform grid over the periodic x-y cross-section and z, for overlap checks during placement.
 class PlacementGrid {
  public:
-  PlacementGrid(double width, double z_lo, double z_hi, double cell)
-      : width_(width), z_lo_(z_lo), n_xy_(std::max(1, static_cast<int>(width / cell))),
-        n_z_(std::max(1, static_cast<int>((z_hi - z_lo) / cell) + 1)), cell_xy_(width / n_xy_), cell_z_(cell),
+  /// Cells of at least `cell` across; along z periodic over [z_lo, z_hi) or open (cells clamp).
+  PlacementGrid(double width, double z_lo, double z_hi, double cell, bool periodic_z)
+      : width_(width), z_lo_(z_lo), length_(z_hi - z_lo), periodic_z_(periodic_z),
+        n_xy_(std::max(1, static_cast<int>(width / cell))),
+        n_z_(periodic_z ? std::max(1, static_cast<int>((z_hi - z_lo) / cell))
+                        : std::max(1, static_cast<int>((z_hi - z_lo) / cell) + 1)),
+        cell_xy_(width / n_xy_), cell_z_(periodic_z ? length_ / n_z_ : cell),
         cells_(static_cast<size_t>(n_xy_ * n_xy_ * n_z_)) {}
 
   [[nodiscard]] bool overlaps(const std::vector<dem::Grain>& grains, const dem::Vec3& p, double r) const {
     const int cx = cell_x(p.x), cy = cell_x(p.y), cz = cell_z(p.z);
     // Neighbouring cells far enough to hold any partner: radii are below one cell.
+    // A periodic axis of fewer than 5 cells would visit a cell twice; harmless (overlap is a yes/no).
     for (int dz = -2; dz <= 2; ++dz) {
-      const int z = cz + dz;
-      if (z < 0 || z >= n_z_) continue;
+      int z = cz + dz;
+      if (periodic_z_) z = ((z % n_z_) + n_z_) % n_z_;
+      else if (z < 0 || z >= n_z_) continue;
       for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
           for (size_t k : cells_[index(wrap(cx + dx), wrap(cy + dy), z)]) {
             const dem::Grain& g = grains[k];
             const double ddx = periodic(p.x - g.position.x), ddy = periodic(p.y - g.position.y);
-            const double ddz = p.z - g.position.z;
+            double ddz = p.z - g.position.z;
+            if (periodic_z_) ddz -= length_ * std::round(ddz / length_);
             const double reach = r + g.radius;
             if (ddx * ddx + ddy * ddy + ddz * ddz < reach * reach) return true;
           }
@@ -71,7 +78,8 @@ class PlacementGrid {
   [[nodiscard]] int wrap(int c) const { return ((c % n_xy_) + n_xy_) % n_xy_; }
   [[nodiscard]] size_t index(int x, int y, int z) const { return static_cast<size_t>((z * n_xy_ + y) * n_xy_ + x); }
   [[nodiscard]] double periodic(double d) const { return d - width_ * std::round(d / width_); }
-  double width_, z_lo_;
+  double width_, z_lo_, length_;
+  bool periodic_z_;
   int n_xy_, n_z_;
   double cell_xy_, cell_z_;
   std::vector<std::vector<size_t>> cells_;
@@ -136,12 +144,14 @@ ChannelConfiguration generate_channel(const ChannelGeometry& g) {
   }
   const double wall_r = 0.5 * g.wall_diameter;
   ChannelConfiguration c;
-  c.flow_bottom = 2.0 * wall_r + 0.5 + 0.5 * g.sizes.max;  // above the roughest lower-wall grain
+  // Flow grains start above the roughest lower-wall grain; a periodic cell has no walls.
+  c.flow_bottom = g.periodic ? 0.0 : 2.0 * wall_r + 0.5 + 0.5 * g.sizes.max;
   const double length = volume / (g.initial_packing_fraction * g.width * g.width);
   c.flow_top = c.flow_bottom + length;
 
   std::int64_t next_id = 1;
-  PlacementGrid grid(g.width, c.flow_bottom - 1.0, c.flow_top + 1.0, g.sizes.max);
+  PlacementGrid grid = g.periodic ? PlacementGrid(g.width, c.flow_bottom, c.flow_top, g.sizes.max, true)
+                                  : PlacementGrid(g.width, c.flow_bottom - 1.0, c.flow_top + 1.0, g.sizes.max, false);
   for (double d : diameters) {
     dem::Grain grain;
     grain.id = next_id++;
@@ -157,6 +167,12 @@ ChannelConfiguration generate_channel(const ChannelGeometry& g) {
     if (!placed) throw std::runtime_error("channel geometry: random placement failed; lower initial_packing_fraction");
     grid.insert(c.grains.size(), grain.position);
     c.grains.push_back(grain);
+  }
+  if (g.periodic) {
+    c.box.lo = {0.0, 0.0, c.flow_bottom};
+    c.box.hi = {g.width, g.width, c.flow_top};
+    c.box.periodic = {true, true, true};
+    return c;
   }
   add_wall(g, wall_r, kLowerWallGroup, kLowerWallBody, next_id, normal, c.grains);
   add_wall(g, c.flow_top + 0.5 + 0.5 * g.sizes.max + wall_r, kUpperWallGroup, kUpperWallBody, next_id, normal, c.grains);

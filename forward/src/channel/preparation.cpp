@@ -24,6 +24,8 @@ struct Scene {
   double width;
   double mean_mass;
   double mean_diameter;
+  /// A z-periodic cell without walls: its length, not a wall, holds the pressure.
+  [[nodiscard]] bool periodic_cell() const { return box.periodic[2]; }
 };
 
 int rank_of(MPI_Comm comm) {
@@ -39,21 +41,31 @@ std::unique_ptr<dem::Engine> make_engine(const Scene& s, std::span<const dem::Gr
   settings.contact = s.contact;
   settings.time_step_fraction = step_fraction;
   settings.viscous_damping = viscous_damping;
-  std::vector<dem::RigidBody> bodies{dem::RigidBody("lower_wall", dem::Frozen{}),
-                                     dem::RigidBody("upper_wall", std::move(upper))};
+  std::vector<dem::RigidBody> bodies;
+  if (!s.periodic_cell()) {
+    bodies = {dem::RigidBody("lower_wall", dem::Frozen{}), dem::RigidBody("upper_wall", std::move(upper))};
+  }
   return std::make_unique<dem::Engine>(s.comm, settings, grains, std::move(bodies));
+}
+
+/// The force the grains carry along z (collective): on the upper wall of a channel; across every
+/// cross-section of a periodic cell (its contact virial over its length). The target is P W^2.
+double carried_force(const Scene& s, const dem::Engine& e) {
+  if (!s.periodic_cell()) return e.bodies()[1].contact_force().z;
+  return packing_stats(e, s.mean_diameter, s.width).virial_zz / e.settings().box.length(2);
 }
 
 /// Runs until the grains push back on the upper wall with the target force at three successive
 /// checks, `chunk` steps apart (a single impact can exceed it for a moment while the column is
 /// still loose).
-std::int64_t compress(dem::Engine& e, const PreparationSettings& p, double target_force, std::int64_t chunk) {
+std::int64_t compress(const Scene& s, dem::Engine& e, const PreparationSettings& p, double target_force,
+                      std::int64_t chunk) {
   std::int64_t steps = 0;
   int above = 0;
   while (steps < p.max_compression_steps) {
     e.run(chunk);
     steps += chunk;
-    above = e.bodies()[1].contact_force().z >= target_force ? above + 1 : 0;
+    above = carried_force(s, e) >= target_force ? above + 1 : 0;
     if (above == 3) return steps;
   }
   throw std::runtime_error("preparation: the grains never carried the pressure within max_compression_steps");
@@ -202,6 +214,15 @@ void stretch_column(dem::Engine& e, double dz) {
   e.set_positions(moved);
 }
 
+/// Lengthens the column by dz (shortens it for dz < 0), straining it uniformly: a channel by
+/// stretch_column, a periodic cell by straining its box.
+void lengthen(const Scene& s, dem::Engine& e, double dz) {
+  if (!s.periodic_cell()) return stretch_column(e, dz);
+  const double length = e.settings().box.length(2);
+  e.strain_periodic_z((length + dz) / length);
+  e.compute_forces();
+}
+
 void log_line(const PreparationSettings& p, MPI_Comm comm, const std::string& line) {
   if (p.log && rank_of(comm) == 0) *p.log << "prepare: " << line << std::endl;
 }
@@ -215,7 +236,7 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
   for (int iteration = 0;; ++iteration) {
     report.relaxation_steps += fire.relax(p.residual_force_tolerance, p.max_relaxation_steps, scene.mean_diameter,
                                           scene.width, report.residual_ratio);
-    report.wall_force = relaxer.bodies()[1].contact_force().z;
+    report.wall_force = carried_force(scene, relaxer);
     const double error = report.wall_force / target - 1.0;
     log_line(p, scene.comm, "wall force / P W^2 = " + std::to_string(1.0 + error) + ", residual ratio " +
                                 std::to_string(report.residual_ratio));
@@ -238,7 +259,7 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
     previous_shift = shift;
     previous_force = report.wall_force;
     shift += step;
-    stretch_column(relaxer, step);
+    lengthen(scene, relaxer, step);
     ++report.wall_corrections;
   }
 }
@@ -246,7 +267,7 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
 /// Newton relaxation of the gathered packing on rank 0 (linear/static_equilibrium.hpp), at most
 /// `iterations` trial steps; every rank learns how many were taken, and all throw together if rank 0
 /// failed.
-void newton_relaxation(const Scene& scene, const PreparationSettings& p, int iterations,
+void newton_relaxation(const Scene& scene, const dem::Box& box, const PreparationSettings& p, int iterations,
                        std::vector<dem::Grain>& grains, PreparationReport& report) {
   int status[2] = {1, 0};  // no error, iterations
   std::string failure;
@@ -255,7 +276,8 @@ void newton_relaxation(const Scene& scene, const PreparationSettings& p, int ite
       linear::StaticEquilibriumSettings settings;
       settings.residual_force_tolerance = p.residual_force_tolerance;
       settings.max_iterations = iterations;
-      status[1] = linear::relax_to_equilibrium(grains, scene.box, scene.contact, 2, nullptr, settings).iterations;
+      const int walls = scene.periodic_cell() ? 0 : 2;
+      status[1] = linear::relax_to_equilibrium(grains, box, scene.contact, walls, nullptr, settings).iterations;
     } catch (const std::exception& e) {
       status[0] = 0;
       failure = e.what();
@@ -286,8 +308,11 @@ void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::un
   constexpr std::int64_t kFireBurst = 2000;
   for (int round = 0; round < kRounds; ++round) {
     std::vector<dem::Grain> grains = gathered_at_rest(*relaxer);
-    newton_relaxation(scene, p, kNewtonPerRound, grains, report);
-    relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
+    // A periodic cell's box has been strained since `scene` was made: the relaxer's is the one.
+    const Scene now{scene.comm, relaxer->settings().box, scene.contact, scene.width, scene.mean_mass,
+                    scene.mean_diameter};
+    newton_relaxation(now, now.box, p, kNewtonPerRound, grains, report);
+    relaxer = make_engine(now, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
     relaxer->compute_forces();
     report.residual_ratio = residual_ratio(packing_stats(*relaxer, scene.mean_diameter, scene.width));
     log_line(p, scene.comm, "Newton: " + std::to_string(report.newton_iterations) + " steps in all, residual ratio " +
@@ -299,7 +324,7 @@ void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::un
     log_line(p, scene.comm, "FIRE burst: residual ratio " + std::to_string(report.residual_ratio));
     if (report.residual_ratio < p.residual_force_tolerance) break;
   }
-  report.wall_force = relaxer->bodies()[1].contact_force().z;
+  report.wall_force = carried_force(scene, *relaxer);
 }
 
 }  // namespace
@@ -318,7 +343,10 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   }
   double counts[3] = {flow_mass, flow_diameter, static_cast<double>(n_flow)};
   MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPI_DOUBLE, MPI_SUM, comm);
-  const Scene scene{comm, broadcast_box(comm, start.box), contact, width, counts[0] / counts[2], counts[1] / counts[2]};
+  Scene scene{comm, broadcast_box(comm, start.box), contact, width, counts[0] / counts[2], counts[1] / counts[2]};
+  if (scene.periodic_cell() && p.compression != Compression::affine) {
+    throw std::invalid_argument("preparation: a periodic cell has no wall to lower; use compression = \"affine\"");
+  }
   const double target = p.pressure * width * width;
   PreparedChannel out;
   out.report.target_wall_force = target;
@@ -336,7 +364,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
     const dem::LinearMotion lower{{0.0, 0.0, -p.compression_speed * scene.mean_diameter / t_col}};
     compressor = make_engine(scene, start.grains, lower, p.compression_step_fraction, drag);
     try {
-      out.report.compression_steps = compress(*compressor, p, target, 200);
+      out.report.compression_steps = compress(scene, *compressor, p, target, 200);
     } catch (const dem::GuardError& e) {
       // The wall keeps descending for 3 force checks (0.9 d apart at the default speed) after the
       // grains first carry P W^2, which a short column cannot absorb (N = 150, W = 3, seed 11 trips
@@ -349,11 +377,17 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
     compressor = make_engine(scene, start.grains, dem::Frozen{}, p.compression_step_fraction, drag);
     const std::int64_t every = 10;
     const double strain = p.compression_strain_rate * every * compressor->time_step() / t_col;
-    shrink_heights_every(*compressor, every, lower_wall_height(start.grains, comm), strain);
+    if (scene.periodic_cell()) {
+      dem::Engine& e = *compressor;
+      e.add_step_callback(every, [&e, strain](const dem::Engine&) { e.strain_periodic_z(1.0 - strain); });
+    } else {
+      shrink_heights_every(*compressor, every, lower_wall_height(start.grains, comm), strain);
+    }
     // Checked often: the strain goes on between checks, and it loads every contact at once.
-    out.report.compression_steps = compress(*compressor, p, target, 2 * every);
+    out.report.compression_steps = compress(scene, *compressor, p, target, 2 * every);
   }
   log_line(p, comm, "compressed in " + std::to_string(out.report.compression_steps) + " steps");
+  scene.box = compressor->settings().box;  // a periodic cell's, strained
 
   std::vector<dem::Grain> grains = gathered_at_rest(*compressor);
   compressor.reset();

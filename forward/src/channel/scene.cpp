@@ -33,6 +33,23 @@ void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& 
   g.wall_diameter = walls.positive("diameter", g.wall_diameter);
   g.wall_roughness = walls.number("roughness", g.wall_roughness);
   walls.finish();
+  if (s.has("periodic_cell")) {
+    Section cell = s.sub("periodic_cell");
+    CellTiling t;
+    t.cell_grains = static_cast<int>(cell.integer("grains", t.cell_grains, 1));
+    t.wall_thickness = cell.positive("wall_thickness", t.wall_thickness);
+    if (g.n_grains % t.cell_grains != 0) {
+      cell.fail_key("grains", "the channel's " + std::to_string(g.n_grains) + " grains must be a whole number of cells of " +
+                              std::to_string(t.cell_grains));
+    }
+    if (!(t.wall_thickness >= g.sizes.max)) {
+      cell.fail_key("wall_thickness", "walls thinner than the largest grain (" + std::to_string(g.sizes.max) +
+                                      ") would cut contacts of flow grains");
+    }
+    if (scene.import_lammps_data) cell.fail_key("grains", "a periodic cell is generated; it cannot be imported");
+    cell.finish();
+    scene.tiling = t;
+  }
   s.finish();
 }
 
@@ -132,6 +149,14 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   read_geometry(top.sub("geometry"), scene, base);
   read_contact(top.sub("contact"), scene.contact, scene.geometry.density);
   read_preparation(top.sub("preparation"), scene.preparation);
+  if (scene.tiling && scene.preparation.compression == Compression::wall) {
+    // A periodic cell has no wall to lower: its box is strained instead.
+    Section preparation = top.sub("preparation");
+    if (preparation.has("compression")) {
+      preparation.fail_key("compression", "a periodic cell ([geometry.periodic_cell]) is compressed affinely: use \"affine\"");
+    }
+    scene.preparation.compression = Compression::affine;
+  }
   read_drive(top.sub("drive"), scene.drive);
   read_linear(top.sub("linear"), scene.linear);
   if (scene.drive.pulse && scene.engine == EngineKind::linear) {

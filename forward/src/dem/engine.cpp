@@ -300,6 +300,23 @@ void Engine::set_positions(const std::unordered_map<std::int64_t, Vec3>& positio
   compute_forces();
 }
 
+void Engine::strain_periodic_z(double factor) {
+  if (!settings_.box.periodic[2]) throw std::logic_error("DEM: only a box periodic along z can be strained");
+  if (!(factor > 0.0)) throw std::invalid_argument("DEM: a strain factor must be positive");
+  if (domain_.size() > 1 && factor * settings_.box.length(2) < domain_.size() * ghost_cutoff_)
+    throw std::runtime_error("DEM: a strained box would be too short for one slab of at least the ghost cutoff per rank");
+  const double lo = settings_.box.lo.z;
+  const auto strained = [&](double z) { return lo + factor * (z - lo); };
+  for (std::size_t i = 0; i < grains_.n_local(); ++i) grains_.position[i].z = strained(grains_.position[i].z);
+  settings_.box.hi.z = strained(settings_.box.hi.z);
+  domain_.box().hi.z = settings_.box.hi.z;
+  std::vector<double> boundaries = domain_.boundaries();
+  for (double& b : boundaries) b = strained(b);
+  domain_.set_boundaries(std::move(boundaries));
+  // The ghosts' periodic shifts are the old box length: they must be rebuilt, not refreshed.
+  force_rebuild_ = true;
+}
+
 void Engine::add_step_callback(std::int64_t every, StepCallback f) {
   if (every <= 0) throw std::invalid_argument("DEM: callback interval must be positive");
   callbacks_.emplace_back(every, std::move(f));

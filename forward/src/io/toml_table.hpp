@@ -149,6 +149,13 @@ class Table {
     return x;
   }
 
+  /// An error about one key's value, at its line (at the table's line when the key is absent and
+  /// its default is what fails).
+  [[noreturn]] void fail_key(const std::string& key, const std::string& why) const {
+    if (has(key)) fail<Error>(table_.as_table().at(key), name(key), why, origin_);
+    fail_table("'" + key + "' (default): " + why);
+  }
+
   /// An error about the table as a whole (conflicting or missing keys).
   [[noreturn]] void fail_table(const std::string& why) const {
     throw Error(file_of(table_, origin_) + ":" + std::to_string(table_.location().line()) + ": [" + prefix_ + "]: " + why);

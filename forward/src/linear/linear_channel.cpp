@@ -48,11 +48,19 @@ void check_drive(const channel::DriveSettings& d) {
   }
 }
 
+const channel::PreparedChannel& open_along_z(const channel::PreparedChannel& packing) {
+  if (packing.box.periodic[2]) {
+    throw std::invalid_argument("linear engine: channels must be open along z (a periodic cell is tiled first: "
+                                "channel/periodic_cell.hpp)");
+  }
+  return packing;
+}
+
 }  // namespace
 
 LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact,
                              LinearSettings settings)
-    : grains_(packing.grains),
+    : grains_(open_along_z(packing).grains),
       cross_section_(packing.box.length(0) * packing.box.length(1)),
       contact_(contact),
       model_(dem::make_contact_model(contact)),

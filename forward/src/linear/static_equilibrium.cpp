@@ -6,6 +6,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include <Eigen/SparseCholesky>
+
 #include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/linear/dynamic_matrices.hpp"
 #include "sedwave/forward/linear/slab_solver.hpp"
@@ -123,9 +125,34 @@ void set_touching(ActiveSet& a, const State& s, std::span<const dem::Grain> grai
   a.touching = touching;
 }
 
+/// Solves (K + shift M) X = B for a step: by slab elimination along an open column (O(N)); by sparse
+/// Cholesky with a fill-reducing ordering in a z-periodic cell, where the wrap-around couples the
+/// first slab to the last and the block-tridiagonal structure is lost. Periodic cells are the small
+/// building blocks of long channels (channel/periodic_cell.hpp), so the general solver is cheap there.
+class ShiftedSolver {
+ public:
+  ShiftedSolver(const DynamicMatrices& m, std::span<const dem::Grain> grains, const dem::Box& box) : m_(m) {
+    if (!box.periodic[2]) slabs_.emplace(m, node_heights(grains, m));
+  }
+
+  /// nullopt when K + shift M is not positive definite.
+  [[nodiscard]] std::optional<Eigen::MatrixXd> solve(double shift, const Eigen::MatrixXd& rhs) const {
+    if (slabs_) return slabs_->solve_shifted(shift, rhs);
+    Eigen::SparseMatrix<double> a = m_.stiffness;
+    for (Eigen::Index k = 0; k < a.rows(); ++k) a.coeffRef(k, k) += shift * m_.mass(k);
+    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> cholesky(a);
+    if (cholesky.info() != Eigen::Success) return std::nullopt;
+    return Eigen::MatrixXd(cholesky.solve(rhs));
+  }
+
+ private:
+  const DynamicMatrices& m_;
+  std::optional<SlabSolver> slabs_;
+};
+
 /// Solves (K + shift M) du = F of the model, bordered by the loaded wall's row; nullopt when that
 /// matrix is not positive definite (then the step need not go downhill).
-std::optional<Step> newton_step(const ActiveSet& a, const DynamicMatrices& m, const SlabSolver& solver,
+std::optional<Step> newton_step(const ActiveSet& a, const DynamicMatrices& m, const ShiftedSolver& solver,
                                 const LoadedWall* wall, double wall_mass, double shift) {
   const Eigen::Index n = m.unknowns();
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, wall ? 2 : 1);
@@ -134,7 +161,7 @@ std::optional<Step> newton_step(const ActiveSet& a, const DynamicMatrices& m, co
     rhs.block<3, 1>(static_cast<Eigen::Index>(3 * node), 0) = Eigen::Vector3d(f.x, f.y, f.z);
   }
   if (!wall) {
-    const std::optional<Eigen::MatrixXd> x = solver.solve_shifted(shift, rhs);
+    const std::optional<Eigen::MatrixXd> x = solver.solve(shift, rhs);
     if (!x) return std::nullopt;
     return Step{x->col(0), 0.0};
   }
@@ -142,7 +169,7 @@ std::optional<Step> newton_step(const ActiveSet& a, const DynamicMatrices& m, co
   // the wall's pivot (a Schur complement) is positive.
   const BodyCoupling& coupling = m.bodies[static_cast<std::size_t>(wall->body - 1)];
   rhs.col(1) = Eigen::VectorXd(coupling.stiffness.col(2));
-  const std::optional<Eigen::MatrixXd> x = solver.solve_shifted(shift, rhs);
+  const std::optional<Eigen::MatrixXd> x = solver.solve(shift, rhs);
   if (!x) return std::nullopt;
   const Eigen::VectorXd border = rhs.col(1);
   const BorderedSolution<double> s = eliminate_border<double>(
@@ -306,11 +333,11 @@ class Relaxation {
       return assemble(grains_, model, n_bodies_, contact_, &pairs);
     };
     m = matrices(true);
-    std::optional<Step> step = newton_step(active, *m, SlabSolver(*m, node_heights(grains_, *m)), wall_, wall_mass_,
+    std::optional<Step> step = newton_step(active, *m, ShiftedSolver(*m, grains_, box_), wall_, wall_mass_,
                                            shift_ * stiffness_per_mass);
     if (step) return step;
     m = matrices(false);
-    const SlabSolver solver(*m, node_heights(grains_, *m));
+    const ShiftedSolver solver(*m, grains_, box_);
     step = newton_step(active, *m, solver, wall_, wall_mass_, shift_ * stiffness_per_mass);
     while (!step && shift_ <= kStalled) {  // floppy grains: a larger shift regularises them
       shift_ *= kGrow;

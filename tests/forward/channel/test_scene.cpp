@@ -75,7 +75,26 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\n", "[drive]: signal: the linear engine solves each frequency"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\n", "bad.toml:4: key 'drive.signal': must be one of pulse, sinusoid"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall = \"free\"\n", "bad.toml:4: key 'drive.far_wall': must be one of frozen, loaded"},
-                      BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall_mass = 3\n", "bad.toml:3: [drive]: far_wall_mass is for far_wall = \"loaded\""}));
+                      BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall_mass = 3\n", "bad.toml:3: [drive]: far_wall_mass is for far_wall = \"loaded\""},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 1000\n[geometry.periodic_cell]\ngrains = 300\n",
+                               "bad.toml:6: key 'geometry.periodic_cell.grains': the channel's 1000 grains must be a whole number of cells of 300"},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\nwall_thickness = 1\n",
+                               "bad.toml:7: key 'geometry.periodic_cell.wall_thickness': walls thinner than the largest grain"},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\n[preparation]\ncompression = \"wall\"\n",
+                               "bad.toml:8: key 'preparation.compression': a periodic cell ([geometry.periodic_cell]) is compressed affinely"},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\ncopies = 3\n",
+                               "bad.toml:7: key 'geometry.periodic_cell.copies': unknown key"}));
+
+TEST(Scene, PeriodicCellTilesTheChannelAndCompressesAffinely) {
+  const ChannelScene s = parse_scene(
+      "[contact]\nkn = 726\n[geometry]\ngrains = 30000\n[geometry.periodic_cell]\ngrains = 10000\nwall_thickness = 2\n",
+      "x.toml");
+  ASSERT_TRUE(s.tiling.has_value());
+  EXPECT_EQ(s.tiling->cell_grains, 10000);
+  EXPECT_EQ(s.tiling->wall_thickness, 2.0);
+  EXPECT_EQ(s.preparation.compression, Compression::affine);
+  EXPECT_FALSE(parse_scene("[contact]\nkn = 726\n", "x.toml").tiling.has_value());
+}
 
 TEST(Scene, LoadedFarWallReadsItsMass) {
   const ChannelScene s =

@@ -48,9 +48,9 @@ struct ContactNetwork {
 };
 
 /// Finds every contact, and every gap narrower than `gap_search` (same length unit), of `grains`
-/// in `box` (periodic in x, y; open in z) under the normal law of `contact` (its damping setting is
-/// ignored: dashpots are per unit coefficient). Throws std::invalid_argument for a box periodic in z
-/// or narrower than twice the largest grain.
+/// in `box` (periodic in x, y; open or periodic in z) under the normal law of `contact` (its damping
+/// setting is ignored: dashpots are per unit coefficient). Throws std::invalid_argument for a box
+/// narrower than twice the largest grain across, or shorter than four times it along a periodic z.
 [[nodiscard]] ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
                                            const dem::ContactSpec& contact, double gap_search = 0.0);
 

@@ -23,7 +23,12 @@ struct PackingStats {
   double mean_overlap = 0.0;               ///< over contacts, in units of the mean diameter
   double max_overlap = 0.0;                ///< in units of the mean diameter
   double packing_fraction = 0.0;           ///< flow-grain volume / (W^2 x column height)
-  double column_height = 0.0;              ///< between the walls' mean surfaces (centres -+ radius)
+  /// Between the walls' mean surfaces (centres -+ radius); a periodic cell without walls: its length
+  double column_height = 0.0;
+  /// Sum over contacts of the static normal force's z component times the contact's z extent,
+  /// f n_z dz = f dz^2 / r (the zz contact virial). Over the volume it is the stress the grains carry
+  /// along z: in a periodic cell of length L the force across every cross-section is virial_zz / L.
+  double virial_zz = 0.0;
   /// Counts of overlaps (contacts) and gaps (listed pairs not touching) per decade of
   /// |separation| / mean diameter: bin k covers [1e-(k+1), 1e-k), k = 0..11; the last bin also
   /// holds anything smaller.

@@ -40,11 +40,14 @@ struct ChannelGeometry {
   double wall_roughness = 0.2;     ///< sd of wall-grain height offsets, clipped to +-0.5 [mean d]
   double initial_packing_fraction = 0.25;  ///< of the random loose column (RSA jams below 0.38, lower in narrow channels)
   std::uint64_t seed = 1;
+  /// A cell periodic along z, without walls: the building block of long channels
+  /// (periodic_cell.hpp). Its length follows from the grains' volume and the initial packing fraction.
+  bool periodic = false;
 };
 
 struct ChannelConfiguration {
   dem::Box box;
-  std::vector<dem::Grain> grains;  ///< flow grains (ids 1..N), then lower and upper wall grains
+  std::vector<dem::Grain> grains;  ///< flow grains (ids 1..N), then lower and upper wall grains (if any)
   double flow_bottom = 0.0;        ///< z below which no flow grain starts
   double flow_top = 0.0;           ///< z above which no flow grain starts
 };

@@ -16,6 +16,12 @@
 // landscape); its height is then corrected by a secant iteration until the force the grains exert on
 // it is P W^2 within the tolerance, and FIRE runs again. Pressure is force per area: the wall
 // carries P W^2 in total, not P per wall grain.
+//
+// A z-periodic cell without walls (ChannelGeometry::periodic, the building block of long channels:
+// periodic_cell.hpp) goes through the same stages with its length in the wall's place: the box is
+// strained affinely during compression and corrected by the same secant iteration, and the force it
+// carries is its contact virial over its length (PackingStats::virial_zz), the force across every
+// cross-section.
 #include <mpi.h>
 
 #include <cstdint>
@@ -74,7 +80,7 @@ struct PreparationReport {
   std::int64_t relaxation_steps = 0;
   int wall_corrections = 0;
   int newton_iterations = 0;       ///< Newton steps tried (accepted or not)
-  double wall_force = 0.0;         ///< force of the grains on the upper wall at the end
+  double wall_force = 0.0;         ///< force of the grains on the upper wall (a periodic cell: across a section)
   double target_wall_force = 0.0;  ///< P W^2
   double pressure = 0.0;           ///< wall_force / W^2
   double residual_ratio = 0.0;     ///< max |F| / mean contact force at the end

@@ -13,6 +13,7 @@
 
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/geometry.hpp"
+#include "sedwave/forward/channel/periodic_cell.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/linear/settings.hpp"
@@ -36,6 +37,9 @@ struct ChannelScene {
   /// A LAMMPS data file (atom_style sphere) to use instead of generating the column; types
   /// 1 = flow grains, 2 = lower wall, 3 = upper wall (the thesis's convention).
   std::optional<std::filesystem::path> import_lammps_data;
+  /// Build the channel from a periodic cell of tiling->cell_grains grains ([geometry.periodic_cell],
+  /// periodic_cell.hpp): geometry.n_grains / cell_grains copies, the ends frozen into the walls.
+  std::optional<CellTiling> tiling;
   /// Contact law; its damping (restitution or gamma) is the one used while preparing. Driven runs
   /// replace it by DriveSettings::gamma_hat.
   dem::ContactSpec contact;

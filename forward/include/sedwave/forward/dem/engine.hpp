@@ -126,6 +126,12 @@ class Engine {
   /// Moves the grains named in `positions` (by id; e.g. from read_lammps_dump) and recomputes
   /// ghosts, lists and forces (collective). Grains may land on any rank.
   void set_positions(const std::unordered_map<std::int64_t, Vec3>& positions);
+  /// Strains a z-periodic box and everything in it affinely along z by `factor` about box.lo.z
+  /// (LAMMPS's fix deform with remap x): heights, the box, the slab boundaries. Velocities are kept.
+  /// Collective; the ghosts and lists are rebuilt at the next step or force evaluation. Throws
+  /// std::logic_error for a box open along z (there the walls set the length) and
+  /// std::invalid_argument for a factor that is not positive.
+  void strain_periodic_z(double factor);
   [[nodiscard]] std::size_t n_local() const { return grains_.n_local(); }
   [[nodiscard]] std::int64_t n_global() const { return n_global_; }
   [[nodiscard]] double time() const { return time_; }

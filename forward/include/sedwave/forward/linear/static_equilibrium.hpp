@@ -28,6 +28,9 @@
 // then alternates with FIRE, which follows the instability dynamically (channel/preparation.cpp).
 // Measured: docs/linear.md, "Preparing long channels".
 //
+// A box periodic along z (a periodic cell, channel/periodic_cell.hpp) is relaxed too: its contacts
+// wrap around, which breaks the slab structure, so its steps use a sparse Cholesky factorisation.
+//
 // Only normal laws enter (no tangential history, no rolling): a frictionless packing, as the thesis's
 // model and the preparation's compression stage. Serial (the packing on one rank, as the linear
 // engine).
