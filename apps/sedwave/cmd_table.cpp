@@ -34,6 +34,7 @@ struct TableOptions {
   std::string out;
   std::string packing;
   std::string engine;  ///< "time_domain", "linear" or "long_wavelength"; empty: the scene's
+  int member = -1;      ///< >= 0: this ensemble member alone (a member table, for sedwave merge)
   bool quiet = false;
   bool retry_failed = false;
 };
@@ -68,11 +69,12 @@ channel::PreparedChannel packing_for_table(const channel::ChannelScene& scene, c
 }
 
 table::TableMetadata table_metadata(const table::TableGridFile& grid, const channel::ChannelScene& scene,
-                                    const std::string& packing_provenance, bool long_wavelength) {
+                                    const std::string& packing_provenance, bool long_wavelength, int member) {
   table::TableMetadata m;
   m.scene_toml = scene.text;
   m.engine = long_wavelength ? "sedwave-long-wavelength"
                              : (scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem");
+  if (member >= 0) m.engine = forward::linear::member_engine_tag(member, scene.linear.ensemble);
   std::ostringstream definitions;
   definitions << table::standard_definitions() << "; " << grid.describe_axes() << "; " << packing_provenance
               << ".\nGrid file " << grid.path.string() << " (verbatim):\n"
@@ -98,6 +100,10 @@ Command add_table_command(CLI::App& app) {
                   "override the scene's engine: time_domain (DEM), linear (linear response) or long_wavelength "
                   "(the packing's omega_hat -> 0 limit at fixed omega_hat*gamma_hat, for field frequencies)")
       ->check(CLI::IsMember({"time_domain", "linear", "long_wavelength"}));
+  cmd->add_option("--member", o->member,
+                  "with --engine linear: compute ensemble member K alone (seed + K, packing FILE.member<K>) into a "
+                  "member table, for ensembles too large for one process; combine the members with sedwave merge")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--retry-failed", o->retry_failed, "when resuming, compute failed points again");
   cmd->add_flag("--quiet", o->quiet, "no progress lines");
   return {cmd, [o]() {
@@ -125,6 +131,14 @@ Command add_table_command(CLI::App& app) {
       throw std::invalid_argument(o->grid_file + ": ranks_per_point = " + std::to_string(grid.ranks_per_point) +
                                   " does not divide the " + std::to_string(mpi.size()) + " MPI ranks");
     }
+    if (o->member >= 0 && (scene.engine != channel::EngineKind::linear || long_wavelength)) {
+      throw std::invalid_argument("--member is for the driven linear engine (--engine linear, or engine = \"linear\" "
+                                  "in the scene)");
+    }
+    if (o->member >= scene.linear.ensemble) {
+      throw std::invalid_argument(grid.scene_path.string() + ": --member " + std::to_string(o->member) +
+                                  " is outside the scene's ensemble of " + std::to_string(scene.linear.ensemble));
+    }
     const int ranks_per_point = scene.engine == channel::EngineKind::linear ? 1 : grid.ranks_per_point;
     const table::FarmSettings settings{ranks_per_point, (mpi.rank() == 0 && !o->quiet) ? &std::cout : nullptr,
                                        o->retry_failed};
@@ -133,23 +147,27 @@ Command add_table_command(CLI::App& app) {
       // Every rank solves whole points serially and needs every member's packing.
       std::string provenance;
       std::vector<forward::linear::LinearChannel> members;
-      for (int k = 0; k < scene.linear.ensemble; ++k) {
+      const int first = o->member >= 0 ? o->member : 0;
+      const int last = o->member >= 0 ? o->member : scene.linear.ensemble - 1;
+      for (int k = first; k <= last; ++k) {
         std::string member_provenance;
         channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, k, member_provenance);
         table::share_packing_with_groups(MPI_COMM_WORLD, packing, 1);
         members.emplace_back(packing, scene.contact, scene.linear);
-        provenance += (k > 0 ? "; " : "") + member_provenance;
+        provenance += (k > first ? "; " : "") + member_provenance;
       }
       const table::PointFunction point =
-          long_wavelength ? forward::linear::long_wavelength_point_function(members, scene.drive.axis)
-                          : forward::linear::linear_point_function(members, scene.drive);
+          long_wavelength  ? forward::linear::long_wavelength_point_function(members, scene.drive.axis)
+          : o->member >= 0 ? forward::linear::member_point_function(members.front(), scene.drive)
+                           : forward::linear::linear_point_function(members, scene.drive);
       report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid,
-                                    table_metadata(grid, scene, provenance, long_wavelength), point, settings);
+                                    table_metadata(grid, scene, provenance, long_wavelength, o->member), point,
+                                    settings);
     } else {
       std::string provenance;
       channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
       table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
-      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance, false),
+      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance, false, -1),
                                     table::dem_point_function(packing, scene.contact, scene.drive, grid.grid), settings);
     }
     if (mpi.rank() == 0) {

@@ -17,5 +17,7 @@ Command add_dem_command(CLI::App& app);
 Command add_forward_command(CLI::App& app);
 Command add_table_command(CLI::App& app);
 Command add_synthesize_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
+Command add_show_command(CLI::App& app);
 
 }  // namespace sedwave::app
