@@ -139,6 +139,12 @@ Command add_table_command(CLI::App& app) {
       throw std::invalid_argument(grid.scene_path.string() + ": --member " + std::to_string(o->member) +
                                   " is outside the scene's ensemble of " + std::to_string(scene.linear.ensemble));
     }
+    for (int k = 0; !o->packing.empty() && k < scene.linear.ensemble; ++k) {
+      if (std::filesystem::path(member_path(o->packing, k)) == std::filesystem::path(o->out)) {
+        throw std::invalid_argument("--out " + o->out + " is member " + std::to_string(k) +
+                                    "'s packing file (--packing " + o->packing + "): name the table otherwise");
+      }
+    }
     const int ranks_per_point = scene.engine == channel::EngineKind::linear ? 1 : grid.ranks_per_point;
     const table::FarmSettings settings{ranks_per_point, (mpi.rank() == 0 && !o->quiet) ? &std::cout : nullptr,
                                        o->retry_failed};

@@ -26,6 +26,8 @@ struct Scene {
   double mean_diameter;
   /// A z-periodic cell without walls: its length, not a wall, holds the pressure.
   [[nodiscard]] bool periodic_cell() const { return box.periodic[2]; }
+  /// The order of a contact force at the pressure: P d^2.
+  [[nodiscard]] double load_scale(const PreparationSettings& p) const { return p.pressure * mean_diameter * mean_diameter; }
 };
 
 int rank_of(MPI_Comm comm) {
@@ -119,8 +121,13 @@ class Fire {
     });
   }
 
-  /// Runs until max |F| < tolerance x mean contact force or the step budget is spent.
-  std::int64_t relax(double tolerance, std::int64_t max_steps, double mean_diameter, double width, double& ratio) {
+  /// Runs until max |F| < tolerance x mean contact force or the step budget is spent, or until the
+  /// packing has come apart: no contacts, or a mean contact force below 1e-3 of `load_scale` (a
+  /// packing at pressure P has mean contact forces of order P d^2). Then there is nothing to relax
+  /// and the wall (or a periodic cell's length) must move first; a loose packing's residual ratio
+  /// never reaches the tolerance, and FIRE would spend its whole budget (2e6 steps) on it.
+  std::int64_t relax(double tolerance, std::int64_t max_steps, double mean_diameter, double width, double load_scale,
+                     double& ratio) {
     state_->restart();
     state_->active = true;
     std::int64_t steps = 0;
@@ -131,7 +138,8 @@ class Fire {
       const PackingStats s = packing_stats(engine_, mean_diameter, width);
       ratio = residual_ratio(s);
       if (ratio < tolerance) break;
-      if (s.contacts == 0 && steps >= 10 * chunk) break;  // nothing to relax: the wall must move
+      const bool unloaded = s.contacts == 0 || s.mean_contact_force < 1e-3 * load_scale;
+      if (unloaded && steps >= 10 * chunk) break;
     }
     state_->active = false;
     return steps;
@@ -235,7 +243,7 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
   double shift = 0.0, previous_shift = 0.0, previous_force = 0.0;
   for (int iteration = 0;; ++iteration) {
     report.relaxation_steps += fire.relax(p.residual_force_tolerance, p.max_relaxation_steps, scene.mean_diameter,
-                                          scene.width, report.residual_ratio);
+                                          scene.width, scene.load_scale(p), report.residual_ratio);
     report.wall_force = carried_force(scene, relaxer);
     const double error = report.wall_force / target - 1.0;
     log_line(p, scene.comm, "wall force / P W^2 = " + std::to_string(1.0 + error) + ", residual ratio " +
@@ -320,7 +328,7 @@ void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::un
     if (report.residual_ratio < p.residual_force_tolerance) break;
     Fire fire(*relaxer);
     report.relaxation_steps += fire.relax(p.residual_force_tolerance, kFireBurst, scene.mean_diameter, scene.width,
-                                          report.residual_ratio);
+                                          scene.load_scale(p), report.residual_ratio);
     log_line(p, scene.comm, "FIRE burst: residual ratio " + std::to_string(report.residual_ratio));
     if (report.residual_ratio < p.residual_force_tolerance) break;
   }

@@ -35,6 +35,13 @@ if "$sedwave" merge "$work/member0.h5" "$work/member0.h5" --out "$work/twice.h5"
   echo "merging a member with itself must fail"; exit 1
 fi
 grep -q "is member 0 again" "$work/twice.err"
+# A member table named like a member's packing file would overwrite it: refused before anything runs.
+if "$sedwave" table "$data/tiny_grid.toml" --engine linear --member 1 --packing "$work/packing.h5" \
+    --out "$work/packing.member1.h5" 2> "$work/clash.err"; then
+  echo "a table over a packing file must be refused"; exit 1
+fi
+grep -q "is member 1's packing file" "$work/clash.err"
+test -f "$work/packing.member1.h5"
 
 # The long-wavelength engine on a pulse scene: it ignores the drive, so the scene is accepted.
 "$sedwave" table "$data/tiny_pulse_grid.toml" --engine long_wavelength --out "$work/limit.h5" \
