@@ -26,8 +26,6 @@ struct Scene {
   double mean_diameter;
   /// A z-periodic cell without walls: its length, not a wall, holds the pressure.
   [[nodiscard]] bool periodic_cell() const { return box.periodic[2]; }
-  /// The order of a contact force at the pressure: P d^2.
-  [[nodiscard]] double load_scale(const PreparationSettings& p) const { return p.pressure * mean_diameter * mean_diameter; }
 };
 
 int rank_of(MPI_Comm comm) {
@@ -50,11 +48,18 @@ std::unique_ptr<dem::Engine> make_engine(const Scene& s, std::span<const dem::Gr
   return std::make_unique<dem::Engine>(s.comm, settings, grains, std::move(bodies));
 }
 
-/// The force the grains carry along z (collective): on the upper wall of a channel; across every
-/// cross-section of a periodic cell (its contact virial over its length). The target is P W^2.
+/// The force the grains carry along z: on the upper wall of a channel; across every cross-section
+/// of a periodic cell, its contact virial over its length (from `stats` of the engine's state). The
+/// target is P W^2.
+double carried_force(const Scene& s, const dem::Engine& e, const PackingStats& stats) {
+  if (!s.periodic_cell()) return e.bodies()[1].contact_force().z;
+  return stats.virial_zz / e.settings().box.length(2);
+}
+
+/// The same, measuring the statistics first (collective).
 double carried_force(const Scene& s, const dem::Engine& e) {
   if (!s.periodic_cell()) return e.bodies()[1].contact_force().z;
-  return packing_stats(e, s.mean_diameter, s.width).virial_zz / e.settings().box.length(2);
+  return carried_force(s, e, packing_stats(e, s.mean_diameter, s.width));
 }
 
 /// Runs until the grains push back on the upper wall with the target force at three successive
@@ -122,12 +127,11 @@ class Fire {
   }
 
   /// Runs until max |F| < tolerance x mean contact force or the step budget is spent, or until the
-  /// packing has come apart: no contacts, or a mean contact force below 1e-3 of `load_scale` (a
-  /// packing at pressure P has mean contact forces of order P d^2). Then there is nothing to relax
-  /// and the wall (or a periodic cell's length) must move first; a loose packing's residual ratio
-  /// never reaches the tolerance, and FIRE would spend its whole budget (2e6 steps) on it.
-  std::int64_t relax(double tolerance, std::int64_t max_steps, double mean_diameter, double width, double load_scale,
-                     double& ratio) {
+  /// packing has come apart: no contacts, or less than 1e-3 of the target force carried (a packing
+  /// compressed affinely can unjam once its grains come to rest). Then there is nothing to relax and
+  /// the wall (or a periodic cell's length) must move first; FIRE would otherwise spend its whole
+  /// budget (2e6 steps) on a packing that cannot carry the load.
+  std::int64_t relax(const Scene& scene, double tolerance, std::int64_t max_steps, double target, double& ratio) {
     state_->restart();
     state_->active = true;
     std::int64_t steps = 0;
@@ -135,10 +139,10 @@ class Fire {
     while (steps < max_steps) {
       engine_.run(chunk);
       steps += chunk;
-      const PackingStats s = packing_stats(engine_, mean_diameter, width);
+      const PackingStats s = packing_stats(engine_, scene.mean_diameter, scene.width);
       ratio = residual_ratio(s);
       if (ratio < tolerance) break;
-      const bool unloaded = s.contacts == 0 || s.mean_contact_force < 1e-3 * load_scale;
+      const bool unloaded = s.contacts == 0 || carried_force(scene, engine_, s) < 1e-3 * target;
       if (unloaded && steps >= 10 * chunk) break;
     }
     state_->active = false;
@@ -242,8 +246,8 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
   Fire fire(relaxer);
   double shift = 0.0, previous_shift = 0.0, previous_force = 0.0;
   for (int iteration = 0;; ++iteration) {
-    report.relaxation_steps += fire.relax(p.residual_force_tolerance, p.max_relaxation_steps, scene.mean_diameter,
-                                          scene.width, scene.load_scale(p), report.residual_ratio);
+    report.relaxation_steps +=
+        fire.relax(scene, p.residual_force_tolerance, p.max_relaxation_steps, target, report.residual_ratio);
     report.wall_force = carried_force(scene, relaxer);
     const double error = report.wall_force / target - 1.0;
     log_line(p, scene.comm, "wall force / P W^2 = " + std::to_string(1.0 + error) + ", residual ratio " +
@@ -327,8 +331,9 @@ void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::un
                                 std::to_string(report.residual_ratio));
     if (report.residual_ratio < p.residual_force_tolerance) break;
     Fire fire(*relaxer);
-    report.relaxation_steps += fire.relax(p.residual_force_tolerance, kFireBurst, scene.mean_diameter, scene.width,
-                                          scene.load_scale(p), report.residual_ratio);
+    report.relaxation_steps +=
+        fire.relax(now, p.residual_force_tolerance, kFireBurst, p.pressure * scene.width * scene.width,
+                   report.residual_ratio);
     log_line(p, scene.comm, "FIRE burst: residual ratio " + std::to_string(report.residual_ratio));
     if (report.residual_ratio < p.residual_force_tolerance) break;
   }

@@ -87,7 +87,7 @@ struct GlobalSearchReport {
   double chi2_search = 0.0;           ///< best chi^2 the global search found
   double chi2_polished = 0.0;         ///< after the Ceres polish
   double chi2_local_from_start = 0.0; ///< Ceres alone from the start values (method global)
-  bool local_and_global_agree = false;
+  bool local_and_global_agree = false;  ///< the two local fits' chi^2 within max(0.01, 1e-6 chi^2)
 };
 
 struct FitResult {
