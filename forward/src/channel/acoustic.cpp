@@ -16,6 +16,20 @@
 
 namespace sedwave::forward::channel {
 
+LayerRange fitted_layers(const DriveSettings& d, std::span<const double> layer_z) {
+  const std::size_t layers = layer_z.size();
+  LayerRange range;
+  range.first = std::min(layers, static_cast<std::size_t>(std::max(0, d.skip_layers)));
+  range.end = d.far_end == FarEnd::absorbing
+                  ? static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(layers))
+                  : layers;
+  if (d.max_fit_depth > 0.0) {
+    while (range.end > range.first && layer_z[range.end - 1] > d.max_fit_depth) --range.end;
+  }
+  range.end = std::max(range.end, range.first);
+  return range;
+}
+
 double absorbing_length(const DriveSettings& d, const PackingUnits& u) {
   return d.far_end == FarEnd::absorbing ? d.absorbing_fraction * u.column_length() : 0.0;
 }
@@ -93,46 +107,105 @@ void apply_sponge(dem::Engine& e, const PackingUnits& u, const DriveSettings& d,
   }
 }
 
-/// The wall's broadband pulse, dimensionless (t in sqrt(m/kappa), u in d):
-///   u(t) = A w(t) sin(omega_c (t - t_c)),
-/// a Gaussian window w of standard deviation sigma_t = 1 / sigma_omega centred at t_c = 5 sigma_t,
-/// lowered by its end value and rescaled, so the wall starts and ends exactly at rest at 0
-/// (w = 0 outside [0, 2 t_c]).
-struct Pulse {
-  static constexpr double kHalfWidths = 5.0;  // t_c in sigma_t: the window's end value is exp(-12.5)
-  static constexpr double kBandEdges = 2.5;   // the band's edges in spectral standard deviations
-  double amplitude, omega_c, sigma_omega, sigma_t, t_c, floor;
+/// The wall's broadband motion, dimensionless (t in sqrt(m/kappa), u in d), scaled to amplitude A.
+///
+/// Gaussian pulse:  u(t) = A w(t) sin(omega_c (t - t_c)), a Gaussian window w of standard
+/// deviation sigma_t = 1 / sigma_omega centred at t_c = 5 sigma_t, lowered by its end value and
+/// rescaled, so the wall starts and ends exactly at rest at 0 (w = 0 outside [0, 2 t_c]).
+///
+/// Log chirp:  u(t) = A w(t) sin(phi(t)), phi(t) = omega_a T / ln r (r^(t/T) - 1), so the
+/// instantaneous frequency omega_a r^(t/T) sweeps from omega_a = omega_min / 1.5 to omega_b =
+/// 1.5 omega_max (r = omega_b / omega_a) in T = sweep_periods periods of omega_min, spending equal
+/// time on every octave. The window w = Phi((t - 6 s) / s) Phi((T - 6 s - t) / s), Phi the normal
+/// distribution function, is smooth (a chirp cut with kinks in its window leaks far above the band)
+/// and ramps up and down while the sweep is outside the band (s = T ln 1.5 / (9 ln r)); it is
+/// 1e-9 at the ends, where u is 0 (start) or below 1e-9 A (stop).
+class BroadbandDrive {
+ public:
+  BroadbandDrive(const PulseBand& b, double amplitude)
+      : band_(b), amplitude_(amplitude), shape_(b.shape),
+        omega_c_(0.5 * (b.omega_hat_min + b.omega_hat_max)),
+        sigma_omega_((b.omega_hat_max - b.omega_hat_min) / (2.0 * kBandEdges)),
+        sigma_t_(1.0 / sigma_omega_),
+        t_c_(kHalfWidths * sigma_t_),
+        sweep_(b.sweep_periods * 2.0 * std::numbers::pi / b.omega_hat_min),
+        sweep_start_(b.omega_hat_min / kOvershoot),
+        log_ratio_(std::log(kOvershoot * kOvershoot * b.omega_hat_max / b.omega_hat_min)),
+        ramp_(sweep_ * std::log(kOvershoot) / (9.0 * log_ratio_)),
+        floor_(std::exp(-0.5 * kHalfWidths * kHalfWidths)) {}
 
-  Pulse(const PulseBand& b, double amplitude_d)
-      : amplitude(amplitude_d),
-        omega_c(0.5 * (b.omega_hat_min + b.omega_hat_max)),
-        sigma_omega((b.omega_hat_max - b.omega_hat_min) / (2.0 * kBandEdges)),
-        sigma_t(1.0 / sigma_omega),
-        t_c(kHalfWidths * sigma_t),
-        floor(std::exp(-0.5 * kHalfWidths * kHalfWidths)) {}
+  [[nodiscard]] double duration() const { return shape_ == BroadbandShape::gaussian_pulse ? 2.0 * t_c_ : sweep_; }
 
-  [[nodiscard]] double duration() const { return 2.0 * t_c; }
+  /// The headline frequency: the pulse's centre, the chirp's geometric mean.
+  [[nodiscard]] double centre() const {
+    return shape_ == BroadbandShape::gaussian_pulse ? omega_c_ : std::sqrt(band_.omega_hat_min * band_.omega_hat_max);
+  }
+
   [[nodiscard]] double displacement(double t) const {
     if (t <= 0.0 || t >= duration()) return 0.0;
-    return amplitude * window(t) * std::sin(omega_c * (t - t_c));
+    if (shape_ == BroadbandShape::gaussian_pulse) return amplitude_ * gaussian(t, t_c_, sigma_t_) * std::sin(omega_c_ * (t - t_c_));
+    const double w = normal_cdf((t - kRampSigmas * ramp_) / ramp_) * normal_cdf((sweep_ - kRampSigmas * ramp_ - t) / ramp_);
+    const double phase = sweep_start_ * sweep_ / log_ratio_ * std::expm1(log_ratio_ * t / sweep_);
+    return amplitude_ * w * std::sin(phase);
+  }
+
+  /// Above this frequency the drive's spectrum is below kQuiet of its peak: what the records hold
+  /// there is noise (transient_noise). The pulse's is its Gaussian tail, 9 sigma_omega out; the
+  /// chirp's is found from its sampled spectrum.
+  [[nodiscard]] double quiet_frequency() const {
+    if (shape_ == BroadbandShape::gaussian_pulse) return omega_c_ + 9.0 * sigma_omega_;
+    const double top = kOvershoot * band_.omega_hat_max;
+    const double dt = std::numbers::pi / (16.0 * top);  // resolves up to 16 omega_2
+    const auto samples = static_cast<std::size_t>(duration() / dt) + 1;
+    auto spectrum = [&](double omega) {
+      double re = 0.0, im = 0.0;
+      for (std::size_t k = 0; k < samples; ++k) {
+        const double t = static_cast<double>(k) * dt, u = displacement(t);
+        re += u * std::cos(omega * t);
+        im -= u * std::sin(omega * t);
+      }
+      return std::hypot(re, im);
+    };
+    double peak = 0.0;
+    for (int i = 0; i <= 32; ++i) peak = std::max(peak, spectrum(sweep_start_ * std::exp(log_ratio_ * i / 32.0)));
+    for (double omega = top;; omega += 0.05 * top) {
+      if (spectrum(omega) < kQuiet * peak && spectrum(omega + 0.05 * top) < kQuiet * peak) return omega;
+      if (omega > 8.0 * top) {
+        throw std::invalid_argument("acoustic run: the chirp's spectrum stays above 1e-8 of its peak up to 12 "
+                                    "omega_hat_max; raise sweep_periods");
+      }
+    }
   }
 
  private:
-  [[nodiscard]] double window(double t) const {
-    const double s = (t - t_c) / sigma_t;
-    return (std::exp(-0.5 * s * s) - floor) / (1.0 - floor);
-  }
-};
+  static constexpr double kHalfWidths = 5.0;   // pulse: half-window in sigmas (end value exp(-12.5))
+  static constexpr double kBandEdges = 2.5;    // pulse: the band's edges in spectral standard deviations
+  static constexpr double kOvershoot = 1.5;    // chirp: the sweep runs this factor beyond the band
+  static constexpr double kRampSigmas = 6.0;   // chirp: window 1e-9 at the ends
+  static constexpr double kQuiet = 1e-8;
 
-/// Above this frequency the pulse's spectrum is below 1e-9 of its peak: what the records hold there
-/// is noise (transient_noise).
-double quiet_frequency(const Pulse& p) { return p.omega_c + 9.0 * p.sigma_omega; }
+  static double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
+
+  /// A Gaussian of standard deviation sigma peaking (at 1) at centre, lowered by its value 5 sigma
+  /// out and rescaled so it is 0 there.
+  [[nodiscard]] double gaussian(double t, double centre, double sigma) const {
+    const double s = (t - centre) / sigma;
+    return (std::exp(-0.5 * s * s) - floor_) / (1.0 - floor_);
+  }
+
+  PulseBand band_;
+  double amplitude_;
+  BroadbandShape shape_;
+  double omega_c_, sigma_omega_, sigma_t_, t_c_;  // pulse
+  double sweep_, sweep_start_, log_ratio_, ramp_;  // chirp
+  double floor_;
+};
 
 /// The lower wall's motion: the sinusoid (LAMMPS wiggle) or the pulse, in scene units.
 dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int axis) {
   const double t0 = u.time();
   if (!d.pulse) return dem::Wiggle{axis, d.amplitude * u.diameter, 2.0 * std::numbers::pi * t0 / d.omega_hat};
-  const Pulse pulse(*d.pulse, d.amplitude * u.diameter);
+  const BroadbandDrive pulse(*d.pulse, d.amplitude * u.diameter);
   auto along = [axis](double x) {
     dem::Vec3 v;
     v[axis] = x;
@@ -158,19 +231,6 @@ dem::BodyMotion far_wall_motion(MPI_Comm comm, const PreparedChannel& packing, c
   return dem::ConstantForce{{0.0, 0.0, -load[0]}, load[1], {false, false, true}};
 }
 
-/// The layers a fit may use: beyond the near field, before the absorbing layer.
-struct FitRange {
-  std::size_t first = 0, end = 0;
-};
-FitRange fit_range(const DriveSettings& d, std::size_t layers) {
-  FitRange range;
-  range.first = static_cast<std::size_t>(std::max(0, d.skip_layers));
-  range.end = d.far_end == FarEnd::absorbing
-                  ? static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(layers))
-                  : layers;
-  return range;
-}
-
 /// The ascending indices up to the first gap of more than one missing index. Where layers fall
 /// below the noise floor (or the unsettled tail) in runs, what lies beyond is a few layers that
 /// passed by chance, across gaps too long to unwrap the phase through.
@@ -187,9 +247,9 @@ std::vector<std::size_t> leading_run(const std::vector<std::size_t>& indices) {
 /// record (the transfer function from the wall to the layer, up to the drive's spectrum, which is
 /// the same for all layers) and the straight-line fits over layers, as for the lock-ins.
 void measure_pulse(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
-                   std::span<const SampledSignal> signals, FitRange range) {
-  const Pulse pulse(*d.pulse, d.amplitude);
-  const double omega_quiet = quiet_frequency(pulse);
+                   std::span<const SampledSignal> signals, LayerRange range) {
+  const BroadbandDrive pulse(*d.pulse, d.amplitude);
+  const double omega_quiet = pulse.quiet_frequency();
   // Per layer: the noise level, and the record's last quarter, whose share of X at each frequency
   // is a response still running when the run ends (slow, weakly damped low frequencies; scattering
   // coda) and makes X uncertain by about as much.
@@ -232,7 +292,7 @@ void measure_pulse(AcousticResult& r, const DriveSettings& d, const PackingUnits
   // The headline numbers: the measured frequency nearest the band's centre.
   const SpectralResult* centre = nullptr;
   for (const SpectralResult& p : r.spectrum) {
-    if (p.ok() && (centre == nullptr || std::abs(p.omega_hat - pulse.omega_c) < std::abs(centre->omega_hat - pulse.omega_c))) {
+    if (p.ok() && (centre == nullptr || std::abs(p.omega_hat - pulse.centre()) < std::abs(centre->omega_hat - pulse.centre()))) {
       centre = &p;
     }
   }
@@ -264,7 +324,7 @@ void check_pulse(const DriveSettings& d) {
   }
 }
 
-double centre_omega_hat(const DriveSettings& d) { return d.pulse ? Pulse(*d.pulse, 1.0).omega_c : d.omega_hat; }
+double centre_omega_hat(const DriveSettings& d) { return d.pulse ? BroadbandDrive(*d.pulse, 1.0).centre() : d.omega_hat; }
 
 /// The 1D lattice speed at the drive's (centre) frequency: a guess of the packing's (of the same
 /// order) that sets the run length and the first windows.
@@ -291,14 +351,14 @@ RunLength run_length(const DriveSettings& d, const PackingUnits& u) {
   // lattice speed, which is at least 1 for omega_hat <= 2: half of it is a safe floor), then the
   // pulse's length again and a few periods of the band's lowest frequency for the coda that
   // scattering leaves behind. measure_pulse checks what is still running at the end.
-  const Pulse pulse(*d.pulse, d.amplitude);
+  const BroadbandDrive pulse(*d.pulse, d.amplitude);
   const double measured = (1.0 - d.absorbing_fraction) * length;
-  const double run_time = d.periods > 0.0 ? d.periods * 2.0 * std::numbers::pi / pulse.omega_c
+  const double run_time = d.periods > 0.0 ? d.periods * 2.0 * std::numbers::pi / pulse.centre()
                                           : 2.0 * pulse.duration() + measured / 0.5 +
                                                 kRingDownPeriods * 2.0 * std::numbers::pi / d.pulse->omega_hat_min;
   // Samples fine enough for the band's top and for the noise probe above it (transient_noise).
   const double sample_dt = std::min(2.0 * std::numbers::pi / (d.pulse->omega_hat_max * d.samples_per_period),
-                                    0.25 * std::numbers::pi / quiet_frequency(pulse));
+                                    0.25 * std::numbers::pi / pulse.quiet_frequency());
   return {run_time, sample_dt};
 }
 
@@ -319,7 +379,7 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   const double omega = r.omega_hat;  // dimensionless from here on: z in d, t in sqrt(m/kappa)
   std::vector<SampledSignal> signals;
   for (const auto& record : r.displacement) signals.push_back({record, 0.0, r.sample_dt});
-  const FitRange range = fit_range(d, r.layer_z.size());
+  const LayerRange range = fitted_layers(d, r.layer_z);
   const std::size_t first = range.first, last_driven = range.end;
   if (last_driven <= first + 2) {
     r.problem = "channel too short: fewer than 3 layers between the near field and the far end";

@@ -94,9 +94,15 @@ void read_preparation(Section s, PreparationSettings& p) {
 void read_drive(Section s, DriveSettings& d) {
   d.axis = s.choice("axis", "z", {"z", "x"}) == "z" ? DriveAxis::longitudinal : DriveAxis::transverse;
   d.amplitude = s.positive("amplitude", d.amplitude);
-  if (s.choice("signal", "sinusoid", {"sinusoid", "pulse"}) == "pulse") {
-    if (s.has("omega_hat")) s.fail_table("a pulse spans omega_hat_min..omega_hat_max; 'omega_hat' is for signal = \"sinusoid\"");
+  const std::string signal = s.choice("signal", "sinusoid", {"sinusoid", "pulse", "chirp"});
+  if (signal != "chirp" && s.has("sweep_periods")) s.fail_key("sweep_periods", "is for signal = \"chirp\"");
+  if (signal != "sinusoid") {
+    if (s.has("omega_hat")) s.fail_table("a " + signal + " spans omega_hat_min..omega_hat_max; 'omega_hat' is for signal = \"sinusoid\"");
     PulseBand band;
+    if (signal == "chirp") {
+      band.shape = BroadbandShape::log_chirp;
+      band.sweep_periods = s.positive("sweep_periods", band.sweep_periods);
+    }
     band.omega_hat_min = s.positive("omega_hat_min", band.omega_hat_min);
     band.omega_hat_max = s.positive("omega_hat_max", band.omega_hat_max);
     band.frequencies = static_cast<int>(s.integer("frequencies", band.frequencies, 1));
@@ -126,6 +132,7 @@ void read_drive(Section s, DriveSettings& d) {
   Section m = s.sub("measurement");
   d.layer_thickness = m.positive("layer_thickness", d.layer_thickness);
   d.skip_layers = static_cast<int>(m.integer("skip_layers", d.skip_layers));
+  d.max_fit_depth = m.positive("max_fit_depth", d.max_fit_depth);
   d.settle_periods = m.number("settle_periods", d.settle_periods);
   m.finish();
   s.finish();

@@ -305,8 +305,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
   }
   r.layer_z = grid.centres();
 
-  const auto first = static_cast<std::size_t>(std::max(0, d.skip_layers));
-  const auto last = static_cast<std::size_t>((1.0 - d.absorbing_fraction) * static_cast<double>(grid.count));
+  const auto [first, last] = channel::fitted_layers(d, r.layer_z);
   std::vector<double> amplitudes{d.amplitude};
   for (double a = 1e-7; a < 2e-2; a *= 10.0) amplitudes.push_back(a);
   const std::vector<StateChanges> counted = state_changes(u, d, amplitudes);

@@ -403,7 +403,7 @@ PointFunction dem_point_function(const channel::PreparedChannel& packing, const 
       const std::vector<double>& frequencies = (*bands)[band];
       channel::DriveSettings d = drive;
       d.gamma_hat = gamma_hat;
-      channel::PulseBand pulse;
+      channel::PulseBand pulse = *drive.pulse;  // its shape (pulse or chirp); the band is the grid's
       // A band of one frequency still needs a width: +-25 % around it.
       pulse.omega_hat_min = frequencies.size() > 1 ? frequencies.front() : frequencies.front() / 1.25;
       pulse.omega_hat_max = frequencies.size() > 1 ? frequencies.back() : frequencies.back() * 1.25;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/units.hpp"
@@ -61,16 +62,19 @@ TEST_F(SmallChannel, AttenuationGrowsWithFrequencyAndSpeedIsFinite) {
             2.0 * std::hypot(results[1].fit.sigma_alpha, results[0].fit.sigma_alpha));
 }
 
-TEST_F(SmallChannel, OnePulseMeasuresWhatSinusoidsMeasureFrequencyByFrequency) {
-  // The same packing and dashpot, driven once by a broadband pulse and then by sinusoids at two of
-  // the pulse's frequencies: a linear response has one transfer function, so both measurements
+class BroadbandShapes : public SmallChannel, public ::testing::WithParamInterface<BroadbandShape> {};
+
+TEST_P(BroadbandShapes, OneRunMeasuresWhatSinusoidsMeasureFrequencyByFrequency) {
+  // The same packing and dashpot, driven once by a broadband pulse (or chirp) and then by sinusoids
+  // at two of its frequencies: a linear response has one transfer function, so both measurements
   // must agree within their combined uncertainty. gamma_hat = 1: the scattering coda dies within
   // the run (at gamma_hat = 0.1 it outlasts it at low frequencies, which measure_pulse reports).
   DriveSettings d;
   d.gamma_hat = 1.0;
   d.far_end = FarEnd::absorbing;
   d.absorbing_fraction = 0.4;
-  d.pulse = PulseBand{.omega_hat_min = 0.25, .omega_hat_max = 1.2, .frequencies = 6, .measured = {}};
+  d.pulse = PulseBand{.omega_hat_min = 0.25, .omega_hat_max = 1.2, .frequencies = 6, .measured = {},
+                      .shape = GetParam(), .sweep_periods = 8.0};
   const AcousticResult pulse = run_acoustic(MPI_COMM_WORLD, *packing_, hooke(726.0), d);
   ASSERT_TRUE(pulse.ok()) << pulse.problem;
   ASSERT_EQ(pulse.spectrum.size(), 6u);
@@ -89,6 +93,34 @@ TEST_F(SmallChannel, OnePulseMeasuresWhatSinusoidsMeasureFrequencyByFrequency) {
     EXPECT_LT(std::abs(p.fit.c - s.fit.c), 3.0 * std::hypot(p.fit.sigma_c, s.fit.sigma_c));
   }
   EXPECT_GT(pulse.spectrum[4].fit.alpha, pulse.spectrum[1].fit.alpha);
+}
+
+INSTANTIATE_TEST_SUITE_P(Drives, BroadbandShapes,
+                         ::testing::Values(BroadbandShape::gaussian_pulse, BroadbandShape::log_chirp),
+                         [](const auto& shape) {
+                           return shape.param == BroadbandShape::gaussian_pulse ? std::string("Pulse")
+                                                                               : std::string("Chirp");
+                         });
+
+TEST(FittedLayers, SkipTheNearFieldStopBeforeTheAbsorberAndAtTheDepthLimit) {
+  std::vector<double> layer_z;
+  for (int k = 0; k < 20; ++k) layer_z.push_back(0.5 + k);  // 1 d layers from the driven wall
+  DriveSettings d;
+  d.skip_layers = 2;
+  d.far_end = FarEnd::absorbing;
+  d.absorbing_fraction = 0.5;
+  LayerRange r = fitted_layers(d, layer_z);
+  EXPECT_EQ(r.first, 2U);
+  EXPECT_EQ(r.end, 10U);  // the absorbing half starts at layer 10
+  d.max_fit_depth = 6.0;  // layers centred at 0.5 ... 5.5
+  r = fitted_layers(d, layer_z);
+  EXPECT_EQ(r.end, 6U);
+  d.max_fit_depth = 1.0;  // nothing left past the near field: an empty range, never a reversed one
+  r = fitted_layers(d, layer_z);
+  EXPECT_EQ(r.first, r.end);
+  d.max_fit_depth = 0.0;
+  d.far_end = FarEnd::frozen;
+  EXPECT_EQ(fitted_layers(d, layer_z).end, 20U);
 }
 
 }  // namespace

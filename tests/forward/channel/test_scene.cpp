@@ -73,7 +73,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat_min = 1\nomega_hat_max = 0.5\n", "[drive]: omega_hat_max must exceed omega_hat_min"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nfar_end = \"frozen\"\n", "[drive]: far_end: a pulse needs far_end = \"absorbing\""},
                       BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\n", "[drive]: signal: the linear engine solves each frequency"},
-                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\n", "bad.toml:4: key 'drive.signal': must be one of pulse, sinusoid"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"sweep\"\n", "bad.toml:4: key 'drive.signal': must be one of chirp, pulse, sinusoid"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nsweep_periods = 5\n", "bad.toml:5: key 'drive.sweep_periods': is for signal = \"chirp\""},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\nsweep_periods = 0\n", "bad.toml:5: key 'drive.sweep_periods': must be positive"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall = \"free\"\n", "bad.toml:4: key 'drive.far_wall': must be one of frozen, loaded"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall_mass = 3\n", "bad.toml:3: [drive]: far_wall_mass is for far_wall = \"loaded\""},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 1000\n[geometry.periodic_cell]\ngrains = 300\n",
@@ -84,6 +86,24 @@ INSTANTIATE_TEST_SUITE_P(
                                "bad.toml:8: key 'preparation.compression': a periodic cell ([geometry.periodic_cell]) is compressed affinely"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\ncopies = 3\n",
                                "bad.toml:7: key 'geometry.periodic_cell.copies': unknown key"}));
+
+TEST(Scene, ChirpDriveReadsItsSweep) {
+  const ChannelScene s = parse_scene(
+      "[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\nomega_hat_min = 0.1\nomega_hat_max = 1\nsweep_periods = 12\n",
+      "x.toml");
+  ASSERT_TRUE(s.drive.pulse.has_value());
+  EXPECT_EQ(s.drive.pulse->shape, BroadbandShape::log_chirp);
+  EXPECT_EQ(s.drive.pulse->sweep_periods, 12.0);
+  const ChannelScene p = parse_scene("[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\n", "x.toml");
+  EXPECT_EQ(p.drive.pulse->shape, BroadbandShape::gaussian_pulse);
+}
+
+TEST(Scene, FitDepthLimitsTheFittedLayers) {
+  const ChannelScene s =
+      parse_scene("[contact]\nkn = 726\n[drive.measurement]\nmax_fit_depth = 22\n", "x.toml");
+  EXPECT_EQ(s.drive.max_fit_depth, 22.0);
+  EXPECT_EQ(parse_scene("[contact]\nkn = 726\n", "x.toml").drive.max_fit_depth, 0.0);
+}
 
 TEST(Scene, PeriodicCellTilesTheChannelAndCompressesAffinely) {
   const ChannelScene s = parse_scene(

@@ -34,11 +34,22 @@ enum class FarEnd { frozen, absorbing };
 /// whether an absorbing layer lies in front of it.
 enum class FarWall { frozen, loaded };
 
-/// A broadband drive: the wall moves by one Gaussian-windowed tone burst whose spectrum spans
-/// [omega_hat_min, omega_hat_max] (centred on the middle; the band's edges lie 2.5 spectral standard
-/// deviations out, where the drive spectrum is 4 % of its peak). alpha_hat and c_hat are measured
-/// at `frequencies` log-spaced frequencies over the band, from the Fourier transforms of the layer
-/// records (transient_spectrum): one run, many frequencies. Needs an absorbing far end.
+/// The shape of a broadband drive.
+enum class BroadbandShape {
+  /// One Gaussian-windowed tone burst centred on the band's middle; the band's edges lie 2.5
+  /// spectral standard deviations out, where the drive spectrum is 4 % of its peak. Short.
+  gaussian_pulse,
+  /// A logarithmic sweep (equal time per octave) from omega_hat_min / 1.5 to 1.5 omega_hat_max over
+  /// sweep_periods periods of omega_hat_min, with smooth ramps outside the band: across the band the
+  /// drive's spectrum stays within 0.3-1 of its peak (falling as 1/sqrt(omega)), where a pulse's
+  /// edges get 4 %. Longer.
+  log_chirp,
+};
+
+/// A broadband drive: the wall moves by one pulse or chirp whose spectrum spans [omega_hat_min,
+/// omega_hat_max]. alpha_hat and c_hat are measured at `frequencies` log-spaced frequencies over the
+/// band, from the Fourier transforms of the layer records (transient_spectrum): one run, many
+/// frequencies. Needs an absorbing far end.
 struct PulseBand {
   double omega_hat_min = 0.2;
   double omega_hat_max = 1.8;
@@ -46,6 +57,8 @@ struct PulseBand {
   /// If not empty: the frequencies to measure (inside the band), e.g. a table's grid values,
   /// instead of `frequencies` log-spaced ones.
   std::vector<double> measured;
+  BroadbandShape shape = BroadbandShape::gaussian_pulse;
+  double sweep_periods = 20.0;  ///< log_chirp: sweep duration in periods of omega_hat_min
   /// The measured frequencies: `measured`, or log-spaced from omega_hat_min to omega_hat_max.
   [[nodiscard]] std::vector<double> omega_hats() const;
 };
@@ -68,6 +81,7 @@ struct DriveSettings {
   int samples_per_period = 32;
   double layer_thickness = 1.0;     ///< [mean diameters]
   int skip_layers = 2;              ///< layers next to the driven wall left out of the fit (near field)
+  double max_fit_depth = 0.0;       ///< layers centred deeper than this [mean diameters] are not fitted; 0: no limit
   double settle_periods = 3.0;      ///< after the front passes, before a layer counts as steady
   double time_step_fraction = 0.01; ///< dt / binary collision time (thesis: 0.01)
 };
@@ -108,6 +122,14 @@ struct AcousticResult {
   std::string problem;                   ///< empty when alpha and c were measured
   [[nodiscard]] bool ok() const { return problem.empty(); }
 };
+
+/// The layers the attenuation and wavenumber fits may use, indices [first, end) into the layer
+/// centres `layer_z` [d from the driven wall]: past skip_layers, before the absorbing layer, not
+/// deeper than max_fit_depth. Both engines use exactly this.
+struct LayerRange {
+  std::size_t first = 0, end = 0;
+};
+[[nodiscard]] LayerRange fitted_layers(const DriveSettings& d, std::span<const double> layer_z);
 
 /// Length of the absorbing layer [d]; 0 with a frozen far end.
 [[nodiscard]] double absorbing_length(const DriveSettings& d, const PackingUnits& u);
