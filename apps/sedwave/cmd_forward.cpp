@@ -99,6 +99,18 @@ void print_spectrum(const forward::channel::AcousticResult& r) {
   std::printf("at the band's centre:\n");
 }
 
+/// The single-grain probes' result beside the layers' (the headline frequency; a broadband run's
+/// per-frequency values are in the run file).
+void print_single_grains(const forward::channel::SingleGrainProbes& p, bool sinusoid) {
+  if (!p.problem.empty()) {
+    std::printf("single grains: not measured: %s\n", p.problem.c_str());
+  } else {
+    std::printf("single grains: alpha_hat %.6g +- %.2g   c_hat %.6g +- %.2g   (%d grains%s)\n", p.fit.alpha,
+                p.fit.sigma_alpha, p.fit.c, p.fit.sigma_c, p.probes_used,
+                sinusoid ? "" : "; every frequency in the run file");
+  }
+}
+
 int run_forward(const ForwardOptions& o) {
   using namespace forward::channel;
   const MpiSession mpi;
@@ -137,6 +149,7 @@ int run_forward(const ForwardOptions& o) {
       } else {
         std::printf("not measured: %s\n", r.problem.c_str());
       }
+      if (r.single_grains) print_single_grains(*r.single_grains, r.spectrum.empty());
       std::printf("written to %s\n", o.out.c_str());
     }
   }

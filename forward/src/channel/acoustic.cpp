@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -59,6 +61,7 @@ struct Layers {
   std::vector<double> centres;  // [d from the driven wall's surface]
   std::unordered_map<std::int64_t, std::pair<int, double>> member;  // id -> (layer, reference coordinate)
   std::vector<int> grains_per_layer;
+  bool every_flow_grain = true;  // false: single-grain probes, most flow grains belong to no layer
 };
 
 Layers assign_layers(const dem::Engine& e, const PackingUnits& u, double thickness, int axis) {
@@ -78,6 +81,55 @@ Layers assign_layers(const dem::Engine& e, const PackingUnits& u, double thickne
   return l;
 }
 
+/// One grain per layer of `layers`: the flow grain nearest the layer's centre (lowest id on a tie),
+/// as "layers" of one grain each whose centres are the grains' heights (collective).
+Layers single_grain_layers(const dem::Engine& e, const PackingUnits& u, const Layers& layers, int axis,
+                           std::vector<std::int64_t>& ids) {
+  const auto count = static_cast<std::size_t>(layers.count);
+  const dem::GrainArrays& g = e.grains();
+  auto height = [&](std::size_t i) { return (g.position[i].z - u.wall_surface) / u.diameter; };
+  std::vector<double> distance(count, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < e.n_local(); ++i) {
+    const auto it = layers.member.find(g.id[i]);
+    if (it == layers.member.end()) continue;
+    const auto k = static_cast<std::size_t>(it->second.first);
+    distance[k] = std::min(distance[k], std::abs(height(i) - layers.centres[k]));
+  }
+  MPI_Comm comm = e.domain().comm();
+  MPI_Allreduce(MPI_IN_PLACE, distance.data(), layers.count, MPI_DOUBLE, MPI_MIN, comm);
+  ids.assign(count, std::numeric_limits<std::int64_t>::max());
+  for (std::size_t i = 0; i < e.n_local(); ++i) {
+    const auto it = layers.member.find(g.id[i]);
+    if (it == layers.member.end()) continue;
+    const auto k = static_cast<std::size_t>(it->second.first);
+    if (std::abs(height(i) - layers.centres[k]) == distance[k]) ids[k] = std::min(ids[k], g.id[i]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, ids.data(), layers.count, MPI_INT64_T, MPI_MIN, comm);
+  Layers probes;
+  probes.count = layers.count;
+  probes.every_flow_grain = false;
+  probes.centres.assign(count, 0.0);
+  probes.grains_per_layer.assign(count, 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (ids[k] == std::numeric_limits<std::int64_t>::max()) ids[k] = -1;
+  }
+  for (std::size_t i = 0; i < e.n_local(); ++i) {
+    const auto it = layers.member.find(g.id[i]);
+    if (it == layers.member.end()) continue;
+    const auto k = static_cast<std::size_t>(it->second.first);
+    if (g.id[i] != ids[k]) continue;
+    probes.member[g.id[i]] = {it->second.first, g.position[i][axis]};
+    probes.centres[k] = height(i);
+    probes.grains_per_layer[k] = 1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, probes.centres.data(), layers.count, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, probes.grains_per_layer.data(), layers.count, MPI_INT, MPI_SUM, comm);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (ids[k] < 0) probes.centres[k] = layers.centres[k];  // an empty layer: its record stays 0
+  }
+  return probes;
+}
+
 /// Mean displacement of each layer along `axis` (collective).
 std::vector<double> layer_displacements(const dem::Engine& e, const Layers& l, int axis) {
   std::vector<double> sum(static_cast<std::size_t>(l.count), 0.0);
@@ -85,7 +137,10 @@ std::vector<double> layer_displacements(const dem::Engine& e, const Layers& l, i
   for (std::size_t i = 0; i < e.n_local(); ++i) {
     if (g.group[i] != kFlowGroup) continue;
     const auto it = l.member.find(g.id[i]);
-    if (it == l.member.end()) throw std::runtime_error("acoustic run: a grain changed rank during the drive");
+    if (it == l.member.end()) {
+      if (!l.every_flow_grain) continue;
+      throw std::runtime_error("acoustic run: a grain changed rank during the drive");
+    }
     sum[static_cast<std::size_t>(it->second.first)] += g.position[i][axis] - it->second.second;
   }
   MPI_Allreduce(MPI_IN_PLACE, sum.data(), l.count, MPI_DOUBLE, MPI_SUM, e.domain().comm());
@@ -443,6 +498,23 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   r.problem = resolution_problem(r.fit, z_used.back() - z_used.front(), absorbing_length(d, u));
 }
 
+/// The same measurement over the single-grain records.
+static void measure_single_grains(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
+  SingleGrainProbes& p = *r.single_grains;
+  AcousticResult grains;
+  grains.omega_hat = r.omega_hat;
+  grains.gamma_hat = r.gamma_hat;
+  grains.amplitude = r.amplitude;
+  grains.layer_z = p.z;
+  grains.sample_dt = r.sample_dt;
+  grains.displacement = p.displacement;
+  measure_layer_records(grains, d, u);
+  p.fit = grains.fit;
+  p.spectrum = std::move(grains.spectrum);
+  p.probes_used = grains.layers_used;
+  p.problem = grains.problem;
+}
+
 AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
                             const DriveSettings& d) {
   const auto started = std::chrono::steady_clock::now();
@@ -488,9 +560,19 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   r.time_step = dt;
   const auto total_steps = static_cast<std::int64_t>(std::ceil(run_time / dt));
 
+  std::optional<Layers> probes;
+  if (d.grain_probes) {
+    r.single_grains.emplace();
+    probes = single_grain_layers(engine, u, layers, axis, r.single_grains->id);
+    r.single_grains->z = probes->centres;
+    r.single_grains->displacement.assign(static_cast<std::size_t>(layers.count), {});
+  }
   auto record = [&](const dem::Engine& e) {
     const std::vector<double> u_layer = layer_displacements(e, layers, axis);
     for (std::size_t k = 0; k < u_layer.size(); ++k) r.displacement[k].push_back(u_layer[k] / u.diameter);
+    if (!probes) return;
+    const std::vector<double> u_grain = layer_displacements(e, *probes, axis);
+    for (std::size_t k = 0; k < u_grain.size(); ++k) r.single_grains->displacement[k].push_back(u_grain[k] / u.diameter);
   };
   record(engine);  // sample 0 at t = 0
   engine.add_step_callback(steps_per_sample, record);
@@ -500,6 +582,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   engine.run(total_steps);
   r.steps = total_steps;
   measure_layer_records(r, d, u);
+  if (r.single_grains) measure_single_grains(r, d, u);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

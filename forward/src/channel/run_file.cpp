@@ -133,6 +133,18 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     h5::write(probes, "displacement", series.data(), r.displacement.size(), samples);
     h5::write_string_attribute(probes, "displacement_unit", "d; mean over the layer, along the drive axis");
     number(probes, "sample_dt", r.sample_dt, "sqrt(m/kappa)");
+    if (r.single_grains) {
+      const SingleGrainProbes& p = *r.single_grains;
+      h5::Handle grains = h5::create_group(probes, "single_grains");
+      h5::write(grains, "id", p.id.data(), p.id.size());
+      h5::write_string_attribute(grains, "id_unit", "grain id, one per layer (-1: the layer holds no flow grain)");
+      h5::write(grains, "z", p.z.data(), p.z.size());
+      h5::write_string_attribute(grains, "z_unit", "d, from the driven wall's mean surface");
+      std::vector<double> grain_series;
+      for (const auto& record : p.displacement) grain_series.insert(grain_series.end(), record.begin(), record.end());
+      h5::write(grains, "displacement", grain_series.data(), p.displacement.size(), samples);
+      h5::write_string_attribute(grains, "displacement_unit", "d; of the one grain, along the drive axis");
+    }
 
     h5::Handle results = h5::create_group(file, "results");
     number(results, "omega_hat", r.omega_hat, "1");
@@ -154,6 +166,17 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     number(results, "wall_seconds", r.wall_seconds, "s");
     h5::write_string_attribute(results, "problem", r.problem);
     if (!r.spectrum.empty()) write_spectrum(results, r.spectrum);
+    if (r.single_grains) {
+      const SingleGrainProbes& p = *r.single_grains;
+      h5::Handle grains = h5::create_group(results, "single_grains");
+      write_fit(grains, p.fit);
+      h5::write_attribute(grains, "probes_used", static_cast<std::int32_t>(p.probes_used));
+      h5::write_string_attribute(grains, "problem", p.problem);
+      h5::write_string_attribute(grains, "about",
+                                 "the same measurement from one grain per layer (/probes/single_grains) instead "
+                                 "of the layer averages: the thesis's probes, for comparison");
+      if (!p.spectrum.empty()) write_spectrum(grains, p.spectrum);
+    }
   });
 }
 

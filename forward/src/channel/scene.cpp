@@ -133,6 +133,7 @@ void read_drive(Section s, DriveSettings& d) {
   d.layer_thickness = m.positive("layer_thickness", d.layer_thickness);
   d.skip_layers = static_cast<int>(m.integer("skip_layers", d.skip_layers));
   d.max_fit_depth = m.positive("max_fit_depth", d.max_fit_depth);
+  d.grain_probes = m.boolean("grain_probes", d.grain_probes);
   d.settle_periods = m.number("settle_periods", d.settle_periods);
   m.finish();
   s.finish();

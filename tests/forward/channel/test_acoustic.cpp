@@ -102,6 +102,36 @@ INSTANTIATE_TEST_SUITE_P(Drives, BroadbandShapes,
                                                                                : std::string("Chirp");
                          });
 
+// The thesis's probes were single grains; a layer average cancels the incoherent (scattered)
+// motion that a single grain also carries, so one grain per layer must measure the same wave with
+// larger errors.
+TEST_F(SmallChannel, SingleGrainProbesMeasureTheSameWaveLessPrecisely) {
+  DriveSettings d;
+  d.gamma_hat = 1.0;
+  d.omega_hat = 0.5;
+  d.far_end = FarEnd::absorbing;
+  d.absorbing_fraction = 0.4;
+  d.grain_probes = true;
+  const AcousticResult r = run_acoustic(MPI_COMM_WORLD, *packing_, hooke(726.0), d);
+  ASSERT_TRUE(r.ok()) << r.problem;
+  ASSERT_TRUE(r.single_grains.has_value());
+  const SingleGrainProbes& p = *r.single_grains;
+  ASSERT_EQ(p.z.size(), r.layer_z.size());
+  ASSERT_EQ(p.displacement.size(), r.layer_z.size());
+  for (std::size_t k = 1; k + 1 < p.z.size(); ++k) {  // the end layers also take grains beyond them
+    ASSERT_GE(p.id[k], 0);
+    EXPECT_LE(std::abs(p.z[k] - r.layer_z[k]), 0.5 * d.layer_thickness) << "layer " << k;
+  }
+  std::cout << "layers: alpha_hat " << r.fit.alpha << " +- " << r.fit.sigma_alpha << ", c_hat " << r.fit.c << " +- "
+            << r.fit.sigma_c << "; single grains: " << p.fit.alpha << " +- " << p.fit.sigma_alpha << ", "
+            << p.fit.c << " +- " << p.fit.sigma_c << " (" << p.probes_used << " grains)\n";
+  ASSERT_TRUE(p.problem.empty()) << p.problem;
+  EXPECT_GT(p.fit.sigma_alpha, r.fit.sigma_alpha);
+  EXPECT_GT(p.fit.sigma_c, r.fit.sigma_c);
+  EXPECT_LT(std::abs(p.fit.alpha - r.fit.alpha), 3.0 * std::hypot(p.fit.sigma_alpha, r.fit.sigma_alpha));
+  EXPECT_LT(std::abs(p.fit.c - r.fit.c), 3.0 * std::hypot(p.fit.sigma_c, r.fit.sigma_c));
+}
+
 TEST(FittedLayers, SkipTheNearFieldStopBeforeTheAbsorberAndAtTheDepthLimit) {
   std::vector<double> layer_z;
   for (int k = 0; k < 20; ++k) layer_z.push_back(0.5 + k);  // 1 d layers from the driven wall

@@ -103,6 +103,7 @@ TEST(Scene, FitDepthLimitsTheFittedLayers) {
       parse_scene("[contact]\nkn = 726\n[drive.measurement]\nmax_fit_depth = 22\n", "x.toml");
   EXPECT_EQ(s.drive.max_fit_depth, 22.0);
   EXPECT_EQ(parse_scene("[contact]\nkn = 726\n", "x.toml").drive.max_fit_depth, 0.0);
+  EXPECT_TRUE(parse_scene("[contact]\nkn = 726\n[drive.measurement]\ngrain_probes = true\n", "x.toml").drive.grain_probes);
 }
 
 TEST(Scene, PeriodicCellTilesTheChannelAndCompressesAffinely) {

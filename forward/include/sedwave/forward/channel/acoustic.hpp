@@ -82,6 +82,9 @@ struct DriveSettings {
   double layer_thickness = 1.0;     ///< [mean diameters]
   int skip_layers = 2;              ///< layers next to the driven wall left out of the fit (near field)
   double max_fit_depth = 0.0;       ///< layers centred deeper than this [mean diameters] are not fitted; 0: no limit
+  /// Also record one grain per layer (the flow grain nearest the layer's centre) and measure alpha
+  /// and c from those single grains alone, as the thesis did, beside the layer averages.
+  bool grain_probes = false;
   double settle_periods = 3.0;      ///< after the front passes, before a layer counts as steady
   double time_step_fraction = 0.01; ///< dt / binary collision time (thesis: 0.01)
 };
@@ -93,6 +96,20 @@ struct SpectralResult {
   int layers_used = 0;
   std::string problem;  ///< empty when alpha and c were measured at this frequency
   [[nodiscard]] bool ok() const { return problem.empty(); }
+};
+
+/// Single-grain probes: one flow grain per layer, the one nearest the layer's centre, measured
+/// exactly as the layers are (same windows, fits and rules). A single grain also moves with the
+/// incoherent, scattered field that a layer average cancels, so these fits scatter more; they are
+/// recorded to show by how much, not to replace the layers.
+struct SingleGrainProbes {
+  std::vector<std::int64_t> id;                   ///< per layer; -1 where a layer holds no flow grain
+  std::vector<double> z;                          ///< the grain's height [d from the driven wall's surface]
+  std::vector<std::vector<double>> displacement;  ///< [probe][sample] [d], along the drive axis
+  PropagationFit fit;
+  std::vector<SpectralResult> spectrum;           ///< broadband drives
+  int probes_used = 0;
+  std::string problem;                            ///< empty when alpha and c were measured
 };
 
 /// Everything measured in one driven run (rank 0 holds the records; results are on every rank).
@@ -116,6 +133,7 @@ struct AcousticResult {
   PropagationFit fit;                    ///< over layers with valid windows beyond skip_layers
   FirstPeakFit first_peak;               ///< the thesis's method, for comparison
   std::vector<SpectralResult> spectrum;  ///< pulse drives: one entry per measured frequency
+  std::optional<SingleGrainProbes> single_grains;  ///< with DriveSettings::grain_probes
   int layers_used = 0;
   std::int64_t steps = 0;
   double wall_seconds = 0.0;
