@@ -28,7 +28,7 @@ void for_each_pair(const dem::Engine& engine, F&& f) {
   for (std::size_t i = 0; i < list.n_rows(); ++i) {
     for (std::uint32_t k = list.row_begin(i); k < list.row_end(i); ++k) {
       const auto j = static_cast<std::size_t>(partners[k]);
-      const dem::Vec3 d = g.position[i] - g.position[j];
+      const dem::Vec3 d = g.position[i] - (g.position[j] + list.shift(k));
       const double distance = dem::norm(d);
       const bool ghost = k >= list.ghost_begin(i);
       f(i, j, ghost, d, distance, g.radius[i] + g.radius[j] - distance);

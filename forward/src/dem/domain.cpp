@@ -189,6 +189,9 @@ void Domain::image_swaps(GrainArrays& g, int axis, double cutoff) {
       Grain ghost = g.grain(static_cast<std::size_t>(i));
       ghost.position += s.shift;
       g.push_ghost(ghost);
+      // An image of an image (an edge or corner) resolves to the local grain behind both.
+      const GhostSource behind = source_of(g, static_cast<std::size_t>(i));
+      ghost_sources_.push_back({behind.index, behind.shift + s.shift});
     }
     swaps_.push_back(std::move(s));
   }
@@ -224,13 +227,17 @@ void Domain::neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candid
                MPI_STATUS_IGNORE);
   s.recv_first = g.n_total();
   s.recv_count = in.size();
-  for (const Grain& ghost : in) g.push_ghost(ghost);
+  for (const Grain& ghost : in) {
+    ghost_sources_.push_back({static_cast<std::int32_t>(g.n_total()), Vec3{}});
+    g.push_ghost(ghost);
+  }
   swaps_.push_back(std::move(s));
 }
 
 void Domain::build_ghosts(GrainArrays& g, double cutoff) {
   g.clear_ghosts();
   swaps_.clear();
+  ghost_sources_.clear();
   for (int axis = 0; axis < 2; ++axis)
     if (box_.periodic[axis]) image_swaps(g, axis, cutoff);
   if (size_ == 1) {
@@ -250,21 +257,14 @@ void Domain::update_ghosts(GrainArrays& g) {
   const std::size_t per = spin ? 9 : 6;
   ghost_bytes_ = 0;
   for (const Swap& s : swaps_) {
-    if (s.send_to == rank_ && s.recv_from == rank_) {
-      for (std::size_t k = 0; k < s.send.size(); ++k) {
-        const auto i = static_cast<std::size_t>(s.send[k]);
-        const std::size_t j = s.recv_first + k;
-        g.position[j] = g.position[i] + s.shift;
-        g.velocity[j] = g.velocity[i];
-        if (spin) g.angular_velocity[j] = g.angular_velocity[i];
-      }
-      continue;
-    }
+    if (is_image(s, rank_)) continue;  // read through ghost_sources instead
     send_buffer_.resize(s.send.size() * per);
     for (std::size_t k = 0; k < s.send.size(); ++k) {
-      const auto i = static_cast<std::size_t>(s.send[k]);
+      // A sent image is read from its source: the image itself is not refreshed.
+      const GhostSource from = source_of(g, static_cast<std::size_t>(s.send[k]));
+      const auto i = static_cast<std::size_t>(from.index);
       double* out = send_buffer_.data() + k * per;
-      const Vec3 p = g.position[i] + s.shift;
+      const Vec3 p = g.position[i] + from.shift + s.shift;
       const Vec3& v = g.velocity[i];
       out[0] = p.x; out[1] = p.y; out[2] = p.z;
       out[3] = v.x; out[4] = v.y; out[5] = v.z;
@@ -291,19 +291,11 @@ void Domain::update_ghosts(GrainArrays& g) {
 void Domain::reverse_forces(GrainArrays& g) {
   const bool spin = g.rotation();
   const std::size_t per = spin ? 6 : 3;
-  // Backwards: a ghost that was itself sent on (an x image sent as a y image, or to the next slab)
-  // has collected its images' forces before its own are sent home.
+  // Periodic images made here collect nothing (the list applies their reactions to the source
+  // grains); a force returned for a grain that was sent as an image goes to its source.
   for (auto swap = swaps_.rbegin(); swap != swaps_.rend(); ++swap) {
     const Swap& s = *swap;
-    if (s.send_to == rank_ && s.recv_from == rank_) {
-      for (std::size_t k = 0; k < s.send.size(); ++k) {
-        const auto i = static_cast<std::size_t>(s.send[k]);
-        const std::size_t j = s.recv_first + k;
-        g.force[i] += g.force[j];
-        if (spin) g.torque[i] += g.torque[j];
-      }
-      continue;
-    }
+    if (is_image(s, rank_)) continue;
     // The ghosts received from recv_from return their forces to it; ours arrive from send_to.
     send_buffer_.resize(s.recv_count * per);
     for (std::size_t k = 0; k < s.recv_count; ++k) {
@@ -322,7 +314,7 @@ void Domain::reverse_forces(GrainArrays& g) {
     ghost_bytes_ += (send_buffer_.size() + recv_buffer_.size()) * sizeof(double);
     for (std::size_t k = 0; k < s.send.size(); ++k) {
       const double* in = recv_buffer_.data() + k * per;
-      const auto i = static_cast<std::size_t>(s.send[k]);
+      const auto i = static_cast<std::size_t>(source_of(g, static_cast<std::size_t>(s.send[k])).index);
       g.force[i] += Vec3{in[0], in[1], in[2]};
       if (spin) g.torque[i] += Vec3{in[3], in[4], in[5]};
     }

@@ -242,7 +242,7 @@ void Engine::rebuild() {
   if (sort_every > 0 && rebuilds_ % sort_every == 0)
     grains_.permute_local(spatial_order(grains_, ghost_cutoff_));
   domain_.build_ghosts(grains_, ghost_cutoff_);
-  list_.build(grains_, skin_, max_radius_, settings_.newton);
+  list_.build(grains_, skin_, max_radius_, settings_.newton, domain_.ghost_sources());
   if (history) assign_history(list_, grains_, HistoryMap(entries), history_);
   list_valid_ = true;
   force_rebuild_ = false;
@@ -400,7 +400,7 @@ double Engine::elastic_energy() const {
         for (std::size_t i = 0; i < list_.n_rows(); ++i)
           for (std::uint32_t k = list_.row_begin(i); k < list_.row_end(i); ++k) {
             const auto j = static_cast<std::size_t>(partners[k]);
-            const double overlap = g.radius[i] + g.radius[j] - norm(g.position[i] - g.position[j]);
+            const double overlap = g.radius[i] + g.radius[j] - norm(g.position[i] - (g.position[j] + list_.shift(k)));
             if (overlap <= 0.0) continue;
             // Under newton off a pair with a ghost is also counted by the ghost's owner (or image).
             const double share = k < list_.ghost_begin(i) || list_.newton() ? 1.0 : 0.5;
@@ -444,7 +444,7 @@ std::size_t Engine::memory_bytes() const {
           g.force.capacity() + g.torque.capacity()) * vec3 +
          (g.radius.capacity() + g.mass.capacity() + g.inv_mass.capacity()) * sizeof(double) +
          g.id.capacity() * sizeof(std::int64_t) + (g.group.capacity() + g.body.capacity()) * sizeof(std::int32_t) +
-         list_.memory_bytes() + history_.capacity() * vec3;
+         list_.memory_bytes() + history_.capacity() * vec3 + domain_.ghost_sources().capacity() * sizeof(GhostSource);
 }
 
 // ---- progress ----------------------------------------------------------------------------------

@@ -53,7 +53,8 @@ struct CellGrid {
 
 }  // namespace
 
-void NeighborList::build(const GrainArrays& g, double skin, double max_radius, bool newton) {
+void NeighborList::build(const GrainArrays& g, double skin, double max_radius, bool newton,
+                         std::span<const GhostSource> ghost_sources) {
   skin_ = skin;
   newton_ = newton;
   const std::size_t n_local = g.n_local();
@@ -79,6 +80,17 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
   ghost_begin_.assign(n_local, 0);
   partners_.clear();
   partners_.reserve(8 * n_local);
+  shift_codes_.clear();
+  shift_codes_.reserve(8 * n_local);
+  shifts_.assign(1, Vec3{});
+  auto code_of = [this](const Vec3& shift) {
+    const auto it = std::find(shifts_.begin(), shifts_.end(), shift);
+    if (it != shifts_.end()) return static_cast<std::uint8_t>(it - shifts_.begin());
+    if (shifts_.size() > std::numeric_limits<std::uint8_t>::max())
+      throw std::logic_error("NeighborList: more distinct periodic shifts than codes");
+    shifts_.push_back(shift);
+    return static_cast<std::uint8_t>(shifts_.size() - 1);
+  };
   for (std::size_t i = 0; i < n_local; ++i) {
     row_begin_[i] = static_cast<std::uint32_t>(partners_.size());
     ghost_scratch_.clear();
@@ -106,7 +118,17 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
     std::sort(partners_.begin() + row_begin_[i], partners_.end());
     std::sort(ghost_scratch_.begin(), ghost_scratch_.end());
     ghost_begin_[i] = static_cast<std::uint32_t>(partners_.size());
-    partners_.insert(partners_.end(), ghost_scratch_.begin(), ghost_scratch_.end());
+    shift_codes_.resize(partners_.size(), 0);
+    for (const std::int32_t j : ghost_scratch_) {
+      if (ghost_sources.empty()) {
+        partners_.push_back(j);
+        shift_codes_.push_back(0);
+        continue;
+      }
+      const GhostSource& source = ghost_sources[static_cast<std::size_t>(j) - n_local];
+      partners_.push_back(source.index);
+      shift_codes_.push_back(code_of(source.shift));
+    }
   }
   if (partners_.size() > std::numeric_limits<std::uint32_t>::max())
     throw std::overflow_error("NeighborList: more than 2^32 pairs on one rank");
@@ -124,7 +146,7 @@ bool NeighborList::needs_rebuild(const GrainArrays& g) const {
 
 std::size_t NeighborList::memory_bytes() const {
   return row_begin_.capacity() * sizeof(std::uint32_t) + ghost_begin_.capacity() * sizeof(std::uint32_t) +
-         partners_.capacity() * sizeof(std::int32_t) + reference_.capacity() * sizeof(Vec3) +
+         partners_.capacity() * sizeof(std::int32_t) + shift_codes_.capacity() + reference_.capacity() * sizeof(Vec3) +
          cell_start_.capacity() * sizeof(std::uint32_t) + cell_items_.capacity() * sizeof(std::int32_t) +
          cell_of_.capacity() * sizeof(std::uint32_t);
 }

@@ -35,6 +35,40 @@ TEST_P(Conservation, EnergyDriftBelow1e6OverHundredThousandStepsInDensePacking) 
 
 INSTANTIATE_TEST_SUITE_P(Newton, Conservation, ::testing::Bool());
 
+// Two grains touching only through the periodic corner (x and y faces at once): the list refers to
+// the partner grain itself with the box shift (no image copy), and the forces are kn * overlap
+// along the line to the image, equal and opposite, with newton on and off.
+TEST(PeriodicImages, ContactThroughTheCornerIsListedAsTheShiftedSourceGrain) {
+  for (const bool newton : {false, true}) {
+    EngineSettings s;
+    s.newton = newton;
+    s.contact.kn = 1000.0;
+    s.box.lo = {0.0, 0.0, 0.0};
+    s.box.hi = {3.0, 3.0, 10.0};
+    s.box.periodic = {true, true, false};
+    const std::vector<Grain> grains{testing::make_grain(1, {0.1, 0.1, 5.0}), testing::make_grain(2, {2.6, 2.6, 5.0})};
+    Engine engine(MPI_COMM_SELF, s, grains);
+    engine.compute_forces();
+    const GrainArrays& g = engine.grains();
+    const NeighborList& list = engine.neighbor_list();
+    const std::size_t a = testing::local_index(g, 1), b = testing::local_index(g, 2);
+    ASSERT_EQ(list.n_pairs(), newton ? 1U : 2U);
+    for (std::size_t i = 0; i < list.n_rows(); ++i) {
+      for (std::uint32_t k = list.row_begin(i); k < list.row_end(i); ++k) {
+        const auto j = static_cast<std::size_t>(list.partners()[k]);
+        EXPECT_EQ(j, i == a ? b : a) << "a local grain, not an image copy";
+        const Vec3 expected_shift = i == a ? Vec3{-3.0, -3.0, 0.0} : Vec3{3.0, 3.0, 0.0};
+        EXPECT_EQ(list.shift(k), expected_shift);
+      }
+    }
+    const Vec3 d = Vec3{0.1, 0.1, 5.0} - Vec3{2.6 - 3.0, 2.6 - 3.0, 5.0};
+    const double overlap = 1.0 - norm(d);
+    const Vec3 expected = (1000.0 * overlap / norm(d)) * d;
+    EXPECT_LT(norm(g.force[a] - expected), 1e-12 * norm(expected)) << "newton " << newton;
+    EXPECT_LT(norm(g.force[b] + expected), 1e-12 * norm(expected)) << "newton " << newton;
+  }
+}
+
 TEST(Momentum, LinearAndAngularMomentumOfAFrictionalRollingCluster) {
   EngineSettings s;
   s.box.periodic = {false, false, false};

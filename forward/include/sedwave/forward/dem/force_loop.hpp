@@ -35,6 +35,8 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
   [[maybe_unused]] const Vec3* spin = Model::rotates ? g.angular_velocity.data() : nullptr;
   [[maybe_unused]] Vec3* torque = Model::rotates ? g.torque.data() : nullptr;
   const std::int32_t* partner = list.partners().data();
+  const std::uint8_t* shift_code = list.shift_codes().data();
+  const Vec3* shifts = list.shifts().data();
   Vec3 no_history;
 
   for (std::size_t i = 0; i < list.n_rows(); ++i) {
@@ -47,9 +49,10 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
     Vec3 fi;
     [[maybe_unused]] Vec3 ti;
 
-    // Returns the pair result, or nothing when the grains do not touch.
-    auto contact = [&](std::uint32_t k, std::size_t j, PairResult& out) -> bool {
-      const Vec3 d = xi - x[j];
+    // Returns the pair result, or nothing when the grains do not touch. `xj`: the partner's position,
+    // shifted when it is a periodic image.
+    auto contact = [&](std::uint32_t k, std::size_t j, const Vec3& xj, PairResult& out) -> bool {
+      const Vec3 d = xi - xj;
       const double r2 = norm2(d);
       const double reach = ri + radius[j];
       const bool touching = r2 < reach * reach;
@@ -90,22 +93,31 @@ OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const
       return touching;
     };
 
-    // Partners before `with_reaction` take -F: local ones, and ghosts too under newton on.
-    const std::uint32_t with_reaction = list.newton() ? list.row_end(i) : list.ghost_begin(i);
+    // Local partners (unshifted) take -F; so do ghost partners under newton on (a periodic image's
+    // reaction lands on its source grain, a remote ghost's is sent home by Domain::reverse_forces).
+    const std::uint32_t ghosts = list.ghost_begin(i);
+    const std::uint32_t with_reaction = list.newton() ? list.row_end(i) : ghosts;
     const std::uint32_t end = list.row_end(i);
     PairResult r;
-    for (std::uint32_t k = list.row_begin(i); k < with_reaction; ++k) {
-      const auto j = static_cast<std::size_t>(partner[k]);
-      if (!contact(k, j, r)) continue;
+    auto with_reaction_on_j = [&](std::size_t j) {
       fi += r.force;
       force[j] -= r.force;
       if constexpr (Model::rotates) {
         ti += r.torque_i;
         torque[j] += r.torque_j;
       }
+    };
+    for (std::uint32_t k = list.row_begin(i); k < ghosts; ++k) {
+      const auto j = static_cast<std::size_t>(partner[k]);
+      if (contact(k, j, x[j], r)) with_reaction_on_j(j);
+    }
+    for (std::uint32_t k = ghosts; k < with_reaction; ++k) {
+      const auto j = static_cast<std::size_t>(partner[k]);
+      if (contact(k, j, x[j] + shifts[shift_code[k]], r)) with_reaction_on_j(j);
     }
     for (std::uint32_t k = with_reaction; k < end; ++k) {
-      if (!contact(k, static_cast<std::size_t>(partner[k]), r)) continue;
+      const auto j = static_cast<std::size_t>(partner[k]);
+      if (!contact(k, j, x[j] + shifts[shift_code[k]], r)) continue;
       fi += r.force;
       if constexpr (Model::rotates) ti += r.torque_i;
     }

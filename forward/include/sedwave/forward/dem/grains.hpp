@@ -2,7 +2,8 @@
 // Grain state as a structure of arrays (SoA): each field is one contiguous array, so the force loop
 // streams exactly the fields its contact laws read. The first n_local() entries are the grains this
 // rank owns; the entries after them are ghosts: read-only copies of grains owned by a neighbouring
-// rank, or periodic images (on one rank the same mechanism serves both).
+// rank, or periodic images (on one rank the same mechanism serves both). Periodic images are copies
+// only while the neighbour list is built; after that, read them through their GhostSource.
 //
 // Units: the engine is unit-agnostic. Any consistent set works (SI, or the thesis's d = 1, rho = 1).
 #include <cstddef>
@@ -30,6 +31,13 @@ struct Grain {
   Vec3 angular_velocity;  ///< ignored unless the contact model rotates grains
   Vec3 force;             ///< last total force (kept for restarts: velocity Verlet needs it)
   Vec3 torque;
+};
+
+/// Where a ghost's data live on this rank: a periodic image made here is its source grain (a local
+/// one) plus a shift; a ghost received from another rank is itself, unshifted.
+struct GhostSource {
+  std::int32_t index = 0;
+  Vec3 shift;
 };
 
 class GrainArrays {

@@ -14,6 +14,10 @@
 // the owner. The id rule is exact: the mirror pair has the two ids swapped, so exactly one side
 // keeps it, with no floating-point ties (a coordinate rule needs care with periodic shifts).
 // Pairs of two rigid-body grains are excluded (walls do not interact with walls).
+//
+// Periodic images made on this rank are found as ghost copies and then listed as their source grain
+// plus a shift (Domain::ghost_sources): partner k's position is position[partner] + shift(k). Under
+// "newton on" the reaction of such a pair lands on the source grain directly.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -27,7 +31,10 @@ class NeighborList {
  public:
   /// Builds the list for the current local and ghost grains. max_radius: largest radius anywhere.
   /// newton: list each cross-boundary pair on one side only (see above).
-  void build(const GrainArrays& g, double skin, double max_radius, bool newton = false);
+  /// ghost_sources: per ghost, the grain to list instead and the shift to add (Domain::ghost_sources);
+  /// empty: ghosts are listed as themselves.
+  void build(const GrainArrays& g, double skin, double max_radius, bool newton = false,
+             std::span<const GhostSource> ghost_sources = {});
   /// True when a local grain moved more than skin/2 since the last build (local decision: the engine
   /// reduces it over ranks).
   [[nodiscard]] bool needs_rebuild(const GrainArrays& g) const;
@@ -38,6 +45,10 @@ class NeighborList {
   [[nodiscard]] std::uint32_t ghost_begin(std::size_t i) const { return ghost_begin_[i]; }
   [[nodiscard]] std::uint32_t row_end(std::size_t i) const { return row_begin_[i + 1]; }
   [[nodiscard]] std::span<const std::int32_t> partners() const { return partners_; }
+  /// Per pair, an index into shifts(): what to add to the partner's position (0: no shift).
+  [[nodiscard]] std::span<const std::uint8_t> shift_codes() const { return shift_codes_; }
+  [[nodiscard]] std::span<const Vec3> shifts() const { return shifts_; }
+  [[nodiscard]] const Vec3& shift(std::size_t k) const { return shifts_[shift_codes_[k]]; }
   [[nodiscard]] double skin() const { return skin_; }
   /// Whether cross-boundary pairs are listed once (their reactions go to ghosts).
   [[nodiscard]] bool newton() const { return newton_; }
@@ -48,6 +59,8 @@ class NeighborList {
   std::vector<std::uint32_t> row_begin_;    // n_local + 1
   std::vector<std::uint32_t> ghost_begin_;  // n_local
   std::vector<std::int32_t> partners_;
+  std::vector<std::uint8_t> shift_codes_;
+  std::vector<Vec3> shifts_{Vec3{}};  // distinct shifts, [0] = none
   std::vector<Vec3> reference_;             // local positions at build time
   // Cell-list scratch, kept between builds to avoid reallocation.
   std::vector<std::uint32_t> cell_start_;
