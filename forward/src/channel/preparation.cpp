@@ -62,21 +62,53 @@ double carried_force(const Scene& s, const dem::Engine& e) {
   return carried_force(s, e, packing_stats(e, s.mean_diameter, s.width));
 }
 
-/// Runs until the grains push back on the upper wall with the target force at three successive
-/// checks, `chunk` steps apart (a single impact can exceed it for a moment while the column is
-/// still loose).
-std::int64_t compress(const Scene& s, dem::Engine& e, const PreparationSettings& p, double target_force,
-                      std::int64_t chunk) {
+/// Runs until `carried(force)` holds at three successive checks, `chunk` steps apart (a single
+/// impact can exceed the target for a moment while the column is still loose).
+template <class Carried>
+std::int64_t compress(const Scene& s, dem::Engine& e, const PreparationSettings& p, std::int64_t chunk,
+                      Carried carried) {
   std::int64_t steps = 0;
-  int above = 0;
+  int held = 0;
   while (steps < p.max_compression_steps) {
     e.run(chunk);
     steps += chunk;
-    above = carried_force(s, e) >= target_force ? above + 1 : 0;
-    if (above == 3) return steps;
+    held = carried(carried_force(s, e)) ? held + 1 : 0;
+    if (held == 3) return steps;
   }
   throw std::runtime_error("preparation: the grains never carried the pressure within max_compression_steps");
 }
+
+/// The servo wall of Compression::pressure: a path along z, piecewise linear in time, whose speed is
+/// reset every few steps from the force the grains carry, averaged over `averaging` (the column
+/// rattles: single impacts carry several times the load for a moment). Shared between the wall's
+/// motion and the step callback that steers it.
+class ServoWall {
+ public:
+  ServoWall(double max_speed, double target_force, double averaging)
+      : max_speed_(max_speed), target_(target_force), averaging_(averaging) {}
+
+  /// The wall's displacement along z at time t (continuous: the speed changes at `since_`).
+  [[nodiscard]] double displacement(double t) const { return at_ + speed_ * (t - since_); }
+  /// The carried force averaged over the last `averaging` time.
+  [[nodiscard]] double carried() const { return carried_; }
+
+  /// Full speed down while the grains carry well under the target, then in proportion to the
+  /// force still missing (a carried force above the target lifts the wall): the wall approaches
+  /// the load instead of driving through it.
+  void steer(double t, double carried_now) {
+    const double weight = std::min(1.0, (t - since_) / averaging_);
+    carried_ += weight * (carried_now - carried_);
+    at_ = displacement(t);
+    since_ = t;
+    const double missing = (target_ - carried_) / target_;
+    speed_ = -max_speed_ * std::clamp(missing / kProportionalBand, -1.0, 1.0);
+  }
+
+ private:
+  static constexpr double kProportionalBand = 0.25;
+  double max_speed_, target_, averaging_;
+  double at_ = 0.0, since_ = 0.0, speed_ = 0.0, carried_ = 0.0;
+};
 
 /// Affine compression: every `every` steps, every height above `floor` (free grains and the upper
 /// wall) shrinks by the factor 1 - strain. Neighbours approach at the strain rate times their
@@ -377,15 +409,29 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
     const dem::LinearMotion lower{{0.0, 0.0, -p.compression_speed * scene.mean_diameter / t_col}};
     compressor = make_engine(scene, start.grains, lower, p.compression_step_fraction, drag);
     try {
-      out.report.compression_steps = compress(scene, *compressor, p, target, 200);
+      out.report.compression_steps =
+          compress(scene, *compressor, p, 200, [target](double carried) { return carried >= target; });
     } catch (const dem::GuardError& e) {
       // The wall keeps descending for 3 force checks (0.9 d apart at the default speed) after the
       // grains first carry P W^2, which a short column cannot absorb (N = 150, W = 3, seed 11 trips
       // the guard; compression_speed = 0.01 or the affine protocol prepare it).
       throw dem::GuardError(std::string(e.what()) +
                             " (during wall compression: a short column can be over-compressed by the descending "
-                            "wall; set [preparation] compression = \"affine\" or a lower compression_speed)");
+                            "wall; set [preparation] compression = \"pressure\" or \"affine\", or a lower "
+                            "compression_speed)");
     }
+  } else if (p.compression == Compression::pressure) {
+    auto servo = std::make_shared<ServoWall>(p.compression_speed * scene.mean_diameter / t_col, target, 30.0 * t_col);
+    const dem::PrescribedMotion upper{[servo](double t) { return dem::Vec3{0.0, 0.0, servo->displacement(t)}; }};
+    compressor = make_engine(scene, start.grains, upper, p.compression_step_fraction, drag);
+    dem::Engine& e = *compressor;
+    e.add_step_callback(10, [&scene, &e, servo](const dem::Engine&) { servo->steer(e.time(), carried_force(scene, e)); });
+    // Done once the grains carry P W^2 to within twice the pressure tolerance (at least 2 %); FIRE
+    // and the secant corrections of stage 2 settle the rest.
+    const double band = std::max(2.0 * p.pressure_tolerance, 0.02);
+    out.report.compression_steps = compress(scene, e, p, 200, [target, band, servo](double) {
+      return std::abs(servo->carried() / target - 1.0) <= band;
+    });
   } else {
     compressor = make_engine(scene, start.grains, dem::Frozen{}, p.compression_step_fraction, drag);
     const std::int64_t every = 10;
@@ -397,7 +443,8 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
       shrink_heights_every(*compressor, every, lower_wall_height(start.grains, comm), strain);
     }
     // Checked often: the strain goes on between checks, and it loads every contact at once.
-    out.report.compression_steps = compress(scene, *compressor, p, target, 2 * every);
+    out.report.compression_steps =
+        compress(scene, *compressor, p, 2 * every, [target](double carried) { return carried >= target; });
   }
   log_line(p, comm, "compressed in " + std::to_string(out.report.compression_steps) + " steps");
   scene.box = compressor->settings().box;  // a periodic cell's, strained

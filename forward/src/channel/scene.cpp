@@ -78,7 +78,10 @@ void read_contact(Section s, dem::ContactSpec& c, double density) {
 
 void read_preparation(Section s, PreparationSettings& p) {
   p.pressure = s.positive("pressure", p.pressure);
-  p.compression = s.choice("compression", "wall", {"wall", "affine"}) == "wall" ? Compression::wall : Compression::affine;
+  const std::string compression = s.choice("compression", "wall", {"wall", "affine", "pressure"});
+  p.compression = compression == "wall" ? Compression::wall
+                  : compression == "affine" ? Compression::affine
+                                            : Compression::pressure;
   p.compression_speed = s.positive("compression_speed", p.compression_speed);
   p.compression_strain_rate = s.positive("compression_strain_rate", p.compression_strain_rate);
   p.compression_damping = s.number("compression_damping", p.compression_damping);
@@ -157,7 +160,7 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   read_geometry(top.sub("geometry"), scene, base);
   read_contact(top.sub("contact"), scene.contact, scene.geometry.density);
   read_preparation(top.sub("preparation"), scene.preparation);
-  if (scene.tiling && scene.preparation.compression == Compression::wall) {
+  if (scene.tiling && scene.preparation.compression != Compression::affine) {
     // A periodic cell has no wall to lower: its box is strained instead.
     Section preparation = top.sub("preparation");
     if (preparation.has("compression")) {

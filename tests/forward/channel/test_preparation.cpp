@@ -122,7 +122,8 @@ TEST(Preparation, WallIsCorrectedAgainWhenNewtonMovesThePressure) {
 
 // A hard case: after the grains first carry P W^2 the descending wall keeps going for three force
 // checks (0.9 d), which this short column cannot absorb, and the overlap guard stops the run. The
-// error says so and names the remedies; the affine protocol prepares the same column.
+// error says so and names the remedies; the servo wall (compression = "pressure"), which slows as
+// the grains take the load, and the affine protocol both prepare the same column.
 TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
   ChannelGeometry g;
   g.n_grains = 150;
@@ -136,11 +137,36 @@ TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
     (void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p);
     FAIL() << "the wall protocol was expected to over-compress this column";
   } catch (const dem::GuardError& e) {
-    EXPECT_NE(std::string(e.what()).find("compression = \"affine\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("compression = \"pressure\""), std::string::npos) << e.what();
   }
-  p.compression = Compression::affine;
-  const PreparedChannel affine = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p);
-  EXPECT_TRUE(affine.report.converged);
+  for (const Compression protocol : {Compression::pressure, Compression::affine}) {
+    p.compression = protocol;
+    const PreparedChannel c2 = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p);
+    std::cout << describe(c2.report) << "\n";
+    EXPECT_TRUE(c2.report.converged);
+    EXPECT_NEAR(c2.report.pressure / 10.0, 1.0, 1e-2);
+    EXPECT_LT(c2.report.stats.max_overlap, 0.1);
+  }
+}
+
+// The servo wall holds the force at P W^2 instead of driving through it: on the thesis column it
+// ends compression with the grains carrying the load within 2 %, never far above it.
+TEST(Preparation, ServoWallApproachesThePressureFromBelow) {
+  ChannelGeometry g;
+  g.n_grains = 600;
+  g.seed = 3;
+  PreparationSettings p;
+  p.pressure = 10.0;
+  p.compression = Compression::pressure;
+  std::ostringstream log;
+  p.log = &log;
+  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p);
+  std::cout << log.str() << describe(c.report) << "\n";
+  EXPECT_TRUE(c.report.converged);
+  EXPECT_LT(c.report.residual_ratio, 1e-9);
+  EXPECT_NEAR(c.report.pressure / 10.0, 1.0, 1e-2);
+  EXPECT_GE(c.report.stats.coordination_without_rattlers, 6.0);
+  EXPECT_LT(c.report.stats.max_overlap, 0.1);
 }
 
 }  // namespace

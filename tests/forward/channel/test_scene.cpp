@@ -98,6 +98,12 @@ TEST(Scene, ChirpDriveReadsItsSweep) {
   EXPECT_EQ(p.drive.pulse->shape, BroadbandShape::gaussian_pulse);
 }
 
+TEST(Scene, CompressionProtocolsAreNamed) {
+  EXPECT_EQ(parse_scene("[contact]\nkn = 726\n[preparation]\ncompression = \"pressure\"\n", "x.toml").preparation.compression,
+            Compression::pressure);
+  EXPECT_EQ(parse_scene("[contact]\nkn = 726\n", "x.toml").preparation.compression, Compression::wall);
+}
+
 TEST(Scene, FitDepthLimitsTheFittedLayers) {
   const ChannelScene s =
       parse_scene("[contact]\nkn = 726\n[drive.measurement]\nmax_fit_depth = 22\n", "x.toml");

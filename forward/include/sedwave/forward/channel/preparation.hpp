@@ -37,8 +37,10 @@ namespace sedwave::forward::channel {
 
 /// How the loose column is brought to the pressure (stage 1).
 enum class Compression {
-  wall,    ///< the upper wall descends at compression_speed (the thesis's protocol)
-  affine,  ///< every height shrinks at compression_strain_rate: O(N) for long columns
+  wall,      ///< the upper wall descends at compression_speed (the thesis's protocol)
+  affine,    ///< every height shrinks at compression_strain_rate: O(N) for long columns
+  pressure,  ///< the upper wall is a servo holding P W^2: compression_speed while the column is
+             ///< loose, slowing as the grains take the load, backing off if they carry more
 };
 
 struct PreparationSettings {
