@@ -149,25 +149,5 @@ TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
   }
 }
 
-// The servo wall holds the force at P W^2 instead of driving through it: on the thesis column it
-// ends compression with the grains carrying the load within 2 %, never far above it.
-TEST(Preparation, ServoWallApproachesThePressureFromBelow) {
-  ChannelGeometry g;
-  g.n_grains = 600;
-  g.seed = 3;
-  PreparationSettings p;
-  p.pressure = 10.0;
-  p.compression = Compression::pressure;
-  std::ostringstream log;
-  p.log = &log;
-  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p);
-  std::cout << log.str() << describe(c.report) << "\n";
-  EXPECT_TRUE(c.report.converged);
-  EXPECT_LT(c.report.residual_ratio, 1e-9);
-  EXPECT_NEAR(c.report.pressure / 10.0, 1.0, 1e-2);
-  EXPECT_GE(c.report.stats.coordination_without_rattlers, 6.0);
-  EXPECT_LT(c.report.stats.max_overlap, 0.1);
-}
-
 }  // namespace
 }  // namespace sedwave::forward::channel
