@@ -99,6 +99,31 @@ void print_spectrum(const forward::channel::AcousticResult& r) {
   std::printf("at the band's centre:\n");
 }
 
+/// The front speed the windows come from, and the lock-in windows of the first and last layer that
+/// has one (a sinusoid's measurement; every layer's window is in the run file).
+void print_windows(const forward::channel::AcousticResult& r) {
+  std::printf("front speed %.4g (first peaks; sets the windows)", r.wave_speed_estimate);
+  const forward::channel::ProbeWindow* first = nullptr;
+  const forward::channel::ProbeWindow* last = nullptr;
+  std::size_t first_k = 0, last_k = 0;
+  for (std::size_t k = 0; k < r.windows.size(); ++k) {
+    if (!r.windows[k].valid() || r.lock_ins[k].amplitude == 0.0) continue;
+    if (first == nullptr) {
+      first = &r.windows[k];
+      first_k = k;
+    }
+    last = &r.windows[k];
+    last_k = k;
+  }
+  if (first != nullptr) {
+    std::printf("; lock-in windows [t in sqrt(m/kappa)] from z = %.1f d: %.4g .. %.4g (%d periods) to z = %.1f d: %.4g .. %.4g "
+                "(%d periods)",
+                r.layer_z[first_k], first->window.begin, first->window.end, first->periods, r.layer_z[last_k],
+                last->window.begin, last->window.end, last->periods);
+  }
+  std::printf("\n");
+}
+
 /// The single-grain probes' result beside the layers' (the headline frequency; a broadband run's
 /// per-frequency values are in the run file).
 void print_single_grains(const forward::channel::SingleGrainProbes& p, bool sinusoid) {
@@ -142,6 +167,7 @@ int run_forward(const ForwardOptions& o) {
     if (talk) {
       std::printf("omega_hat %.6g  gamma_hat %.6g\n", r.omega_hat, r.gamma_hat);
       if (!r.spectrum.empty()) print_spectrum(r);
+      else print_windows(r);
       if (r.ok()) {
         std::printf("alpha_hat %.6g +- %.2g   c_hat %.6g +- %.2g   (%d layers, %lld steps, %.1f s)\n", r.fit.alpha,
                     r.fit.sigma_alpha, r.fit.c, r.fit.sigma_c, r.layers_used, static_cast<long long>(r.steps),

@@ -133,6 +133,20 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     h5::write(probes, "displacement", series.data(), r.displacement.size(), samples);
     h5::write_string_attribute(probes, "displacement_unit", "d; mean over the layer, along the drive axis");
     number(probes, "sample_dt", r.sample_dt, "sqrt(m/kappa)");
+    if (!r.windows.empty()) {
+      // The lock-in windows (sinusoidal drive): per layer, begin and end; 0 periods where none.
+      std::vector<double> begin, end, periods;
+      for (const ProbeWindow& w : r.windows) {
+        begin.push_back(w.valid() ? w.window.begin : 0.0);
+        end.push_back(w.valid() ? w.window.end : 0.0);
+        periods.push_back(w.valid() ? static_cast<double>(w.periods) : 0.0);
+      }
+      h5::write(probes, "window_begin", begin.data(), begin.size());
+      h5::write(probes, "window_end", end.data(), end.size());
+      h5::write_string_attribute(probes, "window_unit", "sqrt(m/kappa), from the start of the drive");
+      h5::write(probes, "window_periods", periods.data(), periods.size());
+      h5::write_string_attribute(probes, "window_periods_unit", "whole drive periods in the lock-in window (0: none)");
+    }
     if (r.single_grains) {
       const SingleGrainProbes& p = *r.single_grains;
       h5::Handle grains = h5::create_group(probes, "single_grains");
