@@ -252,6 +252,16 @@ void Domain::build_ghosts(GrainArrays& g, double cutoff) {
   neighbour_swap(g, false, candidates, cutoff);
 }
 
+void Domain::clear_forces(GrainArrays& g) const {
+  auto clear = [&g](std::size_t first, std::size_t count) {
+    std::fill_n(g.force.begin() + static_cast<std::ptrdiff_t>(first), count, Vec3{});
+    if (g.rotation()) std::fill_n(g.torque.begin() + static_cast<std::ptrdiff_t>(first), count, Vec3{});
+  };
+  clear(0, g.n_local());
+  for (const Swap& s : swaps_)
+    if (!is_image(s, rank_)) clear(s.recv_first, s.recv_count);
+}
+
 void Domain::update_ghosts(GrainArrays& g) {
   const bool spin = g.rotation();
   const std::size_t per = spin ? 9 : 6;

@@ -253,8 +253,7 @@ template <class Model>
 OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
   GrainArrays& g = grains_;
   const std::size_t n = g.n_local();
-  std::fill(g.force.begin(), g.force.end(), Vec3{});  // ghosts too: they collect reactions
-  if (g.rotation()) std::fill(g.torque.begin(), g.torque.end(), Vec3{});
+  domain_.clear_forces(g);  // remote ghosts too: they collect reactions
   const OverlapWatch w = watch ? accumulate_contact_forces<Model, true>(model, g, list_, history_, dt_)
                                : accumulate_contact_forces<Model, false>(model, g, list_, history_, dt_);
   if (list_.newton()) {

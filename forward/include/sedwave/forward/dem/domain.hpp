@@ -63,6 +63,9 @@ class Domain {
   /// Where each ghost's data live on this rank, indexed by ghost number (grain index - n_local).
   /// Valid until the next build_ghosts.
   [[nodiscard]] const std::vector<GhostSource>& ghost_sources() const { return ghost_sources_; }
+  /// Sets the forces (and torques) that the force loop accumulates to zero: the owned grains' and
+  /// those of ghosts received from other ranks (periodic images made here never collect any).
+  void clear_forces(GrainArrays& g) const;
   /// Refreshes the ghosts received from other ranks (positions, velocities, spins); periodic images
   /// made on this rank are left as built (read them through ghost_sources). Collective.
   void update_ghosts(GrainArrays& g);
