@@ -103,23 +103,17 @@ void print_spectrum(const forward::channel::AcousticResult& r) {
 /// has one (a sinusoid's measurement; every layer's window is in the run file).
 void print_windows(const forward::channel::AcousticResult& r) {
   std::printf("front speed %.4g (first peaks; sets the windows)", r.wave_speed_estimate);
-  const forward::channel::ProbeWindow* first = nullptr;
-  const forward::channel::ProbeWindow* last = nullptr;
-  std::size_t first_k = 0, last_k = 0;
+  std::vector<std::size_t> locked;  // layers with a window and a lock-in
   for (std::size_t k = 0; k < r.windows.size(); ++k) {
-    if (!r.windows[k].valid() || r.lock_ins[k].amplitude == 0.0) continue;
-    if (first == nullptr) {
-      first = &r.windows[k];
-      first_k = k;
-    }
-    last = &r.windows[k];
-    last_k = k;
+    if (r.windows[k].valid() && r.lock_ins[k].amplitude != 0.0) locked.push_back(k);
   }
-  if (first != nullptr) {
+  if (!locked.empty()) {
+    const std::size_t a = locked.front(), b = locked.back();
+    const forward::channel::ProbeWindow &first = r.windows[a], &last = r.windows[b];
     std::printf("; lock-in windows [t in sqrt(m/kappa)] from z = %.1f d: %.4g .. %.4g (%d periods) to z = %.1f d: %.4g .. %.4g "
                 "(%d periods)",
-                r.layer_z[first_k], first->window.begin, first->window.end, first->periods, r.layer_z[last_k],
-                last->window.begin, last->window.end, last->periods);
+                r.layer_z[a], first.window.begin, first.window.end, first.periods, r.layer_z[b], last.window.begin,
+                last.window.end, last.periods);
   }
   std::printf("\n");
 }

@@ -87,45 +87,43 @@ Layers single_grain_layers(const dem::Engine& e, const PackingUnits& u, const La
                            std::vector<std::int64_t>& ids) {
   const auto count = static_cast<std::size_t>(layers.count);
   const dem::GrainArrays& g = e.grains();
-  auto height = [&](std::size_t i) { return (g.position[i].z - u.wall_surface) / u.diameter; };
-  std::vector<double> distance(count, std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < e.n_local(); ++i) {
-    const auto it = layers.member.find(g.id[i]);
-    if (it == layers.member.end()) continue;
-    const auto k = static_cast<std::size_t>(it->second.first);
-    distance[k] = std::min(distance[k], std::abs(height(i) - layers.centres[k]));
-  }
   MPI_Comm comm = e.domain().comm();
-  MPI_Allreduce(MPI_IN_PLACE, distance.data(), layers.count, MPI_DOUBLE, MPI_MIN, comm);
-  ids.assign(count, std::numeric_limits<std::int64_t>::max());
-  for (std::size_t i = 0; i < e.n_local(); ++i) {
-    const auto it = layers.member.find(g.id[i]);
-    if (it == layers.member.end()) continue;
-    const auto k = static_cast<std::size_t>(it->second.first);
-    if (std::abs(height(i) - layers.centres[k]) == distance[k]) ids[k] = std::min(ids[k], g.id[i]);
-  }
+  // Visits every local flow grain with its layer and its distance from the layer's centre [d].
+  auto each_grain = [&](auto visit) {
+    for (std::size_t i = 0; i < e.n_local(); ++i) {
+      const auto it = layers.member.find(g.id[i]);
+      if (it == layers.member.end()) continue;
+      const auto k = static_cast<std::size_t>(it->second.first);
+      visit(i, k, std::abs((g.position[i].z - u.wall_surface) / u.diameter - layers.centres[k]));
+    }
+  };
+  std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
+  each_grain([&](std::size_t, std::size_t k, double distance) { nearest[k] = std::min(nearest[k], distance); });
+  MPI_Allreduce(MPI_IN_PLACE, nearest.data(), layers.count, MPI_DOUBLE, MPI_MIN, comm);
+  constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
+  ids.assign(count, kNone);
+  each_grain([&](std::size_t i, std::size_t k, double distance) {
+    if (distance == nearest[k]) ids[k] = std::min(ids[k], g.id[i]);
+  });
   MPI_Allreduce(MPI_IN_PLACE, ids.data(), layers.count, MPI_INT64_T, MPI_MIN, comm);
+
   Layers probes;
   probes.count = layers.count;
   probes.every_flow_grain = false;
   probes.centres.assign(count, 0.0);
   probes.grains_per_layer.assign(count, 0);
-  for (std::size_t k = 0; k < count; ++k) {
-    if (ids[k] == std::numeric_limits<std::int64_t>::max()) ids[k] = -1;
-  }
-  for (std::size_t i = 0; i < e.n_local(); ++i) {
-    const auto it = layers.member.find(g.id[i]);
-    if (it == layers.member.end()) continue;
-    const auto k = static_cast<std::size_t>(it->second.first);
-    if (g.id[i] != ids[k]) continue;
-    probes.member[g.id[i]] = {it->second.first, g.position[i][axis]};
-    probes.centres[k] = height(i);
+  each_grain([&](std::size_t i, std::size_t k, double) {
+    if (g.id[i] != ids[k]) return;
+    probes.member[g.id[i]] = {static_cast<int>(k), g.position[i][axis]};
+    probes.centres[k] = (g.position[i].z - u.wall_surface) / u.diameter;
     probes.grains_per_layer[k] = 1;
-  }
+  });
   MPI_Allreduce(MPI_IN_PLACE, probes.centres.data(), layers.count, MPI_DOUBLE, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, probes.grains_per_layer.data(), layers.count, MPI_INT, MPI_SUM, comm);
   for (std::size_t k = 0; k < count; ++k) {
-    if (ids[k] < 0) probes.centres[k] = layers.centres[k];  // an empty layer: its record stays 0
+    if (ids[k] != kNone) continue;
+    ids[k] = -1;
+    probes.centres[k] = layers.centres[k];  // an empty layer: its record stays 0
   }
   return probes;
 }
@@ -223,8 +221,11 @@ class BroadbandDrive {
     };
     double peak = 0.0;
     for (int i = 0; i <= 32; ++i) peak = std::max(peak, spectrum(sweep_start_ * std::exp(log_ratio_ * i / 32.0)));
+    double here = spectrum(top);
     for (double omega = top;; omega += 0.05 * top) {
-      if (spectrum(omega) < kQuiet * peak && spectrum(omega + 0.05 * top) < kQuiet * peak) return omega;
+      const double next = spectrum(omega + 0.05 * top);
+      if (here < kQuiet * peak && next < kQuiet * peak) return omega;
+      here = next;
       if (omega > 8.0 * top) {
         throw std::invalid_argument("acoustic run: the chirp's spectrum stays above 1e-8 of its peak up to 12 "
                                     "omega_hat_max; raise sweep_periods");

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "../io/hdf5.hpp"
 #include "run_file_parts.hpp"
@@ -114,6 +116,16 @@ void write_spectrum(hid_t results, const std::vector<SpectralResult>& spectrum) 
                              "Fourier transforms; a row with a non-empty line in 'problems' was not measured");
 }
 
+/// Equal-length time series, one per probe, as a [probes][samples] dataset with its unit.
+void write_records(hid_t group, const std::string& name, const std::vector<std::vector<double>>& records,
+                   const std::string& unit) {
+  std::vector<double> series;
+  const std::size_t samples = records.empty() ? 0 : records.front().size();
+  for (const auto& record : records) series.insert(series.end(), record.begin(), record.end());
+  h5::write(group, name, series.data(), records.size(), samples);
+  h5::write_string_attribute(group, name + "_unit", unit);
+}
+
 }  // namespace
 
 void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
@@ -127,11 +139,7 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     h5::write(probes, "layer_z", r.layer_z.data(), r.layer_z.size());
     h5::write_string_attribute(probes, "layer_z_unit", "d, from the driven wall's mean surface");
     h5::write(probes, "layer_grains", r.layer_grains.data(), r.layer_grains.size());
-    std::vector<double> series;
-    const std::size_t samples = r.displacement.empty() ? 0 : r.displacement.front().size();
-    for (const auto& layer : r.displacement) series.insert(series.end(), layer.begin(), layer.end());
-    h5::write(probes, "displacement", series.data(), r.displacement.size(), samples);
-    h5::write_string_attribute(probes, "displacement_unit", "d; mean over the layer, along the drive axis");
+    write_records(probes, "displacement", r.displacement, "d; mean over the layer, along the drive axis");
     number(probes, "sample_dt", r.sample_dt, "sqrt(m/kappa)");
     if (!r.windows.empty()) {
       // The lock-in windows (sinusoidal drive): per layer, begin and end; 0 periods where none.
@@ -154,10 +162,7 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
       h5::write_string_attribute(grains, "id_unit", "grain id, one per layer (-1: the layer holds no flow grain)");
       h5::write(grains, "z", p.z.data(), p.z.size());
       h5::write_string_attribute(grains, "z_unit", "d, from the driven wall's mean surface");
-      std::vector<double> grain_series;
-      for (const auto& record : p.displacement) grain_series.insert(grain_series.end(), record.begin(), record.end());
-      h5::write(grains, "displacement", grain_series.data(), p.displacement.size(), samples);
-      h5::write_string_attribute(grains, "displacement_unit", "d; of the one grain, along the drive axis");
+      write_records(grains, "displacement", p.displacement, "d; of the one grain, along the drive axis");
     }
 
     h5::Handle results = h5::create_group(file, "results");
