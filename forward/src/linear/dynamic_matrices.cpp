@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace sedwave::forward::linear {
@@ -22,43 +23,144 @@ void add_block(Triplets& t, Eigen::Index row, Eigen::Index col, const Block& blo
   }
 }
 
+/// Where the free grains' blocks live in a compressed-column (CSC) array, the same for K, C1 and
+/// C_t: node c's columns hold, for every node coupled to c (c itself included, ascending), a dense
+/// dofs x dofs block. Each free pair's four blocks are added in place, with no triplet list to
+/// sort: a triplet list of a 5e4-grain channel holds 13 million entries, and building and sorting
+/// it took most of the assembly time.
+class BlockPattern {
+ public:
+  /// `ends`: the two nodes of every pair, -1 where an end belongs to a rigid body.
+  BlockPattern(std::size_t nodes, std::span<const std::array<std::int32_t, 2>> ends, int dofs)
+      : dofs_(dofs), first_(nodes + 1, 0), position_(ends.size(), {-1, -1}) {
+    std::vector<std::int64_t> start(nodes + 1, 0);
+    for (std::size_t n = 0; n < nodes; ++n) start[n + 1] = 1;
+    for (const auto& e : ends) {
+      if (e[0] >= 0 && e[1] >= 0) {
+        ++start[static_cast<std::size_t>(e[0]) + 1];
+        ++start[static_cast<std::size_t>(e[1]) + 1];
+      }
+    }
+    for (std::size_t n = 0; n < nodes; ++n) start[n + 1] += start[n];
+    std::vector<std::int32_t> listed(static_cast<std::size_t>(start[nodes]));
+    std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t n = 0; n < nodes; ++n) listed[static_cast<std::size_t>(fill[n]++)] = static_cast<std::int32_t>(n);
+    for (const auto& e : ends) {
+      if (e[0] >= 0 && e[1] >= 0) {
+        listed[static_cast<std::size_t>(fill[static_cast<std::size_t>(e[0])]++)] = e[1];
+        listed[static_cast<std::size_t>(fill[static_cast<std::size_t>(e[1])]++)] = e[0];
+      }
+    }
+    // Sorted and without repeats (two pairs may join the same nodes), compacted into rows_.
+    rows_.reserve(listed.size());
+    for (std::size_t n = 0; n < nodes; ++n) {
+      const auto begin = listed.begin() + start[n], end = listed.begin() + start[n + 1];
+      std::sort(begin, end);
+      first_[n] = static_cast<std::int64_t>(rows_.size());
+      rows_.insert(rows_.end(), begin, std::unique(begin, end));
+    }
+    first_[nodes] = static_cast<std::int64_t>(rows_.size());
+    for (std::size_t q = 0; q < ends.size(); ++q) {
+      const auto [i, j] = ends[q];
+      if (i >= 0 && j >= 0) position_[q] = {place(i, j), place(j, i)};
+    }
+  }
+
+  [[nodiscard]] std::size_t entries() const { return rows_.size() * static_cast<std::size_t>(dofs_ * dofs_); }
+
+  /// Adds `block` at (row node, column node) of pair q's ends: end_row, end_col in {0, 1} (i, j).
+  void add(std::vector<double>& values, std::size_t q, const std::array<std::int32_t, 2>& ends, int end_row,
+           int end_col, const Block& block) const {
+    const std::int32_t column = ends[static_cast<std::size_t>(end_col)];
+    const std::int64_t where = end_row == end_col ? place(column, column)
+                                                  : position_[q][static_cast<std::size_t>(end_col)];
+    const std::int64_t length = first_[static_cast<std::size_t>(column) + 1] - first_[static_cast<std::size_t>(column)];
+    double* entry = values.data() + dofs_ * (dofs_ * first_[static_cast<std::size_t>(column)] + where);
+    for (int a = 0; a < dofs_; ++a, entry += dofs_ * length) {
+      for (int b = 0; b < dofs_; ++b) entry[b] += block(b, a);
+    }
+  }
+
+  /// The matrix of `values` without its exact zeros (blocks of pairs that a law leaves out).
+  [[nodiscard]] Eigen::SparseMatrix<double> matrix(const std::vector<double>& values) const {
+    const std::size_t nodes = first_.size() - 1;
+    const auto unknowns = static_cast<Eigen::Index>(dofs_ * nodes);
+    Eigen::SparseMatrix<double> m(unknowns, unknowns);
+    m.resizeNonZeros(static_cast<Eigen::Index>(values.size()));
+    std::copy(values.begin(), values.end(), m.valuePtr());
+    int* outer = m.outerIndexPtr();
+    int* inner = m.innerIndexPtr();
+    std::size_t k = 0;
+    for (std::size_t n = 0; n < nodes; ++n) {
+      for (int a = 0; a < dofs_; ++a) {
+        *outer++ = static_cast<int>(k);
+        for (auto r = first_[n]; r < first_[n + 1]; ++r) {
+          for (int b = 0; b < dofs_; ++b) inner[k++] = dofs_ * rows_[static_cast<std::size_t>(r)] + b;
+        }
+      }
+    }
+    *outer = static_cast<int>(k);
+    m.prune([](Eigen::Index, Eigen::Index, double v) { return v != 0.0; });
+    return m;
+  }
+
+ private:
+  /// Index of node `row` in node `column`'s list.
+  [[nodiscard]] std::int64_t place(std::int32_t column, std::int32_t row) const {
+    const auto begin = rows_.begin() + first_[static_cast<std::size_t>(column)];
+    const auto end = rows_.begin() + first_[static_cast<std::size_t>(column) + 1];
+    return std::lower_bound(begin, end, row) - begin;
+  }
+
+  int dofs_;
+  std::vector<std::int64_t> first_;  ///< per node, its first entry in rows_; one past the last at the end
+  std::vector<std::int32_t> rows_;   ///< the nodes coupled to each node, ascending
+  /// Per pair: where node j sits in node i's column (end_col 0) and node i in node j's (end_col 1).
+  std::vector<std::array<std::int64_t, 2>> position_;
+};
+
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& n) {
   Eigen::Matrix3d c;
   c << 0.0, -n.z(), n.y(), n.z(), 0.0, -n.x(), -n.y(), n.x(), 0.0;
   return c;
 }
 
-/// Where one pair's forces go: the free unknowns' matrices and each rigid body's couplings.
+/// Where one pair's forces go: the free unknowns' matrix (values in the BlockPattern's layout) and
+/// each rigid body's couplings.
 struct Targets {
-  Triplets matrix;
+  std::vector<double> matrix;
   std::vector<Triplets> body;
   std::vector<Eigen::Matrix3d> body_self;  ///< each body's translation on itself
 };
 
+/// One pair as assemble() sees it: its index, its grains' nodes (-1: a rigid body's grain) and bodies.
+struct PairEnds {
+  std::size_t index;
+  std::array<std::int32_t, 2> nodes;
+  std::array<int, 2> bodies;
+};
+
 /// Adds the energy 1/2 r^T S r of a relative motion r = A_i x_i + A_j x_j (A: 3 x dofs of each
 /// grain, x = its unknowns, or for a rigid-body grain its body's translation) to the matrix.
-void add_pair(Targets& t, const Eigen::Matrix3d& s, const Operator& a_i, const Operator& a_j, std::int32_t node_i,
-              std::int32_t node_j, int body_i, int body_j, int dofs) {
-  const OperatorColumns ai = a_i.leftCols(dofs), aj = a_j.leftCols(dofs);
-  const std::pair<const OperatorColumns*, std::int32_t> ends[2] = {{&ai, node_i}, {&aj, node_j}};
-  const int bodies[2] = {body_i, body_j};
+void add_pair(Targets& t, const BlockPattern& pattern, const PairEnds& pair, const Eigen::Matrix3d& s,
+              const Operator& a_i, const Operator& a_j, int dofs) {
+  const OperatorColumns a[2] = {a_i.leftCols(dofs), a_j.leftCols(dofs)};
   for (int r = 0; r < 2; ++r) {
-    if (ends[r].second < 0) {
+    if (pair.nodes[static_cast<std::size_t>(r)] < 0) {
       // A rigid body's grain: only its body's own translation block (pairs inside a body are never
       // listed, so the other end is free).
-      t.body_self[static_cast<std::size_t>(bodies[r] - 1)] +=
-          ends[r].first->leftCols(3).transpose() * s * ends[r].first->leftCols(3);
+      t.body_self[static_cast<std::size_t>(pair.bodies[static_cast<std::size_t>(r)] - 1)] +=
+          a[r].leftCols(3).transpose() * s * a[r].leftCols(3);
       continue;
     }
-    const Eigen::Index row = dofs * static_cast<Eigen::Index>(ends[r].second);
     for (int c = 0; c < 2; ++c) {
-      if (ends[c].second >= 0) {
-        add_block(t.matrix, row, dofs * static_cast<Eigen::Index>(ends[c].second),
-                  Block(ends[r].first->transpose() * s * *ends[c].first));
+      if (pair.nodes[static_cast<std::size_t>(c)] >= 0) {
+        pattern.add(t.matrix, pair.index, pair.nodes, r, c, Block(a[r].transpose() * s * a[c]));
       } else {
         // A rigid body's grain moves with the body's translation (its first three columns).
-        add_block(t.body[static_cast<std::size_t>(bodies[c] - 1)], row, 0,
-                  Block(ends[r].first->transpose() * s * ends[c].first->leftCols(3)));
+        add_block(t.body[static_cast<std::size_t>(pair.bodies[static_cast<std::size_t>(c)] - 1)],
+                  dofs * static_cast<Eigen::Index>(pair.nodes[static_cast<std::size_t>(r)]), 0,
+                  Block(a[r].transpose() * s * a[c].leftCols(3)));
       }
     }
   }
@@ -105,39 +207,48 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     if (friction) m.mass.segment<3>(row + 3).setConstant(0.4 * g.mass * g.radius * g.radius);  // solid sphere
   }
 
-  Targets k{{}, std::vector<Triplets>(static_cast<std::size_t>(n_bodies)),
-            std::vector<Eigen::Matrix3d>(static_cast<std::size_t>(n_bodies), Eigen::Matrix3d::Zero())};
-  Targets c = k, ct = k;
   const std::size_t n_pairs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
   if (pairs && (pairs->stiffness.size() != n_pairs || pairs->dashpot.size() != n_pairs)) {
     throw std::invalid_argument("linear engine: one equivalent stiffness and dashpot per contact and gap needed");
   }
+  auto pair_at = [&](std::size_t q) -> const StaticPair& {
+    return q < network.contacts.size() ? network.contacts[q] : network.gaps[q - network.contacts.size()];
+  };
+  std::vector<std::array<std::int32_t, 2>> ends(n_pairs);
+  for (std::size_t q = 0; q < n_pairs; ++q) {
+    ends[q] = {m.node_of_grain[static_cast<std::size_t>(pair_at(q).i)],
+               m.node_of_grain[static_cast<std::size_t>(pair_at(q).j)]};
+  }
+  const BlockPattern pattern(m.grain_of_node.size(), ends, dofs);
+  Targets k{std::vector<double>(pattern.entries(), 0.0), std::vector<Triplets>(static_cast<std::size_t>(n_bodies)),
+            std::vector<Eigen::Matrix3d>(static_cast<std::size_t>(n_bodies), Eigen::Matrix3d::Zero())};
+  Targets c = k;
+  Targets ct{friction ? k.matrix : std::vector<double>{}, k.body, k.body_self};
   for (std::size_t q = 0; q < n_pairs; ++q) {
     const bool touching = q < network.contacts.size();
-    const StaticPair& p = touching ? network.contacts[q] : network.gaps[q - network.contacts.size()];
+    const StaticPair& p = pair_at(q);
+    const PairEnds pair{q, ends[q], {grains[static_cast<std::size_t>(p.i)].body, grains[static_cast<std::size_t>(p.j)].body}};
     const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
     const Eigen::Matrix3d nn = n * n.transpose(), tangent_plane = Eigen::Matrix3d::Identity() - nn;
-    const std::int32_t ni = m.node_of_grain[static_cast<std::size_t>(p.i)];
-    const std::int32_t nj = m.node_of_grain[static_cast<std::size_t>(p.j)];
-    const int bi = grains[static_cast<std::size_t>(p.i)].body, bj = grains[static_cast<std::size_t>(p.j)].body;
     // Normal law on u_i - u_j: tangent stiffness plus pre-stress, and the normal dashpot.
     Operator translation_i = Operator::Zero(), translation_j = Operator::Zero();
     translation_i.leftCols<3>().setIdentity();
     translation_j.leftCols<3>() = -Eigen::Matrix3d::Identity();
     const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
-    add_pair(k, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, translation_i, translation_j, ni, nj,
-             bi, bj, dofs);
-    add_pair(c, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j, ni, nj, bi, bj, dofs);
+    add_pair(k, pattern, pair, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, translation_i,
+             translation_j, dofs);
+    add_pair(c, pattern, pair, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j,
+             dofs);
     if (!friction || !touching) continue;
     // Sticking tangential spring and dashpot on the contact point's tangential displacement.
     const SlipOperators slip = slip_operators(p);
-    add_pair(k, contact.kt * Eigen::Matrix3d::Identity(), slip.i, slip.j, ni, nj, bi, bj, dofs);
-    add_pair(ct, contact.gamma_t * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i, slip.j, ni, nj, bi, bj,
+    add_pair(k, pattern, pair, contact.kt * Eigen::Matrix3d::Identity(), slip.i, slip.j, dofs);
+    add_pair(ct, pattern, pair, contact.gamma_t * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i, slip.j,
              dofs);
   }
-  m.stiffness = from_triplets(k.matrix, unknowns, unknowns);
-  m.dashpots = from_triplets(c.matrix, unknowns, unknowns);
-  m.fixed_dashpots = from_triplets(ct.matrix, unknowns, unknowns);
+  m.stiffness = pattern.matrix(k.matrix);
+  m.dashpots = pattern.matrix(c.matrix);
+  m.fixed_dashpots = friction ? pattern.matrix(ct.matrix) : Eigen::SparseMatrix<double>(unknowns, unknowns);
   for (std::size_t b = 0; b < static_cast<std::size_t>(n_bodies); ++b) {
     m.bodies.push_back({from_triplets(k.body[b], unknowns, 3), from_triplets(c.body[b], unknowns, 3),
                         from_triplets(ct.body[b], unknowns, 3), k.body_self[b], c.body_self[b],
