@@ -10,7 +10,9 @@
 // ensemble. --tile K also times the solve on channels made of 1, 2, 4, ... and K copies of the first packing stacked
 // along z (the contacts across the joins are not in equilibrium: a cost measurement only).
 // --dem runs the time-domain engine on the first packing of each size for each run length given
-// (in periods; 0: until echoes could return). --rows FILE also writes the rows tab-separated.
+// (in periods; 0: until echoes could return), on sizes up to --dem-max-grains N only (default: all).
+// --reference N takes the ensemble of N-grain packings as the reference (default: the largest).
+// --rows FILE also writes the rows tab-separated.
 // --fit-layers L adds, per linear member, the fit over the layers skip_layers..L-1 only: the
 // stretch a short DEM run's lock-in windows reach (its "layers used"), for a like-for-like
 // comparison on the same packing.
@@ -99,6 +101,7 @@ int main(int argc, char** argv) {
   int tile = 0;
   std::vector<double> dem_periods;
   int fit_layers = 0;
+  std::size_t dem_max_grains = 0, reference_grains = 0;
   std::string rows_file;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
@@ -110,6 +113,8 @@ int main(int argc, char** argv) {
     else if (a == "--tile") tile = static_cast<int>(next());
     else if (a == "--dem") dem_periods.push_back(next());
     else if (a == "--fit-layers") fit_layers = static_cast<int>(next());
+    else if (a == "--dem-max-grains") dem_max_grains = static_cast<std::size_t>(next());
+    else if (a == "--reference") reference_grains = static_cast<std::size_t>(next());
     else if (a == "--rows") rows_file = argv[++i];
     else files.push_back(a);
   }
@@ -226,6 +231,7 @@ int main(int argc, char** argv) {
 
   // The time-domain engine on the first packing of each size, for each run length.
   for (const auto& [n, ps] : packings) {
+    if (dem_max_grains > 0 && n > dem_max_grains) continue;
     for (const double periods : dem_periods) {
       channel::DriveSettings d = drive;
       d.periods = periods;
@@ -239,10 +245,12 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Reference: the last ensemble row (largest grain count), else the last linear row.
+  // Reference: the ensemble row of --reference grains, else the last ensemble row (largest grain
+  // count), else the last linear row.
   const Row* reference = nullptr;
   for (const Row& r : rows) {
-    if (r.model.rfind("3D linear", 0) == 0) reference = &r;
+    const bool chosen = reference_grains == 0 || r.size.rfind(std::to_string(reference_grains) + " ", 0) == 0;
+    if (r.model.rfind("3D linear", 0) == 0 && chosen) reference = &r;
   }
   std::printf("omega_hat %.4g, gamma_hat %.4g; errors relative to: %s %s\n", drive.omega_hat, drive.gamma_hat,
               reference ? reference->model.c_str() : "-", reference ? reference->size.c_str() : "-");
