@@ -33,6 +33,7 @@ class BlockPattern {
   /// `ends`: the two nodes of every pair, -1 where an end belongs to a rigid body.
   BlockPattern(std::size_t nodes, std::span<const std::array<std::int32_t, 2>> ends, int dofs)
       : dofs_(dofs), first_(nodes + 1, 0), position_(ends.size(), {-1, -1}) {
+    // Count each node's couplings (itself, then both ends of every free pair), list them, sort.
     std::vector<std::int64_t> start(nodes + 1, 0);
     for (std::size_t n = 0; n < nodes; ++n) start[n + 1] = 1;
     for (const auto& e : ends) {
