@@ -302,6 +302,32 @@ TEST(FirstPeak, RecoversAlphaAndSpeedOfANonDispersivePulse) {
   EXPECT_NEAR(fit.peaks[3].time, 5.0 + 3.0 / speed, 1e-6);
 }
 
+TEST(FirstPeak, ARecordWithoutAPeakIsLeftOutNotFatal) {
+  // As in a layer holding a rattler, which the wave knocks away by more than its own amplitude: the
+  // record falls steadily and never has a maximum above half its largest excursion.
+  const double alpha = 0.03, speed = 1.3, dt = 0.01;
+  auto pulse = [](double s) { return std::exp(-0.5 * (s - 5.0) * (s - 5.0) / 0.25); };
+  std::vector<double> z;
+  std::vector<std::vector<double>> records;
+  for (int i = 0; i <= 10; ++i) {
+    z.push_back(i);
+    const double knocked = i == 4 ? -0.2 : 0.0;  // per unit time
+    records.push_back(sample(
+        [&](double t) { return std::exp(-alpha * z.back()) * pulse(t - z.back() / speed) + knocked * t; }, 0.0, dt,
+        2000));
+  }
+  std::vector<SampledSignal> signals;
+  for (const auto& r : records) signals.push_back({r, 0.0, dt});
+  const FirstPeakFit fit = first_peak_attenuation(z, signals);
+  EXPECT_EQ(fit.skipped, 1);
+  EXPECT_TRUE(std::isnan(fit.peaks[4].time));
+  EXPECT_NEAR(fit.alpha, alpha, 1e-6);
+  EXPECT_NEAR(fit.speed / speed, 1.0, 1e-6);
+  // With fewer than two usable records there is no fit.
+  EXPECT_THROW((void)first_peak_attenuation(std::span(z).subspan(3, 2), std::span(signals).subspan(3, 2)),
+               std::invalid_argument);
+}
+
 /// A Gaussian-windowed tone (centre `centre`, spectral width 1/width) sent dz through the lattice
 /// chain with dashpot gamma_hat, exactly in the frequency domain; the record starts and ends quiet.
 std::vector<double> lattice_pulse(double dz, double gamma_hat, double dt, std::size_t n) {

@@ -426,6 +426,48 @@ std::vector<double> PulseBand::omega_hats() const {
   return table::log_spaced(omega_hat_min, omega_hat_max, static_cast<std::size_t>(frequencies));
 }
 
+/// Lock-in windows for `timing`, the lock-ins and the fit over the layers of `range` that carry the
+/// wave (r.windows, lock_ins, fit, layers_used, problem). False when too few layers are left to fit.
+static bool lock_in_and_fit(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
+                     std::span<const SampledSignal> signals, const LayerRange& range, const ChannelTiming& timing) {
+  const double omega = r.omega_hat;
+  r.windows = measurement_windows(r.layer_z, timing);
+  r.lock_ins.assign(r.layer_z.size(), LockIn{});
+  std::vector<double> z_used;
+  std::vector<LockIn> used;
+  for (std::size_t k = range.first; k < range.end; ++k) {
+    if (!r.windows[k].valid()) continue;
+    r.lock_ins[k] = lock_in(signals[k], omega, r.windows[k].window, Drift::linear);
+    z_used.push_back(r.layer_z[k]);
+    used.push_back(r.lock_ins[k]);
+  }
+  if (used.size() < 3) {
+    r.layers_used = static_cast<int>(used.size());
+    r.problem = "fewer than 3 layers have a steady window before any reflection returns (" +
+                std::to_string(used.size()) + "): lengthen the channel, raise the frequency or absorb the far end";
+    return false;
+  }
+  // A strongly attenuated wave reaches the noise floor inside the channel; the layers beyond would
+  // flatten the fitted decay.
+  const std::size_t steady = used.size();
+  std::vector<LockIn> carrying;
+  std::vector<double> z_carrying;
+  for (const std::size_t i : probes_above_noise(used)) {
+    carrying.push_back(used[i]);
+    z_carrying.push_back(z_used[i]);
+  }
+  r.layers_used = static_cast<int>(carrying.size());
+  if (carrying.size() < 3) {
+    r.problem = "only " + std::to_string(carrying.size()) + " of " + std::to_string(steady) +
+                " layers carry the wave above the noise floor (amplitude >= " + std::to_string(kMinSignalToNoise) +
+                " lock-in errors): raise the drive amplitude or lower the frequency";
+    return false;
+  }
+  r.fit = fit_attenuation_and_wavenumber(z_carrying, carrying, omega, omega / timing.wave_speed, ProbeWeights::uniform);
+  r.problem = resolution_problem(r.fit, z_carrying.back() - z_carrying.front(), absorbing_length(d, u));
+  return true;
+}
+
 void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
   if (r.displacement.empty() || r.displacement.size() != r.layer_z.size() || !(r.sample_dt > 0.0)) {
     throw std::invalid_argument("measure_layer_records: need one record per layer and sample_dt > 0");
@@ -461,42 +503,15 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   timing.period = 2.0 * std::numbers::pi / omega;
   timing.settle_periods = d.settle_periods;
   timing.run_end = run_time;
-  r.windows = measurement_windows(r.layer_z, timing);
-  r.lock_ins.assign(r.layer_z.size(), LockIn{});
-  std::vector<double> z_used;
-  std::vector<LockIn> used;
-  for (std::size_t k = first; k < last_driven; ++k) {
-    if (!r.windows[k].valid()) continue;
-    r.lock_ins[k] = lock_in(signals[k], omega, r.windows[k].window, Drift::linear);
-    z_used.push_back(r.layer_z[k]);
-    used.push_back(r.lock_ins[k]);
+  // The windows open once the wave, at the estimated speed less 20 %, has passed a layer. A fitted
+  // phase speed below that means the deep layers' windows opened before the wave had settled there
+  // (at low omega_hat a 3D packing runs at 0.6 of the 1D lattice's speed, the estimate when no first
+  // peaks could be fitted): the windows are then set again from the fitted speed, once.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (!lock_in_and_fit(r, d, u, signals, range, timing)) return;
+    if (!(r.fit.c < timing.wave_speed * (1.0 - timing.speed_uncertainty))) break;
+    timing.wave_speed = r.wave_speed_estimate = r.fit.c;
   }
-  if (used.size() < 3) {
-    r.layers_used = static_cast<int>(used.size());
-    r.problem = "fewer than 3 layers have a steady window before any reflection returns (" +
-                std::to_string(used.size()) + "): lengthen the channel, raise the frequency or absorb the far end";
-    return;
-  }
-  // A strongly attenuated wave reaches the noise floor inside the channel; the layers beyond would
-  // flatten the fitted decay.
-  const std::size_t steady = used.size();
-  std::vector<LockIn> carrying;
-  std::vector<double> z_carrying;
-  for (const std::size_t i : probes_above_noise(used)) {
-    carrying.push_back(used[i]);
-    z_carrying.push_back(z_used[i]);
-  }
-  used = std::move(carrying);
-  z_used = std::move(z_carrying);
-  r.layers_used = static_cast<int>(used.size());
-  if (used.size() < 3) {
-    r.problem = "only " + std::to_string(used.size()) + " of " + std::to_string(steady) +
-                " layers carry the wave above the noise floor (amplitude >= " + std::to_string(kMinSignalToNoise) +
-                " lock-in errors): raise the drive amplitude or lower the frequency";
-    return;
-  }
-  r.fit = fit_attenuation_and_wavenumber(z_used, used, omega, omega / r.wave_speed_estimate, ProbeWeights::uniform);
-  r.problem = resolution_problem(r.fit, z_used.back() - z_used.front(), absorbing_length(d, u));
 }
 
 /// The same measurement over the single-grain records.

@@ -265,14 +265,27 @@ FirstPeakFit first_peak_attenuation(std::span<const double> z, std::span<const S
                                     double relative_threshold) {
   require_ascending(z, signals.size(), "first_peak_attenuation");
   FirstPeakFit fit;
-  std::vector<double> log_height, time;
-  for (const SampledSignal& s : signals) {
-    fit.peaks.push_back(first_peak(s, relative_threshold));
+  std::vector<double> z_found, log_height, time;
+  for (std::size_t k = 0; k < signals.size(); ++k) {
+    try {
+      fit.peaks.push_back(first_peak(signals[k], relative_threshold));
+    } catch (const std::invalid_argument&) {
+      // E.g. a layer holding a rattler, which the wave knocks about by more than the wave's own
+      // amplitude: one such layer must not cost the whole fit.
+      fit.peaks.push_back({std::nan(""), std::nan("")});
+      ++fit.skipped;
+      continue;
+    }
+    z_found.push_back(z[k]);
     log_height.push_back(std::log(fit.peaks.back().amplitude));
     time.push_back(fit.peaks.back().time);
   }
-  const LineFit height_line = fit_line(z, log_height, {});
-  const LineFit arrival_line = fit_line(z, time, {});  // slope = 1 / speed
+  if (z_found.size() < 2) {
+    throw std::invalid_argument("first_peak_attenuation: fewer than 2 of " + std::to_string(signals.size()) +
+                                " records have a first peak");
+  }
+  const LineFit height_line = fit_line(z_found, log_height, {});
+  const LineFit arrival_line = fit_line(z_found, time, {});  // slope = 1 / speed
   fit.alpha = -height_line.slope;
   fit.sigma_alpha = height_line.sigma_slope;
   fit.speed = 1.0 / arrival_line.slope;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
@@ -151,6 +152,49 @@ TEST(FittedLayers, SkipTheNearFieldStopBeforeTheAbsorberAndAtTheDepthLimit) {
   d.max_fit_depth = 0.0;
   d.far_end = FarEnd::frozen;
   EXPECT_EQ(fitted_layers(d, layer_z).end, 20U);
+}
+
+TEST(LayerRecords, WindowsAreSetAgainWhenTheWaveIsSlowerThanTheirEstimate) {
+  // A steady wave switched on as it arrives, x = e^{-alpha z} sin(omega (t - z/c)) after t = z/c,
+  // at c = 0.6, the 3D packing's speed at low omega_hat. Every record also falls steadily, more
+  // than the wave's amplitude (a packing's slow drift), so no record has a first peak and the
+  // windows start from the 1D lattice's speed, about 1: deeper than ~900 d they would open before
+  // the wave arrives, and the zeros before it would bias alpha and c.
+  const double alpha = 0.002, c = 0.6, omega = 0.05, fall = 1e-3;
+  DriveSettings d;
+  d.omega_hat = omega;
+  d.gamma_hat = 0.1;
+  d.far_end = FarEnd::absorbing;
+  d.absorbing_fraction = 0.3;
+  d.skip_layers = 0;
+  PackingUnits u;
+  u.column_top = 3000.0;
+  AcousticResult r;
+  r.omega_hat = omega;
+  r.gamma_hat = d.gamma_hat;
+  r.sample_dt = 2.0 * std::numbers::pi / omega / 32.0;
+  const auto samples = static_cast<std::size_t>(7000.0 / r.sample_dt);
+  for (double z = 5.0; z < 3000.0; z += 10.0) {
+    r.layer_z.push_back(z);
+    std::vector<double> x(samples);
+    for (std::size_t n = 0; n < samples; ++n) {
+      const double t = r.sample_dt * static_cast<double>(n), s = t - z / c;
+      x[n] = (s > 0.0 ? std::exp(-alpha * z) * std::sin(omega * s) : 0.0) - fall * t;
+    }
+    r.displacement.push_back(std::move(x));
+  }
+  measure_layer_records(r, d, u);
+  EXPECT_EQ(r.first_peak.speed, 0.0);  // no record had a first peak: the windows began from the guess
+  ASSERT_TRUE(r.ok()) << r.problem;
+  EXPECT_NEAR(r.wave_speed_estimate / c, 1.0, 1e-3);  // the first, biased fit set the windows again
+  EXPECT_NEAR(r.fit.alpha / alpha, 1.0, 1e-6);
+  EXPECT_NEAR(r.fit.c / c, 1.0, 1e-6);
+  // Every window now opens after the wave has arrived.
+  for (std::size_t k = 0; k < r.windows.size(); ++k) {
+    if (r.windows[k].valid()) {
+      EXPECT_GT(r.windows[k].window.begin, r.layer_z[k] / c);
+    }
+  }
 }
 
 }  // namespace

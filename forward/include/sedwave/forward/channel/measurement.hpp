@@ -197,12 +197,15 @@ struct Peak {
 /// alpha from the log-height slope of each probe's first peak and speed from the peaks' arrival
 /// times, both by unweighted least squares over z (errors from the scatter; NaN with two probes).
 /// For a dispersive medium the first peak is a transient, so this is biased against the lock-in.
+/// Records without a first peak are left out (their peak is NaN); fewer than 2 with one throw
+/// std::invalid_argument.
 struct FirstPeakFit {
   double alpha = 0.0;
   double sigma_alpha = 0.0;
   double speed = 0.0;
   double sigma_speed = 0.0;
-  std::vector<Peak> peaks;
+  std::vector<Peak> peaks;  ///< one per record
+  int skipped = 0;          ///< records without a first peak
 };
 [[nodiscard]] FirstPeakFit first_peak_attenuation(std::span<const double> z, std::span<const SampledSignal> signals,
                                                   double relative_threshold = 0.5);
