@@ -11,6 +11,7 @@
 #
 #   bench/linear/speed_vs_error.sh [BUILD_DIR] [OUT_DIR]
 set -euo pipefail
+shopt -s inherit_errexit  # a failing preparation inside $(stack ...) stops the script
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$here/build}
 out=${2:-$here/docs/images}

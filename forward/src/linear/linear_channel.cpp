@@ -305,7 +305,13 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
   }
   r.layer_z = grid.centres();
 
-  const auto [first, last] = channel::fitted_layers(d, r.layer_z);
+  const auto [first, fitted_end] = channel::fitted_layers(d, r.layer_z);
+  // Where a long channel attenuates the wave by more than 10^250 (say 10^4 d at alpha_hat = 0.14),
+  // the deeper layers' field underflows to zero and has no phase: the fit stops before them.
+  double peak = 0.0;
+  for (std::size_t k = first; k < fitted_end; ++k) peak = std::max(peak, std::abs(r.layer_field[k]));
+  std::size_t last = first;
+  while (last < fitted_end && std::abs(r.layer_field[last]) > 1e-250 * peak) ++last;
   std::vector<double> amplitudes{d.amplitude};
   for (double a = 1e-7; a < 2e-2; a *= 10.0) amplitudes.push_back(a);
   const std::vector<StateChanges> counted = state_changes(u, d, amplitudes);

@@ -618,5 +618,20 @@ TEST(LinearEngine, RefusesAFrozenFarEnd) {
   EXPECT_THROW((void)engine.respond(d), std::invalid_argument);
 }
 
+TEST(LinearEngine, FitStopsWhereTheFieldUnderflows) {
+  // A chain 4000 long at omega_hat = 1, gamma_hat = 1 (alpha_hat 0.35 per spacing): the field falls
+  // by e^-980 before the absorbing layer and underflows to zero on the way. The fit keeps the
+  // layers that still carry a field and finds the lattice's attenuation.
+  const LinearChannel engine(chain(4000, 0.999), hooke(1.0));
+  channel::DriveSettings d;
+  d.omega_hat = 1.0;
+  d.gamma_hat = 1.0;
+  d.far_end = channel::FarEnd::absorbing;
+  const LinearResult r = engine.respond(d);
+  ASSERT_TRUE(r.problem.empty()) << r.problem;
+  EXPECT_LT(r.layers_used, 2500);
+  EXPECT_NEAR(r.fit.alpha * 0.999 / lattice_wavenumber(1.0, 1.0).k.imag(), 1.0, 1e-3);  // per d, not per spacing
+}
+
 }  // namespace
 }  // namespace sedwave::forward::linear
