@@ -134,12 +134,16 @@ int main(int argc, char** argv) {
   }
 
   // The linear engine: members grouped by grain count into ensembles.
+  // Grouped by their flow-grain count to two significant figures: stacked channels of the same size
+  // differ by a few grains (each cell's walls take what lies within their thickness).
   std::map<std::size_t, std::vector<channel::PreparedChannel>> packings;
   for (const std::string& f : files) {
     channel::PreparedChannel p = channel::read_packing(f);
     std::size_t flow = 0;
     for (const dem::Grain& g : p.grains) flow += g.group == channel::kFlowGroup ? 1 : 0;
-    packings[flow].push_back(std::move(p));
+    std::size_t unit = 1;
+    while (flow / unit >= 100) unit *= 10;
+    packings[(flow + unit / 2) / unit * unit].push_back(std::move(p));
   }
   for (const auto& [n, members_packings] : packings) {
     std::vector<linear::LinearChannel> members;
