@@ -8,11 +8,11 @@
 #   bench/linear/equal_error.sh [GRAINS...]     (default: 30000)
 #
 # GRAINS = 10000 takes the shipped field packing #0 (prepared directly, column 900 d; DEM 20 s at
-# gamma_hat = 1, 2 min at 0.1, on one core); any other size is a channel stacked from a periodic 2000-grain cell (seed 1;
-# docs/linear.md, "Channels of 10^5 to 10^6 grains"), prepared here in seconds. The DEM's cost grows
-# as N^2 (grains x steps to cross the column): N = 3*10^4 takes 3 min at gamma_hat = 1 (15 min at
-# 0.1, where the automatic time step is 6x shorter). BUILD=DIR
-# picks the build (default build); WORK=DIR keeps the packings (default: a temporary folder).
+# gamma_hat = 1, 2 min at 0.1, on one core); any other size is a channel stacked from a periodic
+# 2000-grain cell (seed 1; docs/linear.md, "Channels of 10^5 to 10^6 grains"), prepared here in
+# seconds. The DEM's cost grows as N^2 (grains x steps to cross the column): N = 3*10^4 takes 3 min
+# at gamma_hat = 1, 15 min at 0.1 (where the automatic time step is 6x shorter). BUILD=DIR picks the
+# build (default build); WORK=DIR keeps the packings (default: a temporary folder).
 # At gamma_hat = 0.1 the DEM's lock-in windows on a stacked channel are not yet steady (its cells
 # ring for longer than the run), so the two engines differ there by more than their errors.
 # Units: dimensionless (docs/physics.md).
