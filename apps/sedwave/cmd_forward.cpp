@@ -169,6 +169,7 @@ int run_forward(const ForwardOptions& o) {
       } else {
         std::printf("not measured: %s\n", r.problem.c_str());
       }
+      if (!r.warning.empty()) std::printf("warning: %s\n", r.warning.c_str());
       if (r.single_grains) print_single_grains(*r.single_grains, r.spectrum.empty());
       std::printf("written to %s\n", o.out.c_str());
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -426,6 +427,45 @@ std::vector<double> PulseBand::omega_hats() const {
   return table::log_spaced(omega_hat_min, omega_hat_max, static_cast<std::size_t>(frequencies));
 }
 
+/// The fit again over the first and over the last half of every window (layers with at least 4
+/// periods): in a steady state the two agree, while a transient still decaying in the windows (the
+/// slow modes of a weakly damped channel) sets them apart. Returns a warning when they differ by
+/// more than kUnsteadyAlpha in alpha or kUnsteadySpeed in c and by more than 3 standard errors,
+/// else nothing.
+static std::string steadiness_warning(const AcousticResult& r, std::span<const SampledSignal> signals,
+                               std::span<const double> z_fitted, const ChannelTiming& timing) {
+  constexpr double kUnsteadyAlpha = 0.05, kUnsteadySpeed = 0.01;
+  std::vector<double> z;
+  std::vector<LockIn> early, late;
+  for (std::size_t k = 0; k < r.layer_z.size(); ++k) {
+    const ProbeWindow& w = r.windows[k];
+    if (!w.valid() || w.periods < 4 || !std::binary_search(z_fitted.begin(), z_fitted.end(), r.layer_z[k])) continue;
+    const double half = (w.periods / 2) * timing.period;
+    z.push_back(r.layer_z[k]);
+    early.push_back(lock_in(signals[k], r.omega_hat, {w.window.begin, w.window.begin + half}, Drift::linear));
+    late.push_back(lock_in(signals[k], r.omega_hat, {w.window.end - half, w.window.end}, Drift::linear));
+  }
+  if (z.size() < 3) return {};
+  const double expected_k = r.fit.k;
+  const PropagationFit a = fit_attenuation_and_wavenumber(z, early, r.omega_hat, expected_k, ProbeWeights::uniform);
+  const PropagationFit b = fit_attenuation_and_wavenumber(z, late, r.omega_hat, expected_k, ProbeWeights::uniform);
+  // Apart by more than the tolerance and by more than 3 standard errors of the difference (the
+  // halves' fit errors, which also hold the packing's disorder, common to both: a cautious test).
+  auto apart = [](double x, double y, double sx, double sy, double tolerance) {
+    return std::abs(x - y) > tolerance && std::abs(x - y) > 3.0 * std::hypot(sx, sy);
+  };
+  if (!apart(a.alpha, b.alpha, a.sigma_alpha, b.sigma_alpha, kUnsteadyAlpha * std::abs(r.fit.alpha)) &&
+      !apart(a.c, b.c, a.sigma_c, b.sigma_c, kUnsteadySpeed * r.fit.c)) {
+    return {};
+  }
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "not steady: the first and last halves of the lock-in windows give alpha_hat %.4g and %.4g, c_hat "
+                "%.4g and %.4g (a transient still decays: raise settle_periods, or use the linear engine)",
+                a.alpha, b.alpha, a.c, b.c);
+  return text;
+}
+
 /// Lock-in windows for `timing`, the lock-ins and the fit over the layers of `range` that carry the
 /// wave (r.windows, lock_ins, fit, layers_used, problem). False when too few layers are left to fit.
 static bool lock_in_and_fit(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
@@ -465,6 +505,7 @@ static bool lock_in_and_fit(AcousticResult& r, const DriveSettings& d, const Pac
   }
   r.fit = fit_attenuation_and_wavenumber(z_carrying, carrying, omega, omega / timing.wave_speed, ProbeWeights::uniform);
   r.problem = resolution_problem(r.fit, z_carrying.back() - z_carrying.front(), absorbing_length(d, u));
+  r.warning = steadiness_warning(r, signals, z_carrying, timing);
   return true;
 }
 

@@ -184,6 +184,7 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     h5::write_attribute(results, "steps", r.steps);
     number(results, "wall_seconds", r.wall_seconds, "s");
     h5::write_string_attribute(results, "problem", r.problem);
+    h5::write_string_attribute(results, "warning", r.warning);
     if (!r.spectrum.empty()) write_spectrum(results, r.spectrum);
     if (r.single_grains) {
       const SingleGrainProbes& p = *r.single_grains;

@@ -138,6 +138,10 @@ struct AcousticResult {
   std::int64_t steps = 0;
   double wall_seconds = 0.0;
   std::string problem;                   ///< empty when alpha and c were measured
+  /// Set when the first and last halves of the lock-in windows disagree (more than 5 % in alpha or
+  /// 1 % in c, and more than 3 standard errors): the windows hold a transient. The result stands,
+  /// but a longer run may move it.
+  std::string warning;
   [[nodiscard]] bool ok() const { return problem.empty(); }
 };
 
