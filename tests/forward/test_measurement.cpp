@@ -284,19 +284,31 @@ TEST(Propagation, WindowKeepsTheEchoOut) {
   EXPECT_GT(std::abs(polluted.alpha / wave.alpha - 1.0), 1e-2);
 }
 
-TEST(FirstPeak, RecoversAlphaAndSpeedOfANonDispersivePulse) {
-  const double alpha = 0.03, speed = 1.3, dt = 0.01;
-  auto pulse = [](double s) { return std::exp(-0.5 * (s - 5.0) * (s - 5.0) / 0.25); };
+/// A Gaussian pulse (peak at t = 5, standard deviation 0.5) reaching probes at z = 0, 1, ..., 10 at
+/// `speed`, attenuated as e^{-alpha z}, sampled every dt from t = 0; probe i's record also falls by
+/// fall(i) per unit time.
+struct PulseRecords {
   std::vector<double> z;
   std::vector<std::vector<double>> records;
+  std::vector<SampledSignal> signals;  // views of records
+};
+PulseRecords pulse_records(double alpha, double speed, double dt, const std::function<double(int)>& fall) {
+  auto pulse = [](double s) { return std::exp(-0.5 * (s - 5.0) * (s - 5.0) / 0.25); };
+  PulseRecords p;
   for (int i = 0; i <= 10; ++i) {
-    z.push_back(i);
-    records.push_back(sample([&](double t) { return std::exp(-alpha * z.back()) * pulse(t - z.back() / speed); },
-                             0.0, dt, 2000));
+    const double z = i;
+    p.z.push_back(z);
+    p.records.push_back(
+        sample([&](double t) { return std::exp(-alpha * z) * pulse(t - z / speed) - fall(i) * t; }, 0.0, dt, 2000));
   }
-  std::vector<SampledSignal> signals;
-  for (const auto& r : records) signals.push_back({r, 0.0, dt});
-  const FirstPeakFit fit = first_peak_attenuation(z, signals);
+  for (const auto& r : p.records) p.signals.push_back({r, 0.0, dt});
+  return p;
+}
+
+TEST(FirstPeak, RecoversAlphaAndSpeedOfANonDispersivePulse) {
+  const double alpha = 0.03, speed = 1.3;
+  const PulseRecords p = pulse_records(alpha, speed, 0.01, [](int) { return 0.0; });
+  const FirstPeakFit fit = first_peak_attenuation(p.z, p.signals);
   EXPECT_NEAR(fit.alpha, alpha, 1e-6);
   EXPECT_NEAR(fit.speed / speed, 1.0, 1e-6);
   EXPECT_NEAR(fit.peaks[3].time, 5.0 + 3.0 / speed, 1e-6);
@@ -305,26 +317,15 @@ TEST(FirstPeak, RecoversAlphaAndSpeedOfANonDispersivePulse) {
 TEST(FirstPeak, ARecordWithoutAPeakIsLeftOutNotFatal) {
   // As in a layer holding a rattler, which the wave knocks away by more than its own amplitude: the
   // record falls steadily and never has a maximum above half its largest excursion.
-  const double alpha = 0.03, speed = 1.3, dt = 0.01;
-  auto pulse = [](double s) { return std::exp(-0.5 * (s - 5.0) * (s - 5.0) / 0.25); };
-  std::vector<double> z;
-  std::vector<std::vector<double>> records;
-  for (int i = 0; i <= 10; ++i) {
-    z.push_back(i);
-    const double knocked = i == 4 ? -0.2 : 0.0;  // per unit time
-    records.push_back(sample(
-        [&](double t) { return std::exp(-alpha * z.back()) * pulse(t - z.back() / speed) + knocked * t; }, 0.0, dt,
-        2000));
-  }
-  std::vector<SampledSignal> signals;
-  for (const auto& r : records) signals.push_back({r, 0.0, dt});
-  const FirstPeakFit fit = first_peak_attenuation(z, signals);
+  const double alpha = 0.03, speed = 1.3;
+  const PulseRecords p = pulse_records(alpha, speed, 0.01, [](int i) { return i == 4 ? 0.2 : 0.0; });
+  const FirstPeakFit fit = first_peak_attenuation(p.z, p.signals);
   EXPECT_EQ(fit.skipped, 1);
   EXPECT_TRUE(std::isnan(fit.peaks[4].time));
   EXPECT_NEAR(fit.alpha, alpha, 1e-6);
   EXPECT_NEAR(fit.speed / speed, 1.0, 1e-6);
   // With fewer than two usable records there is no fit.
-  EXPECT_THROW((void)first_peak_attenuation(std::span(z).subspan(3, 2), std::span(signals).subspan(3, 2)),
+  EXPECT_THROW((void)first_peak_attenuation(std::span(p.z).subspan(3, 2), std::span(p.signals).subspan(3, 2)),
                std::invalid_argument);
 }
 
