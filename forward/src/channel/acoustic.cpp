@@ -433,22 +433,21 @@ std::vector<double> PulseBand::omega_hats() const {
 /// more than kUnsteadyAlpha in alpha or kUnsteadySpeed in c and by more than 3 standard errors,
 /// else nothing.
 static std::string steadiness_warning(const AcousticResult& r, std::span<const SampledSignal> signals,
-                               std::span<const double> z_fitted, const ChannelTiming& timing) {
+                                      std::span<const std::size_t> fitted, const ChannelTiming& timing) {
   constexpr double kUnsteadyAlpha = 0.05, kUnsteadySpeed = 0.01;
   std::vector<double> z;
   std::vector<LockIn> early, late;
-  for (std::size_t k = 0; k < r.layer_z.size(); ++k) {
+  for (const std::size_t k : fitted) {
     const ProbeWindow& w = r.windows[k];
-    if (!w.valid() || w.periods < 4 || !std::binary_search(z_fitted.begin(), z_fitted.end(), r.layer_z[k])) continue;
+    if (w.periods < 4) continue;
     const double half = (w.periods / 2) * timing.period;
     z.push_back(r.layer_z[k]);
     early.push_back(lock_in(signals[k], r.omega_hat, {w.window.begin, w.window.begin + half}, Drift::linear));
     late.push_back(lock_in(signals[k], r.omega_hat, {w.window.end - half, w.window.end}, Drift::linear));
   }
   if (z.size() < 3) return {};
-  const double expected_k = r.fit.k;
-  const PropagationFit a = fit_attenuation_and_wavenumber(z, early, r.omega_hat, expected_k, ProbeWeights::uniform);
-  const PropagationFit b = fit_attenuation_and_wavenumber(z, late, r.omega_hat, expected_k, ProbeWeights::uniform);
+  const PropagationFit a = fit_attenuation_and_wavenumber(z, early, r.omega_hat, r.fit.k, ProbeWeights::uniform);
+  const PropagationFit b = fit_attenuation_and_wavenumber(z, late, r.omega_hat, r.fit.k, ProbeWeights::uniform);
   // Apart by more than the tolerance and by more than 3 standard errors of the difference (the
   // halves' fit errors, which also hold the packing's disorder, common to both: a cautious test).
   auto apart = [](double x, double y, double sx, double sy, double tolerance) {
@@ -467,46 +466,49 @@ static std::string steadiness_warning(const AcousticResult& r, std::span<const S
 }
 
 /// Lock-in windows for `timing`, the lock-ins and the fit over the layers of `range` that carry the
-/// wave (r.windows, lock_ins, fit, layers_used, problem). False when too few layers are left to fit.
-static bool lock_in_and_fit(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
-                     std::span<const SampledSignal> signals, const LayerRange& range, const ChannelTiming& timing) {
+/// wave (r.windows, lock_ins, fit, layers_used, problem). Returns the fitted layers' indices, or
+/// nothing when too few layers are left to fit.
+static std::optional<std::vector<std::size_t>> lock_in_and_fit(AcousticResult& r, const DriveSettings& d,
+                                                               const PackingUnits& u,
+                                                               std::span<const SampledSignal> signals,
+                                                               const LayerRange& range, const ChannelTiming& timing) {
   const double omega = r.omega_hat;
   r.windows = measurement_windows(r.layer_z, timing);
   r.lock_ins.assign(r.layer_z.size(), LockIn{});
-  std::vector<double> z_used;
+  std::vector<std::size_t> steady;
   std::vector<LockIn> used;
   for (std::size_t k = range.first; k < range.end; ++k) {
     if (!r.windows[k].valid()) continue;
     r.lock_ins[k] = lock_in(signals[k], omega, r.windows[k].window, Drift::linear);
-    z_used.push_back(r.layer_z[k]);
+    steady.push_back(k);
     used.push_back(r.lock_ins[k]);
   }
   if (used.size() < 3) {
     r.layers_used = static_cast<int>(used.size());
     r.problem = "fewer than 3 layers have a steady window before any reflection returns (" +
                 std::to_string(used.size()) + "): lengthen the channel, raise the frequency or absorb the far end";
-    return false;
+    return std::nullopt;
   }
   // A strongly attenuated wave reaches the noise floor inside the channel; the layers beyond would
   // flatten the fitted decay.
-  const std::size_t steady = used.size();
+  std::vector<std::size_t> fitted;
   std::vector<LockIn> carrying;
-  std::vector<double> z_carrying;
+  std::vector<double> z;
   for (const std::size_t i : probes_above_noise(used)) {
+    fitted.push_back(steady[i]);
     carrying.push_back(used[i]);
-    z_carrying.push_back(z_used[i]);
+    z.push_back(r.layer_z[steady[i]]);
   }
   r.layers_used = static_cast<int>(carrying.size());
   if (carrying.size() < 3) {
-    r.problem = "only " + std::to_string(carrying.size()) + " of " + std::to_string(steady) +
+    r.problem = "only " + std::to_string(carrying.size()) + " of " + std::to_string(steady.size()) +
                 " layers carry the wave above the noise floor (amplitude >= " + std::to_string(kMinSignalToNoise) +
                 " lock-in errors): raise the drive amplitude or lower the frequency";
-    return false;
+    return std::nullopt;
   }
-  r.fit = fit_attenuation_and_wavenumber(z_carrying, carrying, omega, omega / timing.wave_speed, ProbeWeights::uniform);
-  r.problem = resolution_problem(r.fit, z_carrying.back() - z_carrying.front(), absorbing_length(d, u));
-  r.warning = steadiness_warning(r, signals, z_carrying, timing);
-  return true;
+  r.fit = fit_attenuation_and_wavenumber(z, carrying, omega, omega / timing.wave_speed, ProbeWeights::uniform);
+  r.problem = resolution_problem(r.fit, z.back() - z.front(), absorbing_length(d, u));
+  return fitted;
 }
 
 void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
@@ -548,11 +550,14 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   // phase speed below that means the deep layers' windows opened before the wave had settled there
   // (at low omega_hat a 3D packing runs at 0.6 of the 1D lattice's speed, the estimate when no first
   // peaks could be fitted): the windows are then set again from the fitted speed, once.
+  std::optional<std::vector<std::size_t>> fitted;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    if (!lock_in_and_fit(r, d, u, signals, range, timing)) return;
+    fitted = lock_in_and_fit(r, d, u, signals, range, timing);
+    if (!fitted) return;
     if (!(r.fit.c < timing.wave_speed * (1.0 - timing.speed_uncertainty))) break;
     timing.wave_speed = r.wave_speed_estimate = r.fit.c;
   }
+  r.warning = steadiness_warning(r, signals, *fitted, timing);
 }
 
 /// The same measurement over the single-grain records.
