@@ -28,9 +28,7 @@ for grains in "${@:-30000}"; do
   else
     packing=$work/stacked$grains.h5
     if [ ! -f "$packing" ]; then
-      sed -e "s/^grains = 10000/grains = $grains/" -e 's/^ensemble = 5/ensemble = 1/' \
-          -e 's/^seed = 1$/seed = 1\n\n[geometry.periodic_cell]\ngrains = 2000/' \
-          "$root/data/scenes/field_w3.toml" > "$work/stacked$grains.toml"
+      "$root/bench/linear/stacked_field_scene.sh" "$grains" 1 > "$work/stacked$grains.toml"
       "$build/bin/sedwave" forward "$work/stacked$grains.toml" --out "$work/prepare$grains.h5" \
           --packing-out "$packing" | grep "^tiled\|column height"
     fi

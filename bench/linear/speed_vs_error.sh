@@ -23,8 +23,7 @@ trap 'rm -rf "$rows" "$series" "$stacked"' EXIT
 
 # The field scene with its column stacked from periodic 2000-grain cells, five members.
 stack() {  # grains -> packing files (member 0 first)
-  sed -e "s/^grains = 10000/grains = $1/" -e 's/^seed = 1$/seed = 1\n\n[geometry.periodic_cell]\ngrains = 2000/' \
-      "$here/data/scenes/field_w3.toml" > "$stacked/s$1.toml"
+  "$here/bench/linear/stacked_field_scene.sh" "$1" > "$stacked/s$1.toml"
   "$build/bin/sedwave" forward "$stacked/s$1.toml" --out "$stacked/r$1.h5" --packing-out "$stacked/p$1.h5" >/dev/null
   echo "$stacked/p$1.h5" "$stacked"/p$1.member{1,2,3,4}.h5
 }

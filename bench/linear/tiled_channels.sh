@@ -23,8 +23,7 @@ echo "# work folder: $work"
 case ${1:-} in
   validate)
     # The field scene with the column replaced by 5 copies of a 2000-grain cell; the same grid.
-    sed -e 's/^seed = 1$/seed = 1\n\n[geometry.periodic_cell]\ngrains = 2000/' \
-        "$root/data/scenes/field_w3.toml" > "$work/tiled2k.toml"
+    "$root/bench/linear/stacked_field_scene.sh" 10000 > "$work/tiled2k.toml"
     sed -e 's/^scene = .*/scene = "tiled2k.toml"/' "$root/data/scenes/field_w3_driven.toml" > "$work/tiled2k_grid.toml"
     start=$(date +%s)
     "$sedwave" table "$work/tiled2k_grid.toml" --engine linear --packing "$work/tiled2k.packing.h5" \
