@@ -169,6 +169,10 @@ int run_forward(const ForwardOptions& o) {
       } else {
         std::printf("not measured: %s\n", r.problem.c_str());
       }
+      if (r.extensions > 0) {
+        std::printf("the run was continued %d time(s) because its windows were not steady%s\n", r.extensions,
+                    r.ok() && r.warning.empty() ? "; they are now" : "");
+      }
       if (!r.warning.empty()) std::printf("warning: %s\n", r.warning.c_str());
       if (r.single_grains) print_single_grains(*r.single_grains, r.spectrum.empty());
       std::printf("written to %s\n", o.out.c_str());

@@ -511,15 +511,22 @@ static std::optional<std::vector<std::size_t>> lock_in_and_fit(AcousticResult& r
   return fitted;
 }
 
-void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
+/// measure_layer_records, with the first peaks sought in the first `front_samples` samples only:
+/// a run continued because it was not steady keeps the front its first run saw (a first peak is
+/// one above a fraction of the record's largest value, which a longer record can move).
+static void measure_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
+                            std::size_t front_samples) {
   if (r.displacement.empty() || r.displacement.size() != r.layer_z.size() || !(r.sample_dt > 0.0)) {
     throw std::invalid_argument("measure_layer_records: need one record per layer and sample_dt > 0");
   }
   const double run_time = static_cast<double>(r.displacement.front().size() - 1) * r.sample_dt;
   const double c_guess = speed_guess(d);
   const double omega = r.omega_hat;  // dimensionless from here on: z in d, t in sqrt(m/kappa)
-  std::vector<SampledSignal> signals;
-  for (const auto& record : r.displacement) signals.push_back({record, 0.0, r.sample_dt});
+  std::vector<SampledSignal> signals, fronts;
+  for (const auto& record : r.displacement) {
+    signals.push_back({record, 0.0, r.sample_dt});
+    fronts.push_back({std::span<const double>(record).first(std::min(front_samples, record.size())), 0.0, r.sample_dt});
+  }
   const LayerRange range = fitted_layers(d, r.layer_z);
   const std::size_t first = range.first, last_driven = range.end;
   if (last_driven <= first + 2) {
@@ -530,7 +537,7 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   const std::span<const SampledSignal> s(signals.data() + first, last_driven - first);
   r.wave_speed_estimate = c_guess;
   try {
-    r.first_peak = first_peak_attenuation(z, s);
+    r.first_peak = first_peak_attenuation(z, std::span<const SampledSignal>(fronts.data() + first, last_driven - first));
     if (r.first_peak.speed > 0.0 && std::isfinite(r.first_peak.speed)) r.wave_speed_estimate = r.first_peak.speed;
   } catch (const std::exception&) {
     // No clear first peak (strong damping smears the front): keep the theory's estimate.
@@ -560,8 +567,13 @@ void measure_layer_records(AcousticResult& r, const DriveSettings& d, const Pack
   r.warning = steadiness_warning(r, signals, *fitted, timing);
 }
 
+void measure_layer_records(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
+  measure_records(r, d, u, std::numeric_limits<std::size_t>::max());
+}
+
 /// The same measurement over the single-grain records.
-static void measure_single_grains(AcousticResult& r, const DriveSettings& d, const PackingUnits& u) {
+static void measure_single_grains(AcousticResult& r, const DriveSettings& d, const PackingUnits& u,
+                                  std::size_t front_samples) {
   SingleGrainProbes& p = *r.single_grains;
   AcousticResult grains;
   grains.omega_hat = r.omega_hat;
@@ -570,7 +582,7 @@ static void measure_single_grains(AcousticResult& r, const DriveSettings& d, con
   grains.layer_z = p.z;
   grains.sample_dt = r.sample_dt;
   grains.displacement = p.displacement;
-  measure_layer_records(grains, d, u);
+  measure_records(grains, d, u, front_samples);
   p.fit = grains.fit;
   p.spectrum = std::move(grains.spectrum);
   p.probes_used = grains.layers_used;
@@ -644,7 +656,20 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   engine.run(total_steps);
   r.steps = total_steps;
   measure_layer_records(r, d, u);
-  if (r.single_grains) measure_single_grains(r, d, u);
+  // A weakly damped channel can ring for longer than the run: continue it, and wait as much longer
+  // before every window opens, so the windows keep their length and see a later, steadier motion.
+  const bool extendable = !d.pulse && d.far_end == FarEnd::absorbing && !(d.periods > 0.0);
+  DriveSettings later = d;
+  const std::size_t first_run_samples = r.displacement.front().size();
+  while (extendable && !r.warning.empty() && r.problem.empty() && r.extensions < d.steady_extensions) {
+    engine.run(total_steps);
+    r.steps += total_steps;
+    ++r.extensions;
+    later.settle_periods += static_cast<double>(total_steps) * dt * d.omega_hat / (2.0 * std::numbers::pi);
+    r.warning.clear();
+    measure_records(r, later, u, first_run_samples);
+  }
+  if (r.single_grains) measure_single_grains(r, later, u, first_run_samples);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

@@ -182,6 +182,7 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     number(results, "c", r.fit.c * r.mean_diameter / t0, "scene length per scene time unit");
     h5::write_attribute(results, "layers_used", static_cast<std::int32_t>(r.layers_used));
     h5::write_attribute(results, "steps", r.steps);
+    h5::write_attribute(results, "extensions", static_cast<std::int32_t>(r.extensions));
     number(results, "wall_seconds", r.wall_seconds, "s");
     h5::write_string_attribute(results, "problem", r.problem);
     h5::write_string_attribute(results, "warning", r.warning);

@@ -138,6 +138,7 @@ void read_drive(Section s, DriveSettings& d) {
   d.max_fit_depth = m.positive("max_fit_depth", d.max_fit_depth);
   d.grain_probes = m.boolean("grain_probes", d.grain_probes);
   d.settle_periods = m.number("settle_periods", d.settle_periods);
+  d.steady_extensions = static_cast<int>(m.integer("steady_extensions", d.steady_extensions, 0));
   m.finish();
   s.finish();
 }

@@ -349,7 +349,13 @@ PointResult point_from_measurement(const std::string& problem, double alpha, dou
 
 PointResult point_from_acoustic(const channel::AcousticResult& result) {
   const channel::PropagationFit& fit = result.fit;
-  return point_from_measurement(result.problem, fit.alpha, fit.sigma_alpha, fit.c, fit.sigma_c, result.wall_seconds);
+  // A point whose windows still hold a decaying transient after every extension is biased by more
+  // than the steadiness tolerance: a table must not interpolate through it.
+  const std::string problem =
+      result.problem.empty() && !result.warning.empty()
+          ? result.warning + " (after " + std::to_string(result.extensions) + " extension(s) of the run)"
+          : result.problem;
+  return point_from_measurement(problem, fit.alpha, fit.sigma_alpha, fit.c, fit.sigma_c, result.wall_seconds);
 }
 
 void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point) {

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
+#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/linear/linear_channel.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
@@ -131,6 +133,36 @@ TEST_F(SmallChannel, SingleGrainProbesMeasureTheSameWaveLessPrecisely) {
   EXPECT_GT(p.fit.sigma_c, r.fit.sigma_c);
   EXPECT_LT(std::abs(p.fit.alpha - r.fit.alpha), 3.0 * std::hypot(p.fit.sigma_alpha, r.fit.sigma_alpha));
   EXPECT_LT(std::abs(p.fit.c - r.fit.c), 3.0 * std::hypot(p.fit.sigma_c, r.fit.sigma_c));
+}
+
+// A weakly damped channel rings for longer than a run that ends when echoes could return: the
+// first and last halves of its lock-in windows disagree. Continued by its own length, with every
+// window moved as far later, the run must become steady and come closer to the steady state the
+// linear engine solves for directly on the same packing (the shipped small table's, where this
+// point rings; not every packing does).
+TEST(ContinuedRun, ARunNotSteadyIsContinuedUntilItIs) {
+  const PreparedChannel packing = read_packing(SEDWAVE_SOURCE_DIR "/data/tables/thesis_w3_small.packing.h5");
+  DriveSettings d;
+  d.gamma_hat = 0.01;
+  d.omega_hat = 1.0;
+  d.far_end = FarEnd::absorbing;
+  d.absorbing_fraction = 0.6;
+  d.steady_extensions = 0;
+  const AcousticResult once = run_acoustic(MPI_COMM_WORLD, packing, hooke(726.0), d);
+  d.steady_extensions = 2;
+  const AcousticResult continued = run_acoustic(MPI_COMM_WORLD, packing, hooke(726.0), d);
+  const linear::LinearResult steady = linear::LinearChannel(packing, hooke(726.0)).respond(d);
+  std::cout << "one run: alpha_hat " << once.fit.alpha << " +- " << once.fit.sigma_alpha << " (" << once.warning
+            << "); continued " << continued.extensions << " time(s): " << continued.fit.alpha << " +- "
+            << continued.fit.sigma_alpha << "; linear engine " << steady.fit.alpha << " +- " << steady.fit.sigma_alpha
+            << "\n";
+  ASSERT_TRUE(once.ok() && continued.ok() && steady.ok()) << once.problem << continued.problem << steady.problem;
+  EXPECT_EQ(once.extensions, 0);
+  EXPECT_NE(once.warning.find("not steady"), std::string::npos);
+  ASSERT_GE(continued.extensions, 1);
+  EXPECT_TRUE(continued.warning.empty()) << continued.warning;
+  EXPECT_EQ(continued.steps, (1 + continued.extensions) * once.steps);
+  EXPECT_LT(std::abs(continued.fit.alpha - steady.fit.alpha), 0.5 * std::abs(once.fit.alpha - steady.fit.alpha));
 }
 
 TEST(FittedLayers, SkipTheNearFieldStopBeforeTheAbsorberAndAtTheDepthLimit) {

@@ -49,6 +49,17 @@ TEST(PointFromAcoustic, RunProblemIsUnresolvedWithItsReason) {
   EXPECT_TRUE(std::isnan(p.c_hat));
 }
 
+TEST(PointFromAcoustic, WindowsStillNotSteadyAreUnresolved) {
+  channel::AcousticResult r = measured(0.02, 0.001, 0.9, 0.01);
+  r.warning = "not steady: the first and last halves of the lock-in windows give alpha_hat 0.03 and 0.02";
+  r.extensions = 2;
+  const PointResult p = point_from_acoustic(r);
+  EXPECT_EQ(p.status, PointStatus::unresolved);
+  EXPECT_NE(p.reason.find(r.warning), std::string::npos) << p.reason;
+  EXPECT_NE(p.reason.find("after 2 extension"), std::string::npos) << p.reason;
+  EXPECT_TRUE(std::isnan(p.alpha_hat));
+}
+
 TEST(PointFromAcoustic, NonFiniteFitIsUnresolved) {
   const PointResult p = point_from_acoustic(measured(0.02, NAN, 0.9, 0.01));
   EXPECT_EQ(p.status, PointStatus::unresolved);

@@ -86,6 +86,11 @@ struct DriveSettings {
   /// and c from those single grains alone, as the thesis did, beside the layer averages.
   bool grain_probes = false;
   double settle_periods = 3.0;      ///< after the front passes, before a layer counts as steady
+  /// While the lock-in windows are not steady (AcousticResult::warning), continue the run by its
+  /// first length, with every window moved as far later, at most this many times. Only for a
+  /// sinusoid with an absorbing far end and no fixed `periods` (else no later window is echo-free
+  /// or the user fixed the length); 0: never.
+  int steady_extensions = 2;
   double time_step_fraction = 0.01; ///< dt / binary collision time (thesis: 0.01)
 };
 
@@ -136,11 +141,12 @@ struct AcousticResult {
   std::optional<SingleGrainProbes> single_grains;  ///< with DriveSettings::grain_probes
   int layers_used = 0;
   std::int64_t steps = 0;
+  int extensions = 0;                    ///< times the run was continued because it was not steady
   double wall_seconds = 0.0;
   std::string problem;                   ///< empty when alpha and c were measured
   /// Set when the first and last halves of the lock-in windows disagree (more than 5 % in alpha or
-  /// 1 % in c, and more than 3 standard errors): the windows hold a transient. The result stands,
-  /// but a longer run may move it.
+  /// 1 % in c, and more than 3 standard errors) even after DriveSettings::steady_extensions: the
+  /// windows hold a transient. The result stands, but a longer run may move it.
   std::string warning;
   [[nodiscard]] bool ok() const { return problem.empty(); }
 };

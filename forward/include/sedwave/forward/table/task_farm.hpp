@@ -62,7 +62,8 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
 [[nodiscard]] PointResult point_from_measurement(const std::string& problem, double alpha, double sigma_alpha,
                                                  double c, double sigma_c, double wall_seconds);
 
-/// What a driven run measured, as a table point (point_from_measurement).
+/// What a driven run measured, as a table point (point_from_measurement); unresolved, with the
+/// warning as its reason, when its windows were still not steady after every extension.
 [[nodiscard]] PointResult point_from_acoustic(const channel::AcousticResult& result);
 
 /// Copies the prepared packing from rank 0 of `world` (where prepare_channel leaves it) to the rank 0
