@@ -170,8 +170,8 @@ int run_forward(const ForwardOptions& o) {
         std::printf("not measured: %s\n", r.problem.c_str());
       }
       if (r.extensions > 0) {
-        std::printf("the run was continued %d time(s) because its windows were not steady%s\n", r.extensions,
-                    r.ok() && r.warning.empty() ? "; they are now" : "");
+        std::printf("the run was continued %d time(s): its windows were not steady or deep layers lay below the "
+                    "noise floor%s\n", r.extensions, r.ok() && r.warning.empty() ? "; now measured and steady" : "");
       }
       if (!r.warning.empty()) std::printf("warning: %s\n", r.warning.c_str());
       if (r.single_grains) print_single_grains(*r.single_grains, r.spectrum.empty());

@@ -500,6 +500,7 @@ static std::optional<std::vector<std::size_t>> lock_in_and_fit(AcousticResult& r
     z.push_back(r.layer_z[steady[i]]);
   }
   r.layers_used = static_cast<int>(carrying.size());
+  r.layers_below_noise = static_cast<int>(used.size() - carrying.size());
   if (carrying.size() < 3) {
     r.problem = "only " + std::to_string(carrying.size()) + " of " + std::to_string(steady.size()) +
                 " layers carry the wave above the noise floor (amplitude >= " + std::to_string(kMinSignalToNoise) +
@@ -656,17 +657,21 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   engine.run(total_steps);
   r.steps = total_steps;
   measure_layer_records(r, d, u);
-  // A weakly damped channel can ring for longer than the run: continue it, and wait as much longer
-  // before every window opens, so the windows keep their length and see a later, steadier motion.
+  // A weakly damped channel can ring for longer than the run, and in a strongly damped one the
+  // switch-on transient buries the deep layers' small steady signal: continue the run, and wait as
+  // much longer before every window opens, so the windows keep their length and see later motion.
   const bool extendable = !d.pulse && d.far_end == FarEnd::absorbing && !(d.periods > 0.0);
+  auto unsettled = [&r] { return r.problem.empty() ? !r.warning.empty() : r.layers_below_noise > 0; };
   DriveSettings later = d;
   const std::size_t first_run_samples = r.displacement.front().size();
-  while (extendable && !r.warning.empty() && r.problem.empty() && r.extensions < d.steady_extensions) {
+  while (extendable && unsettled() && r.extensions < d.steady_extensions) {
     engine.run(total_steps);
     r.steps += total_steps;
     ++r.extensions;
     later.settle_periods += static_cast<double>(total_steps) * dt * d.omega_hat / (2.0 * std::numbers::pi);
     r.warning.clear();
+    r.problem.clear();
+    r.layers_below_noise = 0;
     measure_records(r, later, u, first_run_samples);
   }
   if (r.single_grains) measure_single_grains(r, later, u, first_run_samples);

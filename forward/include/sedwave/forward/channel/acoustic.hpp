@@ -86,7 +86,8 @@ struct DriveSettings {
   /// and c from those single grains alone, as the thesis did, beside the layer averages.
   bool grain_probes = false;
   double settle_periods = 3.0;      ///< after the front passes, before a layer counts as steady
-  /// While the lock-in windows are not steady (AcousticResult::warning), continue the run by its
+  /// While the lock-in windows are not steady (AcousticResult::warning), or the fit failed with
+  /// layers lost below the noise floor (AcousticResult::layers_below_noise), continue the run by its
   /// first length, with every window moved as far later, at most this many times. Only for a
   /// sinusoid with an absorbing far end and no fixed `periods` (else no later window is echo-free
   /// or the user fixed the length); 0: never.
@@ -140,8 +141,11 @@ struct AcousticResult {
   std::vector<SpectralResult> spectrum;  ///< pulse drives: one entry per measured frequency
   std::optional<SingleGrainProbes> single_grains;  ///< with DriveSettings::grain_probes
   int layers_used = 0;
+  /// Layers with a steady window whose lock-in lies below the noise floor (kMinSignalToNoise): in a
+  /// strongly damped channel the switch-on transient lingers there, and a later window finds them.
+  int layers_below_noise = 0;
   std::int64_t steps = 0;
-  int extensions = 0;                    ///< times the run was continued because it was not steady
+  int extensions = 0;                    ///< times the run was continued (DriveSettings::steady_extensions)
   double wall_seconds = 0.0;
   std::string problem;                   ///< empty when alpha and c were measured
   /// Set when the first and last halves of the lock-in windows disagree (more than 5 % in alpha or

@@ -13,8 +13,11 @@
 // The engine evaluates h_c for the lightest pair (m_eff = m_min/2) at the stiffest state it expects
 // (Hooke: always kn; Hertz: the tangent stiffness at a reference overlap), for the normal, tangential
 // and friction oscillators, and refuses larger user steps. The default step is a fraction (0.01, the
-// thesis's choice) of the binary collision time t_col. A dense packing has collective modes up to
-// ~2x stiffer than one pair, which is why the default fraction is far below h_c / t_col ~ 0.6.
+// thesis's choice) of the binary collision time t_col, capped so that a dense packing's collective
+// modes stay stable too: their frequencies reach ~2x the pair's (FCC: omega_max^2 = 8k/m against
+// 2k/m for a pair), and their damping rates, which scale like omega^2, ~4x. The cap is therefore h_c
+// of an oscillator with 2 omega0 and 4 beta: h_c/2 without damping, h_c/4 for strong damping,
+// where the pair limit alone left the densest modes of an overdamped packing unstable.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -39,7 +42,8 @@ struct TimeStepInputs {
 struct TimeStepLimits {
   double collision_time = 0.0;  ///< binary collision time of the lightest pair
   double stable_step = 0.0;     ///< h_c: no larger step is accepted
-  double default_step = 0.0;    ///< fraction * collision_time (capped at stable_step / 2)
+  double collective_step = 0.0; ///< h_c of the collective modes (2 omega0, 4 beta): caps the default
+  double default_step = 0.0;    ///< fraction * collision_time, capped at collective_step
   [[nodiscard]] std::string summary() const;
 };
 
@@ -52,20 +56,24 @@ template <class Model>
   const double omega0 = std::sqrt(n.stiffness / m_eff);
   const double beta = n.damping / m_eff + in.viscous_damping / in.lightest_mass;
   double stable = verlet_critical_step(omega0, beta);
+  double collective = verlet_critical_step(2.0 * omega0, 4.0 * beta);
   if constexpr (Model::has_tangential) {
     // Sliding of the contact point mobilises translation and rotation: for solid spheres its
     // inertia is m_eff / (1 + 5/2).
     const double m_t = m_eff / 3.5;
     const double normal_force = n.stiffness * overlap;
     const ContactOscillator t = model.tangential.oscillator(m_eff, normal_force);
-    stable = std::min(stable, verlet_critical_step(std::sqrt(t.stiffness / m_t), t.damping / m_t));
+    const double omega_t = std::sqrt(t.stiffness / m_t), beta_t = t.damping / m_t;
+    stable = std::min(stable, verlet_critical_step(omega_t, beta_t));
+    collective = std::min(collective, verlet_critical_step(2.0 * omega_t, 4.0 * beta_t));
   }
   TimeStepLimits out;
   const double zeta = beta / (2.0 * omega0);
   out.collision_time = zeta < 1.0 ? std::numbers::pi / (omega0 * std::sqrt(1.0 - zeta * zeta))
                                   : std::numbers::pi / omega0;
   out.stable_step = stable;
-  out.default_step = std::min(in.fraction * out.collision_time, 0.5 * stable);
+  out.collective_step = collective;
+  out.default_step = std::min(in.fraction * out.collision_time, collective);
   return out;
 }
 
