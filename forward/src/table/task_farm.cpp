@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <type_traits>
 #include <ostream>
 #include <sstream>
@@ -350,11 +351,16 @@ PointResult point_from_measurement(const std::string& problem, double alpha, dou
 PointResult point_from_acoustic(const channel::AcousticResult& result) {
   const channel::PropagationFit& fit = result.fit;
   // A point whose windows still hold a decaying transient after every extension is biased by more
-  // than the steadiness tolerance: a table must not interpolate through it.
-  const std::string problem =
-      result.problem.empty() && !result.warning.empty()
-          ? result.warning + " (after " + std::to_string(result.extensions) + " extension(s) of the run)"
-          : result.problem;
+  // than the steadiness tolerance: a table must not interpolate through it. The count goes up front
+  // ("not steady after N ...: <the halves' values>"): a table cell keeps 159 bytes of a reason.
+  std::string problem = result.problem;
+  if (problem.empty() && !result.warning.empty()) {
+    constexpr std::string_view kHead = "not steady";
+    problem = result.warning;
+    const std::string count = " after " + std::to_string(result.extensions) + " extension(s) of the run";
+    if (problem.starts_with(kHead)) problem.insert(kHead.size(), count);
+    else problem += count;
+  }
   return point_from_measurement(problem, fit.alpha, fit.sigma_alpha, fit.c, fit.sigma_c, result.wall_seconds);
 }
 
