@@ -520,6 +520,10 @@ static void measure_records(AcousticResult& r, const DriveSettings& d, const Pac
   if (r.displacement.empty() || r.displacement.size() != r.layer_z.size() || !(r.sample_dt > 0.0)) {
     throw std::invalid_argument("measure_layer_records: need one record per layer and sample_dt > 0");
   }
+  // Forget what an earlier measurement of these records concluded (a continued run measures again).
+  r.problem.clear();
+  r.warning.clear();
+  r.layers_below_noise = 0;
   const double run_time = static_cast<double>(r.displacement.front().size() - 1) * r.sample_dt;
   const double c_guess = speed_guess(d);
   const double omega = r.omega_hat;  // dimensionless from here on: z in d, t in sqrt(m/kappa)
@@ -669,9 +673,6 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
     r.steps += total_steps;
     ++r.extensions;
     later.settle_periods += static_cast<double>(total_steps) * dt * d.omega_hat / (2.0 * std::numbers::pi);
-    r.warning.clear();
-    r.problem.clear();
-    r.layers_below_noise = 0;
     measure_records(r, later, u, first_run_samples);
   }
   if (r.single_grains) measure_single_grains(r, later, u, first_run_samples);
