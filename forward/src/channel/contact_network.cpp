@@ -70,7 +70,7 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
               const dem::ContactOscillator linearised = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0));
               p.dashpot = linearised.damping;
               if (overlap <= 0.0) return;
-              p.force = m.normal.force(dem::ContactPoint{p.normal, overlap, 0.0, m_eff, gi.radius, gj.radius});
+              p.force = dem::static_normal_force(m.normal, overlap, gi.radius, gj.radius);
               p.stiffness = linearised.stiffness;
               p.energy = m.normal.energy(overlap, gi.radius, gj.radius);
             },

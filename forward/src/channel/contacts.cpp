@@ -36,13 +36,6 @@ void for_each_pair(const dem::Engine& engine, F&& f) {
   }
 }
 
-/// Static normal force of a touching pair under the engine's contact law (no dashpot term).
-double static_normal_force(const dem::AnyContactModel& model, const dem::Vec3& d, double distance, double overlap,
-                           double r_i, double r_j) {
-  const dem::ContactPoint c{(1.0 / distance) * d, overlap, 0.0, 1.0, r_i, r_j};
-  return std::visit([&](const auto& m) { return m.normal.force(c); }, model);
-}
-
 }  // namespace
 
 std::vector<int> contact_counts(const dem::Engine& engine) {
@@ -76,7 +69,7 @@ PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, doub
     const double weight = ghost ? 0.5 : 1.0;
     if (overlap > 0.0) {
       sum[kContacts] += weight;
-      const double force = static_normal_force(engine.contact_model(), d, distance, overlap, g.radius[i], g.radius[j]);
+      const double force = dem::static_normal_force(engine.contact_model(), overlap, g.radius[i], g.radius[j]);
       sum[kForce] += weight * force;
       sum[kVirial] += weight * force * d.z * d.z / distance;
       sum[kOverlap] += weight * overlap / mean_diameter;

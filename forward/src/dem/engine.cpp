@@ -244,6 +244,13 @@ void Engine::rebuild() {
   domain_.build_ghosts(grains_, ghost_cutoff_);
   list_.build(grains_, skin_, max_radius_, settings_.newton, domain_.ghost_sources());
   if (history) assign_history(list_, grains_, HistoryMap(entries), history_);
+  std::visit(
+      [&](const auto& model) {
+        using Model = std::decay_t<decltype(model)>;
+        if (!std::holds_alternative<PairTable<Model>>(pair_table_)) pair_table_.emplace<PairTable<Model>>();
+        tabulate_pairs(model, grains_, list_, std::get<PairTable<Model>>(pair_table_));
+      },
+      model_);
   list_valid_ = true;
   force_rebuild_ = false;
   ++rebuilds_;
@@ -254,8 +261,9 @@ OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
   GrainArrays& g = grains_;
   const std::size_t n = g.n_local();
   domain_.clear_forces(g);  // remote ghosts too: they collect reactions
-  const OverlapWatch w = watch ? accumulate_contact_forces<Model, true>(model, g, list_, history_, dt_)
-                               : accumulate_contact_forces<Model, false>(model, g, list_, history_, dt_);
+  const PairTable<Model>& pairs = std::get<PairTable<Model>>(pair_table_);
+  const OverlapWatch w = watch ? accumulate_contact_forces<Model, true>(model, g, list_, pairs, history_, dt_)
+                               : accumulate_contact_forces<Model, false>(model, g, list_, pairs, history_, dt_);
   if (list_.newton()) {
     ScopedTimer t(timings_.communication);
     domain_.reverse_forces(g);
@@ -443,7 +451,8 @@ std::size_t Engine::memory_bytes() const {
           g.force.capacity() + g.torque.capacity()) * vec3 +
          (g.radius.capacity() + g.mass.capacity() + g.inv_mass.capacity()) * sizeof(double) +
          g.id.capacity() * sizeof(std::int64_t) + (g.group.capacity() + g.body.capacity()) * sizeof(std::int32_t) +
-         list_.memory_bytes() + history_.capacity() * vec3 + domain_.ghost_sources().capacity() * sizeof(GhostSource);
+         list_.memory_bytes() + history_.capacity() * vec3 + domain_.ghost_sources().capacity() * sizeof(GhostSource) +
+         std::visit([](const auto& t) { return t.pairs.capacity() * sizeof(t.pairs[0]); }, pair_table_);
 }
 
 // ---- progress ----------------------------------------------------------------------------------

@@ -236,8 +236,7 @@ PairLinearisation LinearChannel::equivalent_pairs(const Eigen::VectorXcd& u, con
   auto add = [&](const StaticPair& p) {
     const double r_i = grains_[static_cast<std::size_t>(p.i)].radius, r_j = grains_[static_cast<std::size_t>(p.j)].radius;
     const auto force = [&](double delta) {
-      return std::visit(
-          [&](const auto& m) { return m.normal.force(dem::ContactPoint{p.normal, delta, 0.0, 1.0, r_i, r_j}); }, model_);
+      return dem::static_normal_force(model_, delta, r_i, r_j);
     };
     const EquivalentContact e = equivalent_contact(force, p.overlap, scale * std::abs(normal_motion(u, d, p)), p.stiffness);
     pairs.stiffness.push_back(e.stiffness);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "sedwave/forward/dem/contact/contact_point.hpp"
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
@@ -22,9 +23,13 @@ namespace sedwave::forward::dem {
 struct NoTangential {
   static constexpr bool enabled = false;
   static constexpr bool needs_history = false;
+  struct Pair {};
+  [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
 };
 struct NoRolling {
   static constexpr bool enabled = false;
+  struct Pair {};
+  [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
 };
 
 /// Force on i (the force on j is its opposite) and the torques on both grains of one contact.
@@ -49,12 +54,27 @@ struct ContactModel {
   Tangential tangential{};
   Rolling rolling{};
 
+  /// What the laws need of one pair beyond its geometry and motion: constants of its masses and
+  /// radii, each law's own. The force loop reads them from a table built with the neighbour list
+  /// (PairTable), so no law divides by masses or takes their roots at every step. Absent laws take
+  /// no space: the thesis's model tabulates one double per pair.
+  struct Pair {
+    typename Normal::Pair normal;
+    [[no_unique_address]] typename Tangential::Pair tangential;
+    [[no_unique_address]] typename Rolling::Pair rolling;
+  };
+  /// effective_mass = 1 / (1/m_i + 1/m_j) (a rigid-wall grain counts as infinitely heavy).
+  [[nodiscard]] Pair pair(double effective_mass, double r_i, double r_j) const {
+    return {normal.pair(effective_mass, r_i, r_j), tangential.pair(effective_mass, r_i, r_j),
+            rolling.pair(effective_mass, r_i, r_j)};
+  }
+
   /// One touching pair. v_rel = v_i - v_j; spins are ignored unless the model rotates; `shear` is the
-  /// pair's history slot (ignored unless needs_history).
-  [[nodiscard]] PairResult evaluate(const ContactPoint& c, const Vec3& v_rel, const Vec3& spin_i,
-                                    const Vec3& spin_j, double dt, Vec3& shear) const {
+  /// pair's history slot (ignored unless needs_history). `p` is this pair's pair(...).
+  [[nodiscard]] PairResult evaluate(const ContactPoint& c, const Pair& p, const Vec3& v_rel,
+                                    const Vec3& spin_i, const Vec3& spin_j, double dt, Vec3& shear) const {
     PairResult r;
-    r.normal_force = normal.force(c);
+    r.normal_force = normal.force(c, p.normal);
     r.force = r.normal_force * c.normal;
     if constexpr (has_tangential) {
       // Lever arms to the middle of the overlap: arm_i + arm_j = |x_i - x_j|, so the contact
@@ -63,14 +83,14 @@ struct ContactModel {
       const double arm_j = c.radius_j - 0.5 * c.overlap;
       const Vec3 slip = v_rel - c.normal_velocity * c.normal +
                         cross(c.normal, arm_i * spin_i + arm_j * spin_j);
-      const Vec3 ft = tangential.force(c, slip, r.normal_force, dt, shear);
+      const Vec3 ft = tangential.force(c, p.tangential, slip, r.normal_force, dt, shear);
       r.force += ft;
       const Vec3 lever = cross(c.normal, ft);
       r.torque_i = -arm_i * lever;
       r.torque_j = -arm_j * lever;
     }
     if constexpr (has_rolling) {
-      const Vec3 m = rolling.torque(c, spin_i - spin_j, r.normal_force);
+      const Vec3 m = rolling.torque(c, p.rolling, spin_i - spin_j, r.normal_force);
       r.torque_i += m;
       r.torque_j -= m;
     }
@@ -119,10 +139,34 @@ using AnyContactModel = std::variant<
     ContactModel<HertzNormal, TangentialSpringHistory, ConstantTorqueRolling>,
     ContactModel<HertzNormal, CoulombTanhFriction, ConstantTorqueRolling>>;
 
+/// Per listed pair, the model's Pair constants (parallel to the neighbour list's partners).
+template <class Model>
+struct PairTable {
+  std::vector<typename Model::Pair> pairs;
+};
+template <class AnyModel>
+struct PairTableFor;
+template <class... Models>
+struct PairTableFor<std::variant<Models...>> {
+  using type = std::variant<PairTable<Models>...>;
+};
+/// The pair table of whichever model a run uses.
+using AnyPairTable = PairTableFor<AnyContactModel>::type;
+
 /// Validates a spec and builds the matching compile-time model. Throws std::invalid_argument.
 [[nodiscard]] AnyContactModel make_contact_model(const ContactSpec& spec);
 /// Human-readable summary, e.g. "hooke+spring_history".
 [[nodiscard]] std::string describe(const ContactSpec& spec);
+
+/// Normal force of a pair at rest at the given overlap (the dashpot does not act): the static
+/// contact force, for equilibrium and linearisation.
+template <class NormalLaw>
+[[nodiscard]] double static_normal_force(const NormalLaw& law, double overlap, double r_i, double r_j) {
+  return law.force(ContactPoint{Vec3{}, overlap, 0.0, r_i, r_j}, law.pair(1.0, r_i, r_j));
+}
+[[nodiscard]] inline double static_normal_force(const AnyContactModel& m, double overlap, double r_i, double r_j) {
+  return std::visit([&](const auto& model) { return static_normal_force(model.normal, overlap, r_i, r_j); }, m);
+}
 
 /// Whether a model rotates grains (allocates spins and torques).
 [[nodiscard]] inline bool rotates(const AnyContactModel& m) {

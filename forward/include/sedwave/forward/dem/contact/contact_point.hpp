@@ -1,6 +1,8 @@
 #pragma once
-// What a contact law sees of one touching pair (i, j). Built once per pair by the force loop and
-// shared by the normal, tangential and rolling laws of a ContactModel.
+// What a contact law sees of one touching pair (i, j): its geometry and motion now. Built once per
+// pair by the force loop and shared by the normal, tangential and rolling laws of a ContactModel.
+// What depends only on the grains' masses and radii (a dashpot from the effective mass, an effective
+// radius) is each law's `Pair`, tabulated when the neighbour list is built (force_loop.hpp).
 #include "sedwave/forward/dem/vec3.hpp"
 
 namespace sedwave::forward::dem {
@@ -9,7 +11,6 @@ struct ContactPoint {
   Vec3 normal;             ///< unit vector from j to i (a repulsive force on i points along it)
   double overlap;          ///< r_i + r_j - |x_i - x_j| > 0
   double normal_velocity;  ///< (v_i - v_j) . normal: positive while the grains separate
-  double effective_mass;   ///< 1 / (1/m_i + 1/m_j); a rigid-wall grain counts as infinitely heavy
   double radius_i;
   double radius_j;
 };

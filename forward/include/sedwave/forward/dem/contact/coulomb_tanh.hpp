@@ -17,7 +17,9 @@ struct CoulombTanhFriction {
   double friction;        ///< mu
   double velocity_scale;  ///< k_s [time/length]: tanh(k_s |v_t|)
 
-  [[nodiscard]] Vec3 force(const ContactPoint& /*c*/, const Vec3& tangential_velocity,
+  struct Pair {};  ///< nothing per pair
+  [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
+  [[nodiscard]] Vec3 force(const ContactPoint& /*c*/, const Pair& /*p*/, const Vec3& tangential_velocity,
                            double normal_force, double /*dt*/, Vec3& /*unused*/) const {
     const double speed = norm(tangential_velocity);
     const double x = velocity_scale * speed;

@@ -26,11 +26,19 @@ struct HertzNormal {
   double effective_modulus;  ///< E* [force/length^2]
   double alpha;              ///< dimensionless dashpot (from e_n via hertz_alpha_from_restitution)
 
-  [[nodiscard]] double force(const ContactPoint& c) const {
-    const double r_eff = c.radius_i * c.radius_j / (c.radius_i + c.radius_j);
-    const double contact_radius = std::sqrt(r_eff * c.overlap);  // a = sqrt(R delta)
-    const double k_a = (4.0 / 3.0) * effective_modulus * contact_radius;  // k_h sqrt(delta)
-    return k_a * c.overlap - alpha * std::sqrt(c.effective_mass * k_a) * c.normal_velocity;
+  /// What the force needs of one pair beyond its geometry, fixed by its radii and masses.
+  struct Pair {
+    double effective_radius;  ///< R_eff
+    double damping;           ///< alpha sqrt(m_eff (4/3) E*): the dashpot is this times a^(1/2)
+  };
+  [[nodiscard]] Pair pair(double effective_mass, double r_i, double r_j) const {
+    return {r_i * r_j / (r_i + r_j), alpha * std::sqrt(effective_mass * (4.0 / 3.0) * effective_modulus)};
+  }
+  [[nodiscard]] double force(const ContactPoint& c, const Pair& p) const {
+    const double contact_radius = std::sqrt(p.effective_radius * c.overlap);  // a = sqrt(R delta)
+    const double k_a = (4.0 / 3.0) * effective_modulus * contact_radius;    // k_h sqrt(delta)
+    // alpha sqrt(m_eff k_a) = damping sqrt(a)
+    return k_a * c.overlap - p.damping * std::sqrt(contact_radius) * c.normal_velocity;
   }
   /// Linearisation at a given overlap: tangent stiffness 2 E* sqrt(R delta) and the dashpot there.
   [[nodiscard]] ContactOscillator oscillator(double effective_mass, double effective_radius,

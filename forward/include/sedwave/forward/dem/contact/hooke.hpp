@@ -14,9 +14,17 @@ struct HookeNormal {
   double kn;              ///< normal stiffness [force/length]
   LinearDashpot dashpot;  ///< normal damping
 
+  /// What the force needs of one pair beyond its geometry: the pair's dashpot, fixed by its masses.
+  struct Pair {
+    double gamma;  ///< [force time/length]
+  };
+  /// effective_mass = 1 / (1/m_i + 1/m_j) (a rigid-wall grain counts as infinitely heavy).
+  [[nodiscard]] Pair pair(double effective_mass, double /*r_i*/, double /*r_j*/) const {
+    return {dashpot.gamma(kn, effective_mass)};
+  }
   /// Normal force magnitude on i along the contact normal (positive = repulsive).
-  [[nodiscard]] double force(const ContactPoint& c) const {
-    return kn * c.overlap - dashpot.gamma(kn, c.effective_mass) * c.normal_velocity;
+  [[nodiscard]] double force(const ContactPoint& c, const Pair& p) const {
+    return kn * c.overlap - p.gamma * c.normal_velocity;
   }
   /// Stiffness and damping of the contact (the same at any overlap).
   [[nodiscard]] ContactOscillator oscillator(double effective_mass, double /*radius*/,

@@ -16,14 +16,20 @@ struct ConstantTorqueRolling {
   double rolling_friction;        ///< mu_r (dimensionless, times R_eff gives a lever arm)
   double regularising_spin_rate;  ///< omega_reg [1/time]
 
+  /// The pair's lever arm, mu_r R_eff (1/R_eff = 1/r_i + 1/r_j).
+  struct Pair {
+    double lever;
+  };
+  [[nodiscard]] Pair pair(double /*effective_mass*/, double r_i, double r_j) const {
+    return {rolling_friction * r_i * r_j / (r_i + r_j)};
+  }
   /// Rolling torque on i (the torque on j is its opposite).
-  [[nodiscard]] Vec3 torque(const ContactPoint& c, const Vec3& relative_spin, double normal_force) const {
+  [[nodiscard]] Vec3 torque(const ContactPoint& c, const Pair& p, const Vec3& relative_spin,
+                            double normal_force) const {
     const Vec3 roll = relative_spin - dot(relative_spin, c.normal) * c.normal;
     const double rate = norm(roll);
     if (rate == 0.0) return {};
-    const double r_eff = c.radius_i * c.radius_j / (c.radius_i + c.radius_j);
-    const double magnitude =
-        rolling_friction * r_eff * std::abs(normal_force) * std::tanh(rate / regularising_spin_rate);
+    const double magnitude = p.lever * std::abs(normal_force) * std::tanh(rate / regularising_spin_rate);
     return -(magnitude / rate) * roll;
   }
 };

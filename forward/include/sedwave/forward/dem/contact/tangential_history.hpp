@@ -19,12 +19,19 @@ struct TangentialSpringHistory {
   double gamma_t;   ///< tangential dashpot per unit effective mass [1/time] (LAMMPS gamma_t)
   double friction;  ///< Coulomb coefficient mu
 
+  /// The pair's dashpot, m_eff gamma_t [force time/length].
+  struct Pair {
+    double damping;
+  };
+  [[nodiscard]] Pair pair(double effective_mass, double /*r_i*/, double /*r_j*/) const {
+    return {effective_mass * gamma_t};
+  }
   /// Tangential force on i; updates the pair's shear displacement in place.
-  [[nodiscard]] Vec3 force(const ContactPoint& c, const Vec3& tangential_velocity, double normal_force,
-                           double dt, Vec3& shear) const {
+  [[nodiscard]] Vec3 force(const ContactPoint& c, const Pair& p, const Vec3& tangential_velocity,
+                           double normal_force, double dt, Vec3& shear) const {
     shear += dt * tangential_velocity;
     shear -= dot(shear, c.normal) * c.normal;
-    const Vec3 damping = (c.effective_mass * gamma_t) * tangential_velocity;
+    const Vec3 damping = p.damping * tangential_velocity;
     Vec3 ft = -(kt * shear + damping);
     const double limit = friction * std::abs(normal_force);
     const double ft2 = norm2(ft);
