@@ -186,35 +186,52 @@ void Engine::advance(const Model& model) {
   after_step();
 }
 
+// The two halves of velocity Verlet. Plain pointers: through the vectors, GCC reloads every array's
+// address after each store (it cannot rule out that a double store changes a vector's pointer).
 void Engine::drift_and_half_kick() {
   for (RigidBody& b : bodies_) b.begin_step(time_, dt_);
+  GrainArrays& g = grains_;
+  const std::size_t n = g.n_local();
   const double h = dt_;
   const double half = 0.5 * dt_;
-  GrainArrays& g = grains_;
-  for (std::size_t i = 0; i < g.n_local(); ++i) {
-    if (g.body[i] == kFreeBody) {
-      g.velocity[i] += (half * g.inv_mass[i]) * g.force[i];
-      g.position[i] += h * g.velocity[i];
-      if (g.rotation())
-        g.angular_velocity[i] += (half * inverse_inertia(g.inv_mass[i], g.radius[i])) * g.torque[i];
+  Vec3* x = g.position.data();
+  Vec3* v = g.velocity.data();
+  const Vec3* f = g.force.data();
+  const double* inv_mass = g.inv_mass.data();
+  const std::int32_t* body = g.body.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (body[i] == kFreeBody) {
+      v[i] += (half * inv_mass[i]) * f[i];
+      x[i] += h * v[i];
     } else {
-      const RigidBody& b = bodies_[static_cast<std::size_t>(g.body[i] - 1)];
-      g.position[i] += b.step_displacement();
-      g.velocity[i] = b.velocity();
+      const RigidBody& b = bodies_[static_cast<std::size_t>(body[i] - 1)];
+      x[i] += b.step_displacement();
+      v[i] = b.velocity();
     }
   }
+  if (g.rotation()) half_kick_spins();
 }
 
 void Engine::final_half_kick() {
-  const double half = 0.5 * dt_;
   GrainArrays& g = grains_;
-  for (std::size_t i = 0; i < g.n_local(); ++i) {
-    if (g.body[i] != kFreeBody) continue;
-    g.velocity[i] += (half * g.inv_mass[i]) * g.force[i];
-    if (g.rotation())
-      g.angular_velocity[i] += (half * inverse_inertia(g.inv_mass[i], g.radius[i])) * g.torque[i];
-  }
+  const std::size_t n = g.n_local();
+  const double half = 0.5 * dt_;
+  Vec3* v = g.velocity.data();
+  const Vec3* f = g.force.data();
+  const double* inv_mass = g.inv_mass.data();
+  const std::int32_t* body = g.body.data();
+  for (std::size_t i = 0; i < n; ++i)
+    if (body[i] == kFreeBody) v[i] += (half * inv_mass[i]) * f[i];
+  if (g.rotation()) half_kick_spins();
   for (RigidBody& b : bodies_) b.end_step(dt_);
+}
+
+void Engine::half_kick_spins() {
+  GrainArrays& g = grains_;
+  const double half = 0.5 * dt_;
+  for (std::size_t i = 0; i < g.n_local(); ++i)
+    if (g.body[i] == kFreeBody)
+      g.angular_velocity[i] += (half * inverse_inertia(g.inv_mass[i], g.radius[i])) * g.torque[i];
 }
 
 bool Engine::rebuild_needed() {

@@ -171,6 +171,7 @@ class Engine {
   template <class Model> OverlapWatch evaluate_forces(const Model& model, bool watch);
   void drift_and_half_kick();
   void final_half_kick();
+  void half_kick_spins();
   void rebuild();
   [[nodiscard]] bool rebuild_needed();
   void apply_body_forces();

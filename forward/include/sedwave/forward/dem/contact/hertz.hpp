@@ -34,11 +34,17 @@ struct HertzNormal {
   [[nodiscard]] Pair pair(double effective_mass, double r_i, double r_j) const {
     return {r_i * r_j / (r_i + r_j), alpha * std::sqrt(effective_mass * (4.0 / 3.0) * effective_modulus)};
   }
+  /// The normal force is a spring and a dashpot in parallel: spring(overlap) - dashpot(overlap) v_n.
+  [[nodiscard]] double spring(double overlap, const Pair& p) const {
+    const double contact_radius = std::sqrt(p.effective_radius * overlap);  // a = sqrt(R delta)
+    return (4.0 / 3.0) * effective_modulus * contact_radius * overlap;     // k_h delta^(3/2)
+  }
+  /// alpha sqrt(m_eff k_h sqrt(delta)) = damping a^(1/2)
+  [[nodiscard]] double dashpot_at(double overlap, const Pair& p) const {
+    return p.damping * std::sqrt(std::sqrt(p.effective_radius * overlap));
+  }
   [[nodiscard]] double force(const ContactPoint& c, const Pair& p) const {
-    const double contact_radius = std::sqrt(p.effective_radius * c.overlap);  // a = sqrt(R delta)
-    const double k_a = (4.0 / 3.0) * effective_modulus * contact_radius;    // k_h sqrt(delta)
-    // alpha sqrt(m_eff k_a) = damping sqrt(a)
-    return k_a * c.overlap - p.damping * std::sqrt(contact_radius) * c.normal_velocity;
+    return spring(c.overlap, p) - dashpot_at(c.overlap, p) * c.normal_velocity;
   }
   /// Linearisation at a given overlap: tangent stiffness 2 E* sqrt(R delta) and the dashpot there.
   [[nodiscard]] ContactOscillator oscillator(double effective_mass, double effective_radius,

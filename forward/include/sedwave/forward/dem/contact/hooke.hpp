@@ -22,9 +22,12 @@ struct HookeNormal {
   [[nodiscard]] Pair pair(double effective_mass, double /*r_i*/, double /*r_j*/) const {
     return {dashpot.gamma(kn, effective_mass)};
   }
+  /// The normal force is a spring and a dashpot in parallel: spring(overlap) - dashpot(overlap) v_n.
+  [[nodiscard]] double spring(double overlap, const Pair& /*p*/) const { return kn * overlap; }
+  [[nodiscard]] double dashpot_at(double /*overlap*/, const Pair& p) const { return p.gamma; }
   /// Normal force magnitude on i along the contact normal (positive = repulsive).
   [[nodiscard]] double force(const ContactPoint& c, const Pair& p) const {
-    return kn * c.overlap - p.gamma * c.normal_velocity;
+    return spring(c.overlap, p) - dashpot_at(c.overlap, p) * c.normal_velocity;
   }
   /// Stiffness and damping of the contact (the same at any overlap).
   [[nodiscard]] ContactOscillator oscillator(double effective_mass, double /*radius*/,
