@@ -5,6 +5,9 @@
 //                                   nu = 2/7, e_n = 0.9, LAMMPS kn/gamma_n, dt = 0.01 t_col) and
 //                                   prints "ns_per_grain_step=... " on rank 0
 //   dem_bench params file.data      prints kn gamma_n dt for the LAMMPS input
+//   dem_bench loop file.data        times the force loop alone on one rank, positions frozen after
+//                                   200 steps: the fastest of 20 batches (robust to a noisy host),
+//                                   in ns per grain and per listed pair
 // DEM_BENCH_NEWTON=off runs sedwave with newton off (default on); DEM_BENCH_VERBOSE=1 prints the
 // engine's timing table and list statistics.
 #include <mpi.h>
@@ -18,6 +21,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <variant>
 
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
@@ -146,6 +150,34 @@ int run(const std::string& path, long steps) {
   return 0;
 }
 
+int loop(const std::string& path) {
+  dem::LammpsData data = dem::read_lammps_data(path, [](const dem::Grain&) { return true; });
+  dem::Engine engine(MPI_COMM_SELF, settings(data.box, false), data.grains);
+  engine.run(200);
+  const auto& model = std::get<dem::ContactModel<dem::HookeNormal>>(engine.contact_model());
+  using Model = std::decay_t<decltype(model)>;
+  dem::GrainArrays grains = engine.grains();
+  const dem::NeighborList& list = engine.neighbor_list();
+  dem::PairTable<Model> table;
+  dem::tabulate_pairs(model, grains, list, table);
+  constexpr int kBatches = 20, kPerBatch = 100;
+  double best = INFINITY;
+  for (int b = 0; b < kBatches; ++b) {
+    const double t0 = MPI_Wtime();
+    for (int r = 0; r < kPerBatch; ++r) {
+      std::fill(grains.force.begin(), grains.force.end(), dem::Vec3{});
+      (void)dem::accumulate_contact_forces<Model, false>(model, grains, list, table, {}, engine.time_step());
+    }
+    best = std::min(best, (MPI_Wtime() - t0) / kPerBatch);
+  }
+  const double n = static_cast<double>(list.n_rows());
+  std::printf("force loop: %.2f ns per grain, %.2f ns per listed pair (%.2f pairs per grain, fastest of %d "
+              "batches of %d)\n",
+              1e9 * best / n, 1e9 * best / static_cast<double>(list.n_pairs()),
+              static_cast<double>(list.n_pairs()) / n, kBatches, kPerBatch);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -155,12 +187,13 @@ int main(int argc, char** argv) {
     const std::string mode = argc > 1 ? argv[1] : "";
     if (mode == "prepare" && argc == 4) status = prepare(std::stol(argv[2]), argv[3]);
     else if (mode == "run" && argc == 4) status = run(argv[2], std::stol(argv[3]));
+    else if (mode == "loop" && argc == 3) status = loop(argv[2]);
     else if (mode == "params") {
       const ThesisPhysics p = thesis_physics();
       std::printf("%.17g %.17g %.17g\n", p.kn, p.gamma_n, p.dt);
       status = 0;
     } else {
-      std::cerr << "usage: dem_bench prepare N file | run file steps | params\n";
+      std::cerr << "usage: dem_bench prepare N file | run file steps | loop file | params\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "dem_bench: " << e.what() << '\n';
