@@ -91,12 +91,19 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
     shifts_.push_back(shift);
     return static_cast<std::uint8_t>(shifts_.size() - 1);
   };
+  // Room for every candidate of 27 cells: the scan below writes each one and keeps it by advancing
+  // the count, without a branch on the (unpredictable) distance test.
+  std::uint32_t fullest = 0;
+  for (std::size_t c = 0; c < grid.size(); ++c) fullest = std::max(fullest, cell_start_[c + 1] - cell_start_[c]);
+  candidates_.resize(27 * static_cast<std::size_t>(fullest));
+  std::int32_t* found = candidates_.data();
   for (std::size_t i = 0; i < n_local; ++i) {
     row_begin_[i] = static_cast<std::uint32_t>(partners_.size());
-    ghost_scratch_.clear();
     const Vec3 xi = g.position[i];
     const double ri = g.radius[i];
+    const std::int64_t id_i = g.id[i];
     const bool rigid_i = g.body[i] != kFreeBody;
+    std::size_t n_found = 0;
     const int cx = grid.coordinate(xi, 0), cy = grid.coordinate(xi, 1), cz = grid.coordinate(xi, 2);
     for (int iz = std::max(cz - 1, 0); iz <= std::min(cz + 1, grid.n[2] - 1); ++iz)
       for (int iy = std::max(cy - 1, 0); iy <= std::min(cy + 1, grid.n[1] - 1); ++iy)
@@ -105,21 +112,24 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
           for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
             const auto j = static_cast<std::size_t>(cell_items_[k]);
             const bool local_j = j < n_local;
-            if (local_j && j <= i) continue;
-            if (!local_j && newton && g.id[j] < g.id[i]) continue;  // the mirror pair keeps it
-            if (rigid_i && g.body[j] != kFreeBody) continue;
+            // A local pair once (j > i); a ghost pair on both sides, or under newton on only on the
+            // side of the smaller id (the mirror pair keeps it); never two wall grains.
+            const bool listed_here = local_j ? j > i : !(newton && g.id[j] < id_i);
+            const bool both_rigid = rigid_i && g.body[j] != kFreeBody;
             const double reach = ri + g.radius[j] + skin;
-            if (norm2(xi - g.position[j]) >= reach * reach) continue;
-            if (local_j) partners_.push_back(static_cast<std::int32_t>(j));
-            else ghost_scratch_.push_back(static_cast<std::int32_t>(j));
+            const bool near = norm2(xi - g.position[j]) < reach * reach;
+            found[n_found] = static_cast<std::int32_t>(j);
+            n_found += static_cast<std::size_t>(listed_here & !both_rigid & near);
           }
         }
-    // Ascending partner order makes the summation order independent of the cell scan.
-    std::sort(partners_.begin() + row_begin_[i], partners_.end());
-    std::sort(ghost_scratch_.begin(), ghost_scratch_.end());
+    // Ascending partner order makes the summation order independent of the cell scan; it also puts
+    // the local partners (indices below n_local) before the ghosts.
+    std::sort(found, found + n_found);
+    std::int32_t* first_ghost = std::lower_bound(found, found + n_found, static_cast<std::int32_t>(n_local));
+    partners_.insert(partners_.end(), found, first_ghost);
     ghost_begin_[i] = static_cast<std::uint32_t>(partners_.size());
     shift_codes_.resize(partners_.size(), 0);
-    for (const std::int32_t j : ghost_scratch_) {
+    for (const std::int32_t j : std::span<const std::int32_t>(first_ghost, found + n_found)) {
       if (ghost_sources.empty()) {
         partners_.push_back(j);
         shift_codes_.push_back(0);

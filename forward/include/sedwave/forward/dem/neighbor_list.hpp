@@ -66,7 +66,7 @@ class NeighborList {
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::int32_t> cell_items_;
   std::vector<std::uint32_t> cell_of_;
-  std::vector<std::int32_t> ghost_scratch_;
+  std::vector<std::int32_t> candidates_;
   double skin_ = 0.0;
   bool newton_ = false;
 };
