@@ -27,7 +27,9 @@ cmake --build "$BUILD" -j1 --target dem_bench >/dev/null
 cp "$BUILD/bin/dem_bench" "$WORK/dem_bench"
 
 read -r KN GAMMA_N DT < <("$WORK/dem_bench" params)
-steps_for() { case $1 in 2000) echo 4000 ;; 10000) echo 1000 ;; *) echo 300 ;; esac; }
+# Long enough (1.4-1.7 s of sedwave on one rank) that a host hiccup of tens of ms does not decide
+# the ratio.
+steps_for() { case $1 in 2000) echo 20000 ;; 10000) echo 4000 ;; *) echo 1000 ;; esac; }
 
 lammps_ns() {  # data file, steps, ranks -> ns per grain-step
   local data=$1 steps=$2 ranks=$3 n=$4

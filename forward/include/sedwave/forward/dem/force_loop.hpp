@@ -35,6 +35,9 @@ struct OverlapWatch {
 /// at every step. Masses and radii do not change during a run; the table is rebuilt with the list.
 template <class Model>
 void tabulate_pairs(const Model& model, const GrainArrays& g, const NeighborList& list, PairTable<Model>& table) {
+  // A few percent of headroom rather than std::vector's doubling: the list's length drifts a little
+  // between rebuilds, and the table is part of the per-grain memory budget.
+  if (list.n_pairs() > table.pairs.capacity()) table.pairs.reserve(list.n_pairs() + list.n_pairs() / 16);
   table.pairs.resize(list.n_pairs());
   const std::int32_t* partner = list.partners().data();
   for (std::size_t i = 0; i < list.n_rows(); ++i)
