@@ -113,11 +113,13 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         if (ratio > watch.worst_ratio) watch = {ratio, c.overlap, g.id[i], g.id[j]};
       }
       if constexpr (!Model::rotates) {
-        // F = (spring - dashpot v_n) n = (spring / |d| - dashpot (d . v_rel) / |d|^2) d: the dashpot
-        // term never waits for the root (it does not, for Hooke).
+        // F = (spring - dashpot v_n) n = (spring / |d| - dashpot (d . v_rel) / |d|^2) d. For Hooke
+        // the dashpot term does not depend on the root at all.
         const auto& law = model.normal;
         const auto& p = pair[k].normal;
-        return (in_contact * (law.spring(c.overlap, p) * inv_distance - law.dashpot_at(c.overlap, p) * approach * inv_r2)) * d;
+        const double spring = law.spring(c.overlap, p) * inv_distance;
+        const double dashpot = law.dashpot_at(c.overlap, p) * approach * inv_r2;
+        return (in_contact * (spring - dashpot)) * d;
       } else {
         Vec3 no_history;
         Vec3& slot = Model::needs_history ? history[k] : no_history;
