@@ -82,7 +82,7 @@ int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& sc
     if (!e.warning.empty()) std::printf("warning: %s\n", e.warning.c_str());
     std::printf("written to %s\n", o.out.c_str());
   }
-  return e.ok() ? 0 : 3;
+  return e.ok() ? kExitOk : kExitIncomplete;
 }
 
 /// A pulse run: one line per frequency of the band.
@@ -178,7 +178,7 @@ int run_forward(const ForwardOptions& o) {
       std::printf("written to %s\n", o.out.c_str());
     }
   }
-  return r.ok() ? 0 : 3;
+  return r.ok() ? kExitOk : kExitIncomplete;
 }
 
 }  // namespace

@@ -239,7 +239,7 @@ Command add_invert_command(CLI::App& app) {
                                               data.water_sound_speed.has_value());
             }
             print_summary(result, plot, o->out);
-            return result.converged ? 0 : 2;
+            return result.converged ? kExitOk : kExitIncomplete;
           }};
 }
 

@@ -185,7 +185,7 @@ Command add_table_command(CLI::App& app) {
                 << " s in all (ranks busy " << static_cast<int>(100.0 * busy * ranks_per_point + 0.5)
                 << " % of the time)\n";
     }
-    return report.failed == 0 ? 0 : 2;
+    return report.failed == 0 ? kExitOk : kExitIncomplete;
   }};
 }
 

@@ -5,6 +5,13 @@
 
 namespace sedwave::app {
 
+/// Exit codes of every subcommand (docs/cli.md, "Exit codes").
+inline constexpr int kExitOk = 0;          ///< finished; every result printed is a trustworthy answer
+inline constexpr int kExitError = 1;       ///< bad input or failed I/O: an error message, no new output
+inline constexpr int kExitUsage = 2;       ///< the command line itself is wrong (unknown option, bad value)
+inline constexpr int kExitIncomplete = 3;  ///< ran, but some result is flagged: not converged, not measured,
+                                           ///< failed table points, or outside physical ranges
+
 /// A registered subcommand and what runs it once parsed.
 struct Command {
   CLI::App* app;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "sedwave/io/atomic_file.hpp"
 #include "sedwave/version.hpp"
 
 int main(int argc, char** argv) {
@@ -29,15 +30,21 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are "errors" to CLI11 with code 0; every real one is a usage error.
+    const int code = app.exit(e);
+    return code == 0 ? sedwave::app::kExitOk : sedwave::app::kExitUsage;
   }
   try {
     for (const sedwave::app::Command& command : commands) {
-      if (command.app->parsed()) return command.run();
+      if (command.app->parsed()) {
+        const int code = command.run();
+        sedwave::io::flush_standard_output();
+        return code;
+      }
     }
   } catch (const std::exception& e) {
     std::cerr << "sedwave: error: " << e.what() << "\n";
-    return 1;
+    return sedwave::app::kExitError;
   }
-  return 1;
+  return sedwave::app::kExitError;
 }
