@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
+#include "sedwave/io/atomic_file.hpp"
 #include "sedwave/forward/models.hpp"
 #include "sedwave/forward/table/table_model.hpp"
 #include "sedwave/inversion/fit.hpp"
@@ -80,10 +82,32 @@ void apply_value(inversion::ParameterSpec& spec, const std::optional<double>& va
   if (value) spec.value = *value;
 }
 
+bool names_in_list(const std::string& list, std::initializer_list<const char*> names) {
+  std::stringstream stream(list);
+  for (std::string item; std::getline(stream, item, ',');) {
+    for (const char* name : names) {
+      if (item == name) return true;
+    }
+  }
+  return false;
+}
+
+/// The damping is one parameter, given as gamma or as e_n: options naming both forms conflict.
+bool uses_restitution(const InvertOptions& o) {
+  const bool gamma_named = names_in_list(o.fit, {"gamma"}) || o.gamma || !o.gamma_bounds.empty();
+  const bool en_named = names_in_list(o.fit, {"en", "e_n"}) || o.restitution || !o.restitution_bounds.empty();
+  if (gamma_named && en_named) {
+    throw std::invalid_argument(
+        "the damping is one parameter, given either as the dashpot gamma (--gamma, --gamma-bounds, --fit gamma) or "
+        "as the restitution e_n (--en, --en-bounds, --fit en); these options name both");
+  }
+  return en_named;
+}
+
 inversion::FitParameters make_parameters(const InvertOptions& o) {
   inversion::FitParameters p;
   p.density = o.density;
-  const bool restitution = o.fit.find("en") != std::string::npos || (o.restitution && !o.gamma);
+  const bool restitution = uses_restitution(o);
   if (restitution) p.set_damping_form(inversion::DampingForm::Restitution);
   p.set_free_from_list(o.fit);
   apply_value(p.spec[inversion::kKappa], o.kappa, o.kappa_bounds);
@@ -97,19 +121,7 @@ inversion::FitParameters make_parameters(const InvertOptions& o) {
   return p;
 }
 
-std::string format_value(double value, double sigma, bool free, bool determined) {
-  char text[128];
-  if (!free) {
-    std::snprintf(text, sizeof text, "%.6g (fixed)", value);
-  } else if (determined) {
-    std::snprintf(text, sizeof text, "%.6g +- %.2g", value, sigma);
-  } else {
-    std::snprintf(text, sizeof text, "%.6g   NOT DETERMINED by these data", value);
-  }
-  return text;
-}
-
-/// One end of a profile-likelihood interval; "open" when the parameter bound lies inside it.
+/// "open" for a missing end of a profile interval (the search bound lies within it).
 std::string format_end(const std::optional<double>& end) {
   if (!end) return "open";
   char text[32];
@@ -117,25 +129,43 @@ std::string format_end(const std::optional<double>& end) {
   return text;
 }
 
-void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& plot, const std::string& out) {
+/// One reported quantity: a determined value with its sigma, or, when the data do not determine
+/// it, its profile range and never a bare best value (along a flat direction the best-fit point is
+/// wherever the solver stopped).
+void print_quantity(const std::string& name, const std::string& unit, double value, double sigma, bool free,
+                    bool determined, bool at_bound, const std::optional<double>& lower,
+                    const std::optional<double>& upper, bool profiled) {
+  std::printf("  %-16s [%-4s] ", name.c_str(), unit.c_str());
+  const std::string range =
+      profiled ? "(profile 68%: " + format_end(lower) + " .. " + format_end(upper) + ")" : std::string();
+  if (!free) {
+    std::printf("%.6g (fixed)\n", value);
+  } else if (at_bound) {
+    std::printf("AT ITS SEARCH BOUND %.6g: not an estimate  %s\n", value, range.c_str());
+  } else if (determined) {
+    std::printf("%.6g +- %.2g  %s\n", value, sigma, range.c_str());
+  } else {
+    std::printf("NOT DETERMINED by these data  %s  [best-fit point %.4g]\n", range.c_str(), value);
+  }
+}
+
+void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& plot, const std::string& out,
+                   bool profiled) {
   std::printf("sedwave invert: model %s, method %s, %d observations, %.1f ms\n", r.model.c_str(), r.method.c_str(),
               r.n_observations, 1e3 * r.wall_seconds);
   std::printf("\nparameters:\n");
   for (const auto& p : r.parameters) {
-    std::printf("  %-10s [%-4s] %s", p.name.c_str(), p.unit.c_str(),
-                format_value(p.value, p.sigma, p.free, p.determined).c_str());
-    if (p.free) {
-      std::printf("  (profile 68%%: %s .. %s)", format_end(p.profile_lower).c_str(), format_end(p.profile_upper).c_str());
-    }
-    std::printf("\n");
+    print_quantity(p.name, p.unit, p.value, p.sigma, p.free, p.determined, p.at_bound, p.profile_lower,
+                   p.profile_upper, profiled && p.free);
   }
   std::printf("\ncombinations the data may determine:\n");
   for (const auto& c : r.combinations) {
-    std::printf("  %-10s [%-4s] %s\n", c.name.c_str(), c.unit.c_str(),
-                format_value(c.value, c.sigma, true, c.determined).c_str());
+    print_quantity(c.name, c.unit, c.value, c.sigma, true, c.determined, false, c.profile_lower, c.profile_upper,
+                   profiled);
   }
   for (const auto& w : r.weak_directions) {
-    std::printf("  %s: %s\n", w.unseen ? "unseen direction" : "poorly constrained", w.direction.c_str());
+    std::printf("  %s at the best fit: %s\n", w.unseen ? "unseen direction" : "poorly constrained",
+                w.direction.c_str());
   }
   std::printf("\nchi2 = %.4g for %d dof (reduced %.3g), AIC %.4g, BIC %.4g, %s\n", r.chi2, r.dof,
               r.dof > 0 ? r.chi2 / r.dof : NAN, r.aic, r.bic, r.converged ? "converged" : "NOT converged");
@@ -144,6 +174,10 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
     std::printf("warning: reduced chi2 %.3g >> 1: the model does not describe these data within their stated "
                 "errors;\n         the sigmas above are formal (scaled by sqrt(reduced chi2) they grow %.2gx)\n",
                 reduced, std::sqrt(reduced));
+  }
+  if (r.profile_restarts > 0) {
+    std::printf("note: a likelihood profile found a lower chi2 than the solvers; the fit moved there (%d time%s)\n",
+                r.profile_restarts, r.profile_restarts > 1 ? "s" : "");
   }
   if (r.global && !std::isfinite(r.global->chi2_local_from_start)) {
     // The start values lie where the model does not answer (e.g. outside a table): only the global
@@ -157,7 +191,28 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
                 r.global->local_and_global_agree ? "agree" : "DISAGREE", r.global->chi2_polished,
                 r.global->chi2_local_from_start);
   }
+  if (!r.flags.empty()) {
+    std::printf("\nWARNING: %zu result%s outside physical ranges or at search bounds (fit.json \"flags\"):\n",
+                r.flags.size(), r.flags.size() > 1 ? "s" : "");
+    for (const auto& f : r.flags) std::printf("  ! %s\n", f.message.c_str());
+  }
   std::printf("\nreport: %s/fit.json, curves: %s/curves.csv\n%s\n", out.c_str(), out.c_str(), plot.message.c_str());
+}
+
+/// Every file the run reads: observation and digitised files, and a table model's file.
+std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
+  std::vector<std::filesystem::path> inputs(o.files.begin(), o.files.end());
+  inputs.insert(inputs.end(), o.digitized_files.begin(), o.digitized_files.end());
+  if (o.model.starts_with("table:")) inputs.emplace_back(o.model.substr(6, o.model.find('?') - 6));
+  return inputs;
+}
+
+std::vector<std::filesystem::path> output_files(const std::filesystem::path& out) {
+  std::vector<std::filesystem::path> outputs;
+  for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg"}) {
+    outputs.push_back(out / name);
+  }
+  return outputs;
 }
 
 }  // namespace
@@ -178,35 +233,47 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--method", o->method, "ceres (local) | nlopt (global search) | global (search + polish)")->capture_default_str()
       ->check(CLI::IsMember({"ceres", "nlopt", "global"}));
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
-  cmd->add_option("--kappa", o->kappa, "contact stiffness [N/m]: start value, or the value if fixed");
-  cmd->add_option("--d", o->diameter, "grain diameter [m]: start value, or the value if fixed");
-  cmd->add_option("--gamma", o->gamma, "normal dashpot [kg/s]: start value, or the value if fixed");
-  cmd->add_option("--en", o->restitution, "restitution coefficient e_n (0,1): start value, or the value if fixed");
-  cmd->add_option("--kappa-bounds", o->kappa_bounds, "LO,HI [N/m]")->delimiter(',')->expected(2);
-  cmd->add_option("--d-bounds", o->diameter_bounds, "LO,HI [m]")->delimiter(',')->expected(2);
-  cmd->add_option("--gamma-bounds", o->gamma_bounds, "LO,HI [kg/s]")->delimiter(',')->expected(2);
-  cmd->add_option("--en-bounds", o->restitution_bounds, "LO,HI")->delimiter(',')->expected(2);
-  cmd->add_option("--density", o->density, "grain density rho_s [kg/m^3] (fixed)")->capture_default_str();
-  cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios");
-  cmd->add_option("--sediment-speed", o->sediment_speed, "sediment sound speed [m/s] to convert dB/wavelength");
+  cmd->add_option("--kappa", o->kappa, "contact stiffness [N/m]: start value, or the value if fixed")
+      ->check(finite_positive());
+  cmd->add_option("--d", o->diameter, "grain diameter [m]: start value, or the value if fixed")->check(finite_positive());
+  cmd->add_option("--gamma", o->gamma, "normal dashpot [kg/s]: start value, or the value if fixed")
+      ->check(finite_positive());
+  cmd->add_option("--en", o->restitution, "restitution coefficient e_n (0,1): start value, or the value if fixed")
+      ->check(finite_in(1e-6, 0.999999));
+  cmd->add_option("--kappa-bounds", o->kappa_bounds, "LO,HI [N/m]")->delimiter(',')->expected(2)->check(finite_positive());
+  cmd->add_option("--d-bounds", o->diameter_bounds, "LO,HI [m]")->delimiter(',')->expected(2)->check(finite_positive());
+  cmd->add_option("--gamma-bounds", o->gamma_bounds, "LO,HI [kg/s]")->delimiter(',')->expected(2)
+      ->check(finite_positive());
+  cmd->add_option("--en-bounds", o->restitution_bounds, "LO,HI")->delimiter(',')->expected(2)
+      ->check(finite_in(1e-6, 0.999999));
+  cmd->add_option("--density", o->density, "grain density rho_s [kg/m^3] (fixed)")->capture_default_str()
+      ->check(finite_in(100.0, 25000.0));
+  cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
+      ->check(finite_in(100.0, 10000.0));
+  cmd->add_option("--sediment-speed", o->sediment_speed, "sediment sound speed [m/s] to convert dB/wavelength")
+      ->check(finite_in(100.0, 10000.0));
   cmd->add_option("--default-sigma", o->fit_options.default_relative_sigma,
-                  "relative 1-sigma for observations given without one")->capture_default_str();
+                  "relative 1-sigma for observations given without one")->capture_default_str()
+      ->check(finite_in(1e-12, 10.0));
   cmd->add_option("--global-algorithm", o->fit_options.global_algorithm, "direct-l | crs2 | mlsl")->capture_default_str()
       ->check(CLI::IsMember({"direct-l", "crs2", "mlsl"}));
-  cmd->add_option("--max-evaluations", o->fit_options.max_global_evaluations, "global search budget")->capture_default_str();
+  cmd->add_option("--max-evaluations", o->fit_options.max_global_evaluations, "global search budget")
+      ->capture_default_str()->check(CLI::Range(10, 10000000));
   cmd->add_option("--determined-log-sigma", o->fit_options.determined_log_sigma,
-                  "largest 1-sigma of ln(value) that still counts as determined")->capture_default_str();
+                  "largest 1-sigma of ln(value) that still counts as determined")->capture_default_str()
+      ->check(finite_in(1e-6, 10.0));
   cmd->add_flag("!--no-plot", o->plot, "skip the gnuplot figure");
 
   return {cmd, [o]() {
+            const std::filesystem::path out(o->out);
+            io::refuse_overwriting_inputs(output_files(out), input_files(*o), "sedwave invert --out " + o->out);
+            io::require_writable_location(out / "fit.json", "--out");
             const inversion::ObservationSet data = read_all(*o);
             const auto model = forward::make_dispersion_model(o->model);
             inversion::FitOptions options = o->fit_options;
             options.method = inversion::parse_fit_method(o->method);
             const inversion::FitResult result = inversion::fit(data, *model, make_parameters(*o), options);
 
-            const std::filesystem::path out(o->out);
-            std::filesystem::create_directories(out);
             nlohmann::json report = inversion::fit_report(result, data);
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
             // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
@@ -223,7 +290,7 @@ Command add_invert_command(CLI::App& app) {
                             static_cast<unsigned long long>(table->extrapolated_count()));
               }
             }
-            std::ofstream(out / "fit.json") << report.dump(2) << "\n";
+            io::write_text_atomically(out / "fit.json", [&](std::ostream& s) { s << report.dump(2) << "\n"; });
             const std::vector<double> frequencies = inversion::curve_frequencies(data);
             const std::vector<inversion::CurvePoint> curves = inversion::model_curves(result, *model, frequencies);
             if (curves.size() < frequencies.size()) {
@@ -238,8 +305,8 @@ Command add_invert_command(CLI::App& app) {
                                                        (result.model.starts_with("table:") ? "" : " chain model"),
                                               data.water_sound_speed.has_value());
             }
-            print_summary(result, plot, o->out);
-            return result.converged ? kExitOk : kExitIncomplete;
+            print_summary(result, plot, o->out, options.profile_likelihood);
+            return result.converged && result.flags.empty() ? kExitOk : kExitIncomplete;
           }};
 }
 

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
+#include "sedwave/io/atomic_file.hpp"
 #include "sedwave/forward/models.hpp"
 #include "sedwave/inversion/synthetic.hpp"
 
@@ -27,22 +29,22 @@ Command add_synthesize_command(CLI::App& app) {
                     "at log-spaced frequencies, with relative Gaussian noise, as an observation CSV (SI units)");
   cmd->add_option("--model", o->model,
                   "continuum | lattice | table:FILE.h5[?extrapolate=theory|long-wavelength]")->capture_default_str();
-  cmd->add_option("--kappa", o->kappa, "contact stiffness [N/m]")->required()->check(CLI::PositiveNumber);
-  cmd->add_option("--d", o->diameter, "grain diameter [m]")->required()->check(CLI::PositiveNumber);
-  auto* gamma = cmd->add_option("--gamma", o->gamma, "normal dashpot [kg/s]")->check(CLI::PositiveNumber);
+  cmd->add_option("--kappa", o->kappa, "contact stiffness [N/m]")->required()->check(finite_positive());
+  cmd->add_option("--d", o->diameter, "grain diameter [m]")->required()->check(finite_positive());
+  auto* gamma = cmd->add_option("--gamma", o->gamma, "normal dashpot [kg/s]")->check(finite_positive());
   auto* en = cmd->add_option("--en", o->restitution, "restitution coefficient e_n in (0, 1)")
-                 ->check(CLI::Range(0.0, 1.0));
+                 ->check(finite_in(1e-6, 0.999999));
   gamma->excludes(en);
   cmd->add_option("--density", o->density, "grain density rho_s [kg/m^3]")->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--from", o->design.lowest_hz, "lowest frequency [Hz]")->required()->check(CLI::PositiveNumber);
-  cmd->add_option("--to", o->design.highest_hz, "highest frequency [Hz]")->required()->check(CLI::PositiveNumber);
+      ->check(finite_positive());
+  cmd->add_option("--from", o->design.lowest_hz, "lowest frequency [Hz]")->required()->check(finite_positive());
+  cmd->add_option("--to", o->design.highest_hz, "highest frequency [Hz]")->required()->check(finite_positive());
   cmd->add_option("--points", o->design.points, "log-spaced frequencies (each gives one attenuation and one speed)")
       ->capture_default_str()->check(CLI::Range(2, 100000));
   cmd->add_option("--alpha-noise", o->design.alpha_noise, "relative 1-sigma noise of the attenuation, also its sigma")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(finite_positive());
   cmd->add_option("--speed-noise", o->design.speed_noise, "relative 1-sigma noise of the sound speed, also its sigma")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(finite_positive());
   cmd->add_option("--seed", o->design.seed, "seed of the noise")->capture_default_str();
   cmd->add_option("--out", o->out, "observation CSV to write")->required();
   return {cmd, [o]() {
@@ -53,6 +55,12 @@ Command add_synthesize_command(CLI::App& app) {
     truth.spec[inversion::kKappa].value = o->kappa;
     truth.spec[inversion::kDiameter].value = o->diameter;
     truth.spec[inversion::kDamping].value = o->restitution ? *o->restitution : *o->gamma;
+    if (!(o->design.highest_hz > o->design.lowest_hz)) {
+      throw std::invalid_argument("--from must be below --to");
+    }
+    if (o->model.starts_with("table:")) {
+      io::refuse_overwriting_inputs({o->out}, {o->model.substr(6, o->model.find('?') - 6)}, "sedwave synthesize --out");
+    }
     const auto model = forward::make_dispersion_model(o->model);
     const inversion::ObservationSet set = inversion::synthetic_observations(*model, truth, o->design);
     char truth_line[256], noise_line[160];

@@ -7,118 +7,25 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
 
+#include "fit_problem.hpp"
+#include "profile.hpp"
 #include "sedwave/inversion/identifiability.hpp"
-#include "sedwave/inversion/residuals.hpp"
 
 namespace sedwave::inversion {
 namespace {
 
-using Theta = std::array<double, kParameterCount>;
-using Jet3 = ceres::Jet<double, kParameterCount>;
-
-/// Everything a fit needs besides the solver: observations with resolved sigmas and the predictor.
-struct Setup {
-  std::vector<Observation> observations;
-  std::vector<ObservationResidual> residuals;
-  std::vector<double> sigmas;
-  std::vector<bool> defaulted;
-  Predictor predictor;
-  FitParameters parameters;
-  std::vector<int> free;
-};
-
-Setup make_setup(const ObservationSet& data, const forward::DispersionModel& model, const FitParameters& parameters,
-                 const FitOptions& options) {
-  if (data.observations.empty()) throw std::invalid_argument("no observations to fit");
-  parameters.validate();
-  Setup s{data.observations, {}, {}, {}, Predictor(model, parameters.damping, parameters.density), parameters, parameters.free_indices()};
-  for (const Observation& o : data.observations) {
-    const bool missing = !o.sigma.has_value();
-    const double sigma = missing ? options.default_relative_sigma * o.value : *o.sigma;
-    s.residuals.emplace_back(s.predictor, o, sigma);
-    s.sigmas.push_back(sigma);
-    s.defaulted.push_back(missing);
-  }
-  return s;
-}
-
-double chi2_at(const Setup& s, const Theta& theta) {
-  double chi2 = 0.0;
-  for (const ObservationResidual& r : s.residuals) {
-    double value = 0.0;
-    try {
-      if (!r(&theta[0], &theta[1], &theta[2], &value)) return std::numeric_limits<double>::infinity();
-    } catch (const std::domain_error&) {
-      return std::numeric_limits<double>::infinity();
-    }
-    chi2 += value * value;
-  }
-  return chi2;
-}
-
-/// Ceres cost wrapper: a model outside its domain makes the step fail instead of throwing.
-struct GuardedResidual {
-  ObservationResidual residual;
-  template <typename T>
-  bool operator()(const T* a, const T* b, const T* c, T* out) const {
-    try {
-      return residual(a, b, c, out);
-    } catch (const std::domain_error&) {
-      return false;
-    }
-  }
-};
-
-/// The Ceres problem over theta; fixed parameters are constant blocks, bounds are in ln space.
-/// `held` (if >= 0) is a free parameter held at its current value, as a likelihood profile needs.
-void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem, int held = -1) {
-  for (const ObservationResidual& r : s.residuals) {
-    auto* cost = new ceres::AutoDiffCostFunction<GuardedResidual, 1, 1, 1, 1>(new GuardedResidual{r});
-    problem.AddResidualBlock(cost, nullptr, &theta[0], &theta[1], &theta[2]);
-  }
-  for (int i = 0; i < kParameterCount; ++i) {
-    const ParameterSpec& spec = s.parameters.spec[i];
-    if (!spec.free || i == held) {
-      problem.SetParameterBlockConstant(&theta[i]);
-      continue;
-    }
-    problem.SetParameterLowerBound(&theta[i], 0, std::log(spec.lower));
-    problem.SetParameterUpperBound(&theta[i], 0, std::log(spec.upper));
-  }
-}
-
-struct LocalFit {
-  Theta theta;
-  bool converged;
-  std::string message;
-  double chi2;
-};
-
-LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held = -1) {
-  ceres::Problem problem;
-  build_problem(s, theta, problem, held);
-  ceres::Solver::Options options;
-  options.minimizer_type = ceres::TRUST_REGION;
-  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = max_iterations;
-  options.function_tolerance = 1e-15;
-  options.gradient_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-12;
-  options.logging_type = ceres::SILENT;
-  options.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  // chi^2 from our own evaluation: when the model cannot be evaluated at the start (outside a
-  // table, say) Ceres fails with final_cost 0, which must not read as a perfect fit.
-  const double chi2 = chi2_at(s, theta);
-  return {theta, summary.termination_type == ceres::CONVERGENCE && std::isfinite(chi2), summary.message, chi2};
-}
+using detail::Jet3;
+using detail::LocalFit;
+using detail::Setup;
+using detail::Theta;
+using detail::chi2_at;
+using detail::solve_local;
 
 struct GlobalFit {
   Theta theta;
@@ -180,122 +87,87 @@ GlobalFit solve_global(const Setup& s, const Theta& start, const FitOptions& opt
   return {context.best_theta, context.evaluations, context.best};
 }
 
-/// Whitened Jacobian d residual / d theta_free, by forward-mode automatic differentiation.
-Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
-  std::array<Jet3, kParameterCount> t;
-  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(s.residuals.size()), static_cast<Eigen::Index>(s.free.size()));
-  for (size_t r = 0; r < s.residuals.size(); ++r) {
-    Jet3 value;
-    if (!s.residuals[r](&t[0], &t[1], &t[2], &value)) throw std::runtime_error("residual failed at the solution");
-    for (size_t k = 0; k < s.free.size(); ++k) J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) = value.v[s.free[k]];
-  }
-  return J;
+// ---- Combinations: functions of theta that the data may determine when the parameters are not.
+// Each is ln q(theta) on Jets (value and gradient), so the same code gives the value, the
+// linearised sigma and the likelihood profile.
+
+forward::GrainScales<Jet3> scales(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
+  return {exp(t[kKappa]), exp(t[kDiameter]), Jet3(s.parameters.density)};
 }
 
-/// Relative size below which a singular value of the whitened Jacobian counts as zero. The
-/// covariance drops the matching eigenvalues of J^T J (their squares), so both views agree on
-/// which directions are unseen.
-constexpr double kRankTolerance = 1e-8;
-
-/// Covariance of the free ln-parameters from ceres::Covariance; a pseudo-inverse when J^T J is
-/// singular.
-Eigen::MatrixXd ceres_covariance(const Setup& s, Theta theta) {
-  ceres::Problem problem;
-  build_problem(s, theta, problem);
-  ceres::Covariance::Options options;
-  options.algorithm_type = ceres::DENSE_SVD;
-  options.null_space_rank = -1;
-  options.min_reciprocal_condition_number = kRankTolerance * kRankTolerance;
-  options.num_threads = 1;
-  ceres::Covariance covariance(options);
-  std::vector<const double*> blocks;
-  for (int i : s.free) blocks.push_back(&theta[i]);
-  const auto n = static_cast<Eigen::Index>(blocks.size());
-  Eigen::MatrixXd result = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
-  if (!covariance.Compute(blocks, &problem)) return result;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dense(n, n);
-  covariance.GetCovarianceMatrix(blocks, dense.data());
-  return dense;
+Jet3 log_gamma(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
+  if (s.parameters.damping == DampingForm::Gamma) return t[kDamping];
+  return log(scales(t, s).gamma(forward::gamma_hat_from_restitution(exp(t[kDamping]))));
 }
 
-/// c0, tau, f*, gamma_hat as functions of theta (templated for gradients).
-template <typename T>
-std::array<T, 4> combinations(const std::array<T, 3>& theta, DampingForm form, double density) {
-  using std::exp;
-  const forward::GrainScales<T> s{exp(theta[0]), exp(theta[1]), T(density)};
-  const T gamma = form == DampingForm::Gamma ? exp(theta[2]) : s.gamma(forward::gamma_hat_from_restitution(exp(theta[2])));
-  const T tau = gamma / s.kappa;
-  return {s.speed_scale(), tau, 1.0 / (2.0 * std::numbers::pi * tau), s.gamma_hat(gamma)};
+/// Low-frequency sound speed: the speed scale d sqrt(kappa/m) times the model's c_hat as
+/// omega_hat -> 0 (1 for the chains; a 3D packing's static value for a table).
+Jet3 log_c0(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
+  return log(scales(t, s).speed_scale()) + std::log(s.predictor.model().long_wavelength_c_hat());
+}
+Jet3 log_tau(const std::array<Jet3, kParameterCount>& t, const Setup& s) { return log_gamma(t, s) - t[kKappa]; }
+Jet3 log_f_star(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
+  return -log_tau(t, s) - std::log(2.0 * std::numbers::pi);
+}
+Jet3 log_gamma_hat(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
+  return log_gamma(t, s) - 0.5 * log(scales(t, s).kappa * scales(t, s).mass());
+}
+/// kappa over the Hertz stiffness of quartz grains of the same d at 10 kPa (plausibility.hpp);
+/// Hertz kappa is proportional to d at a given pressure.
+Jet3 log_kappa_over_hertz(const std::array<Jet3, kParameterCount>& t, const Setup&) {
+  return t[kKappa] - t[kDiameter] - std::log(quartz_hertz_kappa(1.0));
 }
 
-Eigen::VectorXd free_part(const Jet3& q, const std::vector<int>& free) {
+struct CombinationInfo {
+  const char* name;
+  const char* unit;
+  const char* meaning;
+  Jet3 (*log_value)(const std::array<Jet3, kParameterCount>&, const Setup&);
+};
+
+const std::array<CombinationInfo, 5> kCombinations{{
+    {"c0", "m/s", "low-frequency (f -> 0) sound speed of the model", log_c0},
+    {"tau", "s", "relaxation time gamma/kappa of a contact", log_tau},
+    {"f_star", "Hz", "crossover frequency 1/(2 pi tau) where attenuation bends from f^2 to f^(1/2)", log_f_star},
+    {"gamma_hat", "1", "dimensionless dashpot gamma/sqrt(kappa m)", log_gamma_hat},
+    {"kappa_over_hertz", "1", "kappa over the Hertz stiffness of quartz grains of diameter d at 10 kPa",
+     log_kappa_over_hertz},
+}};
+
+Eigen::VectorXd free_part(const Jet3& log_q, const std::vector<int>& free) {
   Eigen::VectorXd g(static_cast<Eigen::Index>(free.size()));
-  for (size_t k = 0; k < free.size(); ++k) g(static_cast<Eigen::Index>(k)) = q.v[free[k]] / q.a;  // d ln q
+  for (size_t k = 0; k < free.size(); ++k) g(static_cast<Eigen::Index>(k)) = log_q.v[free[k]];
   return g;
 }
 
-/// Profile-likelihood interval of one free ln-parameter: where chi^2, minimised over the other
-/// parameters, rises by 1 above its minimum on each side. A side that reaches the bound first is
-/// open. Unlike the linearised sigma this stays honest when the model is strongly nonlinear in the
-/// parameter (a grain size seen only through a small lattice correction, say).
-ProfileInterval profile_interval(const Setup& s, const Theta& best, double chi2_min, int index, double linear_sigma,
-                                 int max_iterations) {
-  const double lower_bound = std::log(s.parameters.spec[index].lower);
-  const double upper_bound = std::log(s.parameters.spec[index].upper);
-  auto delta_chi2 = [&](double value, Theta& start) {
-    start[index] = value;
-    const LocalFit f = solve_local(s, start, max_iterations, index);
-    start = f.theta;
-    return f.chi2 - chi2_min;
-  };
-  ProfileInterval interval;
-  for (int side : {-1, +1}) {
-    const double bound = side < 0 ? lower_bound : upper_bound;
-    double inside = best[index];  // Delta chi^2 < 1 here
-    double step = std::clamp(std::isfinite(linear_sigma) ? linear_sigma : 0.1, 1e-3, 1.0);
-    Theta start = best;
-    std::optional<double> outside;
-    while (!outside) {
-      const double trial = best[index] + side * step;
-      if (side * (trial - bound) >= 0.0) {
-        if (delta_chi2(bound, start) < 1.0) break;  // open: the bound is within 1 sigma
-        outside = bound;
-      } else if (delta_chi2(trial, start) >= 1.0) {
-        outside = trial;
-      } else {
-        inside = trial;
-        step *= 2.0;
-      }
-    }
-    if (!outside) continue;
-    // Bisection on Delta chi^2 = 1 to 1e-3 in ln units (0.1% relative).
-    Theta from = best;
-    while (std::abs(*outside - inside) > 1e-3) {
-      const double middle = 0.5 * (inside + *outside);
-      Theta trial_start = from;
-      if (delta_chi2(middle, trial_start) >= 1.0) {
-        outside = middle;
-      } else {
-        inside = middle;
-        from = trial_start;
-      }
-    }
-    (side < 0 ? interval.lower : interval.upper) = 0.5 * (inside + *outside);
-    // A profile can close at 1 sigma and still flatten out towards the bound (a weak preference
-    // for a finite value, as noise can fake): demand the bound itself be excluded at 2 sigma.
-    Theta at_bound = best;
-    if (delta_chi2(bound, at_bound) < 4.0) interval.bounded_at_2_sigma = false;
-  }
-  return interval;
+// ---- The analysis at the solution.
+
+/// A quantity is "at its bound" within 1 % (0.01 in ln units) of it: closer than that the bound,
+/// not the data, decides where a flat direction stops.
+constexpr double kAtBoundLog = 1e-2;
+
+/// Profile interval of one quantity into (lower, upper) [unit]; whether it closes within the
+/// "determined" spread. Records a better minimum if the profile found one.
+bool profile_into(const Setup& s, const Theta& theta, double chi2_min, const detail::ProfiledQuantity& q,
+                  double log_sigma, const FitOptions& options, std::optional<double>& lower,
+                  std::optional<double>& upper, std::optional<detail::Profile>& better) {
+  const detail::Profile p = detail::profile(s, theta, chi2_min, q, log_sigma, options.max_iterations);
+  if (p.lower) lower = std::exp(*p.lower);
+  if (p.upper) upper = std::exp(*p.upper);
+  if (p.better && (!better || p.better_chi2 < better->better_chi2)) better = p;
+  return p.lower && p.upper && p.bounded_at_2_sigma && 0.5 * (*p.upper - *p.lower) < options.determined_log_sigma;
 }
 
-void analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitResult& result) {
-  const Eigen::MatrixXd J = whitened_jacobian(s, theta);
-  const JacobianAnalysis analysis = analyze_jacobian(J, kRankTolerance);
-  result.covariance = ceres_covariance(s, theta);
+/// The identifiability, intervals and goodness of fit at theta. Returns a point of lower chi^2 if
+/// a likelihood profile found one (the solvers stopped in a local minimum).
+std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitResult& result) {
+  const Eigen::MatrixXd J = detail::whitened_jacobian(s, theta);
+  const JacobianAnalysis analysis = analyze_jacobian(J, detail::kRankTolerance);
+  result.covariance = detail::covariance(s, theta);
   result.singular_values = analysis.singular_values;
   result.rank = analysis.rank;
+  const double chi2_min = chi2_at(s, theta);
+  std::optional<detail::Profile> better;
 
   const DampingForm form = s.parameters.damping;
   for (int i : s.free) result.free_names.push_back(parameter_name(i, form));
@@ -322,39 +194,39 @@ void analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitR
       Eigen::VectorXd e = Eigen::VectorXd::Zero(p);
       e(k) = 1.0;
       const Determination d = determine(e, analysis, result.covariance, options.determined_log_sigma);
-      const double tol = 1e-6;
-      r.at_bound = theta[i] <= std::log(spec.lower) + tol || theta[i] >= std::log(spec.upper) - tol;
+      r.at_bound = theta[i] <= detail::log_lower(s, i) + kAtBoundLog || theta[i] >= detail::log_upper(s, i) - kAtBoundLog;
       r.log_sigma = d.log_sigma;
       r.sigma = r.value * d.log_sigma;
-      bool profile_closed = true;
-      if (options.profile_likelihood) {
-        const ProfileInterval interval =
-            profile_interval(s, theta, chi2_at(s, theta), i, d.log_sigma, options.max_iterations);
-        if (interval.lower) r.profile_lower = std::exp(*interval.lower);
-        if (interval.upper) r.profile_upper = std::exp(*interval.upper);
-        profile_closed = interval.lower && interval.upper && interval.bounded_at_2_sigma &&
-                         0.5 * (*interval.upper - *interval.lower) < options.determined_log_sigma;
-      }
-      // At a bound the prior, not the data, holds the value; and both the linearisation and the
+      const bool closed = !options.profile_likelihood ||
+                          profile_into(s, theta, chi2_min, {i, nullptr}, d.log_sigma, options, r.profile_lower,
+                                       r.profile_upper, better);
+      // At a bound the bound, not the data, holds the value; and both the linearisation and the
       // profile must agree before a value is called determined.
-      r.determined = d.determined && !r.at_bound && profile_closed;
+      r.determined = d.determined && !r.at_bound && closed;
     }
     result.parameters.push_back(r);
   }
 
-  std::array<Jet3, 3> t;
+  std::array<Jet3, kParameterCount> t;
   for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
-  const std::array<Jet3, 4> q = combinations(t, form, s.parameters.density);
-  static const std::array<std::array<const char*, 3>, 4> kInfo{{
-      {"c0", "m/s", "low-frequency sound speed d sqrt(kappa/m), proportional to sqrt(kappa/d)"},
-      {"tau", "s", "relaxation time gamma/kappa of a contact"},
-      {"f_star", "Hz", "crossover frequency 1/(2 pi tau) where attenuation bends from f^2 to f^(1/2)"},
-      {"gamma_hat", "1", "dimensionless dashpot gamma/sqrt(kappa m)"},
-  }};
-  for (size_t c = 0; c < q.size(); ++c) {
-    const Determination d = determine(free_part(q[c], s.free), analysis, result.covariance, options.determined_log_sigma);
-    result.combinations.push_back({kInfo[c][0], kInfo[c][1], kInfo[c][2], q[c].a, d.determined, d.log_sigma,
-                                   q[c].a * d.log_sigma});
+  for (const CombinationInfo& info : kCombinations) {
+    const Jet3 log_q = info.log_value(t, s);
+    const Determination d = determine(free_part(log_q, s.free), analysis, result.covariance, options.determined_log_sigma);
+    const double value = std::exp(log_q.a);
+    CombinationResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
+    if (options.profile_likelihood && std::string(info.name) == "f_star") {
+      // f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just before).
+      const CombinationResult& tau = result.combinations.back();
+      const double k = 1.0 / (2.0 * std::numbers::pi);
+      if (tau.profile_upper) c.profile_lower = k / *tau.profile_upper;
+      if (tau.profile_lower) c.profile_upper = k / *tau.profile_lower;
+      c.determined = tau.determined;
+    } else if (options.profile_likelihood && d.null_component < 1.0 - 1e-9) {
+      const bool closed = profile_into(s, theta, chi2_min, {-1, info.log_value}, d.log_sigma, options,
+                                       c.profile_lower, c.profile_upper, better);
+      c.determined = d.determined && closed;
+    }
+    result.combinations.push_back(c);
   }
 
   // Correlations of the free ln-parameters; undetermined ones have none worth quoting.
@@ -382,11 +254,71 @@ void analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitR
   result.dof = result.n_observations - result.rank;
   result.aic = result.chi2 + 2.0 * result.rank;
   result.bic = result.chi2 + result.rank * std::log(static_cast<double>(result.n_observations));
+  if (better) return better->better;
+  return std::nullopt;
 }
 
 Theta with_values(FitParameters& parameters, const Theta& theta) {
   for (int i = 0; i < kParameterCount; ++i) parameters.spec[i].value = std::exp(theta[i]);
   return theta;
+}
+
+/// The interval a quantity's value is known to lie in: its 68 % profile interval (open ends reach
+/// the search bounds), or the value alone when no profile was computed.
+std::pair<double, double> credible_span(double value, const std::optional<double>& lower,
+                                        const std::optional<double>& upper, bool profiled) {
+  if (!profiled) return {value, value};
+  return {lower.value_or(0.0), upper.value_or(std::numeric_limits<double>::infinity())};
+}
+
+void flag_range(const std::string& quantity, double value, std::pair<double, double> span, FitResult& result) {
+  const PlausibleRange* range = plausible_range(quantity);
+  if (!range) return;
+  const bool below = span.second < range->lower, above = span.first > range->upper;
+  if (!below && !above) return;
+  char text[512];
+  std::snprintf(text, sizeof text, "%s = %.4g is %s the physical range [%.3g, %.3g] (%s): likely %s", quantity.c_str(),
+                value, below ? "below" : "above", range->lower, range->upper, range->basis,
+                below ? range->below_cause : range->above_cause);
+  result.flags.push_back({quantity, text});
+}
+
+/// Physical plausibility of every reported value (plausibility.hpp), and parameters at a bound.
+void flag_implausible(const FitOptions& options, FitResult& result) {
+  for (const ParameterResult& p : result.parameters) {
+    if (!p.free) continue;
+    if (p.at_bound) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "%s stopped at its search bound (%.4g %s): the bound, not the data, holds it; widen the bound, "
+                    "fix the parameter, or check the data's units",
+                    p.name.c_str(), p.value, p.unit.c_str());
+      result.flags.push_back({p.name, text});
+    }
+    flag_range(p.name, p.value, credible_span(p.value, p.profile_lower, p.profile_upper, options.profile_likelihood),
+               result);
+  }
+  for (const CombinationResult& c : result.combinations) {
+    flag_range(c.name, c.value, credible_span(c.value, c.profile_lower, c.profile_upper, options.profile_likelihood),
+               result);
+  }
+}
+
+/// Analyses the fit at theta; if a profile finds a lower chi^2, polishes from there and analyses
+/// again (at most three times), so no reported interval is drawn around a point that is not the minimum.
+void analyze_with_restarts(const Setup& s, Theta theta, const FitOptions& options, FitResult& result) {
+  for (int attempt = 0;; ++attempt) {
+    FitResult analysed = result;
+    with_values(analysed.fitted, theta);
+    const std::optional<Theta> better = analyze(s, theta, options, analysed);
+    if (!better || attempt == 3) {
+      analysed.profile_restarts = attempt;
+      result = std::move(analysed);
+      break;
+    }
+    theta = solve_local(s, *better, options.max_iterations).theta;
+  }
+  flag_implausible(options, result);
 }
 
 const char* method_name(FitMethod method) {
@@ -409,7 +341,7 @@ FitMethod parse_fit_method(const std::string& name) {
 FitResult fit(const ObservationSet& data, const forward::DispersionModel& model, const FitParameters& parameters,
               const FitOptions& options) {
   const auto started = std::chrono::steady_clock::now();
-  const Setup s = make_setup(data, model, parameters, options);
+  const Setup s = detail::make_setup(data, model, parameters, options);
   const Theta start = parameters.log_values();
   FitResult result;
   result.model = model.name();
@@ -445,8 +377,7 @@ FitResult fit(const ObservationSet& data, const forward::DispersionModel& model,
     }
     result.global = report;
   }
-  with_values(result.fitted, theta);
-  analyze(s, theta, options, result);
+  analyze_with_restarts(s, theta, options, result);
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }
@@ -459,7 +390,7 @@ std::vector<CurvePoint> model_curves(const FitResult& result, const forward::Dis
   std::array<Jet3, kParameterCount> t;
   for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
   auto sigma_of = [&](const Jet3& q) {
-    const Eigen::VectorXd g = free_part(q, free);
+    const Eigen::VectorXd g = free_part(q, free) / q.a;  // d ln q
     return q.a * std::sqrt(std::max(0.0, g.dot(result.covariance * g)));
   };
   std::vector<CurvePoint> curves;

@@ -18,18 +18,29 @@ void FitParameters::set_free_from_list(const std::string& list) {
   for (ParameterSpec& s : spec) s.free = false;
   std::stringstream stream(list);
   std::string name;
+  std::string damping_named;  // "gamma" or "en" once the damping is named
   while (std::getline(stream, name, ',')) {
+    int index = -1;
     if (name == "kappa") {
-      spec[kKappa].free = true;
+      index = kKappa;
     } else if (name == "d") {
-      spec[kDiameter].free = true;
+      index = kDiameter;
     } else if (name == "gamma" || name == "en" || name == "e_n") {
+      const std::string form_name = name == "gamma" ? "gamma" : "en";
+      if (!damping_named.empty() && damping_named != form_name) {
+        throw std::invalid_argument("--fit '" + list + "' names both gamma and en: the damping is one parameter, "
+                                    "given either as the dashpot gamma or as the restitution e_n; choose one");
+      }
+      damping_named = form_name;
       const DampingForm form = name == "gamma" ? DampingForm::Gamma : DampingForm::Restitution;
       if (form != damping) set_damping_form(form);
-      spec[kDamping].free = true;
+      index = kDamping;
     } else {
-      throw std::invalid_argument("unknown fit parameter '" + name + "' (accepted: kappa, d, gamma, en)");
+      throw std::invalid_argument("unknown fit parameter '" + name + "' in --fit '" + list +
+                                  "' (accepted: kappa, d, gamma, en)");
     }
+    if (spec[index].free) throw std::invalid_argument("--fit '" + list + "' names '" + name + "' twice");
+    spec[index].free = true;
   }
   if (free_indices().empty()) throw std::invalid_argument("no parameter to fit in '" + list + "'");
 }

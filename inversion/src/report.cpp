@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sedwave/io/atomic_file.hpp"
 #include "sedwave/version.hpp"
 
 namespace sedwave::inversion {
@@ -14,12 +15,8 @@ namespace {
 /// JSON has no NaN: undetermined numbers become null.
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
 
-std::ofstream open_for_writing(const std::filesystem::path& file) {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-  out << std::setprecision(17);
-  return out;
-}
+/// A missing end of a profile interval (open: it reaches the search bound) becomes null.
+nlohmann::json optional_or_null(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(); }
 
 const char* quantity_name(Quantity q) { return q == Quantity::Attenuation ? "attenuation" : "sound_speed"; }
 const char* quantity_unit(Quantity q) { return q == Quantity::Attenuation ? "Np/m" : "m/s"; }
@@ -41,15 +38,14 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                                {"sigma", p.free && p.determined ? number_or_null(p.sigma) : nlohmann::json()},
                                {"log_sigma", p.free && p.determined ? number_or_null(p.log_sigma) : nlohmann::json()},
                                {"at_bound", p.at_bound},
-                               {"profile_interval_68",
-                                {p.profile_lower ? nlohmann::json(*p.profile_lower) : nlohmann::json(),
-                                 p.profile_upper ? nlohmann::json(*p.profile_upper) : nlohmann::json()}}};
+                               {"profile_interval_68", {optional_or_null(p.profile_lower), optional_or_null(p.profile_upper)}}};
   }
   for (const CombinationResult& c : r.combinations) {
     j["combinations"][c.name] = {{"value", c.value},       {"unit", c.unit},
                                  {"meaning", c.meaning},   {"determined", c.determined},
                                  {"sigma", c.determined ? number_or_null(c.sigma) : nlohmann::json()},
-                                 {"log_sigma", c.determined ? number_or_null(c.log_sigma) : nlohmann::json()}};
+                                 {"log_sigma", c.determined ? number_or_null(c.log_sigma) : nlohmann::json()},
+                                 {"profile_interval_68", {optional_or_null(c.profile_lower), optional_or_null(c.profile_upper)}}};
   }
   nlohmann::json correlation = nlohmann::json::array();
   for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
@@ -78,6 +74,9 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
   j["aic"] = r.aic;
   j["bic"] = r.bic;
   j["converged"] = r.converged;
+  j["profile_restarts"] = r.profile_restarts;
+  j["flags"] = nlohmann::json::array();
+  for (const PlausibilityFlag& f : r.flags) j["flags"].push_back({{"quantity", f.quantity}, {"message", f.message}});
   j["solver_message"] = r.solver_message;
   if (r.global) {
     j["global_search"] = {{"algorithm", r.global->algorithm},
@@ -119,7 +118,7 @@ std::vector<double> curve_frequencies(const ObservationSet& data, int count) {
 
 void write_curves_csv(const std::filesystem::path& file, const std::vector<CurvePoint>& curves,
                       std::optional<double> water_sound_speed) {
-  std::ofstream out = open_for_writing(file);
+  io::write_text_atomically(file, [&](std::ostream& out) {
   out << "# sedwave model curves; sigma columns are 1-sigma bands from the fit covariance\n";
   out << "frequency_hz,omega_hat,gamma_hat,alpha_hat,c_hat,alpha_np_per_m,alpha_np_per_m_sigma,"
          "alpha_db_per_m,alpha_db_per_m_sigma,sound_speed_m_per_s,sound_speed_m_per_s_sigma";
@@ -132,10 +131,11 @@ void write_curves_csv(const std::filesystem::path& file, const std::vector<Curve
     if (water_sound_speed) out << ',' << c.speed / *water_sound_speed << ',' << c.speed_sigma / *water_sound_speed;
     out << "\n";
   }
+  });
 }
 
 void write_observations_table(const std::filesystem::path& file, const ObservationSet& data, const FitResult& result) {
-  std::ofstream out = open_for_writing(file);
+  io::write_text_atomically(file, [&](std::ostream& out) {
   out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s];\n"
       << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s\n"
       << "quantity,frequency_hz,value,sigma,display_value,display_sigma\n";
@@ -147,6 +147,7 @@ void write_observations_table(const std::filesystem::path& file, const Observati
     out << (attenuation ? 0 : 1) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
         << ',' << p.sigma * scale << "\n";
   }
+  });
 }
 
 }  // namespace sedwave::inversion

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sedwave/inversion/residuals.hpp"
+#include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::inversion {
 
@@ -38,25 +39,23 @@ ObservationSet synthetic_observations(const forward::DispersionModel& model, con
 
 void write_observation_csv(const std::filesystem::path& path, const ObservationSet& set,
                            const std::vector<std::string>& header) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
-  out << "# sedwave observation CSV (format: docs/file-formats.md); SI units\n";
-  for (const std::string& line : header) out << "# " << line << '\n';
-  out << "quantity,frequency,frequency_unit,value,value_unit,sigma\n";
-  char row[160];
-  for (const Observation& o : set.observations) {
-    const bool attenuation = o.quantity == Quantity::Attenuation;
-    std::snprintf(row, sizeof row, "%s,%.17g,Hz,%.17g,%s,", attenuation ? "attenuation" : "sound_speed", o.frequency_hz,
-                  o.value, attenuation ? "Np/m" : "m/s");
-    out << row;
-    if (o.sigma) {
-      std::snprintf(row, sizeof row, "%.17g", *o.sigma);
+  io::write_text_atomically(path, [&](std::ostream& out) {
+    out << "# sedwave observation CSV (format: docs/file-formats.md); SI units\n";
+    for (const std::string& line : header) out << "# " << line << '\n';
+    out << "quantity,frequency,frequency_unit,value,value_unit,sigma\n";
+    char row[160];
+    for (const Observation& o : set.observations) {
+      const bool attenuation = o.quantity == Quantity::Attenuation;
+      std::snprintf(row, sizeof row, "%s,%.17g,Hz,%.17g,%s,", attenuation ? "attenuation" : "sound_speed",
+                    o.frequency_hz, o.value, attenuation ? "Np/m" : "m/s");
       out << row;
+      if (o.sigma) {
+        std::snprintf(row, sizeof row, "%.17g", *o.sigma);
+        out << row;
+      }
+      out << '\n';
     }
-    out << '\n';
-  }
-  out.flush();
-  if (!out) throw std::runtime_error(path.string() + ": write failed");
+  });
 }
 
 }  // namespace sedwave::inversion

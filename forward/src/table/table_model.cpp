@@ -212,3 +212,17 @@ DispersionPoint TableModel::outside(double omega_hat, double gamma_hat, const st
 }
 
 }  // namespace sedwave::forward::table
+
+namespace sedwave::forward::table {
+
+double TableModel::long_wavelength_c_hat() const {
+  for (std::size_t w = 0; w < table_.n_omega(); ++w) {
+    for (std::size_t g = 0; g < table_.n_gamma(); ++g) {
+      const PointResult& p = table_.at(g, w);
+      if (p.status == PointStatus::ok) return p.c_hat;
+    }
+  }
+  throw std::domain_error("table " + name_ + " has no ok point");
+}
+
+}  // namespace sedwave::forward::table

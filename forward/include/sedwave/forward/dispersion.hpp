@@ -35,6 +35,10 @@ class DispersionModel {
   [[nodiscard]] virtual std::string name() const = 0;
   /// Values and derivatives at one point. Throws std::domain_error outside the model's domain.
   [[nodiscard]] virtual DispersionPoint evaluate(double omega_hat, double gamma_hat) const = 0;
+  /// c_hat as omega_hat -> 0 (the static, fully relaxed packing; the same for every gamma_hat, since
+  /// dashpots carry no force at zero frequency). 1 for the chains, whose speed scale d sqrt(kappa/m)
+  /// is their low-frequency speed; a 3D packing is softer or stiffer.
+  [[nodiscard]] virtual double long_wavelength_c_hat() const { return 1.0; }
 };
 
 }  // namespace sedwave::forward

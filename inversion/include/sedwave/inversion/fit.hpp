@@ -14,6 +14,7 @@
 #include "sedwave/forward/dispersion.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/parameters.hpp"
+#include "sedwave/inversion/plausibility.hpp"
 
 namespace sedwave::inversion {
 
@@ -29,8 +30,9 @@ struct FitOptions {
   /// (0.5: known to within a factor e^0.5 = 1.65) and it has no component along unseen directions.
   double determined_log_sigma = 0.5;
   unsigned random_seed = 20090501;            ///< for the stochastic NLopt algorithms
-  /// Also compute profile-likelihood intervals (Delta chi^2 = 1) of each free parameter, and call a
-  /// parameter determined only if its profile closes on both sides. Costs ~30 local fits each.
+  /// Also compute profile-likelihood intervals (Delta chi^2 = 1) of each free parameter and
+  /// combination, and call a quantity determined only if its profile closes on both sides. Costs
+  /// ~40-80 local fits each.
   bool profile_likelihood = true;
 };
 
@@ -39,20 +41,13 @@ struct ParameterResult {
   std::string unit;
   double value = 0.0;       ///< [unit]
   bool free = false;
-  bool at_bound = false;
+  bool at_bound = false;     ///< within 1 % of a search bound: the bound, not the data, holds it
   bool determined = false;  ///< fixed parameters count as determined
   double log_sigma = 0.0;   ///< 1-sigma of ln(value); meaningful only if determined
   double sigma = 0.0;       ///< value * log_sigma (first order) [unit]
   /// Profile-likelihood 68% interval [unit]; a missing side is open (the bound lies within it).
   std::optional<double> profile_lower;
   std::optional<double> profile_upper;
-};
-
-/// Ends of a profile-likelihood interval in ln units; a missing end is open.
-struct ProfileInterval {
-  std::optional<double> lower;
-  std::optional<double> upper;
-  bool bounded_at_2_sigma = true;  ///< both bounds lie beyond Delta chi^2 = 4
 };
 
 /// A function of the parameters that the data may determine even when they do not.
@@ -64,6 +59,9 @@ struct CombinationResult {
   bool determined = false;
   double log_sigma = 0.0;
   double sigma = 0.0;
+  /// Profile-likelihood 68% interval [unit]; a missing side is open (reaches the parameter bounds).
+  std::optional<double> profile_lower;
+  std::optional<double> profile_upper;
 };
 
 /// A direction of ln-parameter space the data cannot see or barely see.
@@ -111,6 +109,10 @@ struct FitResult {
   bool converged = false;
   std::string solver_message;
   std::optional<GlobalSearchReport> global;
+  /// Times a likelihood profile found a lower chi^2 than the solver's minimum, so the fit moved there.
+  int profile_restarts = 0;
+  /// Results outside physical ranges, parameters at search bounds: each with its likely cause.
+  std::vector<PlausibilityFlag> flags;
   double wall_seconds = 0.0;
 };
 

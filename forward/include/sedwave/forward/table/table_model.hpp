@@ -64,6 +64,9 @@ class TableModel final : public DispersionModel {
 
   [[nodiscard]] std::string name() const override { return name_; }
   [[nodiscard]] DispersionPoint evaluate(double omega_hat, double gamma_hat) const override;
+  /// The table's c_hat at its lowest omega_hat and, there, its lowest gamma_hat with an ok point:
+  /// the closest the table comes to the static limit (its lattice dispersion there is ~omega_hat^2).
+  [[nodiscard]] double long_wavelength_c_hat() const override;
 
   /// How many evaluations fell back to the lattice theory so far.
   [[nodiscard]] std::uint64_t fallback_count() const { return fallbacks_.load(std::memory_order_relaxed); }

@@ -1,0 +1,53 @@
+#pragma once
+// Is a fitted result physically plausible? Every value sedwave reports is checked against the
+// ranges a seabed sediment can have; one outside them is flagged with its likely cause (a unit
+// mix-up, the wrong model, a search bound) instead of being printed as an answer.
+//
+// Ranges (SI):
+//   grain diameter d          1 um (clay) .. 64 mm (pebble gravel): the Wentworth scale's clay to
+//                             gravel classes.
+//   low-frequency speed c0    1200 .. 2500 m/s: unconsolidated, water-saturated marine sediments
+//                             (Hamilton 1980, JASA 68, 1313: about 1450-2100 m/s from muds to
+//                             gravels), widened for gassy muds and coarse gravels.
+//   kappa / kappa_Hertz       0.46 .. 10: the Hertz stiffness of a contact between two equal quartz
+//                             grains of diameter d at confining pressures 1 kPa .. 10 MPa, relative
+//                             to its value at 10 kPa (about 1 m below the seafloor); kappa_Hertz
+//                             grows as P^(1/3), so the range is (0.1)^(1/3) .. (1000)^(1/3).
+//   gamma_hat                 1e-3 .. 1e3: from nearly elastic contacts (e_n = 0.998) to the heavy
+//                             overdamping that sediment attenuation needs in the chain model.
+//   e_n                       (0, 1].
+#include <string>
+#include <vector>
+
+namespace sedwave::inversion {
+
+/// Quartz (Mavko, Mukerji & Dvorkin, The Rock Physics Handbook, 2009, table 7.1: K = 37 GPa,
+/// G = 44 GPa), the reference grain material for the Hertz comparison.
+inline constexpr double kQuartzYoungModulus = 9.45e10;  ///< E = 9KG/(3K+G) [Pa]
+inline constexpr double kQuartzPoissonRatio = 0.074;    ///< (3K-2G)/(2(3K+G)) [-]
+/// Effective pressure at which kappa is compared with Hertz: about 1 m below the seafloor in sand
+/// ((rho_bulk - rho_water) g z = (2000 - 1025) 9.81 1 = 9.6 kPa).
+inline constexpr double kReferencePressure = 1.0e4;  ///< [Pa]
+
+/// Hertz contact stiffness [N/m] of two equal quartz grains of diameter d [m] at pressure P [Pa].
+[[nodiscard]] double quartz_hertz_kappa(double diameter, double pressure = kReferencePressure);
+
+/// A reported quantity's accepted range.
+struct PlausibleRange {
+  double lower;
+  double upper;
+  const char* basis;       ///< where the range comes from
+  const char* below_cause;  ///< likely cause of a value below it
+  const char* above_cause;  ///< likely cause of a value above it
+};
+
+/// The range of a reported quantity by name (d, c0, kappa_over_hertz, gamma_hat, e_n), or nullptr.
+[[nodiscard]] const PlausibleRange* plausible_range(const std::string& quantity);
+
+/// One flagged result.
+struct PlausibilityFlag {
+  std::string quantity;
+  std::string message;  ///< what is wrong, the accepted range and the likely cause
+};
+
+}  // namespace sedwave::inversion

@@ -1,0 +1,41 @@
+#pragma once
+// Likelihood profiles (private to the inversion library). The 68 % profile interval of a quantity q
+// (a free parameter, or a combination such as c0 or tau) is the set of values t for which chi^2,
+// minimised over everything else with q held at t, lies within 1 of the overall minimum (Wilks:
+// Delta chi^2 = 1 covers the truth 68 % of the time for one quantity). Unlike the linearised sigma
+// it stays honest when the model is strongly nonlinear in q, or when the data leave a direction of
+// parameter space flat up to a bound.
+//
+// How it stays on the valley floor: the minimisation at each new t starts from two points and keeps
+// the better: the last minimum, and that minimum moved along the least-constrained path that changes
+// q by the step (delta theta = H^-1 a dt / (a^T H^-1 a), with H = J^T J regularised and a = grad ln q;
+// along an unseen direction this is exactly the flat ridge). Steps in ln q grow from the linearised
+// sigma to at most 1 (a factor e); a Levenberg-Marquardt fit started a factor e^4 away can fall into
+// another valley, which would close the interval where chi^2 is in fact flat.
+#include <optional>
+
+#include "fit_problem.hpp"
+
+namespace sedwave::inversion::detail {
+
+/// What is profiled: a free parameter (held exactly) or a combination (held by a constraint).
+struct ProfiledQuantity {
+  int parameter = -1;  ///< index into theta, or -1 for a combination
+  Jet3 (*log_value)(const std::array<Jet3, kParameterCount>& theta, const Setup& s) = nullptr;
+};
+
+struct Profile {
+  std::optional<double> lower;  ///< ln units; missing: open (chi^2 stays within 1 up to the bound)
+  std::optional<double> upper;
+  bool bounded_at_2_sigma = true;  ///< both extremes of q within the bounds lie beyond Delta chi^2 = 4
+  std::optional<Theta> better;     ///< a point whose chi^2 is below the minimum the fit reported
+  double better_chi2 = 0.0;
+};
+
+[[nodiscard]] Profile profile(const Setup& s, const Theta& best, double chi2_min, const ProfiledQuantity& q,
+                              double linear_sigma, int max_iterations);
+
+/// ln q at theta (a parameter's own value, or the combination's).
+[[nodiscard]] Jet3 log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q);
+
+}  // namespace sedwave::inversion::detail
