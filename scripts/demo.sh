@@ -7,5 +7,13 @@ sedwave_install_packages
 cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$BUILD_DIR" -j "$JOBS" --target sedwave
 OUT="${OUT:-$SEDWAVE_ROOT/out/demo}"
+status=0
 "$BUILD_DIR/bin/sedwave" invert "$SEDWAVE_ROOT/data/field/zhou2009_regression.csv" \
-  --model lattice --fit kappa,d,gamma --method global --out "$OUT" "$@"
+  --model lattice --fit kappa,d,gamma --method global --out "$OUT" "$@" || status=$?
+# Exit code 3: the fit ran and wrote its report, and flagged some result (WARNING above). On these
+# data the dry-frame chain needs contacts stiffer than Hertz: that flag is the demo's finding.
+if [ "$status" -eq 3 ]; then
+  echo "demo: finished; sedwave flagged the results listed under WARNING (exit code 3, docs/cli.md)"
+  exit 0
+fi
+exit "$status"

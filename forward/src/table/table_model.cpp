@@ -200,15 +200,18 @@ DispersionPoint TableModel::outside(double omega_hat, double gamma_hat, const st
     return LatticeModel().evaluate(omega_hat, gamma_hat);
   }
   const TableGrid& grid = table_.grid();
+  // Field data sit far below a driven table's omega_hat (0.3 mm sand at 10 kHz: omega_hat ~ 1e-2):
+  // name the table that covers them rather than an extrapolation.
+  const std::string make_instead =
+      omega_hat < grid.omega_hat.front()
+          ? "; for omega_hat this low make a long-wavelength table, e.g. `sedwave table "
+            "data/scenes/field_w3_long_wavelength.toml --engine long_wavelength --packing "
+            "data/tables/field_w3.packing.h5 --out TABLE.h5` (docs/tables.md, \"Field frequencies\")"
+          : "";
   throw std::domain_error(name_ + ": (omega_hat=" + str(omega_hat) + ", gamma_hat=" + str(gamma_hat) + ") " + why +
                           "; the table covers omega_hat in [" + str(grid.omega_hat.front()) + ", " +
                           str(grid.omega_hat.back()) + "], gamma_hat in [" + str(grid.gamma_hat.front()) + ", " +
-                          str(grid.gamma_hat.back()) + "]" +
-                          (outside_ == OutsideTable::error
-                               ? " (" + name_ + "?extrapolate=theory falls back to the lattice theory; " + name_ +
-                                     "?extrapolate=long-wavelength continues below the resolved omega_hat with the "
-                                     "table's continuum limit)"
-                               : ""));
+                          str(grid.gamma_hat.back()) + "]" + make_instead);
 }
 
 }  // namespace sedwave::forward::table
