@@ -61,8 +61,9 @@ inline Truth draw_truth(std::mt19937_64& rng) {
 
 /// One quantity's interval in one data set.
 struct IntervalCheck {
-  bool contains = false;  ///< the truth lies in the interval (an open end reaches the search bound)
-  bool closed = false;    ///< both ends finite
+  bool contains = false;    ///< the truth lies in the interval (an open end reaches the search bound)
+  bool closed = false;      ///< both ends finite
+  bool determined = false;  ///< the report calls the quantity determined (closed, narrow, not at a bound)
 };
 
 struct DataSetResult {
@@ -87,16 +88,16 @@ inline DataSetResult run_data_set(unsigned seed, int index) {
   const inversion::FitResult fit = inversion::fit(data, lattice, inversion::FitParameters{}, inversion::FitOptions{});
   r.chi2 = fit.chi2;
   r.dof = fit.dof;
-  auto check = [](double truth, const std::optional<double>& lo, const std::optional<double>& hi) {
-    return IntervalCheck{(!lo || truth >= *lo) && (!hi || truth <= *hi), lo.has_value() && hi.has_value()};
+  auto check = [](double truth, const std::optional<double>& lo, const std::optional<double>& hi, bool determined) {
+    return IntervalCheck{(!lo || truth >= *lo) && (!hi || truth <= *hi), lo.has_value() && hi.has_value(), determined};
   };
   for (size_t q = 0; q < kCoverageQuantities.size(); ++q) {
     const std::string name = kCoverageQuantities[q];
     for (const auto& p : fit.parameters) {
-      if (p.name == name) r.checks[q] = check(r.truth.values[q], p.profile_lower, p.profile_upper);
+      if (p.name == name) r.checks[q] = check(r.truth.values[q], p.profile_lower, p.profile_upper, p.determined);
     }
     for (const auto& c : fit.combinations) {
-      if (c.name == name) r.checks[q] = check(r.truth.values[q], c.profile_lower, c.profile_upper);
+      if (c.name == name) r.checks[q] = check(r.truth.values[q], c.profile_lower, c.profile_upper, c.determined);
     }
   }
   return r;

@@ -1,5 +1,6 @@
 // `sedwave invert`: fit grain-contact parameters to observation files and report what the data
 // determine, with a plot.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -199,6 +200,9 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
   std::printf("\nreport: %s/fit.json, curves: %s/curves.csv\n%s\n", out.c_str(), out.c_str(), plot.message.c_str());
 }
 
+/// From this many observations on, a fit takes seconds to minutes: it reports its stages on stderr.
+constexpr std::size_t kProgressObservations = 10000;
+
 /// Every file the run reads: observation and digitised files, and a table model's file.
 std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
   std::vector<std::filesystem::path> inputs(o.files.begin(), o.files.end());
@@ -263,6 +267,9 @@ Command add_invert_command(CLI::App& app) {
                   "largest 1-sigma of ln(value) that still counts as determined")->capture_default_str()
       ->check(finite_in(1e-6, 10.0));
   cmd->add_flag("!--no-plot", o->plot, "skip the gnuplot figure");
+  cmd->add_flag("!--no-profile", o->fit_options.profile_likelihood,
+                "skip the likelihood profiles (most of a fit's time on large files); determination then rests on "
+                "the linearised sigmas alone");
 
   return {cmd, [o]() {
             const std::filesystem::path out(o->out);
@@ -272,6 +279,13 @@ Command add_invert_command(CLI::App& app) {
             const auto model = forward::make_dispersion_model(o->model);
             inversion::FitOptions options = o->fit_options;
             options.method = inversion::parse_fit_method(o->method);
+            if (data.observations.size() >= kProgressObservations) {
+              const auto started = std::chrono::steady_clock::now();
+              options.progress = [started](const std::string& stage) {
+                const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                std::fprintf(stderr, "sedwave invert: %7.1f s: %s\n", s, stage.c_str());
+              };
+            }
             const inversion::FitResult result = inversion::fit(data, *model, make_parameters(*o), options);
 
             nlohmann::json report = inversion::fit_report(result, data);

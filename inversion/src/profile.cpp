@@ -59,7 +59,10 @@ Theta predicted_start(const Setup& s, const Theta& from, const ProfiledQuantity&
 }
 
 /// chi^2 minimised with ln q held at t, from two starts (profile.hpp); theta returns the minimum.
-double conditional_minimum(const Setup& s, Theta& theta, const ProfiledQuantity& q, double t, int max_iterations) {
+/// The second start is tried only when the first ends above `enough`: below it, a lower minimum
+/// would not change which side of the threshold t lies on.
+double conditional_minimum(const Setup& s, Theta& theta, const ProfiledQuantity& q, double t, int max_iterations,
+                           double enough) {
   const double dt = t - log_quantity(s, theta, q).a;
   std::array<Theta, 2> starts{predicted_start(s, theta, q, dt), theta};
   LocalFit best{theta, false, "", std::numeric_limits<double>::infinity()};
@@ -73,6 +76,7 @@ double conditional_minimum(const Setup& s, Theta& theta, const ProfiledQuantity&
       f = solve_local(s, start, max_iterations, -1, &constraint);
     }
     if (f.chi2 < best.chi2) best = f;
+    if (best.chi2 < enough) break;
   }
   theta = best.theta;
   return best.chi2;
@@ -83,7 +87,7 @@ template <typename DeltaChi2>
 bool passes_two_sigma(double t, Theta theta, double limit, int side, DeltaChi2& delta_chi2) {
   while (side * (limit - t) > 1e-9) {
     t = side < 0 ? std::max(limit, t - 1.0) : std::min(limit, t + 1.0);
-    if (delta_chi2(t, theta) >= 4.0) return true;
+    if (delta_chi2(t, theta, 4.0) >= 4.0) return true;
   }
   return false;
 }
@@ -101,8 +105,8 @@ Profile profile(const Setup& s, const Theta& best, double chi2_min, const Profil
   const double t_best = log_quantity(s, best, q).a;
   const auto [reach_lo, reach_hi] = reachable_range(s, best, q);
   const double improvement = std::max(1e-3, 1e-9 * chi2_min);
-  auto delta_chi2 = [&](double t, Theta& theta) {
-    const double chi2 = conditional_minimum(s, theta, q, t, max_iterations);
+  auto delta_chi2 = [&](double t, Theta& theta, double threshold = 1.0) {
+    const double chi2 = conditional_minimum(s, theta, q, t, max_iterations, chi2_min + threshold);
     if (chi2 < chi2_min - improvement && (!result.better || chi2 < result.better_chi2)) {
       result.better = theta;
       result.better_chi2 = chi2;
@@ -114,7 +118,7 @@ Profile profile(const Setup& s, const Theta& best, double chi2_min, const Profil
     double inside = t_best;
     Theta inside_theta = best;
     std::optional<double> outside;
-    double step = std::clamp(std::isfinite(linear_sigma) && linear_sigma > 0.0 ? linear_sigma : 0.1, 1e-3, 1.0);
+    double step = std::clamp(std::isfinite(linear_sigma) && linear_sigma > 0.0 ? linear_sigma : 0.1, 1e-6, 1.0);
     while (!outside) {
       double trial = inside + side * step;
       const bool at_limit = side * (trial - limit) >= 0.0;
@@ -134,8 +138,10 @@ Profile profile(const Setup& s, const Theta& best, double chi2_min, const Profil
       result.bounded_at_2_sigma = false;
       continue;
     }
-    // Bisection on Delta chi^2 = 1 to 2e-3 in ln units (0.2 % relative), each from the nearest minimum inside.
-    while (std::abs(*outside - inside) > 2e-3) {
+    // Bisection on Delta chi^2 = 1, each step from the nearest minimum inside, to 1 % of the
+    // interval's half-width (a sound speed known to 0.04 % needs far finer steps than a grain size).
+    const double tolerance = std::min(2e-3, 0.01 * std::abs(*outside - t_best));
+    while (std::abs(*outside - inside) > tolerance) {
       const double middle = 0.5 * (inside + *outside);
       Theta theta = inside_theta;
       if (delta_chi2(middle, theta) >= 1.0) {

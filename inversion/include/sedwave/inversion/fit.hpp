@@ -7,6 +7,7 @@
 // Every method ends with the same analysis at the solution: covariance (ceres::Covariance, a
 // pseudo-inverse when the data leave directions undetermined), identifiability, and goodness of fit.
 #include <Eigen/Dense>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct FitOptions {
   /// combination, and call a quantity determined only if its profile closes on both sides. Costs
   /// ~40-80 local fits each.
   bool profile_likelihood = true;
+  /// Called with the name of each stage as it starts (global search, each profile): a long fit
+  /// (10^5 observations and more) can say where it is. Empty: silent.
+  std::function<void(const std::string&)> progress;
 };
 
 struct ParameterResult {
