@@ -37,7 +37,7 @@ struct FitOptions {
   bool profile_likelihood = true;
   /// Called with the name of each stage as it starts (global search, each profile): a long fit
   /// (10^5 observations and more) can say where it is. Empty: silent.
-  std::function<void(const std::string&)> progress;
+  std::function<void(const std::string&)> progress = nullptr;
 };
 
 struct ParameterResult {
