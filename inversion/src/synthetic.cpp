@@ -29,8 +29,12 @@ ObservationSet synthetic_observations(const forward::DispersionModel& model, con
   for (int i = 0; i < design.points; ++i) {
     const double f = design.lowest_hz * std::pow(design.highest_hz / design.lowest_hz, i / (design.points - 1.0));
     const Prediction<double> p = predictor(theta[kKappa], theta[kDiameter], theta[kDamping], f);
-    set.observations.push_back({Quantity::Attenuation, f, p.alpha * (1.0 + design.alpha_noise * normal(rng)),
-                                design.alpha_noise * p.alpha, "Np/m", "synthetic", i + 1});
+    // Attenuation is compared in ln space with sigma/value as its sigma (residuals.hpp), so its noise
+    // is drawn there: log-normal, with the stated sigma the same fraction of the value drawn. Then the
+    // synthetic data follow exactly the likelihood the fit assumes, and intervals can be calibrated
+    // on them (multiplying by 1 + eps N instead biases ln alpha by -eps^2/2).
+    const double alpha = p.alpha * std::exp(design.alpha_noise * normal(rng));
+    set.observations.push_back({Quantity::Attenuation, f, alpha, design.alpha_noise * alpha, "Np/m", "synthetic", i + 1});
     set.observations.push_back({Quantity::SoundSpeed, f, p.speed * (1.0 + design.speed_noise * normal(rng)),
                                 design.speed_noise * p.speed, "m/s", "synthetic", i + 1});
   }

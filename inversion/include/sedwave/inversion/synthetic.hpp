@@ -1,6 +1,6 @@
 #pragma once
 // Synthetic observations: what a forward model predicts for known parameters over a planned band,
-// with Gaussian noise. This is experiment design: fit the synthetic set back and the report says
+// with noise. This is experiment design: fit the synthetic set back and the report says
 // which parameters a measurement of that band and precision would determine (docs/inversion.md).
 //
 //   const ObservationSet lab = synthetic_observations(model, truth, {1e5, 1e6, 12, 0.1, 0.01, 1});
@@ -20,13 +20,15 @@ struct SyntheticDesign {
   double lowest_hz = 10.0;      ///< first frequency [Hz]
   double highest_hz = 1.0e6;    ///< last frequency [Hz] (inclusive)
   int points = 25;              ///< frequencies, log-spaced; one attenuation and one speed at each
-  double alpha_noise = 0.05;    ///< relative 1-sigma of the attenuation: the noise drawn and the sigma stated
+  double alpha_noise = 0.05;    ///< 1-sigma of ln(attenuation) (log-normal noise); sigma stated = this x value
   double speed_noise = 0.05;    ///< the same for the sound speed
   unsigned seed = 1;            ///< of the noise (std::mt19937_64): the same seed gives the same set
 };
 
-/// Attenuation and sound speed predicted by `model` at the values of `truth` (free or not), each
-/// multiplied by (1 + noise * N(0, 1)), with sigma = noise * the noise-free value. Throws
+/// Attenuation and sound speed predicted by `model` at the values of `truth` (free or not) with the
+/// noise the inversion's likelihood assumes: the attenuation multiplied by exp(alpha_noise N(0, 1)),
+/// sigma = alpha_noise * the value drawn; the speed multiplied by (1 + speed_noise N(0, 1)),
+/// sigma = speed_noise * the noise-free value. Throws
 /// std::invalid_argument for a design that is not a band of >= 2 positive frequencies, and whatever
 /// the model throws where it has no value (a table: std::domain_error).
 [[nodiscard]] ObservationSet synthetic_observations(const forward::DispersionModel& model, const FitParameters& truth,
