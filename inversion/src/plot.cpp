@@ -23,6 +23,9 @@ constexpr int kObservedFrequency = 2, kObservedValue = 5, kObservedSigma = 6, kO
 /// its trend leave the data, not so much that an extrapolation dominates the figure.
 constexpr double kBandMargin = 2.0;
 
+/// The attenuation axis reaches this factor beyond the data's smallest and largest values.
+constexpr double kLogAxisMargin = 1.3;
+
 /// A point further than this from the model, in its own sigmas, is marked as a miss: beyond chance
 /// for any data set of the size one fits (p = 0.0027 per point).
 constexpr double kMisfitSigma = 3.0;
@@ -54,6 +57,8 @@ struct QuantityPanel {
   double highest_hz = 0.0;
   int misfits = 0;  ///< points the model misses by more than kMisfitSigma
   double largest_residual = 0.0;  ///< of |normalised residual|
+  double smallest_value = std::numeric_limits<double>::infinity();  ///< of data, error bars and model [SI]
+  double largest_value = 0.0;
 };
 
 std::vector<QuantityPanel> panels_with_data(const FitResult& result) {
@@ -64,6 +69,9 @@ std::vector<QuantityPanel> panels_with_data(const FitResult& result) {
     panel.highest_hz = std::max(panel.highest_hz, p.observation.frequency_hz);
     panel.misfits += std::abs(p.normalized) > kMisfitSigma ? 1 : 0;
     panel.largest_residual = std::max(panel.largest_residual, std::abs(p.normalized));
+    const double low = p.observation.value - p.sigma;
+    panel.smallest_value = std::min({panel.smallest_value, low > 0.0 ? low : p.observation.value, p.model});
+    panel.largest_value = std::max({panel.largest_value, p.observation.value + p.sigma, p.model});
   }
   std::erase_if(panels, [](const QuantityPanel& p) { return p.highest_hz == 0.0; });
   return panels;
@@ -158,6 +166,21 @@ std::string misfit_title(const QuantityPanel& panel) {
 const std::string kDataStyle = std::string("pt 6 ps 0.6 lw 1.2 lc rgb '") + kDataColour + "'";
 const std::string kMisfitStyle = std::string("pt 8 ps 1.1 lw 1.5 lc rgb '") + kMisfitColour + "'";
 
+/// The "using" columns of a curve's lower and upper 1-sigma edges. Attenuation is fitted in log
+/// space, so its band is too: value * exp(-+sigma/value), which stays positive on a log axis however
+/// wide the band is and equals value -+ sigma where sigma is small.
+std::string band_edges(int value, bool attenuation) {
+  // A stream, not string concatenation: GCC 12 warns falsely (-Wrestrict) on "(" + std::string.
+  std::ostringstream edges;
+  const int v = value, s = value + 1;
+  if (attenuation) {
+    edges << "($" << v << "*exp(-$" << s << "/$" << v << ")):($" << v << "*exp($" << s << "/$" << v << "))";
+  } else {
+    edges << "($" << v << "-$" << s << "):($" << v << "+$" << s << ")";
+  }
+  return edges.str();
+}
+
 /// Data, model curve and its band for one quantity. Drawing order is back to front: band, curve,
 /// error bars, then the misfits on top, so nothing hides the error bars.
 void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box) {
@@ -169,15 +192,17 @@ void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_ax
     << "set key at screen " << kPanelRight + 0.015 << ", screen " << box.top
     << " left top Left reverse samplen 2 spacing 1.3 box lc rgb '#bbbbbb'\n";
   if (attenuation) {
-    g << "set logscale y\nset format y '10^{%L}'\nset ylabel 'attenuation (dB/m)'\n";
+    // The axis spans the data, not the curve's extrapolation: over the data's own decades the error
+    // bars stay visible on a log axis.
+    g << "set logscale y\nset format y '10^{%L}'\nset ylabel 'attenuation (dB/m)'\nset yrange ["
+      << panel.smallest_value * kDecibelPerNeper / kLogAxisMargin << ":"
+      << panel.largest_value * kDecibelPerNeper * kLogAxisMargin << "]\n";
   } else {
     g << "unset logscale y\nset format y '%g'\nset ylabel "
       << gnuplot_string(ratio_axis ? "sound speed / water sound speed" : "sound speed (m/s)") << "\n";
   }
-  const std::string lower = attenuation ? "(($8-$9) > 0 ? $8-$9 : 1e-300)" : "($" + std::to_string(value) + "-$" +
-                                                                              std::to_string(value + 1) + ")";
-  g << "plot 'curves.csv' skip " << kCurvesHeaderLines << " using 1:" << lower << ":($" << value << "+$" << value + 1
-    << ") with filledcurves fc rgb '" << kBandColour << "' title 'model ±1σ (covariance)', \\\n"
+  g << "plot 'curves.csv' skip " << kCurvesHeaderLines << " using 1:" << band_edges(value, attenuation)
+    << " with filledcurves fc rgb '" << kBandColour << "' title 'model ±1σ (covariance)', \\\n"
     << "  '' skip " << kCurvesHeaderLines << " using 1:" << value << " with lines lw 1.5 lc rgb '" << kCurveColour
     << "' title 'fitted model', \\\n"
     << "  'observations.csv' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
@@ -203,7 +228,7 @@ void residual_panel(std::ostringstream& g, const QuantityPanel& panel, PanelBox 
   place(g, box);
   shade_outside_band(g, panel);
   // Symmetric about zero and at least ±2.5, so the ±2 guides always show.
-  const double half_range = 1.15 * std::max(2.5, panel.largest_residual);
+  const double half_range = 1.25 * std::max(2.5, panel.largest_residual);
   g << "unset logscale y\nset format x '10^{%L}'\nset format y '%g'\nset xlabel 'frequency (Hz)'\n"
     << "set offsets 0, 0, 0, 0\nset ytics " << residual_tic_step(half_range) << "\n"
     << "set ylabel '(obs − model)/σ'\nset yrange [" << -half_range << ":" << half_range << "]\nunset key\n"
@@ -229,7 +254,7 @@ std::string plot_body(const std::string& title, bool ratio_axis, const FitResult
     highest = std::max(highest, p.highest_hz);
   }
   std::ostringstream g;
-  g << "set encoding utf8\nset multiplot title " << gnuplot_string(title) << " font ',13'\n"
+  g << "set encoding utf8\nset multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
     << "set label 1 " << gnuplot_string(parameter_line(result)) << " at screen 0.5, screen 0.945 center\n"
     << "set label 2 " << gnuplot_string(determined_line(result)) << " at screen 0.5, screen 0.92 center\n"
     << "set datafile separator ','\nset grid lc rgb '#dddddd'\nset logscale x\nset mxtics 10\n"
