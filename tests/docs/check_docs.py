@@ -11,6 +11,9 @@ Conventions for writers of README.md and docs/*.md:
   order in the same directory, so a later block may use what an earlier one wrote. A block fails
   the check when it exits non-zero or runs past --timeout seconds. Syntax summaries with
   placeholders use a plain ``` fence, which is never run.
+  A command that writes a table over a shipped one (data/tables/...) resumes it, as a user's rerun
+  would: such a block checks the command line and the files, not the table's values; show values
+  with `sedwave show` and an output block to check them.
 * <!-- docs-check: skip (REASON) --> right before a block (blank lines allowed) skips it; the
   reason is required and printed.
 * <!-- docs-check: output of the block above --> right before a plain block says the block shows
