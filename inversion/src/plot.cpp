@@ -19,8 +19,8 @@ constexpr int kCurvesHeaderLines = 2;
 constexpr int kObservationsHeaderLines = 4;
 constexpr int kObservedFrequency = 2, kObservedValue = 5, kObservedSigma = 6, kObservedResidual = 9;
 
-/// The curve is drawn this factor beyond the lowest and highest observed frequency: enough to see
-/// its trend leave the data, not so much that an extrapolation dominates the figure.
+/// The frequency axis reaches this factor beyond the lowest and highest observed frequency: enough
+/// to see the curve's trend leave the data, not so much that an extrapolation dominates the figure.
 constexpr double kBandMargin = 2.0;
 
 /// The attenuation axis reaches this factor beyond the data's smallest and largest values.
@@ -36,18 +36,17 @@ const char* const kDataColour = "#252525";
 const char* const kMisfitColour = "#d94801";
 const char* const kOutsideColour = "#ececec";
 
-std::string shell_quote(const std::string& s) {
+/// `s` in single quotes, each quote inside it written as `quote`.
+std::string single_quoted(const std::string& s, const std::string& quote) {
   std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  for (char c : s) q += c == '\'' ? quote : std::string(1, c);
   return q + "'";
 }
 
-/// A gnuplot single-quoted string (no escapes are processed inside; a quote is doubled).
-std::string gnuplot_string(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
+std::string shell_quote(const std::string& s) { return single_quoted(s, "'\\''"); }
+
+/// A gnuplot single-quoted string: no escapes are processed inside, a quote is doubled.
+std::string gnuplot_string(const std::string& s) { return single_quoted(s, "''"); }
 
 /// What one quantity's panels need to know about its observations.
 struct QuantityPanel {
