@@ -6,10 +6,11 @@ SEDWAVE_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${BUILD_DIR:-$SEDWAVE_ROOT/build}"
 JOBS="${JOBS:-$(nproc 2>/dev/null || echo 2)}"
 
-# Everything sedwave needs, all Debian packages. gnuplot draws the fit plot (optional at run time).
+# Everything sedwave needs, all Debian packages. gnuplot draws the fit plot (optional at run time);
+# python3 runs the docs check (tests/docs).
 SEDWAVE_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev
   libopenmpi-dev openmpi-bin libhdf5-dev libgtest-dev libbenchmark-dev libcli11-dev libtoml11-dev
-  nlohmann-json3-dev gnuplot-nox)
+  nlohmann-json3-dev gnuplot-nox python3)
 
 sedwave_install_packages() {
   local missing=()

@@ -317,7 +317,7 @@ Command add_invert_command(CLI::App& app) {
             if (o->plot) {
               plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model +
                                                        (result.model.starts_with("table:") ? "" : " chain model"),
-                                              data.water_sound_speed.has_value());
+                                              data.water_sound_speed.has_value(), result);
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
             return result.converged && result.flags.empty() ? kExitOk : kExitIncomplete;

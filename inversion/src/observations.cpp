@@ -460,6 +460,42 @@ DigitizedSpec check_columns(const std::string& file, const DigitizedColumns& col
 
 constexpr std::string_view kDigitizedSeparators = ",;\t";
 
+/// One data line of a digitised export: its 1-based line number and its cells.
+struct DigitizedLine {
+  int line;
+  std::vector<std::string_view> cells;
+};
+
+/// The data lines of a digitised export. WebPlotDigitizer may write one header line (axis or
+/// dataset names): a first line in which no cell is a number. A line with some numeric cells is
+/// data, so bad data is never skipped.
+std::vector<DigitizedLine> digitized_data_lines(const std::vector<std::string>& lines) {
+  std::vector<DigitizedLine> data;
+  bool first = true;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (is_blank(lines[i])) continue;
+    auto cells = split(lines[i], kDigitizedSeparators);
+    const bool header = first && std::ranges::none_of(cells, is_number);
+    first = false;
+    if (!header) data.push_back({static_cast<int>(i + 1), std::move(cells)});
+  }
+  return data;
+}
+
+/// A file of x,y number pairs is a digitised export given where an observation CSV belongs: say
+/// how to read it instead of reporting its first row as a row before the header.
+void reject_digitized_export(const std::string& file, const std::vector<std::string>& lines) {
+  const auto data = digitized_data_lines(lines);
+  const bool two_numbers = std::ranges::all_of(data, [](const DigitizedLine& d) {
+    return d.cells.size() == 2 && std::ranges::all_of(d.cells, is_number);
+  });
+  if (!data.empty() && two_numbers) {
+    throw InputError(file, 0, 0, "",
+                     "this looks like a two-column digitised export; read it with --digitized-file " + file +
+                         " --digitized QUANTITY:FREQ_UNIT:VALUE_UNIT (docs/file-formats.md)");
+  }
+}
+
 Observation parse_digitized_row(const LineRef& at, const std::vector<std::string_view>& cells,
                                 const DigitizedSpec& spec, const DigitizedColumns& columns,
                                 const ReferenceSpeeds& speeds) {
@@ -522,6 +558,7 @@ ObservationSet read_observation_csv(const std::filesystem::path& file, const Rea
   const std::string name = file.string();
   const auto lines = read_lines(file, name);
   require_content(name, lines);
+  reject_digitized_export(name, lines);
   ObservationSet set;
   const auto speeds = read_metadata(name, lines, options, set);
   set.water_sound_speed = speeds.water;
@@ -539,17 +576,8 @@ ObservationSet read_digitized_csv(const std::filesystem::path& file, const Digit
   require_content(name, lines);
   ObservationSet set;
   set.water_sound_speed = speeds.water;
-  bool first = true;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (is_blank(lines[i])) continue;
-    const auto cells = split(lines[i], kDigitizedSeparators);
-    // WebPlotDigitizer may write one header line (axis or dataset names): a first line in which no
-    // cell is a number. A line with some numeric cells is data, so bad data is never skipped.
-    const bool header = first && std::ranges::none_of(cells, is_number);
-    first = false;
-    if (header) continue;
-    set.observations.push_back(
-        parse_digitized_row(LineRef(name, static_cast<int>(i + 1)), cells, spec, columns, speeds));
+  for (const DigitizedLine& d : digitized_data_lines(lines)) {
+    set.observations.push_back(parse_digitized_row(LineRef(name, d.line), d.cells, spec, columns, speeds));
   }
   require_rows(name, set);
   return set;

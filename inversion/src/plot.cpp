@@ -1,62 +1,317 @@
 #include "sedwave/inversion/plot.hpp"
 
+#include "sedwave/io/atomic_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <vector>
+
+#include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::inversion {
 namespace {
 
-std::string shell_quote(const std::string& s) {
+// Columns of the files the script reads (report.cpp writes them).
+//   curves.csv: 1 f, 8/9 alpha dB/m and sigma, 10/11 speed m/s and sigma, 12/13 ratio and sigma.
+//   observations.csv: 1 quantity, 2 f, 5/6 display value and sigma, 9 normalised residual.
+constexpr int kCurvesHeaderLines = 2;
+constexpr int kObservationsHeaderLines = 4;
+constexpr int kObservedFrequency = 2, kObservedValue = 5, kObservedSigma = 6, kObservedResidual = 9;
+
+/// The frequency axis reaches this factor beyond the lowest and highest observed frequency: enough
+/// to see the curve's trend leave the data, not so much that an extrapolation dominates the figure.
+constexpr double kBandMargin = 2.0;
+
+/// The attenuation axis reaches this factor beyond the data's smallest and largest values.
+constexpr double kLogAxisMargin = 1.3;
+
+/// A point further than this from the model, in its own sigmas, is marked as a miss: beyond chance
+/// for any data set of the size one fits (p = 0.0027 per point).
+constexpr double kMisfitSigma = 3.0;
+
+const char* const kBandColour = "#c6dbef";
+const char* const kCurveColour = "#08519c";
+const char* const kDataColour = "#252525";
+const char* const kMisfitColour = "#d94801";
+const char* const kOutsideColour = "#ececec";
+
+/// `s` in single quotes, each quote inside it written as `quote`.
+std::string single_quoted(const std::string& s, const std::string& quote) {
   std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  for (char c : s) q += c == '\'' ? quote : std::string(1, c);
   return q + "'";
 }
 
-/// Both panels; curves.csv columns: 1 f, 8/9 alpha dB/m and sigma, 10/11 speed m/s, 12/13 ratio.
-std::string plot_body(const std::string& title, bool ratio_axis) {
-  const int speed = ratio_axis ? 12 : 10;
+std::string shell_quote(const std::string& s) { return single_quoted(s, "'\\''"); }
+
+/// A gnuplot single-quoted string: no escapes are processed inside, a quote is doubled.
+std::string gnuplot_string(const std::string& s) { return single_quoted(s, "''"); }
+
+/// What one quantity's panels need to know about its observations.
+struct QuantityPanel {
+  Quantity quantity;
+  int code;  ///< the quantity column of observations.csv
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  double highest_hz = 0.0;
+  int misfits = 0;  ///< points the model misses by more than kMisfitSigma
+  double largest_residual = 0.0;  ///< of |normalised residual|
+  double smallest_value = std::numeric_limits<double>::infinity();  ///< of data, error bars and model [SI]
+  double largest_value = 0.0;
+};
+
+std::vector<QuantityPanel> panels_with_data(const FitResult& result) {
+  std::vector<QuantityPanel> panels{{Quantity::Attenuation, 0}, {Quantity::SoundSpeed, 1}};
+  for (const PointResidual& p : result.residuals) {
+    QuantityPanel& panel = panels[p.observation.quantity == Quantity::Attenuation ? 0 : 1];
+    panel.lowest_hz = std::min(panel.lowest_hz, p.observation.frequency_hz);
+    panel.highest_hz = std::max(panel.highest_hz, p.observation.frequency_hz);
+    panel.misfits += std::abs(p.normalized) > kMisfitSigma ? 1 : 0;
+    panel.largest_residual = std::max(panel.largest_residual, std::abs(p.normalized));
+    const double low = p.observation.value - p.sigma;
+    panel.smallest_value = std::min({panel.smallest_value, low > 0.0 ? low : p.observation.value, p.model});
+    panel.largest_value = std::max({panel.largest_value, p.observation.value + p.sigma, p.model});
+  }
+  std::erase_if(panels, [](const QuantityPanel& p) { return p.highest_hz == 0.0; });
+  return panels;
+}
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+/// Parameter and combination names as gnuplot enhanced text.
+std::string symbol(const std::string& name) {
+  if (name == "kappa") return "κ";
+  if (name == "gamma") return "γ";
+  if (name == "en") return "e_n";
+  if (name == "c0") return "c_0";
+  if (name == "tau") return "τ";
+  if (name == "f_star") return "f_*";
+  if (name == "gamma_hat") return "γ̂";
+  if (name == "kappa_over_hertz") return "κ/κ_{Hertz}";
+  return name;
+}
+
+std::string value_text(const std::string& name, const std::string& unit, double value, double sigma, bool free,
+                       bool determined) {
+  // A value the data do not determine is wherever the solver stopped along a flat direction: the
+  // figure names the parameter and says so, without a number that would read as an answer.
+  if (free && !determined) return symbol(name) + " not determined";
+  std::string text = symbol(name) + " = " + format("%.4g", value);
+  if (free && determined) text += " ± " + format("%.2g", sigma);
+  if (unit != "1") text += " " + unit;
+  if (!free) text += " (fixed)";
+  return text;
+}
+
+/// The fitted parameters, one line.
+std::string parameter_line(const FitResult& r) {
+  std::string line;
+  for (const ParameterResult& p : r.parameters) {
+    line += (line.empty() ? "" : ",   ") + value_text(p.name, p.unit, p.value, p.sigma, p.free, p.determined);
+  }
+  return line;
+}
+
+/// The combinations the data determine, and the goodness of fit, one line.
+std::string determined_line(const FitResult& r) {
+  std::string line;
+  for (const CombinationResult& c : r.combinations) {
+    if (c.determined) line += (line.empty() ? "" : ",   ") + value_text(c.name, c.unit, c.value, c.sigma, true, true);
+  }
+  if (!line.empty()) line += ";   ";
+  line += "χ^2/ν = " + format("%.4g", r.chi2) + "/" + std::to_string(r.dof);
+  if (r.dof > 0) line += " = " + format("%.3g", r.chi2 / r.dof);
+  if (!r.converged) line += "   NOT CONVERGED";
+  return line;
+}
+
+/// Where a panel sits on the page, in screen fractions.
+struct PanelBox {
+  double top, bottom;
+};
+
+/// Panels leave the right of the page to their keys, so no key covers data.
+constexpr double kPanelLeft = 0.1, kPanelRight = 0.74;
+
+void place(std::ostringstream& g, PanelBox box) {
+  g << "set lmargin at screen " << kPanelLeft << "\nset rmargin at screen " << kPanelRight << "\n"
+    << "set tmargin at screen " << box.top << "\nset bmargin at screen " << box.bottom << "\n";
+}
+
+/// Greys out the frequencies beyond the quantity's observations, where the curve is a prediction.
+void shade_outside_band(std::ostringstream& g, const QuantityPanel& panel) {
+  g << "set object 1 rect from graph 0, graph 0 to first " << panel.lowest_hz << ", graph 1 behind fc rgb '"
+    << kOutsideColour << "' fs solid 1.0 noborder\n"
+    << "set object 2 rect from first " << panel.highest_hz << ", graph 0 to graph 1, graph 1 behind fc rgb '"
+    << kOutsideColour << "' fs solid 1.0 noborder\n";
+}
+
+/// The observations of one quantity (NaN elsewhere), optionally only those the model misses.
+std::string observed(const QuantityPanel& panel, int column, bool misfits_only) {
+  std::ostringstream s;
+  s << "($1 == " << panel.code;
+  if (misfits_only) s << " && abs($" << kObservedResidual << ") > " << kMisfitSigma;
+  s << " ? $" << column << " : NaN)";
+  return s.str();
+}
+
+std::string misfit_title(const QuantityPanel& panel) {
+  return gnuplot_string("missed by > " + format("%g", kMisfitSigma) + "σ (" + std::to_string(panel.misfits) +
+                        (panel.misfits == 1 ? " point)" : " points)"));
+}
+
+/// Open symbols, so that an error bar shows through its marker.
+const std::string kDataStyle = std::string("pt 6 ps 0.6 lw 1.2 lc rgb '") + kDataColour + "'";
+const std::string kMisfitStyle = std::string("pt 8 ps 1.1 lw 1.5 lc rgb '") + kMisfitColour + "'";
+
+/// The "using" columns of a curve's lower and upper 1-sigma edges. Attenuation is fitted in log
+/// space, so its band is too: value * exp(-+sigma/value), which stays positive on a log axis however
+/// wide the band is and equals value -+ sigma where sigma is small.
+std::string band_edges(int value, bool attenuation) {
+  // A stream, not string concatenation: GCC 12 warns falsely (-Wrestrict) on "(" + std::string.
+  std::ostringstream edges;
+  const int v = value, s = value + 1;
+  if (attenuation) {
+    edges << "($" << v << "*exp(-$" << s << "/$" << v << ")):($" << v << "*exp($" << s << "/$" << v << "))";
+  } else {
+    edges << "($" << v << "-$" << s << "):($" << v << "+$" << s << ")";
+  }
+  return edges.str();
+}
+
+/// Data, model curve and its band for one quantity. Drawing order is back to front: band, curve,
+/// error bars, then the misfits on top, so nothing hides the error bars.
+void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box) {
+  const bool attenuation = panel.quantity == Quantity::Attenuation;
+  const int value = attenuation ? 8 : ratio_axis ? 12 : 10;
+  place(g, box);
+  shade_outside_band(g, panel);
+  g << "set format x ''\nunset xlabel\nset offsets 0, 0, graph 0.06, graph 0.06\nset autoscale yfix\n"
+    << "set key at screen " << kPanelRight + 0.015 << ", screen " << box.top
+    << " left top Left reverse samplen 2 spacing 1.3 box lc rgb '#bbbbbb'\n";
+  if (attenuation) {
+    // The axis spans the data, not the curve's extrapolation: over the data's own decades the error
+    // bars stay visible on a log axis.
+    g << "set logscale y\nset format y '10^{%L}'\nset ylabel 'attenuation (dB/m)'\nset yrange ["
+      << panel.smallest_value * kDecibelPerNeper / kLogAxisMargin << ":"
+      << panel.largest_value * kDecibelPerNeper * kLogAxisMargin << "]\n";
+  } else {
+    g << "unset logscale y\nset format y '%g'\nset ylabel "
+      << gnuplot_string(ratio_axis ? "sound speed / water sound speed" : "sound speed (m/s)") << "\n";
+  }
+  g << "plot 'curves.csv' skip " << kCurvesHeaderLines << " using 1:" << band_edges(value, attenuation)
+    << " with filledcurves fc rgb '" << kBandColour << "' title 'model ±1σ (covariance)', \\\n"
+    << "  '' skip " << kCurvesHeaderLines << " using 1:" << value << " with lines lw 1.5 lc rgb '" << kCurveColour
+    << "' title 'fitted model', \\\n"
+    << "  'observations.csv' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
+    << observed(panel, kObservedValue, false) << ":" << kObservedSigma
+    << " with yerrorbars " << kDataStyle << " title 'observations ±1σ'";
+  if (panel.misfits > 0) {
+    g << ", \\\n  '' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
+      << observed(panel, kObservedValue, true) << " with points " << kMisfitStyle << " title " << misfit_title(panel);
+  }
+  g << ", \\\n  NaN with boxes fs solid 1.0 fc rgb '" << kOutsideColour << "' title 'no data here'\n";
+}
+
+/// About five labelled tics on a residual axis from -half_range to half_range.
+int residual_tic_step(double half_range) {
+  if (half_range < 3.5) return 1;
+  if (half_range < 7.0) return 2;
+  if (half_range < 14.0) return 4;
+  return 10;
+}
+
+/// Normalised residuals (observed - model)/sigma with guide lines at 0, ±1 and ±2.
+void residual_panel(std::ostringstream& g, const QuantityPanel& panel, PanelBox box) {
+  place(g, box);
+  shade_outside_band(g, panel);
+  // Symmetric about zero and at least ±2.5, so the ±2 guides always show.
+  const double half_range = 1.25 * std::max(2.5, panel.largest_residual);
+  g << "unset logscale y\nset format x '10^{%L}'\nset format y '%g'\nset xlabel 'frequency (Hz)'\n"
+    << "set offsets 0, 0, 0, 0\nset ytics " << residual_tic_step(half_range) << "\n"
+    << "set ylabel '(obs − model)/σ'\nset yrange [" << -half_range << ":" << half_range << "]\nunset key\n"
+    << "plot 0 with lines lw 1 lc rgb '#555555', \\\n"
+    << "  1 with lines dt 2 lc rgb '#777777', -1 with lines dt 2 lc rgb '#777777', \\\n"
+    << "  2 with lines dt 3 lc rgb '#777777', -2 with lines dt 3 lc rgb '#777777', \\\n"
+    << "  'observations.csv' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
+    << observed(panel, kObservedResidual, false) << " with points " << kDataStyle;
+  if (panel.misfits > 0) {
+    g << ", \\\n  '' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
+      << observed(panel, kObservedResidual, true) << " with points " << kMisfitStyle;
+  }
+  g << "\nset yrange [*:*]\nset ytics autofreq\nunset object 1\nunset object 2\n";
+}
+
+/// Title and fit summary on top, then for each quantity a data panel above its residual panel,
+/// all on one frequency axis: the data's band widened by kBandMargin.
+std::string plot_body(const std::string& title, bool ratio_axis, const FitResult& result) {
+  const std::vector<QuantityPanel> panels = panels_with_data(result);
+  double lowest = std::numeric_limits<double>::infinity(), highest = 0.0;
+  for (const QuantityPanel& p : panels) {
+    lowest = std::min(lowest, p.lowest_hz);
+    highest = std::max(highest, p.highest_hz);
+  }
   std::ostringstream g;
-  g << "set multiplot layout 2,1 title " << '"' << title << '"' << "\n"
-    << "set datafile separator ','\n"
-    << "set grid\nset key top left\nset xrange [*:*] noextend\nset logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
-    << "set xlabel 'frequency (Hz)'\nset ylabel 'attenuation (dB/m)'\n"
-    << "plot 'curves.csv' skip 2 using 1:(($8-$9) > 0 ? $8-$9 : 1e-300):($8+$9) with filledcurves "
-       "fc rgb '#cfe0f5' title 'fit {/Symbol \\261}1{/Symbol s}', \\\n"
-    << "  '' skip 2 using 1:8 with lines lw 2 lc rgb '#1f5fbf' title 'fit', \\\n"
-    << "  'observations.csv' skip 3 using 2:($1 == 0 ? $5 : NaN):6 with yerrorbars pt 7 ps 0.6 "
-       "lc rgb '#c0392b' title 'observations'\n"
-    << "unset logscale y\nset format y '%g'\n"
-    << "set ylabel '" << (ratio_axis ? "sound speed / water sound speed" : "sound speed (m/s)") << "'\n"
-    << "plot 'curves.csv' skip 2 using 1:($" << speed << "-$" << speed + 1 << "):($" << speed << "+$" << speed + 1
-    << ") with filledcurves fc rgb '#cfe0f5' title 'fit {/Symbol \\261}1{/Symbol s}', \\\n"
-    << "  '' skip 2 using 1:" << speed << " with lines lw 2 lc rgb '#1f5fbf' title 'fit', \\\n"
-    << "  'observations.csv' skip 3 using 2:($1 == 1 ? $5 : NaN):6 with yerrorbars pt 7 ps 0.6 "
-       "lc rgb '#c0392b' title 'observations'\n"
-    << "unset multiplot\n";
+  g << "set encoding utf8\nset multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
+    << "set label 1 " << gnuplot_string(parameter_line(result)) << " at screen 0.5, screen 0.945 center\n"
+    << "set label 2 " << gnuplot_string(determined_line(result)) << " at screen 0.5, screen 0.92 center\n"
+    << "set datafile separator ','\nset grid lc rgb '#dddddd'\nset logscale x\nset mxtics 10\n"
+    << "set xrange [" << lowest / kBandMargin << ":" << highest * kBandMargin << "]\n";
+  // Each quantity gets an equal slice of the page below the summary: 3/4 data, 1/4 residuals,
+  // and room under the residuals for the frequency axis.
+  const double top = 0.9, bottom = 0.0, axis_room = 0.07;
+  const double slice = (top - bottom) / static_cast<double>(std::max<size_t>(panels.size(), 1));
+  for (size_t i = 0; i < panels.size(); ++i) {
+    const double slice_top = top - slice * static_cast<double>(i);
+    const double split = slice_top - 0.7 * (slice - axis_room);
+    main_panel(g, panels[i], ratio_axis, {slice_top, split});
+    if (i == 0) g << "unset label 1\nunset label 2\n";
+    residual_panel(g, panels[i], {split, slice_top - slice + axis_room});
+  }
+  g << "unset multiplot\n";
   return g.str();
 }
 
 }  // namespace
 
-PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis) {
-  const std::string body = plot_body(title, ratio_axis);
-  {
-    std::ofstream script(dir / "fit.gp");
-    script << "# gnuplot script written by sedwave; re-run with: gnuplot fit.gp\n"
-           << "set terminal pngcairo size 900,1000 enhanced font 'Sans,11'\nset output 'fit.png'\n"
-           << body << "set terminal svg size 900,1000 enhanced font 'Sans,11'\nset output 'fit.svg'\n"
-           << body;
-    if (!script) return {false, "plot skipped: cannot write " + (dir / "fit.gp").string()};
+PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
+                          const FitResult& result) {
+  const std::string body = plot_body(title, ratio_axis, result);
+  // The figure files are drawn under temporary names and renamed into place, like every output:
+  // a gnuplot killed half-way never leaves a truncated fit.png. Re-running `gnuplot fit.gp` by hand
+  // writes fit.png and fit.svg directly.
+  try {
+    io::write_text_atomically(dir / "fit.gp", [&](std::ostream& script) {
+      script << "# gnuplot script written by sedwave; re-run with: gnuplot fit.gp\n"
+             << "if (!exists('png_file')) png_file = 'fit.png'\nif (!exists('svg_file')) svg_file = 'fit.svg'\n"
+             << "set terminal pngcairo size 1150,1250 enhanced font 'Sans,11'\nset output png_file\n"
+             << body << "set terminal svg size 1150,1250 enhanced font 'Sans,11'\nset output svg_file\n" << body;
+    });
+  } catch (const std::exception& e) {
+    return {false, std::string("plot skipped: ") + e.what()};
   }
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
     return {false, "plot skipped: gnuplot not found (apt-get install gnuplot-nox); script left in " +
                        (dir / "fit.gp").string()};
   }
-  const std::string command = "cd " + shell_quote(dir.string()) + " && gnuplot fit.gp > gnuplot.log 2>&1";
+  io::AtomicFile png(dir / "fit.png"), svg(dir / "fit.svg");
+  const std::string command = "cd " + shell_quote(dir.string()) + " && gnuplot -e " +
+                              shell_quote("png_file='" + png.temporary().filename().string() + "'; svg_file='" +
+                                          svg.temporary().filename().string() + "'") +
+                              " fit.gp > gnuplot.log 2>&1";
   if (std::system(command.c_str()) != 0) {
     return {false, "plot skipped: gnuplot failed, see " + (dir / "gnuplot.log").string()};
   }
+  png.commit();
+  svg.commit();
   return {true, "plot written to " + (dir / "fit.png").string() + " and fit.svg"};
 }
 

@@ -137,15 +137,18 @@ void write_curves_csv(const std::filesystem::path& file, const std::vector<Curve
 void write_observations_table(const std::filesystem::path& file, const ObservationSet& data, const FitResult& result) {
   io::write_text_atomically(file, [&](std::ostream& out) {
   out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s];\n"
-      << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s\n"
-      << "quantity,frequency_hz,value,sigma,display_value,display_sigma\n";
+      << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s;\n"
+      << "# normalized_residual = (observed - model)/sigma as fitted (attenuation in log space) [1]\n"
+      << "quantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,display_model_value,"
+         "normalized_residual\n";
   const double speed_unit = data.water_sound_speed.value_or(1.0);
   for (const PointResidual& p : result.residuals) {
     const Observation& o = p.observation;
     const bool attenuation = o.quantity == Quantity::Attenuation;
     const double scale = attenuation ? kDecibelPerNeper : 1.0 / speed_unit;
+    // The fit's residual is model minus observed; a plot reads better as observed minus model.
     out << (attenuation ? 0 : 1) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
-        << ',' << p.sigma * scale << "\n";
+        << ',' << p.sigma * scale << ',' << p.model << ',' << p.model * scale << ',' << -p.normalized << "\n";
   }
   });
 }

@@ -47,7 +47,7 @@ sedwave_cli_case(invert.table_far_below_field_data 1 "make a long-wavelength tab
   invert ${OBS} --model table:${PROJECT_SOURCE_DIR}/data/tables/thesis_w3_small.h5 ${FAST})
 # Results outside physical ranges are flagged (exit 3), never printed as plain answers.
 sedwave_cli_case(invert.khz_read_as_hz_flags_slow_sediment 3 "c0 = [0-9.e+]+ is below the physical range.*kHz but read as Hz"
-  invert --digitized-file ${PROJECT_SOURCE_DIR}/data/field/example_webplotdigitizer.csv
+  invert --digitized-file ${PROJECT_SOURCE_DIR}/data/digitized/example_webplotdigitizer.csv
   --digitized attenuation:Hz:dB/m:0.1 --water-speed 1500 --fit kappa,gamma --d 2e-4 --no-plot --out ${CLI_OUT}/invert_khz)
 sedwave_cli_case(invert.parameter_at_bound_is_flagged 3 "kappa stopped at its search bound"
   invert ${OBS} --fit kappa,gamma --d 3e-4 --kappa-bounds 1e3,1e4 --kappa 5e3 --no-plot --out ${CLI_OUT}/invert_bound)

@@ -280,6 +280,22 @@ TEST_F(ObservationCsv, MissingFileIsAnInputError) {
   expect_error(error, 0, 0, "", "cannot open file");
 }
 
+TEST_F(ObservationCsv, TwoColumnDigitizedExportIsRecognisedAndPointsToTheOption) {
+  for (const std::string_view content : {"f [kHz],alpha [dB/m]\n0.1,0.0058641\n0.158489,0.0134338\n",
+                                         "0.1;0.0058641\n\n0.158489;0.0134338\n"}) {
+    const auto path = write("fig3.csv", content);
+    const auto error = input_error([&] { (void)read_observation_csv(path); });
+    expect_error(error, 0, 0, "",
+                 "this looks like a two-column digitised export; read it with --digitized-file " + path.string() +
+                     " --digitized QUANTITY:FREQ_UNIT:VALUE_UNIT");
+  }
+}
+
+TEST_F(ObservationCsv, ThreeNumericColumnsAreNotTakenForADigitizedExport) {
+  const auto path = write("three.csv", "0.1,0.0058641,1\n");
+  expect_error(input_error([&] { (void)read_observation_csv(path); }), 1, 0, "", "data row before the header line");
+}
+
 // ---- sedwave observation CSV: every class of bad input -------------------------------------------
 
 struct BadCase {
@@ -513,6 +529,7 @@ TEST(ObservationSetAppend, DisagreeingWaterSpeedsThrowAndLeaveSetUnchanged) {
 // ---- Shipped data -------------------------------------------------------------------------------
 
 const fs::path kFieldData = fs::path(SEDWAVE_SOURCE_DIR) / "data" / "field";
+const fs::path kDigitizedData = fs::path(SEDWAVE_SOURCE_DIR) / "data" / "digitized";
 
 /// The file holds 6 significant digits: relative rounding of at most 5e-6 (plus conversion ulps).
 constexpr double kSixDigits = 5.0001e-6;
@@ -556,7 +573,7 @@ TEST(ShippedData, Zhou2009RegressionMatchesTheFormula) {
 }
 
 TEST(ShippedData, WebPlotDigitizerExampleMatchesTheRegression) {
-  const auto set = read_digitized_csv(kFieldData / "example_webplotdigitizer.csv", kAttenuationKhzDbPerM);
+  const auto set = read_digitized_csv(kDigitizedData / "example_webplotdigitizer.csv", kAttenuationKhzDbPerM);
   ASSERT_EQ(set.observations.size(), 6U);
   for (const auto& obs : set.observations) {
     expect_rel_near(obs.value * kDecibelPerNeper, 0.37 * std::pow(obs.frequency_hz / 1000.0, 1.8),

@@ -1,9 +1,13 @@
 #pragma once
 // The fit plot: attenuation (dB/m, log-log) and sound speed (ratio to water when known) against
-// frequency, data with error bars, the fitted curve and its 1-sigma band. Drawn by gnuplot, driven
-// through a script written next to the output so the user can restyle and re-run it.
+// frequency, data with error bars, the fitted curve and its 1-sigma band, each above a panel of
+// normalised residuals; points the model misses by more than 3 sigma are marked, the frequencies
+// outside the data greyed, and the fitted values with chi^2/dof written on top. Drawn by gnuplot,
+// driven through a script written next to the output so the user can restyle and re-run it.
 #include <filesystem>
 #include <string>
+
+#include "sedwave/inversion/fit.hpp"
 
 namespace sedwave::inversion {
 
@@ -12,8 +16,10 @@ struct PlotOutcome {
   std::string message;  ///< where the plot is, or why it was skipped
 };
 
-/// Expects DIR/curves.csv and DIR/observations.dat; writes DIR/fit.gp, DIR/fit.png and DIR/fit.svg.
-/// Never throws for a missing or failing gnuplot: the outcome says the plot was skipped.
-PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis);
+/// Expects DIR/curves.csv and DIR/observations.csv (report.hpp) written from `result`; writes
+/// DIR/fit.gp, DIR/fit.png and DIR/fit.svg. Never throws for a missing or failing gnuplot: the
+/// outcome says the plot was skipped.
+PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
+                          const FitResult& result);
 
 }  // namespace sedwave::inversion

@@ -20,7 +20,8 @@ namespace sedwave::inversion {
 void write_curves_csv(const std::filesystem::path& file, const std::vector<CurvePoint>& curves,
                       std::optional<double> water_sound_speed);
 
-/// Writes the observations as whitespace-separated columns for plotting (SI plus display units).
+/// Writes the observations as fitted, as CSV for plotting: SI and display units, the model at each
+/// point and the normalised residual (observed - model)/sigma.
 void write_observations_table(const std::filesystem::path& file, const ObservationSet& data,
                               const FitResult& result);
 

@@ -1,0 +1,127 @@
+// The fit's plotting outputs: observations.csv keeps its columns and adds the model and normalised
+// residual at the end; the gnuplot script draws a residual panel per quantity, marks the points the
+// model misses by more than 3 sigma, and writes the fitted values and chi^2/dof on the figure.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sedwave/inversion/plot.hpp"
+#include "sedwave/inversion/report.hpp"
+
+namespace sedwave::inversion {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+PointResidual point(Quantity quantity, double frequency_hz, double value, double sigma, double model,
+                    double normalized) {
+  PointResidual p;
+  p.observation.quantity = quantity;
+  p.observation.frequency_hz = frequency_hz;
+  p.observation.value = value;
+  p.sigma = sigma;
+  p.model = model;
+  p.normalized = normalized;
+  return p;
+}
+
+/// A fit of three attenuation and two sound-speed points, one attenuation point missed by 5 sigma.
+FitResult small_fit() {
+  FitResult r;
+  r.model = "lattice";
+  r.parameters = {{"kappa", "N/m", 1e6, true, false, true, 0.1, 1e5, std::nullopt, std::nullopt},
+                  {"d", "m", 3e-4, false, false, true, 0.0, 0.0, std::nullopt, std::nullopt}};
+  r.combinations = {{"c0", "m/s", "", 1600.0, true, 0.01, 16.0, {}, {}}};
+  r.residuals = {point(Quantity::Attenuation, 100.0, 1e-3, 1e-4, 1.1e-3, 0.5),
+                 point(Quantity::Attenuation, 300.0, 1e-2, 1e-3, 0.9e-2, -0.4),
+                 point(Quantity::Attenuation, 1000.0, 1e-1, 1e-2, 1.6e-1, 5.0),
+                 point(Quantity::SoundSpeed, 100.0, 1600.0, 10.0, 1601.0, 0.1),
+                 point(Quantity::SoundSpeed, 600.0, 1600.0, 10.0, 1598.0, -0.2)};
+  r.chi2 = 25.46;
+  r.n_observations = 5;
+  r.dof = 4;
+  r.converged = true;
+  return r;
+}
+
+class FitPlotTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::random_device random;
+    do {
+      dir_ = fs::temp_directory_path() / ("sedwave_test_plot_" + std::to_string(random()));
+    } while (!fs::create_directory(dir_));
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+  fs::path dir_;
+};
+
+TEST_F(FitPlotTest, ObservationsTableAddsModelAndNormalisedResidualAtTheEnd) {
+  write_observations_table(dir_ / "observations.csv", ObservationSet{}, small_fit());
+  const std::string text = read_text(dir_ / "observations.csv");
+  EXPECT_NE(text.find("# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s]"),
+            std::string::npos);
+  EXPECT_NE(text.find("\nquantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,"
+                      "display_model_value,normalized_residual\n"),
+            std::string::npos);
+  const auto row_start = text.find("\n0,1000,");
+  ASSERT_NE(row_start, std::string::npos) << text;
+  std::vector<double> row;
+  std::stringstream cells(text.substr(row_start + 1, text.find('\n', row_start + 1) - row_start - 1));
+  for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+  ASSERT_EQ(row.size(), 9U);
+  EXPECT_DOUBLE_EQ(row[4], 0.1 * kDecibelPerNeper);   // display value, dB/m
+  EXPECT_DOUBLE_EQ(row[6], 0.16);                     // model, Np/m
+  EXPECT_DOUBLE_EQ(row[7], 0.16 * kDecibelPerNeper);  // model, dB/m
+  // The fit's residual is model minus observed; the table's is observed minus model.
+  EXPECT_DOUBLE_EQ(row[8], -5.0);
+}
+
+TEST_F(FitPlotTest, ScriptDrawsResidualPanelsMarksMissesAndStatesTheFit) {
+  const FitResult fit = small_fit();
+  write_observations_table(dir_ / "observations.csv", ObservationSet{}, fit);
+  write_curves_csv(dir_ / "curves.csv",
+                   {{50.0, 0, 0, 0, 0, 1e-4, 1e-5, 1600.0, 5.0}, {2000.0, 0, 0, 0, 0, 0.3, 0.03, 1610.0, 5.0}},
+                   std::nullopt);
+  const PlotOutcome outcome = draw_fit_plot(dir_, "test fit", false, fit);
+  const std::string script = read_text(dir_ / "fit.gp");
+
+  // Both terminals draw the same figure: two quantities, each with a residual panel.
+  EXPECT_EQ(count(script, "set ylabel '(obs − model)/σ'"), 4U);
+  EXPECT_EQ(count(script, "missed by > 3σ (1 point)"), 2U) << "only the attenuation panel has a miss";
+  EXPECT_NE(script.find("κ = 1e+06 ± 1e+05 N/m,   d = 0.0003 m (fixed)"), std::string::npos) << script;
+  EXPECT_NE(script.find("c_0 = 1600 ± 16 m/s;   χ^2/ν = 25.46/4 = 6.37"), std::string::npos) << script;
+  EXPECT_NE(script.find("set xrange [50:2000]"), std::string::npos) << "the data's band widened by 2";
+
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    EXPECT_TRUE(outcome.drawn) << outcome.message;
+    EXPECT_TRUE(fs::exists(dir_ / "fit.png"));
+  } else {
+    EXPECT_NE(outcome.message.find("gnuplot not found"), std::string::npos) << outcome.message;
+  }
+}
+
+}  // namespace
+}  // namespace sedwave::inversion
