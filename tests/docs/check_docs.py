@@ -16,6 +16,8 @@ Conventions for writers of README.md and docs/*.md:
   with `sedwave show` and an output block to check them.
 * <!-- docs-check: skip (REASON) --> right before a block (blank lines allowed) skips it; the
   reason is required and printed.
+* <!-- docs-check: exit N (REASON) --> right before a block says it is expected to exit with code N
+  (e.g. 3: sedwave ran and flagged a result) instead of 0; the reason is required.
 * <!-- docs-check: output of the block above --> right before a plain block says the block shows
   what the runnable block before it prints. Each non-blank line shown must appear in the real
   output, in order, with the same words, and its numbers must agree to 3 significant figures
@@ -34,6 +36,7 @@ import time
 DIRECTIVE = re.compile(r"<!--\s*docs-check:\s*(.*?)\s*-->")
 SKIP = re.compile(r"skip \((.+)\)$")
 OUTPUT = re.compile(r"output of the block above(?: \((\d+) significant figures\))?$")
+EXIT = re.compile(r"exit (\d+) \((.+)\)$")
 FENCE = re.compile(r"^```(\S*)\s*$")
 # A number that stands alone: not a digit inside a name such as run2.h5 or thesis_w3.
 NUMBER = re.compile(r"(?<![\w.])[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?(?![\w.]*\w)")
@@ -75,13 +78,15 @@ def read_blocks(page):
 
 
 def parse_directive(page, line, text, problems):
-    skip, output = SKIP.match(text), OUTPUT.match(text)
+    skip, output, exit_code = SKIP.match(text), OUTPUT.match(text), EXIT.match(text)
     if skip:
         return ("skip", skip.group(1), line)
+    if exit_code:
+        return ("exit", int(exit_code.group(1)), line)
     if output:
         return ("output", int(output.group(1) or 3), line)
     problems.append(f"{page}:{line}: unknown docs-check directive '{text}' "
-                    "(expected 'skip (REASON)' or 'output of the block above')")
+                    "(expected 'skip (REASON)', 'exit N (REASON)' or 'output of the block above')")
     return None
 
 
@@ -161,10 +166,11 @@ def check_page(args):
             problems += [f"{where}: {p}" for p in found]
         elif block.language == "sh":
             last_output, code, seconds = run_block(block, args, environment)
-            print(f"{'OK' if code == 0 else 'FAIL':<5} {where}: ran in {seconds:.1f} s")
-            if code != 0:
+            expected = block.directive[1] if kind == "exit" else 0
+            print(f"{'OK' if code == expected else 'FAIL':<5} {where}: ran in {seconds:.1f} s (exit {code})")
+            if code != expected:
                 tail = "\n".join(last_output.rstrip().split("\n")[-20:])
-                problems.append(f"{where}: exit status {code} from\n{block.text}\n--- last lines of output ---\n{tail}")
+                problems.append(f"{where}: exit status {code} (expected {expected}) from\n{block.text}\n--- last lines of output ---\n{tail}")
     for problem in problems:
         print(f"\ndocs-check: {problem}", file=sys.stderr)
     return 1 if problems else 0
