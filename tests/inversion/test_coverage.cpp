@@ -2,8 +2,8 @@
 // parameters (bench/coverage_study.hpp: gamma_hat 0.01-300, d 0.05-2 mm, 1-10 % noise, bands from
 // the continuum limit to the lattice's dispersion), each quantity's interval contains the truth at
 // the nominal rate. The full study (300 data sets) is bench/profile_coverage.cpp; this is its small
-// version: 60 data sets, each quantity within 3 binomial sigmas (+-0.18) of 0.68, all of them
-// together within +-0.08.
+// version: 60 data sets, each quantity within 3 binomial sigmas of 0.68 where the design determines
+// it, all of them together within +-0.06.
 #include <gtest/gtest.h>
 
 #include "coverage_study.hpp"
@@ -14,18 +14,29 @@ namespace {
 TEST(ProfileCoverage, SixtyEightPercentIntervalsContainTheTruthAtTheirNominalRate) {
   constexpr int kDataSets = 60;
   constexpr unsigned kSeed = 2;
-  std::array<int, 8> contains{};
+  // Counted where the design determines the quantity (linearised at the truth, noise-free): that
+  // choice does not depend on the noise drawn, so it leaves the coverage unbiased. Where the data
+  // leave a direction flat the interval follows it to a bound and covers more (conservative);
+  // the full study prints both.
+  std::array<int, 8> determined{}, contains{};
   for (int i = 0; i < kDataSets; ++i) {
     const DataSetResult r = run_data_set(kSeed, i);
-    for (size_t q = 0; q < kCoverageQuantities.size(); ++q) contains[q] += r.checks[q].contains;
+    for (size_t q = 0; q < kCoverageQuantities.size(); ++q) {
+      determined[q] += r.checks[q].design_determined;
+      contains[q] += r.checks[q].design_determined && r.checks[q].contains;
+    }
   }
-  double pooled = 0.0;
+  int all = 0, all_contains = 0;
   for (size_t q = 0; q < kCoverageQuantities.size(); ++q) {
-    const double coverage = static_cast<double>(contains[q]) / kDataSets;
-    pooled += coverage / static_cast<double>(kCoverageQuantities.size());
-    EXPECT_NEAR(coverage, 0.68, 3.0 * coverage_sigma(kDataSets)) << kCoverageQuantities[q];
+    all += determined[q];
+    all_contains += contains[q];
+    if (determined[q] < 10) continue;
+    const double coverage = static_cast<double>(contains[q]) / determined[q];
+    EXPECT_NEAR(coverage, 0.68, 3.0 * coverage_sigma(determined[q]))
+        << kCoverageQuantities[q] << " over " << determined[q] << " data sets";
   }
-  EXPECT_NEAR(pooled, 0.68, 0.08);
+  ASSERT_GT(all, 4 * kDataSets) << "too few determined quantities to test";
+  EXPECT_NEAR(static_cast<double>(all_contains) / all, 0.68, 0.06) << "pooled over " << all << " intervals";
 }
 
 TEST(ProfileCoverage, SidesReportedOpenAreOpen) {
