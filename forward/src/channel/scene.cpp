@@ -27,7 +27,7 @@ void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& 
   g.n_grains = s.integer("grains", g.n_grains, Range::closed(1, kMaxGrains, "grains"));
   g.width = s.positive("width", g.width, kDiameters);
   g.density = s.positive("density", g.density);
-  g.seed = s.integer("seed", g.seed, Range::non_negative());
+  g.seed = s.integer("seed", g.seed, Range::closed(0, 1e15));
   // Random sequential addition jams near 0.38; above 0.3 placement slows to a crawl.
   g.initial_packing_fraction =
       s.number("initial_packing_fraction", g.initial_packing_fraction, Range::above(0.0, 0.3, "(volume fraction)"));

@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::forward::h5 {
 
@@ -30,6 +33,14 @@ class Handle {
   Handle& operator=(const Handle&) = delete;
   ~Handle() {
     if (id_ >= 0 && close_) close_(id_);
+  }
+  /// Closes now and throws if HDF5 reports a failure (the destructor cannot: a file whose last
+  /// buffers fail to reach the disk must not be taken for a complete one).
+  void close_checked(const std::string& what) {
+    if (id_ < 0 || !close_) return;
+    const herr_t status = close_(id_);
+    id_ = -1;
+    if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
   }
   [[nodiscard]] hid_t get() const { return id_; }
   operator hid_t() const { return id_; }  // NOLINT: handles are used as hid_t throughout
@@ -54,6 +65,21 @@ inline Handle create_file(const std::string& path) {
 inline Handle open_file(const std::string& path, bool writable = false) {
   return {H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
           "open " + path};
+}
+
+/// Writes a whole file: `fill(file)` writes into a temporary sibling, which is flushed and closed
+/// with every HDF5 error checked, fsynced and renamed over `path` (io::AtomicFile). A failure (a
+/// full disk, a kill) leaves whatever `path` held before, and an exception naming it.
+template <class Fill>
+void write_file_atomically(const std::filesystem::path& path, Fill&& fill) {
+  io::AtomicFile target(path);
+  {
+    Handle file = create_file(target.temporary().string());
+    fill(file);
+    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "write " + path.string());
+    file.close_checked("write " + path.string());
+  }
+  target.commit();
 }
 inline Handle create_group(hid_t parent, const std::string& name) {
   return {H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,

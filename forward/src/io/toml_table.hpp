@@ -39,7 +39,7 @@ template <class Error>
 /// Shortest text that reads back as the same double ("0.1", not "0.10000000000000001"; whole
 /// numbers without an exponent: "1000000", not "1e+06").
 inline std::string shortest(double x) {
-  if (std::trunc(x) == x && std::abs(x) < 1e15) return std::to_string(static_cast<std::int64_t>(x));
+  if (std::trunc(x) == x && std::abs(x) < 1e16) return std::to_string(static_cast<std::int64_t>(x));
   char buffer[32];
   const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
   return std::string(buffer, end);
