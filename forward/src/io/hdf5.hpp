@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -67,19 +68,29 @@ inline Handle open_file(const std::string& path, bool writable = false) {
           "open " + path};
 }
 
-/// Writes a whole file: `fill(file)` writes into a temporary sibling, which is flushed and closed
-/// with every HDF5 error checked, fsynced and renamed over `path` (io::AtomicFile). A failure (a
-/// full disk, a kill) leaves whatever `path` held before, and an exception naming it.
+/// Writes a whole file: `fill(file)` builds it in memory (HDF5's core driver), and its bytes are
+/// then written to a temporary sibling, fsynced and renamed over `path` (io::write_text_atomically).
+/// A failure (a full disk, a kill) leaves whatever `path` held before, and an exception naming it.
+/// HDF5 itself never writes to disk here: a file whose write or close failed stays open inside the
+/// library and crashes it when it shuts down, so disk errors are met by plain stream writes instead.
 template <class Fill>
 void write_file_atomically(const std::filesystem::path& path, Fill&& fill) {
-  io::AtomicFile target(path);
+  std::vector<char> image;
   {
-    Handle file = create_file(target.temporary().string());
+    Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access properties");
+    check(H5Pset_fapl_core(access, std::size_t{1} << 20, false), "keep " + path.string() + " in memory");
+    Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access), H5Fclose,
+                "create " + path.string() + " in memory");
     fill(file);
-    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "write " + path.string());
-    file.close_checked("write " + path.string());
+    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "complete " + path.string());
+    const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
+    if (size < 0) throw std::runtime_error("HDF5: cannot size the image of " + path.string());
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file.get(), image.data(), image.size()) != size)
+      throw std::runtime_error("HDF5: cannot copy the image of " + path.string());
+    file.close_checked("close " + path.string());
   }
-  target.commit();
+  io::write_text_atomically(path, [&](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); });
 }
 inline Handle create_group(hid_t parent, const std::string& name) {
   return {H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
