@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -13,15 +14,19 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
 #include "mpi_session.hpp"
+#include "output_paths.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/dem/h5md.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 #include "sedwave/forward/units.hpp"
+#include "sedwave/io/fingerprint.hpp"
+#include "sedwave/version.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -51,6 +56,7 @@ struct DemOptions {
   std::string final_state;
   double progress_seconds = 10.0;
   bool quiet = false;
+  bool allow_changed_inputs = false;
 };
 
 /// "ppf" or "p p f" (LAMMPS's boundary command): p periodic; f, s or m open.
@@ -149,9 +155,57 @@ void add_trajectory(dem::Engine& engine, const std::string& path, std::int64_t e
   engine.add_step_callback(every, [writer](const dem::Engine& e) { writer->write(e); });
 }
 
+/// Shortest round-trip text of an optional number, "(none)" when absent.
+std::string option_text(const std::optional<double>& x) {
+  if (!x) return "(none)";
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, *x).ptr);
+}
+
+template <typename T>
+std::string list_text(const std::vector<T>& values) {
+  std::ostringstream text;
+  for (std::size_t k = 0; k < values.size(); ++k) text << (k ? " " : "") << values[k];
+  return values.empty() ? "(none)" : text.str();
+}
+
+/// What a checkpoint depends on, by option name: a restart with any of them changed would continue
+/// another run than the one checkpointed. (--skin, --progress and the outputs change no physics.)
+std::map<std::string, std::string> run_inputs(const DemOptions& o) {
+  return {{"sedwave version", kVersion},
+          {"data file", "hash " + io::file_fingerprint(o.data)},
+          {"--boundary", o.boundary},
+          {"--kn", option_text(o.kn)},
+          {"--young", option_text(o.young)},
+          {"--poisson", option_text(o.poisson)},
+          {"--restitution", option_text(o.restitution)},
+          {"--gamma-n", option_text(o.gamma_n)},
+          {"--gamma", option_text(o.gamma)},
+          {"--friction", option_text(o.friction)},
+          {"--kt", option_text(o.kt)},
+          {"--gamma-t", option_text(o.friction ? std::optional(o.gamma_t) : std::nullopt)},
+          {"--gravity", list_text(o.gravity)},
+          {"--dt", option_text(o.dt)},
+          {"--newton", o.newton},
+          {"--frozen", list_text(o.frozen_types)},
+          {"--wiggle", list_text(o.wiggles)}};
+}
+
+/// Every file the run writes, checked against the data file and for a writable directory before
+/// any step.
+void check_dem_paths(const DemOptions& o) {
+  std::vector<OutputPath> outputs;
+  for (const auto& [option, path] : {std::pair{"--checkpoint", &o.checkpoint}, std::pair{"--dump", &o.dump},
+                                     std::pair{"--h5md", &o.h5md}, std::pair{"--final", &o.final_state}}) {
+    if (!path->empty()) outputs.push_back({option, *path});
+  }
+  check_outputs(outputs, {o.data}, "dem");
+}
+
 int run_dem(const DemOptions& o, const MpiSession& mpi) {
   std::ostream& out = std::cout;
   const bool root = mpi.rank() == 0;
+  check_dem_paths(o);
 
   dem::LammpsData data = read_share(o, mpi);
   std::map<int, std::int32_t> body_of_type;
@@ -169,7 +223,10 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
   s.time_step = o.dt;
   if (o.skin) s.skin = *o.skin;
   s.newton = o.newton == "on";
-  s.checkpoint = {o.checkpoint, o.checkpoint_every};
+  s.checkpoint.path = o.checkpoint;
+  s.checkpoint.every = o.checkpoint_every;
+  s.checkpoint.inputs = run_inputs(o);
+  s.checkpoint.allow_changed_inputs = o.allow_changed_inputs;
   s.progress = {!o.quiet, o.progress_seconds, &out};
 
   dem::Engine engine(MPI_COMM_WORLD, s, data.grains, std::move(bodies));
@@ -269,8 +326,12 @@ Command add_dem_command(CLI::App& app) {
       ->needs(checkpoint)
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--restart", o->restart,
-                "continue from --checkpoint if it exists (else start at step 0); finished steps are not redone")
+                "continue from --checkpoint if it exists (else start at step 0); finished steps are not redone; "
+                "refused if the data file, a contact or wall option or the sedwave version differs from the "
+                "checkpoint's")
       ->needs(checkpoint);
+  cmd->add_flag("--allow-changed-inputs", o->allow_changed_inputs,
+                "with --restart: continue even if the data file or options differ from the checkpoint's");
   auto* dump = cmd->add_option("--dump", o->dump, "LAMMPS text dump (id type radius x y z vx vy vz)");
   cmd->add_option("--dump-every", o->dump_every, "steps between dump frames")
       ->needs(dump)

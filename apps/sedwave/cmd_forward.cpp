@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "mpi_session.hpp"
+#include "output_paths.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/channel/scene.hpp"
 #include "sedwave/forward/linear/run_file.hpp"
@@ -130,10 +131,27 @@ void print_single_grains(const forward::channel::SingleGrainProbes& p, bool sinu
   }
 }
 
+/// Every file the run writes and reads (ensembles: one packing per member), checked before any work.
+void check_forward_paths(const ForwardOptions& o, const forward::channel::ChannelScene& scene) {
+  const int members = scene.engine == forward::channel::EngineKind::linear ? scene.linear.ensemble : 1;
+  std::vector<OutputPath> outputs{{"--out", o.out}};
+  std::vector<std::filesystem::path> inputs{o.scene};
+  if (scene.import_lammps_data) inputs.push_back(*scene.import_lammps_data);
+  for (int k = 0; k < members; ++k) {
+    if (!o.packing_in.empty()) inputs.emplace_back(member_path(o.packing_in, k));
+    if (o.packing_out.empty()) continue;
+    std::filesystem::path packing = member_path(o.packing_out, k);
+    outputs.push_back({"--packing-out", packing});
+    outputs.push_back({"--packing-out", packing.replace_extension(".data")});  // its LAMMPS twin
+  }
+  check_outputs(outputs, inputs, "forward");
+}
+
 int run_forward(const ForwardOptions& o) {
   using namespace forward::channel;
   const MpiSession mpi;
   ChannelScene scene = read_scene(o.scene);
+  check_forward_paths(o, scene);
   if (o.omega_hat && scene.drive.pulse) {
     throw std::invalid_argument(o.scene + ": --omega-hat sets a sinusoid's frequency; this scene drives a pulse "
                                 "(set [drive] omega_hat_min/omega_hat_max instead)");

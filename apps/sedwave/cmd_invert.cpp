@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "option_checks.hpp"
+#include "output_paths.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/forward/models.hpp"
 #include "sedwave/forward/table/table_model.hpp"
@@ -211,10 +212,10 @@ std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
   return inputs;
 }
 
-std::vector<std::filesystem::path> output_files(const std::filesystem::path& out) {
-  std::vector<std::filesystem::path> outputs;
+std::vector<OutputPath> output_files(const std::filesystem::path& out) {
+  std::vector<OutputPath> outputs;
   for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg"}) {
-    outputs.push_back(out / name);
+    outputs.push_back({"--out", out / name});
   }
   return outputs;
 }
@@ -273,8 +274,7 @@ Command add_invert_command(CLI::App& app) {
 
   return {cmd, [o]() {
             const std::filesystem::path out(o->out);
-            io::refuse_overwriting_inputs(output_files(out), input_files(*o), "sedwave invert --out " + o->out);
-            io::require_writable_location(out / "fit.json", "--out");
+            check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
             const auto model = forward::make_dispersion_model(o->model);
             inversion::FitOptions options = o->fit_options;

@@ -2,12 +2,14 @@
 // packing per run, for packings too large to hold several in one process) into the ensemble's
 // table: per point the mean over the members and its standard error, with the significance rule
 // of a table made in one run (linear/ensemble.hpp). Serial; the tables are small.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/table/table_file.hpp"
 
@@ -25,6 +27,12 @@ Command add_merge_command(CLI::App& app) {
   cmd->add_option("tables", o->members, "member tables (HDF5), one per member")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "ensemble table to write (HDF5; must not exist)")->required();
   return {cmd, [o]() {
+    std::vector<std::filesystem::path> inputs;
+    for (const std::string& member : o->members) {
+      inputs.emplace_back(member);
+      inputs.push_back(forward::table::TableFile::journal_path(member));
+    }
+    check_outputs({{"--out", o->out}, {"--out", forward::table::TableFile::journal_path(o->out)}}, inputs, "merge");
     std::vector<forward::table::DispersionTable> tables;
     for (const std::string& path : o->members) tables.push_back(forward::table::read_table(path));
     const forward::table::DispersionTable merged = forward::linear::merge_member_tables(tables, o->members);

@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "option_checks.hpp"
-#include "sedwave/io/atomic_file.hpp"
+#include "output_paths.hpp"
 #include "sedwave/forward/models.hpp"
 #include "sedwave/inversion/synthetic.hpp"
 
@@ -58,9 +58,9 @@ Command add_synthesize_command(CLI::App& app) {
     if (!(o->design.highest_hz > o->design.lowest_hz)) {
       throw std::invalid_argument("--from must be below --to");
     }
-    if (o->model.starts_with("table:")) {
-      io::refuse_overwriting_inputs({o->out}, {o->model.substr(6, o->model.find('?') - 6)}, "sedwave synthesize --out");
-    }
+    std::vector<std::filesystem::path> inputs;
+    if (o->model.starts_with("table:")) inputs.emplace_back(o->model.substr(6, o->model.find('?') - 6));
+    check_outputs({{"--out", o->out}}, inputs, "synthesize");
     const auto model = forward::make_dispersion_model(o->model);
     const inversion::ObservationSet set = inversion::synthetic_observations(*model, truth, o->design);
     char truth_line[256], noise_line[160];

@@ -15,13 +15,16 @@
 
 #include "commands.hpp"
 #include "mpi_session.hpp"
+#include "output_paths.hpp"
 #include "sedwave/forward/channel/run_file.hpp"
 #include "sedwave/forward/channel/scene.hpp"
 #include "sedwave/forward/table/grid_file.hpp"
 #include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/linear/long_wavelength.hpp"
+#include "sedwave/forward/table/table_file.hpp"
 #include "sedwave/forward/table/task_farm.hpp"
 #include "scene_packings.hpp"
+#include "sedwave/io/fingerprint.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -37,6 +40,7 @@ struct TableOptions {
   int member = -1;      ///< >= 0: this ensemble member alone (a member table, for sedwave merge)
   bool quiet = false;
   bool retry_failed = false;
+  bool allow_changed_inputs = false;
 };
 
 /// The one packing every grid point starts from: read from --packing if that file exists, otherwise
@@ -69,8 +73,10 @@ channel::PreparedChannel packing_for_table(const channel::ChannelScene& scene, c
 }
 
 table::TableMetadata table_metadata(const table::TableGridFile& grid, const channel::ChannelScene& scene,
-                                    const std::string& packing_provenance, bool long_wavelength, int member) {
+                                    const std::string& packing_provenance, std::string packing_hash,
+                                    bool long_wavelength, int member) {
   table::TableMetadata m;
+  m.packing_hash = std::move(packing_hash);
   m.scene_toml = scene.text;
   m.engine = long_wavelength ? "sedwave-long-wavelength"
                              : (scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem");
@@ -81,6 +87,24 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const chan
               << grid.text;
   m.definitions = definitions.str();
   return m;
+}
+
+/// The table, its journal and packings that do not exist yet are written; the grid, the scene and
+/// existing packings are read. All checked before any work.
+void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, const channel::ChannelScene& scene) {
+  std::vector<OutputPath> outputs{{"--out", o.out}, {"--out", table::TableFile::journal_path(o.out)}};
+  std::vector<std::filesystem::path> inputs{grid.path, grid.scene_path};
+  if (scene.import_lammps_data) inputs.push_back(*scene.import_lammps_data);
+  for (int k = 0; !o.packing.empty() && k < scene.linear.ensemble; ++k) {
+    std::filesystem::path packing = member_path(o.packing, k);
+    if (std::filesystem::exists(packing)) {
+      inputs.push_back(packing);
+    } else {
+      outputs.push_back({"--packing", packing});
+      outputs.push_back({"--packing", packing.replace_extension(".data")});  // its LAMMPS twin
+    }
+  }
+  check_outputs(outputs, inputs, "table");
 }
 
 }  // namespace
@@ -105,6 +129,9 @@ Command add_table_command(CLI::App& app) {
                   "member table, for ensembles too large for one process; combine the members with sedwave merge")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--retry-failed", o->retry_failed, "when resuming, compute failed points again");
+  cmd->add_flag("--allow-changed-inputs", o->allow_changed_inputs,
+                "when resuming, accept a table whose packing or sedwave version differs from this run's (the "
+                "table then mixes them)");
   cmd->add_flag("--quiet", o->quiet, "no progress lines");
   return {cmd, [o]() {
     MpiSession mpi;
@@ -139,19 +166,15 @@ Command add_table_command(CLI::App& app) {
       throw std::invalid_argument(grid.scene_path.string() + ": --member " + std::to_string(o->member) +
                                   " is outside the scene's ensemble of " + std::to_string(scene.linear.ensemble));
     }
-    for (int k = 0; !o->packing.empty() && k < scene.linear.ensemble; ++k) {
-      if (std::filesystem::path(member_path(o->packing, k)) == std::filesystem::path(o->out)) {
-        throw std::invalid_argument("--out " + o->out + " is member " + std::to_string(k) +
-                                    "'s packing file (--packing " + o->packing + "): name the table otherwise");
-      }
-    }
+    check_table_paths(*o, grid, scene);
     const int ranks_per_point = scene.engine == channel::EngineKind::linear ? 1 : grid.ranks_per_point;
     const table::FarmSettings settings{ranks_per_point, (mpi.rank() == 0 && !o->quiet) ? &std::cout : nullptr,
-                                       o->retry_failed};
+                                       o->retry_failed, o->allow_changed_inputs};
     table::FarmReport report;
     if (scene.engine == channel::EngineKind::linear) {
       // Every rank solves whole points serially and needs every member's packing.
       std::string provenance;
+      std::vector<std::string> packing_hashes;  // member k's at k - first
       std::vector<forward::linear::LinearChannel> members;
       const int first = o->member >= 0 ? o->member : 0;
       const int last = o->member >= 0 ? o->member : scene.linear.ensemble - 1;
@@ -159,6 +182,7 @@ Command add_table_command(CLI::App& app) {
         std::string member_provenance;
         channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, k, member_provenance);
         table::share_packing_with_groups(MPI_COMM_WORLD, packing, 1);
+        packing_hashes.push_back(channel::packing_fingerprint(packing));
         members.emplace_back(packing, scene.contact, scene.linear);
         provenance += (k > first ? "; " : "") + member_provenance;
       }
@@ -166,14 +190,19 @@ Command add_table_command(CLI::App& app) {
           long_wavelength  ? forward::linear::long_wavelength_point_function(members, scene.drive.axis)
           : o->member >= 0 ? forward::linear::member_point_function(members.front(), scene.drive)
                            : forward::linear::linear_point_function(members, scene.drive);
+      // A member table records its one packing; merging member tables combines them as here.
+      const std::string packing_hash =
+          o->member >= 0 ? packing_hashes.front() : io::combined_fingerprint(packing_hashes);
       report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid,
-                                    table_metadata(grid, scene, provenance, long_wavelength, o->member), point,
-                                    settings);
+                                    table_metadata(grid, scene, provenance, packing_hash, long_wavelength, o->member),
+                                    point, settings);
     } else {
       std::string provenance;
       channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
       table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
-      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, table_metadata(grid, scene, provenance, false, -1),
+      const table::TableMetadata metadata =
+          table_metadata(grid, scene, provenance, channel::packing_fingerprint(packing), false, -1);
+      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, metadata,
                                     table::dem_point_function(packing, scene.contact, scene.drive, grid.grid), settings);
     }
     if (mpi.rank() == 0) {

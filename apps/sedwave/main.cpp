@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/version.hpp"
 
@@ -42,6 +43,9 @@ int main(int argc, char** argv) {
         return code;
       }
     }
+  } catch (const sedwave::app::UsageError& e) {
+    std::cerr << "sedwave: usage error: " << e.what() << "\n";
+    return sedwave::app::kExitUsage;
   } catch (const std::exception& e) {
     std::cerr << "sedwave: error: " << e.what() << "\n";
     return sedwave::app::kExitError;

@@ -46,7 +46,7 @@ class TableTest : public ::testing::Test {
 };
 
 TableMetadata theory_metadata() {
-  return {"[channel]\nlength = 2000  # grain diameters\n[drive]\namplitude = 1e-3\n", "lattice-theory", "", ""};
+  return {"[channel]\nlength = 2000  # grain diameters\n[drive]\namplitude = 1e-3\n", "lattice-theory", "", "", ""};
 }
 
 /// The lattice theory at one point, with a 1% "measurement" sigma and a made-up wall time.
@@ -141,6 +141,24 @@ TEST_F(TableTest, RefusesToClobberOrMixRuns) {
   TableMetadata other_scene = theory_metadata();
   other_scene.scene_toml += "seed = 2\n";
   EXPECT_THROW((void)TableFile::resume_or_create(file("t.h5"), grid, other_scene), std::runtime_error);
+}
+
+TEST_F(TableTest, ResumingWithAnotherPackingIsRefusedUnlessAllowed) {
+  const TableGrid grid{log_spaced(0.01, 1.0, 3), log_spaced(0.1, 10.0, 2)};
+  TableMetadata first = theory_metadata();
+  first.packing_hash = "00000000000000aa";
+  (void)TableFile::resume_or_create(file("t.h5"), grid, first);
+  TableMetadata other = first;
+  other.packing_hash = "00000000000000bb";
+  try {
+    (void)TableFile::resume_or_create(file("t.h5"), grid, other);
+    FAIL() << "resumed with another packing";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("packing: hash 00000000000000aa in the table, 00000000000000bb now"),
+              std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW((void)TableFile::resume_or_create(file("t.h5"), grid, other, true));
+  EXPECT_NO_THROW((void)TableFile::resume_or_create(file("t.h5"), grid, first));
 }
 
 TEST_F(TableTest, SigkilledWriterLosesNothingFinished) {

@@ -8,12 +8,13 @@
 #include "../io/hdf5.hpp"
 #include "run_file_parts.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/io/fingerprint.hpp"
 #include "sedwave/version.hpp"
 
 namespace sedwave::forward::channel {
 
 void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
-  write_atomically(path, [&](hid_t file) {
+  h5::write_file_atomically(path, [&](hid_t file) {
     h5::write_string_attribute(file, "sedwave_version", kVersion);
     h5::write_string_attribute(file, "scene", scene_text);
     h5::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
@@ -52,6 +53,18 @@ void write_packing_lammps_data(const std::filesystem::path& path, const Prepared
   std::vector<dem::Grain> typed = p.grains;
   for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
   dem::write_lammps_data(path.string(), p.box, typed);
+}
+
+std::string packing_fingerprint(const PreparedChannel& packing) {
+  io::Fingerprint f;
+  for (const dem::Grain& g : packing.grains) {
+    f.add_value(g.id).add_value(g.group).add_value(g.body).add_value(g.radius).add_value(g.mass);
+    f.add_value(g.position.x).add_value(g.position.y).add_value(g.position.z);
+  }
+  for (int a = 0; a < 3; ++a) {
+    f.add_value(packing.box.lo[a]).add_value(packing.box.hi[a]).add_value(static_cast<bool>(packing.box.periodic[a]));
+  }
+  return f.hex();
 }
 
 PreparedChannel read_packing(const std::filesystem::path& path) {
@@ -130,7 +143,7 @@ void write_records(hid_t group, const std::string& name, const std::vector<std::
 
 void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
                     const AcousticResult& r) {
-  write_atomically(path, [&](hid_t file) {
+  h5::write_file_atomically(path, [&](hid_t file) {
     write_run_header(file, scene.text);
     h5::Handle packing = h5::create_group(file, "packing");
     write_stats(packing, preparation);

@@ -12,18 +12,6 @@
 
 namespace sedwave::forward::channel {
 
-/// Writes an HDF5 file atomically: `fill(file)` writes a temporary file, which then replaces `path`,
-/// so a reader never sees a half-written file.
-template <class Fill>
-void write_atomically(const std::filesystem::path& path, Fill&& fill) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    h5::Handle file = h5::create_file(temporary.string());
-    fill(static_cast<hid_t>(file));
-  }
-  std::filesystem::rename(temporary, path);
-}
-
 /// Root attributes of a run file (either engine): code version, scene text, units.
 inline void write_run_header(hid_t file, const std::string& scene_text) {
   h5::write_string_attribute(file, "sedwave_version", kVersion);

@@ -11,33 +11,48 @@ namespace sedwave::forward::channel {
 namespace {
 
 using Section = toml_io::Table<SceneError>;
+using Range = toml_io::Range;
+
+// Accepted ranges (docs/scenes.md lists them). Bounds beyond the physically possible keep runs
+// affordable: a channel of more grains than kMaxGrains would not fit in memory.
+constexpr double kMaxGrains = 1e8;
+constexpr double kMaxPeriods = 1e6;
+const std::string kDiameters = "d (mean grain diameters)";
 
 void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& base) {
   ChannelGeometry& g = scene.geometry;
   if (s.has("import_lammps_data")) {
     scene.import_lammps_data = base / s.text("import_lammps_data", "");
   }
-  g.n_grains = static_cast<int>(s.integer("grains", g.n_grains));
-  g.width = s.positive("width", g.width);
+  g.n_grains = s.integer("grains", g.n_grains, Range::closed(1, kMaxGrains, "grains"));
+  g.width = s.positive("width", g.width, kDiameters);
   g.density = s.positive("density", g.density);
-  g.seed = static_cast<std::uint64_t>(s.integer("seed", static_cast<std::int64_t>(g.seed)));
-  g.initial_packing_fraction = s.positive("initial_packing_fraction", g.initial_packing_fraction);
+  g.seed = s.integer("seed", g.seed, Range::closed(0, 1e15));
+  // Random sequential addition jams near 0.38; above 0.3 placement slows to a crawl.
+  g.initial_packing_fraction =
+      s.number("initial_packing_fraction", g.initial_packing_fraction, Range::above(0.0, 0.3, "(volume fraction)"));
   Section sizes = s.sub("sizes");
   sizes.choice("distribution", "normal", {"normal"});
-  g.sizes.mean = sizes.positive("mean", g.sizes.mean);
-  g.sizes.sd = sizes.number("sd", g.sizes.sd);
-  g.sizes.min = sizes.positive("min", g.sizes.min);
-  g.sizes.max = sizes.positive("max", g.sizes.max);
+  g.sizes.mean = sizes.positive("mean", g.sizes.mean, kDiameters);
+  g.sizes.sd = sizes.number("sd", g.sizes.sd, Range::non_negative(kDiameters));
+  g.sizes.min = sizes.positive("min", g.sizes.min, kDiameters);
+  g.sizes.max = sizes.positive("max", g.sizes.max, kDiameters);
+  if (!(g.sizes.min <= g.sizes.mean)) sizes.fail_key("min", "must not exceed mean (" + toml_io::shortest(g.sizes.mean) + ")");
+  if (!(g.sizes.mean <= g.sizes.max)) sizes.fail_key("max", "must not be below mean (" + toml_io::shortest(g.sizes.mean) + ")");
   sizes.finish();
+  if (!(g.width >= g.sizes.max)) {
+    s.fail_key("width", "must be at least the largest grain diameter (sizes.max = " + toml_io::shortest(g.sizes.max) + ")");
+  }
   Section walls = s.sub("walls");
-  g.wall_diameter = walls.positive("diameter", g.wall_diameter);
-  g.wall_roughness = walls.number("roughness", g.wall_roughness);
+  g.wall_diameter = walls.positive("diameter", g.wall_diameter, kDiameters);
+  // Offsets are drawn with this standard deviation and kept within +-0.5 d.
+  g.wall_roughness = walls.number("roughness", g.wall_roughness, Range::closed(0.0, 0.5, kDiameters));
   walls.finish();
   if (s.has("periodic_cell")) {
     Section cell = s.sub("periodic_cell");
     CellTiling t;
-    t.cell_grains = static_cast<int>(cell.integer("grains", t.cell_grains, 1));
-    t.wall_thickness = cell.positive("wall_thickness", t.wall_thickness);
+    t.cell_grains = cell.integer("grains", t.cell_grains, Range::closed(1, kMaxGrains, "grains"));
+    t.wall_thickness = cell.positive("wall_thickness", t.wall_thickness, kDiameters);
     if (g.n_grains % t.cell_grains != 0) {
       cell.fail_key("grains", "the channel's " + std::to_string(g.n_grains) + " grains must be a whole number of cells of " +
                               std::to_string(t.cell_grains));
@@ -56,9 +71,10 @@ void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& 
 void read_contact(Section s, dem::ContactSpec& c, double density) {
   const std::string law = s.choice("law", "hooke", {"hooke", "hertz"});
   c.normal = law == "hooke" ? dem::NormalLawKind::hooke : dem::NormalLawKind::hertz;
-  const std::optional<double> E = s.optional_number("youngs_modulus");
-  const double nu = s.number("poisson_ratio", 2.0 / 7.0);
-  c.restitution = s.optional_number("restitution");
+  const std::optional<double> E = s.optional_number("youngs_modulus", Range::positive());
+  // Stable isotropic materials have -1 < nu <= 0.5; the stiffness formulas divide by 1 - nu and 1 + nu.
+  const double nu = s.number("poisson_ratio", 2.0 / 7.0, Range::above(-1.0, 0.5));
+  c.restitution = s.optional_number("restitution", Range::above(0.0, 1.0));
   if (c.normal == dem::NormalLawKind::hooke) {
     // kn directly, or from E and nu with LAMMPS's example-script formula (units.hpp).
     if (s.has("kn") == E.has_value()) s.fail_table("give exactly one of 'kn' or 'youngs_modulus'");
@@ -67,7 +83,7 @@ void read_contact(Section s, dem::ContactSpec& c, double density) {
     if (!E) s.fail_table("the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
     c.effective_modulus = hertz_effective_modulus(*E, nu, *E, nu);
   }
-  const double mu = s.number("friction", 0.0);
+  const double mu = s.number("friction", 0.0, Range::non_negative("(Coulomb coefficient)"));
   if (mu > 0.0) {
     c.tangential = dem::TangentialLawKind::spring_history;
     c.friction = mu;
@@ -82,21 +98,25 @@ void read_preparation(Section s, PreparationSettings& p) {
   p.compression = compression == "wall" ? Compression::wall
                   : compression == "affine" ? Compression::affine
                                             : Compression::pressure;
-  p.compression_speed = s.positive("compression_speed", p.compression_speed);
-  p.compression_strain_rate = s.positive("compression_strain_rate", p.compression_strain_rate);
-  p.compression_damping = s.number("compression_damping", p.compression_damping);
-  p.residual_force_tolerance = s.positive("residual_force_tolerance", p.residual_force_tolerance);
-  p.pressure_tolerance = s.positive("pressure_tolerance", p.pressure_tolerance);
-  p.max_compression_steps = s.integer("max_compression_steps", p.max_compression_steps);
-  p.max_relaxation_steps = s.integer("max_relaxation_steps", p.max_relaxation_steps);
+  p.compression_speed =
+      s.number("compression_speed", p.compression_speed, Range::above(0.0, 1.0, "d per binary collision time"));
+  p.compression_strain_rate = s.number("compression_strain_rate", p.compression_strain_rate,
+                                       Range::above(0.0, 0.1, "per binary collision time"));
+  p.compression_damping = s.number("compression_damping", p.compression_damping, Range::non_negative());
+  p.residual_force_tolerance = s.number("residual_force_tolerance", p.residual_force_tolerance,
+                                        Range::open(0.0, 1.0, "of the mean contact force"));
+  p.pressure_tolerance = s.number("pressure_tolerance", p.pressure_tolerance, Range::open(0.0, 1.0, "of P W^2"));
+  p.max_compression_steps = s.integer("max_compression_steps", p.max_compression_steps, Range::closed(1, INFINITY, "steps"));
+  p.max_relaxation_steps = s.integer("max_relaxation_steps", p.max_relaxation_steps, Range::closed(1, INFINITY, "steps"));
   p.newton_relaxation = s.boolean("newton_relaxation", p.newton_relaxation);
-  p.newton_start_tolerance = s.positive("newton_start_tolerance", p.newton_start_tolerance);
+  p.newton_start_tolerance =
+      s.number("newton_start_tolerance", p.newton_start_tolerance, Range::open(0.0, 1.0, "of the mean contact force"));
   s.finish();
 }
 
 void read_drive(Section s, DriveSettings& d) {
   d.axis = s.choice("axis", "z", {"z", "x"}) == "z" ? DriveAxis::longitudinal : DriveAxis::transverse;
-  d.amplitude = s.positive("amplitude", d.amplitude);
+  d.amplitude = s.number("amplitude", d.amplitude, Range::above(0.0, 1.0, kDiameters));
   const std::string signal = s.choice("signal", "sinusoid", {"sinusoid", "pulse", "chirp"});
   if (signal != "chirp" && s.has("sweep_periods")) s.fail_key("sweep_periods", "is for signal = \"chirp\"");
   if (signal != "sinusoid") {
@@ -104,11 +124,11 @@ void read_drive(Section s, DriveSettings& d) {
     PulseBand band;
     if (signal == "chirp") {
       band.shape = BroadbandShape::log_chirp;
-      band.sweep_periods = s.positive("sweep_periods", band.sweep_periods);
+      band.sweep_periods = s.number("sweep_periods", band.sweep_periods, Range::closed(1.0, kMaxPeriods, "periods of omega_hat_min"));
     }
     band.omega_hat_min = s.positive("omega_hat_min", band.omega_hat_min);
     band.omega_hat_max = s.positive("omega_hat_max", band.omega_hat_max);
-    band.frequencies = static_cast<int>(s.integer("frequencies", band.frequencies, 1));
+    band.frequencies = s.integer("frequencies", band.frequencies, Range::closed(1, 10000, "frequencies"));
     if (!(band.omega_hat_max > band.omega_hat_min)) s.fail_table("omega_hat_max must exceed omega_hat_min");
     d.pulse = band;
   } else {
@@ -116,38 +136,46 @@ void read_drive(Section s, DriveSettings& d) {
   }
   if (s.has("gamma_hat") && s.has("restitution")) s.fail_table("give 'gamma_hat' or 'restitution', not both");
   if (s.has("restitution")) {
-    const double e = s.positive("restitution", 0.9);
+    const double e = s.number("restitution", 0.9, Range::above(0.0, 1.0));
     d.gamma_hat = gamma_hat_from_restitution(e);
   } else {
-    d.gamma_hat = s.number("gamma_hat", d.gamma_hat);
+    d.gamma_hat = s.number("gamma_hat", d.gamma_hat, Range::non_negative("(gamma / sqrt(kappa m))"));
   }
   d.far_end = s.choice("far_end", "absorbing", {"frozen", "absorbing"}) == "frozen" ? FarEnd::frozen : FarEnd::absorbing;
   d.far_wall = s.choice("far_wall", "frozen", {"frozen", "loaded"}) == "loaded" ? FarWall::loaded : FarWall::frozen;
   if (s.has("far_wall_mass")) {
     if (d.far_wall != FarWall::loaded) s.fail_table("far_wall_mass is for far_wall = \"loaded\"");
-    d.far_wall_mass = s.positive("far_wall_mass", 1.0);
+    d.far_wall_mass = s.positive("far_wall_mass", 1.0, "mean grain masses");
   }
-  d.absorbing_fraction = s.positive("absorbing_fraction", d.absorbing_fraction);
-  d.absorbing_strength = s.positive("absorbing_strength", d.absorbing_strength);
-  d.periods = s.number("periods", d.periods);
-  d.samples_per_period = static_cast<int>(s.integer("samples_per_period", d.samples_per_period));
-  d.time_step_fraction = s.positive("time_step_fraction", d.time_step_fraction);
+  // At least a tenth of the column stays outside the absorbing layer to be measured.
+  d.absorbing_fraction =
+      s.number("absorbing_fraction", d.absorbing_fraction, Range::above(0.0, 0.9, "of the column length"));
+  d.absorbing_strength = s.positive("absorbing_strength", d.absorbing_strength, "m omega");
+  d.periods = s.number("periods", d.periods, Range::closed(0.0, kMaxPeriods, "periods (0: until echoes could return)"));
+  // A lock-in needs a few samples per period to tell amplitude from phase.
+  d.samples_per_period =
+      s.integer("samples_per_period", d.samples_per_period, Range::closed(4, 1e6, "samples per period"));
+  // The engine caps a step above the stability limit of a dense packing's collective modes (about
+  // 0.3 collision times undamped, less with damping); a fraction beyond 0.1 asks for that cap.
+  d.time_step_fraction =
+      s.number("time_step_fraction", d.time_step_fraction, Range::above(0.0, 0.1, "of the binary collision time"));
   Section m = s.sub("measurement");
-  d.layer_thickness = m.positive("layer_thickness", d.layer_thickness);
-  d.skip_layers = static_cast<int>(m.integer("skip_layers", d.skip_layers));
-  d.max_fit_depth = m.positive("max_fit_depth", d.max_fit_depth);
+  d.layer_thickness = m.positive("layer_thickness", d.layer_thickness, kDiameters);
+  d.skip_layers = m.integer("skip_layers", d.skip_layers, Range::closed(0, 1e6, "layers"));
+  d.max_fit_depth = m.number("max_fit_depth", d.max_fit_depth, Range::non_negative(kDiameters + ", 0: no limit"));
   d.grain_probes = m.boolean("grain_probes", d.grain_probes);
-  d.settle_periods = m.number("settle_periods", d.settle_periods);
-  d.steady_extensions = static_cast<int>(m.integer("steady_extensions", d.steady_extensions, 0));
+  d.settle_periods = m.number("settle_periods", d.settle_periods, Range::closed(0.0, kMaxPeriods, "periods"));
+  d.steady_extensions = m.integer("steady_extensions", d.steady_extensions, Range::closed(0, 100, "extensions"));
   m.finish();
   s.finish();
 }
 
 void read_linear(Section s, linear::LinearSettings& l) {
-  l.ensemble = static_cast<int>(s.integer("ensemble", l.ensemble, 1));
-  l.gap_search = s.positive("gap_search", l.gap_search);
-  l.warn_state_changes = s.positive("warn_state_changes", l.warn_state_changes);
-  l.refuse_state_changes = s.positive("refuse_state_changes", l.refuse_state_changes);
+  l.ensemble = s.integer("ensemble", l.ensemble, Range::closed(1, 10000, "packings"));
+  l.gap_search = s.positive("gap_search", l.gap_search, kDiameters);
+  l.warn_state_changes = s.number("warn_state_changes", l.warn_state_changes, Range::above(0.0, 1.0, "of the contacts"));
+  l.refuse_state_changes =
+      s.number("refuse_state_changes", l.refuse_state_changes, Range::above(0.0, 1.0, "of the contacts"));
   s.finish();
 }
 

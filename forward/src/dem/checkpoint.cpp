@@ -10,6 +10,8 @@
 // Rank 0 gathers and writes (the only time one rank holds all grains); every rank reads in chunks
 // and keeps what it owns.
 #include <cstdio>
+#include <map>
+#include <string>
 
 #include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
@@ -39,6 +41,41 @@ std::vector<double> vectors(const std::vector<Grain>& grains, Vec3 Grain::*field
   return out;
 }
 
+/// The run's inputs as a checkpoint recorded them (empty when it recorded none).
+std::map<std::string, std::string> recorded_inputs(hid_t file) {
+  std::map<std::string, std::string> inputs;
+  if (!h5::exists(file, "inputs")) return inputs;
+  h5::Handle group(H5Gopen2(file, "inputs", H5P_DEFAULT), H5Gclose, "open /inputs");
+  std::vector<std::string> names;
+  const auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+    return 0;
+  };
+  h5::check(H5Aiterate2(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), "list /inputs");
+  for (const std::string& name : names) inputs[name] = h5::read_string_attribute(group, name);
+  return inputs;
+}
+
+/// Throws naming every input that differs between the checkpoint and this run.
+void require_same_inputs(const std::map<std::string, std::string>& recorded,
+                         const std::map<std::string, std::string>& now, const std::string& path) {
+  std::string changes;
+  const auto value = [](const std::map<std::string, std::string>& m, const std::string& key) {
+    const auto it = m.find(key);
+    return it == m.end() ? std::string("(not recorded)") : it->second;
+  };
+  std::map<std::string, std::string> all = recorded;
+  all.insert(now.begin(), now.end());
+  for (const auto& [name, ignored] : all) {
+    if (value(recorded, name) != value(now, name))
+      changes += "\n  " + name + ": " + value(recorded, name) + " in the checkpoint, " + value(now, name) + " now";
+  }
+  if (!changes.empty()) {
+    throw std::runtime_error("DEM restart: " + path + " was written from other inputs:" + changes +
+                             "\n(restart with the original inputs, or pass --allow-changed-inputs to continue anyway)");
+  }
+}
+
 }  // namespace
 
 void Engine::write_checkpoint(const std::string& path) {
@@ -47,10 +84,9 @@ void Engine::write_checkpoint(const std::string& path) {
   int status = 0;
   std::string error;
   if (domain_.rank() == 0) {
-    const std::string temporary = path + ".tmp";
     try {
-      {
-        h5::Handle file = h5::create_file(temporary);
+      // A reader (or a restart after SIGKILL) sees the old or the new file, never half of one.
+      h5::write_file_atomically(path, [&](const h5::Handle& file) {
         h5::write_string_attribute(file, "format", "sedwave-dem-checkpoint");
         h5::write_attribute(file, "version", kCheckpointVersion);
         h5::write_attribute(file, "step", step_);
@@ -60,6 +96,8 @@ void Engine::write_checkpoint(const std::string& path) {
         h5::write_attribute(file, "rebuilds", rebuilds_);
         h5::write_string_attribute(file, "user_state", user_state_);
         h5::write_string_attribute(file, "contact_model", describe(settings_.contact));
+        h5::Handle inputs = h5::create_group(file, "inputs");
+        for (const auto& [name, value] : settings_.checkpoint.inputs) h5::write_string_attribute(inputs, name, value);
 
         h5::Handle g = h5::create_group(file, "grains");
         const std::size_t n = all.size();
@@ -102,15 +140,10 @@ void Engine::write_checkpoint(const std::string& path) {
 
         h5::Handle d = h5::create_group(file, "domain");
         h5::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
-        h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + temporary);
-      }
-      // rename() is atomic: a reader (or a restart after SIGKILL) sees the old or the new file.
-      if (std::rename(temporary.c_str(), path.c_str()) != 0)
-        throw std::runtime_error("cannot rename " + temporary + " to " + path);
+      });
     } catch (const std::exception& e) {
       status = 1;
       error = e.what();
-      std::remove(temporary.c_str());
     }
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, domain_.comm());
@@ -123,6 +156,8 @@ void Engine::restore_checkpoint(const std::string& path) {
     throw std::runtime_error("DEM restart: " + path + " is not a sedwave DEM checkpoint");
   if (h5::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
     throw std::runtime_error("DEM restart: unsupported checkpoint version in " + path);
+  if (!settings_.checkpoint.allow_changed_inputs)
+    require_same_inputs(recorded_inputs(file), settings_.checkpoint.inputs, path);
   // The laws decide which state exists (spins, history): a checkpoint only continues the same kind.
   const std::string model = h5::read_string_attribute(file, "contact_model");
   if (model != describe(settings_.contact))

@@ -12,9 +12,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
+#include <unordered_set>
 
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/units.hpp"
+#include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
@@ -93,12 +95,18 @@ T parse(const std::string& token, const LineReader& r, const std::string& what) 
 
 void read_header_line(const std::string& body, const LineReader& r, std::int64_t& n_atoms, Box& box) {
   const std::vector<std::string> words = split(body);
-  if (words.size() == 2 && words[1] == "atoms") n_atoms = parse<std::int64_t>(words[0], r, "atom count");
+  if (words.size() == 2 && words[1] == "atoms") {
+    n_atoms = parse<std::int64_t>(words[0], r, "atom count");
+    if (n_atoms < 0) r.fail("atom count " + words[0] + ": accepted range [0, inf)");
+  }
   for (int a = 0; a < 3; ++a) {
     const std::string lo = std::string(1, char('x' + a)) + "lo";
     if (words.size() == 4 && words[2] == lo) {
       box.lo[a] = parse<double>(words[0], r, lo);
       box.hi[a] = parse<double>(words[1], r, std::string(1, char('x' + a)) + "hi");
+      if (!(box.hi[a] > box.lo[a]) || !std::isfinite(box.hi[a] - box.lo[a]))
+        r.fail(lo + " " + words[0] + " and " + std::string(1, char('x' + a)) + "hi " + words[1] +
+               ": the box must have finite, positive extent");
     }
   }
 }
@@ -112,7 +120,8 @@ LammpsData read_lammps_data(const std::string& path, const std::function<bool(co
   r.next(line);  // title
   std::int64_t n_atoms = -1;
   std::string section;
-  std::unordered_map<std::int64_t, std::size_t> index;
+  std::unordered_map<std::int64_t, std::size_t> index;  // kept grains: where they are in data.grains
+  std::unordered_set<std::int64_t> ids;                 // every atom of the file, kept or not
   std::int64_t atoms_read = 0;
   while (r.next(line)) {
     const std::string body = strip_comment(line);
@@ -134,15 +143,20 @@ LammpsData read_lammps_data(const std::string& path, const std::function<bool(co
       Grain g;
       g.id = parse<std::int64_t>(words[0], r, "atom id");
       g.group = parse<std::int32_t>(words[1], r, "atom type");
+      if (g.group < 1) r.fail("atom type " + words[1] + ": accepted range [1, 2147483647] (LAMMPS types count from 1)");
       const double diameter = parse<double>(words[2], r, "diameter");
       const double density = parse<double>(words[3], r, "density");
       for (int a = 0; a < 3; ++a) g.position[a] = parse<double>(words[4 + static_cast<std::size_t>(a)], r, "coordinate");
-      if (!(diameter > 0.0) || !(density > 0.0)) r.fail("diameter and density must be positive: " + line);
+      if (!(diameter > 0.0) || !(density > 0.0) || !std::isfinite(diameter) || !std::isfinite(density))
+        r.fail("diameter and density must be positive and finite: " + line);
+      if (!std::isfinite(g.position.x) || !std::isfinite(g.position.y) || !std::isfinite(g.position.z))
+        r.fail("coordinates must be finite: " + line);
+      if (!ids.insert(g.id).second) r.fail("duplicate atom id " + words[0]);
       g.radius = 0.5 * diameter;
       g.mass = grain_mass(density, diameter);
       ++atoms_read;
       if (keep && !keep(g)) continue;
-      if (!index.emplace(g.id, data.grains.size()).second) r.fail("duplicate atom id " + words[0]);
+      index.emplace(g.id, data.grains.size());
       data.grains.push_back(g);
     } else if (section == "Velocities") {
       // id vx vy vz wx wy wz
@@ -153,6 +167,8 @@ LammpsData read_lammps_data(const std::string& path, const std::function<bool(co
         v[a] = parse<double>(words[1 + static_cast<std::size_t>(a)], r, "velocity");
         w[a] = parse<double>(words[4 + static_cast<std::size_t>(a)], r, "angular velocity");
       }
+      if (!std::isfinite(v.x + v.y + v.z + w.x + w.y + w.z)) r.fail("velocities must be finite: " + line);
+      if (!ids.contains(id)) r.fail("Velocities entry for atom id " + words[0] + ", which is not in the Atoms section");
       const auto it = index.find(id);
       if (it == index.end()) continue;  // another rank's grain, or filtered out
       data.grains[it->second].velocity = v;
@@ -166,26 +182,25 @@ LammpsData read_lammps_data(const std::string& path, const std::function<bool(co
 }
 
 void write_lammps_data(const std::string& path, const Box& box, std::span<const Grain> grains) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot create");
-  int types = 1;
-  for (const Grain& g : grains) types = std::max(types, g.group);
-  out << "LAMMPS data file written by sedwave (atom_style sphere)\n\n"
-      << grains.size() << " atoms\n" << types << " atom types\n\n" << std::setprecision(kFullPrecision);
-  for (int a = 0; a < 3; ++a)
-    out << box.lo[a] << ' ' << box.hi[a] << ' ' << char('x' + a) << "lo " << char('x' + a) << "hi\n";
-  out << "\nAtoms # sphere\n\n";
-  for (const Grain& g : grains) {
-    const double d = 2.0 * g.radius;
-    out << g.id << ' ' << std::max(g.group, 1) << ' ' << d << ' ' << g.mass / grain_mass(1.0, d) << ' '
-        << g.position.x << ' ' << g.position.y << ' ' << g.position.z << '\n';
-  }
-  out << "\nVelocities\n\n";
-  for (const Grain& g : grains)
-    out << g.id << ' ' << g.velocity.x << ' ' << g.velocity.y << ' ' << g.velocity.z << ' '
-        << g.angular_velocity.x << ' ' << g.angular_velocity.y << ' ' << g.angular_velocity.z << '\n';
-  out.flush();
-  if (!out) throw std::runtime_error(path + ": write failed");
+  // Whole or not at all: a kill or a full disk leaves the previous file (io::write_text_atomically).
+  io::write_text_atomically(path, [&](std::ostream& out) {
+    int types = 1;
+    for (const Grain& g : grains) types = std::max(types, g.group);
+    out << "LAMMPS data file written by sedwave (atom_style sphere)\n\n"
+        << grains.size() << " atoms\n" << types << " atom types\n\n" << std::setprecision(kFullPrecision);
+    for (int a = 0; a < 3; ++a)
+      out << box.lo[a] << ' ' << box.hi[a] << ' ' << char('x' + a) << "lo " << char('x' + a) << "hi\n";
+    out << "\nAtoms # sphere\n\n";
+    for (const Grain& g : grains) {
+      const double d = 2.0 * g.radius;
+      out << g.id << ' ' << std::max(g.group, 1) << ' ' << d << ' ' << g.mass / grain_mass(1.0, d) << ' '
+          << g.position.x << ' ' << g.position.y << ' ' << g.position.z << '\n';
+    }
+    out << "\nVelocities\n\n";
+    for (const Grain& g : grains)
+      out << g.id << ' ' << g.velocity.x << ' ' << g.velocity.y << ' ' << g.velocity.z << ' '
+          << g.angular_velocity.x << ' ' << g.angular_velocity.y << ' ' << g.angular_velocity.z << '\n';
+  });
 }
 
 // ---- dumps ---------------------------------------------------------------------------------------

@@ -6,9 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <stdexcept>
+#include <ostream>
 #include <string>
 #include <vector>
+
+#include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::forward::h5 {
 
@@ -30,6 +34,14 @@ class Handle {
   Handle& operator=(const Handle&) = delete;
   ~Handle() {
     if (id_ >= 0 && close_) close_(id_);
+  }
+  /// Closes now and throws if HDF5 reports a failure (the destructor cannot: a file whose last
+  /// buffers fail to reach the disk must not be taken for a complete one).
+  void close_checked(const std::string& what) {
+    if (id_ < 0 || !close_) return;
+    const herr_t status = close_(id_);
+    id_ = -1;
+    if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
   }
   [[nodiscard]] hid_t get() const { return id_; }
   operator hid_t() const { return id_; }  // NOLINT: handles are used as hid_t throughout
@@ -54,6 +66,31 @@ inline Handle create_file(const std::string& path) {
 inline Handle open_file(const std::string& path, bool writable = false) {
   return {H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
           "open " + path};
+}
+
+/// Writes a whole file: `fill(file)` builds it in memory (HDF5's core driver), and its bytes are
+/// then written to a temporary sibling, fsynced and renamed over `path` (io::write_text_atomically).
+/// A failure (a full disk, a kill) leaves whatever `path` held before, and an exception naming it.
+/// HDF5 itself never writes to disk here: a file whose write or close failed stays open inside the
+/// library and crashes it when it shuts down, so disk errors are met by plain stream writes instead.
+template <class Fill>
+void write_file_atomically(const std::filesystem::path& path, Fill&& fill) {
+  std::vector<char> image;
+  {
+    Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access properties");
+    check(H5Pset_fapl_core(access, std::size_t{1} << 20, false), "keep " + path.string() + " in memory");
+    Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access), H5Fclose,
+                "create " + path.string() + " in memory");
+    fill(file);
+    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "complete " + path.string());
+    const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
+    if (size < 0) throw std::runtime_error("HDF5: cannot size the image of " + path.string());
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file.get(), image.data(), image.size()) != size)
+      throw std::runtime_error("HDF5: cannot copy the image of " + path.string());
+    file.close_checked("close " + path.string());
+  }
+  io::write_text_atomically(path, [&](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); });
 }
 inline Handle create_group(hid_t parent, const std::string& name) {
   return {H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,

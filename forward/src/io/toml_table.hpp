@@ -3,6 +3,8 @@
 // Typed reads with defaults; every mistake is an `Error` (the caller's exception type) reading
 // "FILE:LINE: key 'a.b': why" (toml11 records where each value was read); keys nobody asked for
 // are errors too, so a misspelt key never silently falls back to a default.
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <toml.hpp>
+#include <utility>
 
 namespace sedwave::forward::toml_io {
 
@@ -22,10 +25,62 @@ inline std::string file_of(const toml::value& v, const std::string& origin) {
   return file.empty() || file == "unknown file" ? origin : file;
 }
 
+/// "FILE:LINE" of value `v`.
+inline std::string where(const toml::value& v, const std::string& origin) {
+  return file_of(v, origin) + ":" + std::to_string(v.location().line());
+}
+
 /// Throws Error("FILE:LINE: key 'KEY': WHY") for value `v`.
 template <class Error>
 [[noreturn]] void fail(const toml::value& v, const std::string& key, const std::string& why, const std::string& origin) {
-  throw Error(file_of(v, origin) + ":" + std::to_string(v.location().line()) + ": key '" + key + "': " + why);
+  throw Error(where(v, origin) + ": key '" + key + "': " + why);
+}
+
+/// Shortest text that reads back as the same double ("0.1", not "0.10000000000000001"; whole
+/// numbers without an exponent: "1000000", not "1e+06").
+inline std::string shortest(double x) {
+  if (std::trunc(x) == x && std::abs(x) < 1e16) return std::to_string(static_cast<std::int64_t>(x));
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+  return std::string(buffer, end);
+}
+
+/// The values a key accepts, with their unit, as a message shows them: "(0, 1] (of the column)".
+/// Open ends exclude the bound; infinite ends are open.
+struct Range {
+  double low = -INFINITY;
+  double high = INFINITY;
+  bool low_open = false;
+  bool high_open = false;
+  std::string unit;
+
+  static Range positive(std::string unit = "") { return {0.0, INFINITY, true, true, std::move(unit)}; }
+  static Range non_negative(std::string unit = "") { return {0.0, INFINITY, false, true, std::move(unit)}; }
+  /// [low, high]
+  static Range closed(double low, double high, std::string unit = "") { return {low, high, false, false, std::move(unit)}; }
+  /// (low, high)
+  static Range open(double low, double high, std::string unit = "") { return {low, high, true, true, std::move(unit)}; }
+  /// (low, high]
+  static Range above(double low, double high, std::string unit = "") { return {low, high, true, false, std::move(unit)}; }
+
+  [[nodiscard]] bool contains(double x) const {
+    return (low_open ? x > low : x >= low) && (high_open ? x < high : x <= high);
+  }
+  [[nodiscard]] std::string describe() const {
+    const auto bound = [](double x) { return std::isinf(x) ? std::string(x < 0 ? "-inf" : "inf") : shortest(x); };
+    std::string text = std::string(low_open || std::isinf(low) ? "(" : "[") + bound(low) + ", " + bound(high) +
+                       (high_open || std::isinf(high) ? ")" : "]");
+    return unit.empty() ? text : text + " " + unit;
+  }
+};
+
+/// Throws Error("FILE:LINE: key 'KEY' = VALUE: accepted range RANGE") for value `v`.
+template <class Error>
+[[noreturn]] void fail_range(const toml::value& v, const std::string& key, const Range& range, const std::string& origin) {
+  const std::string value = v.is_integer() ? std::to_string(v.as_integer())
+                            : v.is_floating() ? shortest(v.as_floating())
+                                              : toml::format(v);
+  throw Error(where(v, origin) + ": key '" + key + "' = " + value + ": accepted range " + range.describe());
 }
 
 /// A whole file as text (kept verbatim in outputs for provenance); `what` names it in the error.
@@ -88,20 +143,29 @@ class Table {
     return table_.as_table().at(key);
   }
 
-  double number(const std::string& key, double fallback) { return has(key) ? number_value(at(key), name(key)) : skip(key, fallback); }
-  std::optional<double> optional_number(const std::string& key) {
-    if (!has(key)) return skip(key, std::optional<double>{});
-    return number_value(at(key), name(key));
+  double number(const std::string& key, double fallback, const Range& range = {}) {
+    return has(key) ? number_value(at(key), name(key), range) : skip(key, fallback);
   }
-  double positive(const std::string& key, double fallback) { return has(key) ? positive_value(at(key), name(key)) : skip(key, fallback); }
-  double required_positive(const std::string& key) { return positive_value(at(key), name(key)); }
-  std::int64_t integer(const std::string& key, std::int64_t fallback,
-                       std::int64_t minimum = std::numeric_limits<std::int64_t>::min()) {
+  std::optional<double> optional_number(const std::string& key, const Range& range = {}) {
+    if (!has(key)) return skip(key, std::optional<double>{});
+    return number_value(at(key), name(key), range);
+  }
+  double positive(const std::string& key, double fallback, std::string unit = "") {
+    return number(key, fallback, Range::positive(std::move(unit)));
+  }
+  double required_positive(const std::string& key) { return number_value(at(key), name(key), Range::positive()); }
+  /// An integer within `range` that also fits T (a value T cannot hold is an error, never truncated).
+  template <typename T = std::int64_t>
+  T integer(const std::string& key, T fallback, Range range = {}) {
     if (!has(key)) return skip(key, fallback);
     const toml::value& v = at(key);
     if (!v.is_integer()) fail<Error>(v, name(key), "must be an integer", origin_);
-    if (v.as_integer() < minimum) fail<Error>(v, name(key), "must be at least " + std::to_string(minimum), origin_);
-    return v.as_integer();
+    range.low = std::max(range.low, static_cast<double>(std::numeric_limits<T>::min()));
+    range.high = std::min(range.high, static_cast<double>(std::numeric_limits<T>::max()));
+    const std::int64_t x = v.as_integer();
+    const bool fits = std::in_range<T>(x) && range.contains(static_cast<double>(x));
+    if (!fits) fail_range<Error>(v, name(key), range, origin_);
+    return static_cast<T>(x);
   }
   std::string text(const std::string& key, const std::string& fallback) {
     if (!has(key)) return skip(key, fallback);
@@ -130,8 +194,8 @@ class Table {
     return Table(has(key) ? at(key) : skip(key, std::cref(empty)).get(), name(key), origin_);
   }
 
-  /// A number, checked finite.
-  [[nodiscard]] double number_value(const toml::value& v, const std::string& key) const {
+  /// A number, checked finite and within `range`.
+  [[nodiscard]] double number_value(const toml::value& v, const std::string& key, const Range& range = {}) const {
     double x = 0.0;
     if (v.is_integer()) {
       x = static_cast<double>(v.as_integer());
@@ -141,11 +205,7 @@ class Table {
       fail<Error>(v, key, "must be a number", origin_);
     }
     if (!std::isfinite(x)) fail<Error>(v, key, "must be finite", origin_);
-    return x;
-  }
-  [[nodiscard]] double positive_value(const toml::value& v, const std::string& key) const {
-    const double x = number_value(v, key);
-    if (!(x > 0.0)) fail<Error>(v, key, "must be positive and finite", origin_);
+    if (!range.contains(x)) fail_range<Error>(v, key, range, origin_);
     return x;
   }
 

@@ -1,9 +1,12 @@
 #include "sedwave/forward/linear/ensemble.hpp"
 
+#include "sedwave/io/fingerprint.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -107,6 +110,7 @@ table::DispersionTable merge_member_tables(std::span<const table::DispersionTabl
   if (members.empty() || members.size() != names.size()) throw std::invalid_argument("merge: no member tables");
   const table::DispersionTable& first = members.front();
   std::set<int> seen;
+  std::map<int, std::string> packing_hashes;  // by member index, so in member order
   int ensemble = 0;
   for (std::size_t m = 0; m < members.size(); ++m) {
     const table::DispersionTable& t = members[m];
@@ -122,6 +126,7 @@ table::DispersionTable merge_member_tables(std::span<const table::DispersionTabl
     if (!seen.insert(tag->first).second) {
       throw std::invalid_argument("merge: " + names[m] + " is member " + std::to_string(tag->first) + " again");
     }
+    packing_hashes[tag->first] = t.metadata().packing_hash;
     if (!(t.grid() == first.grid())) throw std::invalid_argument("merge: " + names[m] + " has another grid than " + names[0]);
     if (t.metadata().scene_toml != first.metadata().scene_toml) {
       throw std::invalid_argument("merge: " + names[m] + " was computed from another scene than " + names[0]);
@@ -137,6 +142,10 @@ table::DispersionTable merge_member_tables(std::span<const table::DispersionTabl
   table::TableMetadata metadata = first.metadata();
   metadata.engine = "sedwave-linear";
   metadata.code_version.clear();
+  // As `sedwave table` records an ensemble computed in one run: a hash of the members' hashes, in order.
+  std::vector<std::string> hashes;
+  for (const auto& [k, hash] : packing_hashes) hashes.push_back(hash);
+  metadata.packing_hash = io::combined_fingerprint(hashes);
   std::string which;
   for (const int k : seen) which += (which.empty() ? "" : ", ") + std::to_string(k);
   metadata.definitions += "\nMerged by sedwave merge: mean and standard error over members " + which + " of " +

@@ -9,7 +9,7 @@ using channel::number;
 
 void write_linear_run_file(const std::filesystem::path& path, const channel::ChannelScene& scene,
                            const std::vector<channel::PreparationReport>& preparations, const EnsembleResult& e) {
-  channel::write_atomically(path, [&](hid_t file) {
+  h5::write_file_atomically(path, [&](hid_t file) {
     channel::write_run_header(file, scene.text);
     h5::write_string_attribute(file, "engine", "linear");
     for (std::size_t k = 0; k < e.members.size(); ++k) {

@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <toml.hpp>
 
 #include "../io/toml_table.hpp"
@@ -20,19 +19,14 @@ using Keys = toml_io::Table<GridFileError>;
 
 /// An explicit list: positive numbers, strictly ascending (descending when `descending`).
 std::vector<double> number_list(const toml::value& v, const std::string& key, const Keys& keys, bool descending,
-                                double upper_bound_exclusive = INFINITY) {
+                                const toml_io::Range& range = toml_io::Range::positive()) {
   if (!v.is_array()) fail(v, key, "must be a list of numbers", keys.origin());
   const toml::array& array = v.as_array();
   if (array.empty()) fail(v, key, "must not be empty", keys.origin());
   std::vector<double> values;
   for (std::size_t i = 0; i < array.size(); ++i) {
     const std::string element = key + "[" + std::to_string(i) + "]";
-    const double x = keys.positive_value(array[i], element);
-    if (!(x < upper_bound_exclusive)) {
-      std::ostringstream bound;
-      bound << "must be below " << upper_bound_exclusive;
-      fail(array[i], element, bound.str(), keys.origin());
-    }
+    const double x = keys.number_value(array[i], element, range);
     if (!values.empty() && (descending ? !(x < values.back()) : !(x > values.back()))) {
       fail(array[i], element, descending ? "must be strictly descending" : "must be strictly ascending", keys.origin());
     }
@@ -50,9 +44,10 @@ std::vector<double> axis(const toml::value& v, const std::string& key, const Key
   const double from = range.required_positive("from");
   const double to = range.required_positive("to");
   if (!(to > from)) fail(range.at("to"), range.name("to"), "must be greater than 'from'", parent.origin());
-  const std::int64_t points = range.integer("points", 0, 2);
+  // A table of more points than this would take years to fill with any engine.
+  const auto points = range.integer<std::size_t>("points", 0, toml_io::Range::closed(2, 100000, "points"));
   if (points == 0) range.at("points");  // missing: throws naming the key
-  return log_spaced(from, to, static_cast<std::size_t>(points));
+  return log_spaced(from, to, points);
 }
 
 /// Shortest round-trip form: the metadata shows 0.9, not 0.90000000000000002, yet loses no bit.
@@ -97,7 +92,7 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
          origin_name);
   }
 
-  file.ranks_per_point = static_cast<int>(top.integer("ranks_per_point", 1, 1));
+  file.ranks_per_point = top.integer("ranks_per_point", 1, toml_io::Range::closed(1, 1e6, "ranks"));
   file.grid.omega_hat = axis(top.at("omega_hat"), "omega_hat", top);
 
   if (top.has("gamma_hat") == top.has("restitution")) {
@@ -108,7 +103,7 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
     file.grid.gamma_hat = axis(top.at("gamma_hat"), "gamma_hat", top);
   } else {
     // Descending e_n gives ascending gamma_hat; e_n = 1 would be gamma_hat = 0, outside a log grid.
-    file.restitution = number_list(top.at("restitution"), "restitution", top, true, 1.0);
+    file.restitution = number_list(top.at("restitution"), "restitution", top, true, toml_io::Range::open(0.0, 1.0));
     for (double e_n : file.restitution) file.grid.gamma_hat.push_back(gamma_hat_from_restitution(e_n));
   }
   file.grid.validate();

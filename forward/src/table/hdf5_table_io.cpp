@@ -67,10 +67,6 @@ std::vector<T> read_all(const Handle& dataset, const Handle& type, const std::st
 
 }  // namespace
 
-Handle create_file(const std::string& path) {
-  return {H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + path};
-}
-
 Handle open_file(const std::string& path, bool writable) {
   return {H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + path};
 }
@@ -96,6 +92,14 @@ void write_string_attribute(const Handle& object, const std::string& name, const
   const Handle attribute(H5Acreate2(object.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
                          H5Aclose, "create attribute " + name);
   check(H5Awrite(attribute.get(), type.get(), value.c_str()), "write attribute " + name);
+}
+
+std::vector<hsize_t> dataset_shape(const Handle& dataset) { return dimensions(dataset); }
+
+bool has_attribute(const Handle& object, const std::string& name) {
+  const htri_t exists = H5Aexists(object.get(), name.c_str());
+  if (exists < 0) throw std::runtime_error("HDF5: cannot look for attribute " + name);
+  return exists > 0;
 }
 
 std::string read_string_attribute(const Handle& object, const std::string& name) {

@@ -32,7 +32,6 @@ class QuietErrors {
   void* data_ = nullptr;
 };
 
-Handle create_file(const std::string& path);
 Handle open_file(const std::string& path, bool writable);
 void flush(const Handle& file);
 Handle create_group(const Handle& parent, const std::string& name);
@@ -40,7 +39,10 @@ Handle open_group(const Handle& parent, const std::string& name);
 Handle open_dataset(const Handle& parent, const std::string& name);
 
 void write_string_attribute(const Handle& object, const std::string& name, const std::string& value);
-[[nodiscard]] std::string read_string_attribute(const Handle& object, const std::string& name);
+[[nodiscard]] bool has_attribute(const Handle& object, const std::string& name);
+/// A dataset's extent along each axis.
+std::vector<hsize_t> dataset_shape(const Handle& dataset);
+std::string read_string_attribute(const Handle& object, const std::string& name);
 void write_int_attribute(const Handle& object, const std::string& name, int value);
 [[nodiscard]] int read_int_attribute(const Handle& object, const std::string& name);
 

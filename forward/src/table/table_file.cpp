@@ -79,6 +79,7 @@ void write_layout(const h5::Handle& file, const DispersionTable& table) {
   h5::write_string_attribute(file, "sedwave_version", m.code_version);
   h5::write_string_attribute(file, "engine", m.engine);
   h5::write_string_attribute(file, "definitions", m.definitions);
+  h5::write_string_attribute(file, "packing_hash", m.packing_hash);
   h5::write_string_dataset(file, "scene", m.scene_toml);
   write_grid(file, table.grid());
   create_results(file, table.grid());
@@ -113,10 +114,7 @@ void write_point_status(const ResultDatasets& sets, GridIndex index, PointStatus
 /// Writes the complete file under a temporary name and renames it into place, so `path` never
 /// holds a half-created table.
 void write_complete_file(const std::filesystem::path& path, const DispersionTable& table) {
-  std::filesystem::path temporary = path;
-  temporary += ".creating";
-  {
-    const h5::Handle file = h5::create_file(temporary.string());
+  forward::h5::write_file_atomically(path, [&](const h5::Handle& file) {
     write_layout(file, table);
     const ResultDatasets sets = open_results(file);
     for (std::size_t g = 0; g < table.n_gamma(); ++g) {
@@ -127,8 +125,7 @@ void write_complete_file(const std::filesystem::path& path, const DispersionTabl
         write_point_status(sets, {g, w}, p.status);
       }
     }
-  }
-  std::filesystem::rename(temporary, path);
+  });
 }
 
 // ---- Reading --------------------------------------------------------------------------------------
@@ -139,6 +136,7 @@ TableMetadata read_metadata(const h5::Handle& file) {
   m.engine = h5::read_string_attribute(file, "engine");
   m.code_version = h5::read_string_attribute(file, "sedwave_version");
   m.definitions = h5::read_string_attribute(file, "definitions");
+  if (h5::has_attribute(file, "packing_hash")) m.packing_hash = h5::read_string_attribute(file, "packing_hash");
   return m;
 }
 
@@ -149,6 +147,22 @@ PointStatus status_from_code(std::int8_t code, const std::filesystem::path& path
   return static_cast<PointStatus>(code);
 }
 
+std::string shape_text(const std::vector<hsize_t>& shape) {
+  std::string text;
+  for (const hsize_t n : shape) text += (text.empty() ? "" : ", ") + std::to_string(n);
+  return "[" + text + "]";
+}
+
+/// Throws naming the file, the dataset and both shapes unless /results/NAME has `expected` shape.
+void require_shape(const h5::Handle& dataset, const std::string& name, const std::vector<hsize_t>& expected,
+                   const std::filesystem::path& path) {
+  const std::vector<hsize_t> found = h5::dataset_shape(dataset);
+  if (found != expected) {
+    throw std::runtime_error(path.string() + ": dataset /results/" + name + " has shape " + shape_text(found) +
+                             ", expected " + shape_text(expected) + " (gamma_hat x omega_hat of /grid)");
+  }
+}
+
 DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& path) {
   std::string format;
   try {
@@ -156,25 +170,30 @@ DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& p
   } catch (const std::runtime_error&) {
     format = "(none)";
   }
-  if (format != kFormatName || h5::read_int_attribute(file, "format_version") != kFormatVersion) {
+  if (format != kFormatName) {
     throw std::runtime_error(path.string() + ": not a sedwave dispersion table (format '" + format + "')");
+  }
+  const int version = h5::read_int_attribute(file, "format_version");
+  if (version != kFormatVersion) {
+    throw std::runtime_error(path.string() + ": format_version " + std::to_string(version) + ", expected " +
+                             std::to_string(kFormatVersion) + " (a table of another sedwave version)");
   }
   const h5::Handle grid_group = h5::open_group(file, "grid");
   TableGrid grid{h5::read_vector(grid_group, "omega_hat"), h5::read_vector(grid_group, "gamma_hat")};
   DispersionTable table(std::move(grid), read_metadata(file));
 
   const ResultDatasets sets = open_results(file);
+  // Shapes, not only element counts: a matrix stored transposed has the right count and every
+  // value in the wrong place.
+  const std::vector<hsize_t> shape{table.n_gamma(), table.n_omega()};
+  for (std::size_t i = 0; i < kFloatColumns.size(); ++i) require_shape(sets.floats[i], kFloatColumns[i].name, shape, path);
+  require_shape(sets.status, "status", shape, path);
+  require_shape(sets.reason, "reason", shape, path);
   std::array<std::vector<double>, kFloatColumns.size()> floats;
   for (std::size_t i = 0; i < floats.size(); ++i) floats[i] = h5::read_float64_matrix(sets.floats[i]);
   const std::vector<std::int8_t> status = h5::read_status_matrix(sets.status);
   const std::vector<std::string> reason = h5::read_text_matrix(sets.reason);
   const std::size_t n = table.grid().size();
-  for (const auto& column : floats) {
-    if (column.size() != n) throw std::runtime_error(path.string() + ": /results do not match /grid in size");
-  }
-  if (status.size() != n || reason.size() != n) {
-    throw std::runtime_error(path.string() + ": /results do not match /grid in size");
-  }
   for (std::size_t k = 0; k < n; ++k) {
     PointResult p;
     for (std::size_t i = 0; i < kFloatColumns.size(); ++i) p.*kFloatColumns[i].field = floats[i][k];
@@ -234,6 +253,23 @@ void require_same_run(const DispersionTable& existing, const TableGrid& grid, co
   if (!differs.empty()) {
     throw std::runtime_error(path.string() + " holds a table with a different " + differs +
                              ": refusing to resume into it (choose another path)");
+  }
+}
+
+/// The inputs a resumed table may only change on request: its packing and the code computing it.
+void require_same_inputs(const TableMetadata& existing, const TableMetadata& metadata, const std::filesystem::path& path) {
+  const auto shown = [](const std::string& text) { return text.empty() ? std::string("(not recorded)") : text; };
+  std::string changes;
+  if (existing.packing_hash != metadata.packing_hash) {
+    changes += "\n  packing: hash " + shown(existing.packing_hash) + " in the table, " + shown(metadata.packing_hash) + " now";
+  }
+  if (existing.code_version != metadata.code_version) {
+    changes += "\n  sedwave version: " + existing.code_version + " in the table, " + metadata.code_version + " now";
+  }
+  if (!changes.empty()) {
+    throw std::runtime_error(path.string() + " holds points computed from other inputs:" + changes +
+                             "\nrefusing to mix them in one table (resume with the table's own packing, choose "
+                             "another --out, or pass --allow-changed-inputs)");
   }
 }
 
@@ -308,7 +344,7 @@ TableFile TableFile::open(const std::filesystem::path& path) {
 }
 
 TableFile TableFile::resume_or_create(const std::filesystem::path& path, const TableGrid& grid,
-                                      const TableMetadata& metadata) {
+                                      const TableMetadata& metadata, bool allow_changed_inputs) {
   // The journal lock first: a file that fails to open because another live writer holds it must
   // not be mistaken for a damaged one.
   Journal journal(journal_path(path));
@@ -326,6 +362,7 @@ TableFile TableFile::resume_or_create(const std::filesystem::path& path, const T
   }
   if (state) {
     require_same_run(state->table, grid, metadata, path);
+    if (!allow_changed_inputs) require_same_inputs(state->table.metadata(), with_defaults(metadata), path);
   } else {
     write_complete_file(path, DispersionTable(grid, with_defaults(metadata)));
     state = State::load(path, journal);

@@ -225,17 +225,17 @@ class Writer {
 /// Rank 0 opens (or resumes) the file; every rank learns the points to do, or rank 0's error.
 std::vector<GridIndex> open_and_share_todo(MPI_Comm farm, const std::filesystem::path& table_path,
                                            const TableGrid& grid, const TableMetadata& metadata,
-                                           bool retry_failed, std::optional<TableFile>& file) {
+                                           const FarmSettings& settings, std::optional<TableFile>& file) {
   std::vector<std::uint64_t> flat;
   std::string error;
   if (rank_of(farm) == 0) {
     try {
-      file.emplace(TableFile::resume_or_create(table_path, grid, metadata));
+      file.emplace(TableFile::resume_or_create(table_path, grid, metadata, settings.allow_changed_inputs));
       const DispersionTable& table = file->table();
       for (std::size_t g = 0; g < table.n_gamma(); ++g) {
         for (std::size_t w = 0; w < table.n_omega(); ++w) {
           const PointStatus status = table.at(g, w).status;
-          if (status == PointStatus::missing || (retry_failed && status == PointStatus::failed)) {
+          if (status == PointStatus::missing || (settings.retry_failed && status == PointStatus::failed)) {
             flat.push_back(g * table.n_omega() + w);
           }
         }
@@ -291,7 +291,7 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
   FarmReport report;
   report.points = grid.size();
   std::optional<TableFile> file;
-  const std::vector<GridIndex> todo = open_and_share_todo(farm.get(), table_path, grid, metadata, settings.retry_failed, file);
+  const std::vector<GridIndex> todo = open_and_share_todo(farm.get(), table_path, grid, metadata, settings, file);
   report.already_finished = grid.size() - todo.size();
 
   MPI_Comm group_handle = MPI_COMM_NULL;

@@ -58,7 +58,7 @@ INSTANTIATE_TEST_SUITE_P(
     Mistakes, BadScenes,
     ::testing::Values(BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 10\nwidht = 3\n", "bad.toml:5: key 'geometry.widht': unknown key"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nomega_hat = \"fast\"\n", "bad.toml:4: key 'drive.omega_hat': must be a number"},
-                      BadScene{"[contact]\nkn = 726\n[drive]\nomega_hat = -1\n", "bad.toml:4: key 'drive.omega_hat': must be positive"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nomega_hat = -1\n", "bad.toml:4: key 'drive.omega_hat' = -1: accepted range (0, inf)"},
                       BadScene{"[contact]\nkn = 726\n[drive]\naxis = \"y\"\n", "bad.toml:4: key 'drive.axis': must be one of x, z"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 1.5\n", "bad.toml:4: key 'geometry.grains': must be an integer"},
                       BadScene{"[contact]\nkn = 726\n[geometry.sizes]\nmean = 1\nsdd = 0.1\n", "key 'geometry.sizes.sdd': unknown key"},
@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"[contact]\nkn = [726\n", "bad.toml"},
                       BadScene{"[contakt]\nkn = 726\n", "bad.toml:1: key 'contakt': unknown key"},
                       BadScene{"engine = \"fast\"\n[contact]\nkn = 726\n", "bad.toml:1: key 'engine': must be one of linear, time_domain"},
-                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[linear]\nensemble = 0\n", "bad.toml:5: key 'linear.ensemble': must be at least 1"},
+                      BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[linear]\nensemble = 0\n", "bad.toml:5: key 'linear.ensemble' = 0: accepted range [1, 10000] packings"},
                       BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nfar_end = \"frozen\"\n", "bad.toml:4: [drive]: far_end: the linear engine"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat = 0.5\n", "bad.toml:3: [drive]: a pulse spans omega_hat_min..omega_hat_max"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nomega_hat_min = 1\nomega_hat_max = 0.5\n", "[drive]: omega_hat_max must exceed omega_hat_min"},
@@ -75,7 +75,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"engine = \"linear\"\n[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\n", "[drive]: signal: the linear engine solves each frequency"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"sweep\"\n", "bad.toml:4: key 'drive.signal': must be one of chirp, pulse, sinusoid"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"pulse\"\nsweep_periods = 5\n", "bad.toml:5: key 'drive.sweep_periods': is for signal = \"chirp\""},
-                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\nsweep_periods = 0\n", "bad.toml:5: key 'drive.sweep_periods': must be positive"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsignal = \"chirp\"\nsweep_periods = 0\n", "bad.toml:5: key 'drive.sweep_periods' = 0: accepted range [1, 1000000] periods of omega_hat_min"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall = \"free\"\n", "bad.toml:4: key 'drive.far_wall': must be one of frozen, loaded"},
                       BadScene{"[contact]\nkn = 726\n[drive]\nfar_wall_mass = 3\n", "bad.toml:3: [drive]: far_wall_mass is for far_wall = \"loaded\""},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 1000\n[geometry.periodic_cell]\ngrains = 300\n",
@@ -84,8 +84,26 @@ INSTANTIATE_TEST_SUITE_P(
                                "bad.toml:7: key 'geometry.periodic_cell.wall_thickness': walls thinner than the largest grain"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\n[preparation]\ncompression = \"wall\"\n",
                                "bad.toml:8: key 'preparation.compression': a periodic cell ([geometry.periodic_cell]) is compressed affinely"},
+                      BadScene{"[contact]\nkn = 726\nfriction = -0.5\n", "bad.toml:3: key 'contact.friction' = -0.5: accepted range [0, inf)"},
+                      BadScene{"[contact]\nyoungs_modulus = 1000\npoisson_ratio = 1\n", "bad.toml:3: key 'contact.poisson_ratio' = 1: accepted range (-1, 0.5]"},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 4294967496\n", "bad.toml:4: key 'geometry.grains' = 4294967496: accepted range [1, 100000000] grains"},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\nseed = -1\n", "bad.toml:4: key 'geometry.seed' = -1: accepted range [0, "},
+                      BadScene{"[contact]\nkn = 726\n[geometry]\nwidth = 1.1\n", "bad.toml:4: key 'geometry.width': must be at least the largest grain diameter"},
+                      BadScene{"[contact]\nkn = 726\n[geometry.sizes]\nmin = 1.1\n", "bad.toml:4: key 'geometry.sizes.min': must not exceed mean"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nperiods = -2\n", "bad.toml:4: key 'drive.periods' = -2: accepted range [0, 1000000] periods"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nabsorbing_fraction = 1.5\n", "bad.toml:4: key 'drive.absorbing_fraction' = 1.5: accepted range (0, 0.9]"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\nsamples_per_period = 0\n", "bad.toml:4: key 'drive.samples_per_period' = 0: accepted range [4, 1000000]"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\ntime_step_fraction = 50\n", "bad.toml:4: key 'drive.time_step_fraction' = 50: accepted range (0, 0.1]"},
+                      BadScene{"[contact]\nkn = 726\n[drive]\ngamma_hat = -0.1\n", "bad.toml:4: key 'drive.gamma_hat' = -0.1: accepted range [0, inf)"},
+                      BadScene{"[contact]\nkn = 726\n[drive.measurement]\nskip_layers = -1\n", "bad.toml:4: key 'drive.measurement.skip_layers' = -1: accepted range [0, 1000000] layers"},
+                      BadScene{"[contact]\nkn = 726\n[drive.measurement]\nsettle_periods = -3\n", "bad.toml:4: key 'drive.measurement.settle_periods' = -3: accepted range [0, 1000000] periods"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\ncopies = 3\n",
                                "bad.toml:7: key 'geometry.periodic_cell.copies': unknown key"}));
+
+TEST(Scene, FitDepthZeroMeansNoLimit) {
+  const ChannelScene scene = parse_scene("[contact]\nkn = 726\n[drive.measurement]\nmax_fit_depth = 0\n", "zero.toml");
+  EXPECT_EQ(scene.drive.max_fit_depth, 0.0);
+}
 
 TEST(Scene, ChirpDriveReadsItsSweep) {
   const ChannelScene s = parse_scene(

@@ -91,6 +91,14 @@ TEST(LammpsData, MalformedInputNamesFileAndLine) {
   write_text(path, "title\n\n2 atoms\n0 1.5x xlo xhi\n");
   expect_error_at([&] { (void)read_lammps_data(path); }, path + ":4: bad xhi '1.5x'");
   expect_error_at([] { (void)read_lammps_data("/nonexistent/packing.data"); }, "/nonexistent/packing.data: cannot open");
+  const std::string one = "title\n\n1 atoms\n1 atom types\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n";
+  write_text(path, one + "Atoms # sphere\n\n1 1 1.0 1.0 0.5 0.5 0.5\n\nVelocities\n\n7 0 0 0 0 0 0\n");
+  expect_error_at([&] { (void)read_lammps_data(path); }, path + ":15: Velocities entry for atom id 7, which is not in the Atoms");
+  write_text(path, header + "Atoms # sphere\n\n1 1 1.0 1.0 0.5 0.5 0.5\n1 1 1.0 1.0 0.5 0.5 0.7\n");
+  // A duplicate is refused even when the first copy went to another rank.
+  expect_error_at([&] { (void)read_lammps_data(path, [](const Grain&) { return false; }); }, path + ":12: duplicate atom id 1");
+  write_text(path, "title\n\n1 atoms\n1 0 xlo xhi\n");
+  expect_error_at([&] { (void)read_lammps_data(path); }, path + ":4: xlo 1 and xhi 0: the box must have finite, positive extent");
   std::filesystem::remove(path);
 }
 

@@ -18,6 +18,9 @@ void write_packing(const std::filesystem::path& path, const PreparedChannel& pac
 void write_packing_lammps_data(const std::filesystem::path& path, const PreparedChannel& packing);
 /// Reads a packing written by write_packing (grains, box, report statistics).
 [[nodiscard]] PreparedChannel read_packing(const std::filesystem::path& path);
+/// A hash (io::Fingerprint, 16 hex digits) of a packing's grains and box, bit for bit: the same for
+/// a packing as prepared and as read back from its file, different for any other packing.
+[[nodiscard]] std::string packing_fingerprint(const PreparedChannel& packing);
 
 /// Writes the run file, atomically (temporary file + rename).
 void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,

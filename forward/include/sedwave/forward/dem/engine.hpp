@@ -21,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -55,6 +56,11 @@ struct GuardSettings {
 struct CheckpointSettings {
   std::string path;         ///< HDF5 file, written atomically (temp file + rename)
   std::int64_t every = 0;   ///< steps between checkpoints (0: none)
+  /// What the run depends on, by name (code version, a hash of the data file, every contact and
+  /// wall option), stored in each checkpoint. restore_checkpoint refuses a checkpoint whose record
+  /// differs from this one, naming every entry that changed, unless allow_changed_inputs.
+  std::map<std::string, std::string> inputs{};
+  bool allow_changed_inputs = false;
 };
 
 struct ProgressSettings {

@@ -60,6 +60,9 @@ struct TableMetadata {
   std::string engine;        ///< what computed the points, e.g. "sedwave-dem" or "lattice-theory"
   std::string code_version;  ///< sedwave version; filled in on write when empty
   std::string definitions;   ///< units and definitions; filled in on write when empty
+  /// Hash of the packing(s) every point starts from (io::Fingerprint); empty where none, or in
+  /// tables written before it was recorded. A resumed table must start from the same packing.
+  std::string packing_hash;
 
   friend bool operator==(const TableMetadata&, const TableMetadata&) = default;
 };

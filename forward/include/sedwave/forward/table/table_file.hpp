@@ -34,11 +34,12 @@ class TableFile {
                                         TableMetadata metadata);
   /// An existing table, for writing more points; replays the journal first.
   [[nodiscard]] static TableFile open(const std::filesystem::path& path);
-  /// For a restarted run: open() if the file exists (it must hold the same grid, scene and engine),
-  /// create() otherwise. A journal from the killed run is replayed either way; an HDF5 file that
-  /// cannot be read is renamed to PATH.corrupt and rebuilt from grid, metadata and journal.
+  /// For a restarted run: open() if the file exists (it must hold the same grid, scene and engine,
+  /// and unless `allow_changed_inputs` the same packing hash and sedwave version), create()
+  /// otherwise. A journal from the killed run is replayed either way; an HDF5 file that cannot be
+  /// read is renamed to PATH.corrupt and rebuilt from grid, metadata and journal.
   [[nodiscard]] static TableFile resume_or_create(const std::filesystem::path& path, const TableGrid& grid,
-                                                  const TableMetadata& metadata);
+                                                  const TableMetadata& metadata, bool allow_changed_inputs = false);
 
   TableFile(TableFile&&) noexcept;
   TableFile& operator=(TableFile&&) noexcept;

@@ -39,6 +39,8 @@ struct FarmSettings {
   /// Resuming: compute failed points again (an exception may have been transient, e.g. memory).
   /// Unresolved points are kept: the scene cannot resolve them, and would not on a second try.
   bool retry_failed = false;
+  /// Resuming: accept a table whose packing hash or sedwave version differs from this run's.
+  bool allow_changed_inputs = false;
 };
 
 struct FarmReport {
