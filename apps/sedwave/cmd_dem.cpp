@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -65,6 +66,20 @@ std::array<bool, 3> parse_boundary(std::string text) {
   if (text.size() != 3 || text.find_first_not_of("pfsm") != std::string::npos)
     throw std::invalid_argument("--boundary '" + text + "': expected three letters p (periodic) or f (open), e.g. ppf");
   return {text[0] == 'p', text[1] == 'p', text[2] == 'p'};
+}
+
+/// Accepts numbers in (low, high], or (low, inf) (CLI11's Range includes both ends).
+CLI::Validator half_open_range(double low, double high) {
+  std::ostringstream name;
+  name << "(" << low << ", " << high << (std::isinf(high) ? ")" : "]");
+  return CLI::Validator(
+      [low, high, range = name.str()](const std::string& text) -> std::string {
+        double x = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), x);
+        const bool ok = error == std::errc{} && end == text.data() + text.size() && x > low && x <= high;
+        return ok ? std::string{} : "value " + text + " not in the accepted range " + range;
+      },
+      name.str());
 }
 
 /// Hooke contact (LAMMPS pair gran/hooke[/history]) from kn, or from E and nu with the LAMMPS
@@ -285,32 +300,39 @@ Command add_dem_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--boundary", o->boundary, "periodicity along x y z, p or f each (LAMMPS boundary)")
       ->capture_default_str();
-  auto* kn = cmd->add_option("--kn", o->kn, "normal stiffness kn [force/length]")->check(CLI::PositiveNumber);
+  auto* kn = cmd->add_option("--kn", o->kn, "normal stiffness kn [force/length]")->check(half_open_range(0.0, INFINITY));
   auto* young = cmd->add_option("--young", o->young,
                                 "Young's modulus E: kn = 4G/(3(1-nu)), kt = 4G/(2-nu), G = E/(2(1+nu)) "
                                 "(LAMMPS example scripts)")
-                    ->check(CLI::PositiveNumber);
-  auto* poisson = cmd->add_option("--poisson", o->poisson, "Poisson's ratio nu (with --young)");
+                    ->check(half_open_range(0.0, INFINITY));
+  auto* poisson = cmd->add_option("--poisson", o->poisson, "Poisson's ratio nu in (-1, 0.5] (with --young)")
+                      ->check(half_open_range(-1.0, 0.5));
   young->needs(poisson);
   poisson->needs(young);
   kn->excludes(young);
   auto* e_n = cmd->add_option("--restitution", o->restitution,
                               "normal restitution e_n in (0, 1], exact for every pair");
-  auto* gamma_n = cmd->add_option("--gamma-n", o->gamma_n, "LAMMPS gamma_n: dashpot per unit reduced mass [1/time]");
-  auto* gamma = cmd->add_option("--gamma", o->gamma, "constant dashpot [force time/length]");
+  e_n->check(half_open_range(0.0, 1.0));
+  auto* gamma_n = cmd->add_option("--gamma-n", o->gamma_n, "LAMMPS gamma_n: dashpot per unit reduced mass [1/time]")
+                      ->check(CLI::NonNegativeNumber);
+  auto* gamma = cmd->add_option("--gamma", o->gamma, "constant dashpot [force time/length]")->check(CLI::NonNegativeNumber);
   e_n->excludes(gamma_n)->excludes(gamma);
   gamma_n->excludes(gamma);
   auto* friction = cmd->add_option("--friction", o->friction,
                                    "Coulomb friction mu: adds the tangential spring with history")
                        ->check(CLI::NonNegativeNumber);
   cmd->add_option("--kt", o->kt, "tangential stiffness (default 2/7 kn, or 4G/(2-nu) with --young)")
+      ->check(half_open_range(0.0, INFINITY))
       ->needs(friction);
   cmd->add_option("--gamma-t", o->gamma_t, "LAMMPS gamma_t: tangential dashpot per unit reduced mass")
+      ->check(CLI::NonNegativeNumber)
       ->needs(friction);
   cmd->add_option("--gravity", o->gravity, "gravity gx,gy,gz")->delimiter(',')->expected(3);
   cmd->add_option("--dt", o->dt, "time step (default 0.01 binary collision time; refused above the "
-                                 "stability limit)");
-  cmd->add_option("--skin", o->skin, "neighbour skin (default 0.1 mean diameter)");
+                                 "stability limit)")
+      ->check(half_open_range(0.0, INFINITY));
+  cmd->add_option("--skin", o->skin, "neighbour skin (default 0.1 mean diameter)")
+      ->check(half_open_range(0.0, INFINITY));
   cmd->add_option("--newton", o->newton,
                   "on: a pair across a periodic face or rank boundary is computed once and its reaction "
                   "sent back (LAMMPS newton on); off: computed on both sides")
@@ -324,7 +346,7 @@ Command add_dem_command(CLI::App& app) {
                                      "HDF5 checkpoint, replaced atomically every --every steps and at the end");
   cmd->add_option("--every", o->checkpoint_every, "steps between checkpoints")
       ->needs(checkpoint)
-      ->check(CLI::PositiveNumber);
+      ->check(half_open_range(0.0, INFINITY));
   cmd->add_flag("--restart", o->restart,
                 "continue from --checkpoint if it exists (else start at step 0); finished steps are not redone; "
                 "refused if the data file, a contact or wall option or the sedwave version differs from the "
@@ -335,12 +357,12 @@ Command add_dem_command(CLI::App& app) {
   auto* dump = cmd->add_option("--dump", o->dump, "LAMMPS text dump (id type radius x y z vx vy vz)");
   cmd->add_option("--dump-every", o->dump_every, "steps between dump frames")
       ->needs(dump)
-      ->check(CLI::PositiveNumber);
+      ->check(half_open_range(0.0, INFINITY));
   auto* h5md = cmd->add_option("--h5md", o->h5md,
                                "H5MD (HDF5) trajectory: position, velocity, id, species, radius, box");
   cmd->add_option("--h5md-every", o->h5md_every, "steps between H5MD frames")
       ->needs(h5md)
-      ->check(CLI::PositiveNumber);
+      ->check(half_open_range(0.0, INFINITY));
   cmd->add_option("--final", o->final_state,
                   "write the final state as a LAMMPS data file (17 digits: reads back bit for bit)");
   cmd->add_option("--progress", o->progress_seconds, "seconds between progress lines")->capture_default_str();

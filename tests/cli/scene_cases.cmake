@@ -68,6 +68,14 @@ sedwave_cli_case(scene.dem_data.atom_type_zero 1 [=[dem_type_zero\.data:12: atom
 sedwave_cli_case(scene.dem_data.nan_coordinate 1 [=[dem_nan_coordinate\.data:13: coordinates must be finite]=]
   dem ${SCENE_DATA}/dem_nan_coordinate.data --steps 0 --kn 1000 --quiet)
 
+# ---- sedwave dem options out of range (usage errors) ----------------------------------------------
+sedwave_cli_case(scene.dem_options.poisson_above_half 2 [=[--poisson: value 1\.5 not in the accepted range \(-1, 0\.5\]]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 0 --young 1000 --poisson 1.5 --quiet)
+sedwave_cli_case(scene.dem_options.restitution_above_one 2 [=[--restitution: value 1\.2 not in the accepted range \(0, 1\]]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 0 --kn 1000 --restitution 1.2 --quiet)
+sedwave_cli_case(scene.dem_options.negative_time_step 2 [=[--dt: value -0\.001 not in the accepted range \(0, inf\)]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 0 --kn 1000 --dt -0.001 --quiet)
+
 # ---- DEM restarts refuse changed inputs ------------------------------------------------------------
 # The setup writes a checkpoint at step 100 (a wiggled floor); each case restarts from it. Refused
 # restarts write nothing, and the allowed one is already at its last step, so the cases may run in
