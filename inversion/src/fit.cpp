@@ -139,7 +139,8 @@ Jet3 log_f_star(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
   return -log_tau(t, s) - std::log(2.0 * std::numbers::pi);
 }
 Jet3 log_gamma_hat(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
-  return log_gamma(t, s) - 0.5 * log(scales(t, s).kappa * scales(t, s).mass());
+  const forward::GrainScales<Jet3> g = scales(t, s);
+  return log_gamma(t, s) - 0.5 * log(g.kappa * g.mass());
 }
 /// kappa over the Hertz stiffness of quartz grains of the same d at 10 kPa (plausibility.hpp);
 /// Hertz kappa is proportional to d at a given pressure.
@@ -237,8 +238,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
     result.parameters.push_back(r);
   }
 
-  std::array<Jet3, kParameterCount> t;
-  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
+  const detail::ThetaJets t = detail::seeded_jets(theta.data());
   for (const CombinationInfo& info : kCombinations) {
     const Jet3 log_q = info.log_value(t, s);
     const Determination d = determine(free_part(log_q, s.free), analysis, result.covariance, options.determined_log_sigma);
@@ -420,8 +420,7 @@ std::vector<CurvePoint> model_curves(const FitResult& result, const forward::Dis
   const Predictor predictor(model, result.fitted.damping, result.fitted.density);
   const std::vector<int> free = result.fitted.free_indices();
   const Theta theta = result.fitted.log_values();
-  std::array<Jet3, kParameterCount> t;
-  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
+  const detail::ThetaJets t = detail::seeded_jets(theta.data());
   auto sigma_of = [&](const Jet3& q) {
     const Eigen::VectorXd g = free_part(q, free) / q.a;  // d ln q
     return q.a * std::sqrt(std::max(0.0, g.dot(result.covariance * g)));

@@ -41,8 +41,8 @@ class ObservationResiduals final : public ceres::CostFunction {
         }
         return true;
       }
-      std::array<Jet3, kParameterCount> t;
-      for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(parameters[i][0], i);
+      const std::array<double, kParameterCount> theta{parameters[0][0], parameters[1][0], parameters[2][0]};
+      const ThetaJets t = seeded_jets(theta.data());
       for (size_t r = 0; r < setup_->residuals.size(); ++r) {
         Jet3 value;
         if (!setup_->residuals[r](&t[0], &t[1], &t[2], &value)) return false;
@@ -66,8 +66,8 @@ class ConstraintResidual final : public ceres::SizedCostFunction<1, 1, 1, 1> {
  public:
   ConstraintResidual(const Setup& s, const Constraint& c) : setup_(&s), constraint_(c) {}
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
-    std::array<Jet3, kParameterCount> t;
-    for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(parameters[i][0], i);
+    const std::array<double, kParameterCount> theta{parameters[0][0], parameters[1][0], parameters[2][0]};
+    const ThetaJets t = seeded_jets(theta.data());
     const Jet3 q = constraint_.log_value(t, *setup_);
     residual[0] = (q.a - constraint_.target) / constraint_.tolerance;
     if (jacobians) {
@@ -154,8 +154,7 @@ LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held, 
 }
 
 Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
-  std::array<Jet3, kParameterCount> t;
-  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
+  const ThetaJets t = seeded_jets(theta.data());
   Eigen::MatrixXd J(static_cast<Eigen::Index>(s.residuals.size()), static_cast<Eigen::Index>(s.free.size()));
   for (size_t r = 0; r < s.residuals.size(); ++r) {
     Jet3 value;

@@ -16,6 +16,15 @@ namespace sedwave::inversion::detail {
 
 using Theta = std::array<double, kParameterCount>;
 using Jet3 = ceres::Jet<double, kParameterCount>;
+using ThetaJets = std::array<Jet3, kParameterCount>;
+
+/// theta as Jets seeded with the unit derivative of each ln-parameter: one evaluation then gives a
+/// function of theta with its gradient.
+[[nodiscard]] inline ThetaJets seeded_jets(const double* theta) {
+  ThetaJets t;
+  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
+  return t;
+}
 
 /// Everything a fit needs besides the solver: observations with resolved sigmas and the predictor.
 struct Setup {

@@ -7,12 +7,6 @@
 namespace sedwave::inversion::detail {
 namespace {
 
-std::array<Jet3, kParameterCount> jets(const Theta& theta) {
-  std::array<Jet3, kParameterCount> t;
-  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
-  return t;
-}
-
 /// Smallest and largest ln q over the box of free parameters (q is monotone in each ln-parameter,
 /// as every profiled quantity is, so the extremes sit at corners).
 std::pair<double, double> reachable_range(const Setup& s, const Theta& theta, const ProfiledQuantity& q) {
@@ -95,7 +89,7 @@ bool passes_two_sigma(double t, Theta theta, double limit, int side, DeltaChi2& 
 }  // namespace
 
 Jet3 log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q) {
-  const auto t = jets(theta);
+  const ThetaJets t = seeded_jets(theta.data());
   return q.parameter >= 0 ? t[q.parameter] : q.log_value(t, s);
 }
 
