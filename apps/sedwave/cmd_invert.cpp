@@ -208,7 +208,7 @@ constexpr std::size_t kProgressObservations = 10000;
 std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
   std::vector<std::filesystem::path> inputs(o.files.begin(), o.files.end());
   inputs.insert(inputs.end(), o.digitized_files.begin(), o.digitized_files.end());
-  if (o.model.starts_with("table:")) inputs.emplace_back(o.model.substr(6, o.model.find('?') - 6));
+  if (const auto table = forward::dispersion_model_file(o.model)) inputs.emplace_back(*table);
   return inputs;
 }
 

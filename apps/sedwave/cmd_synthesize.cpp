@@ -59,7 +59,7 @@ Command add_synthesize_command(CLI::App& app) {
       throw std::invalid_argument("--from must be below --to");
     }
     std::vector<std::filesystem::path> inputs;
-    if (o->model.starts_with("table:")) inputs.emplace_back(o->model.substr(6, o->model.find('?') - 6));
+    if (const auto table = forward::dispersion_model_file(o->model)) inputs.emplace_back(*table);
     check_outputs({{"--out", o->out}}, inputs, "synthesize");
     const auto model = forward::make_dispersion_model(o->model);
     const inversion::ObservationSet set = inversion::synthetic_observations(*model, truth, o->design);

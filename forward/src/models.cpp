@@ -1,6 +1,7 @@
 #include "sedwave/forward/models.hpp"
 
 #include <stdexcept>
+#include <string_view>
 
 #include "sedwave/forward/table/table_model.hpp"
 #include "sedwave/forward/theory/continuum.hpp"
@@ -15,6 +16,12 @@ std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec) 
   std::string accepted;
   for (const std::string& name : dispersion_model_names()) accepted += (accepted.empty() ? "" : ", ") + name;
   throw std::invalid_argument("unknown forward model '" + spec + "' (accepted: " + accepted + ")");
+}
+
+std::optional<std::string> dispersion_model_file(const std::string& spec) {
+  constexpr std::string_view prefix = "table:";
+  if (!spec.starts_with(prefix)) return std::nullopt;
+  return spec.substr(prefix.size(), spec.find('?') - prefix.size());
 }
 
 std::vector<std::string> dispersion_model_names() { return {"continuum", "lattice", "table:FILE.h5"}; }

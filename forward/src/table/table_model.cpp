@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "hermite_surface.hpp"
+#include "sedwave/forward/models.hpp"
 #include "sedwave/forward/table/table_file.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 
@@ -94,9 +95,9 @@ TableModel::TableModel(DispersionTable table, std::string name, OutsideTable out
 std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
   constexpr std::string_view prefix = "table:";
   if (!spec.starts_with(prefix)) throw std::invalid_argument("not a table model specification: '" + std::string(spec) + "'");
+  const std::string path = *dispersion_model_file(std::string(spec));
   spec.remove_prefix(prefix.size());
   const std::size_t question = spec.find('?');
-  const std::string path(spec.substr(0, question));
   OutsideTable outside = OutsideTable::error;
   if (question != std::string_view::npos) {
     const std::string_view option = spec.substr(question + 1);

@@ -1,6 +1,7 @@
 #pragma once
 // Choosing a forward model by name, as the command line and scene files do.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,10 @@ namespace sedwave::forward {
 /// precomputed table, docs/tables.md). Throws std::invalid_argument naming the accepted
 /// specifications for anything else.
 [[nodiscard]] std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec);
+
+/// The file a specification reads ("table:FILE.h5?..." gives FILE.h5), or nothing for a closed
+/// form: commands check that no output would overwrite it.
+[[nodiscard]] std::optional<std::string> dispersion_model_file(const std::string& spec);
 
 /// The specifications make_dispersion_model accepts, for help texts.
 [[nodiscard]] std::vector<std::string> dispersion_model_names();
