@@ -1,0 +1,114 @@
+#pragma once
+// The grain-contact family: a dry granular frame whose stiffness and loss sit in spring-dashpot
+// contacts (contact stiffness kappa, grain diameter d, dashpot gamma or restitution e_n, grain
+// density rho_s), with any dimensionless forward model of forward/ (1D chain theories, 3D tables)
+// behind it. The mapping is forward/units.hpp's GrainScales:
+//   omega_hat = omega sqrt(m/kappa), gamma_hat = gamma / sqrt(kappa m)  (or sqrt(2) zeta(e_n)),
+//   alpha = alpha_hat / d,  c = c_hat d sqrt(kappa/m),  m = rho_s pi d^3 / 6.
+// The dimensionless model is a black box with exact first derivatives (forward::DispersionPoint);
+// lift() carries them onto Jets by the chain rule, so every model gets exact Jacobians.
+#include <ceres/jet.h>
+
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/dispersion.hpp"
+#include "sedwave/forward/units.hpp"
+#include "sedwave/sediment/jet_evaluated.hpp"
+
+namespace sedwave::sediment {
+
+enum class DampingForm { Gamma, Restitution };
+
+/// alpha_hat and c_hat in the scalar type of the evaluation; sigmas are the model's own.
+template <typename T>
+struct HatWave {
+  T alpha_hat;
+  T c_hat;
+  double sigma_alpha_hat = 0.0;
+  double sigma_c_hat = 0.0;
+};
+
+inline HatWave<double> lift(const forward::DispersionModel& model, double omega_hat, double gamma_hat) {
+  const forward::DispersionPoint p = model.evaluate(omega_hat, gamma_hat);
+  return {p.alpha_hat, p.c_hat, p.sigma_alpha_hat, p.sigma_c_hat};
+}
+
+/// Chain rule: f(a + v) = f(a) + (df/d omega_hat) v_omega + (df/d gamma_hat) v_gamma.
+template <int N>
+HatWave<ceres::Jet<double, N>> lift(const forward::DispersionModel& model, const ceres::Jet<double, N>& omega_hat,
+                                    const ceres::Jet<double, N>& gamma_hat) {
+  const forward::DispersionPoint p = model.evaluate(omega_hat.a, gamma_hat.a);
+  using Jet = ceres::Jet<double, N>;
+  const Jet alpha(p.alpha_hat, p.d_alpha_hat.d_omega_hat * omega_hat.v + p.d_alpha_hat.d_gamma_hat * gamma_hat.v);
+  const Jet c(p.c_hat, p.d_c_hat.d_omega_hat * omega_hat.v + p.d_c_hat.d_gamma_hat * gamma_hat.v);
+  return {alpha, c, p.sigma_alpha_hat, p.sigma_c_hat};
+}
+
+/// The dry frame's wave and its dimensionless coordinates at one frequency.
+template <typename T>
+struct FrameWave {
+  T omega_hat;
+  T gamma_hat;
+  HatWave<T> hat;
+  T attenuation;  ///< [Np/m]
+  T speed;        ///< [m/s]
+  T speed_scale;  ///< d sqrt(kappa/m) [m/s]
+};
+
+/// The dry granular frame's compressional wave: kappa [N/m], d [m], damping (gamma [kg/s] or e_n),
+/// rho_s [kg/m^3] at frequency_hz.
+template <typename T>
+FrameWave<T> frame_wave(const forward::DispersionModel& model, DampingForm form, const T& kappa, const T& diameter,
+                        const T& damping, const T& grain_density, double frequency_hz) {
+  const forward::GrainScales<T> scales{kappa, diameter, grain_density};
+  // e_n is defined for a collision of two equal grains (m_eff = m/2), so it maps to gamma_hat
+  // alone: gamma_hat = sqrt(2) zeta(e_n), independent of kappa and d.
+  const T gamma_hat =
+      form == DampingForm::Gamma ? scales.gamma_hat(damping) : forward::gamma_hat_from_restitution(damping);
+  const T omega_hat = scales.omega_hat(T(2.0 * std::numbers::pi * frequency_hz));
+  const HatWave<T> hat = lift(model, omega_hat, gamma_hat);
+  return {omega_hat, gamma_hat, hat, scales.alpha(hat.alpha_hat), scales.speed(hat.c_hat), scales.speed_scale()};
+}
+
+/// Names, units, defaults and ranges of the four grain-contact parameters (kappa, d, gamma or e_n,
+/// rho_s), in this order.
+[[nodiscard]] std::vector<Parameter> grain_contact_parameters(DampingForm form);
+
+/// A dry granular frame as a sediment model (parameters: grain_contact_parameters).
+class GrainContactModel final : public JetEvaluated<GrainContactModel> {
+ public:
+  static constexpr int kParameters = 4;
+  enum Index : int { kKappa = 0, kDiameter = 1, kDamping = 2, kGrainDensity = 3 };
+
+  GrainContactModel(std::shared_ptr<const forward::DispersionModel> model, DampingForm form);
+
+  [[nodiscard]] std::string name() const override { return model_->name(); }
+  [[nodiscard]] std::string summary() const override;
+  [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+  [[nodiscard]] const forward::DispersionModel& dimensionless() const { return *model_; }
+  [[nodiscard]] DampingForm damping_form() const { return form_; }
+
+  template <typename T>
+  WaveOf<T> wave(const T* v, double frequency_hz) const {
+    const FrameWave<T> f = frame_wave(*model_, form_, v[kKappa], v[kDiameter], v[kDamping], v[kGrainDensity],
+                                      frequency_hz);
+    const double d = value_of(v[kDiameter]);
+    return {f.attenuation, f.speed, f.hat.sigma_alpha_hat / d, f.hat.sigma_c_hat * value_of(f.speed_scale)};
+  }
+
+ private:
+  static double value_of(double x) { return x; }
+  template <int N>
+  static double value_of(const ceres::Jet<double, N>& x) {
+    return x.a;
+  }
+
+  std::shared_ptr<const forward::DispersionModel> model_;
+  DampingForm form_;
+  std::vector<Parameter> parameters_;
+};
+
+}  // namespace sedwave::sediment

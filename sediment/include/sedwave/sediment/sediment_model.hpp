@@ -1,0 +1,66 @@
+#pragma once
+// A sediment model: named physical parameters in SI, and the compressional wave it predicts at a
+// frequency (attenuation [Np/m], phase speed [m/s]) with exact derivatives.
+//
+// This is the level the inversion works at. The dimensionless grain-contact engines of forward/
+// (chain theories, 3D tables) enter through one family (grain_contact.hpp); poroelastic and
+// grain-shearing models are closed forms in SI. Every model is written once, templated on the
+// scalar type T, and JetEvaluated<> turns it into values plus a gradient by forward-mode automatic
+// differentiation (ceres::Jet), so Ceres, NLopt, the identifiability analysis and samplers need
+// nothing model-specific.
+#include <span>
+#include <string>
+#include <vector>
+
+namespace sedwave::sediment {
+
+/// One physical parameter of a model.
+struct Parameter {
+  std::string name;     ///< command-line name, e.g. "porosity" (an option --porosity sets it)
+  std::string unit;     ///< SI unit; "1" for a dimensionless number
+  double default_value = 0.0;  ///< documented default (quartz sand in sea water unless said)
+  double lower = 0.0;   ///< physical range: values outside [lower, upper] are refused
+  double upper = 0.0;
+  /// Fitted in ln (a positive quantity spanning decades) rather than linearly.
+  bool log_scale = true;
+  std::string meaning;  ///< one line, with its source where it has one
+};
+
+/// The compressional wave at one frequency.
+struct Wave {
+  double attenuation = 0.0;        ///< alpha [Np/m]; amplitude ~ exp(-alpha x)
+  double speed = 0.0;              ///< phase speed [m/s]
+  double sigma_attenuation = 0.0;  ///< the model's own 1-sigma uncertainty [Np/m] (tables; 0 else)
+  double sigma_speed = 0.0;        ///< [m/s]
+  /// d attenuation / d value_i and d speed / d value_i (SI), one entry per parameter; empty unless
+  /// derivatives were asked for.
+  std::vector<double> d_attenuation;
+  std::vector<double> d_speed;
+};
+
+/// Interface of every sediment model. Implementations are immutable after construction and
+/// thread-safe for concurrent evaluate().
+class SedimentModel {
+ public:
+  virtual ~SedimentModel() = default;
+  /// Identifier on the command line and in reports, e.g. "biot-stoll".
+  [[nodiscard]] virtual std::string name() const = 0;
+  /// One line: what the model is, with its source.
+  [[nodiscard]] virtual std::string summary() const = 0;
+  [[nodiscard]] virtual const std::vector<Parameter>& parameters() const = 0;
+  /// The wave at `frequency_hz` for parameter `values` (SI, in parameters() order). With
+  /// `derivatives`, Wave::d_* hold the gradient. Throws std::domain_error where the model has no
+  /// answer (a table's range); never returns NaN silently.
+  [[nodiscard]] virtual Wave evaluate(std::span<const double> values, double frequency_hz,
+                                      bool derivatives) const = 0;
+
+  /// Index of a parameter by name; throws std::invalid_argument listing the accepted names.
+  [[nodiscard]] int index_of(const std::string& name) const;
+  /// The defaults, in parameters() order.
+  [[nodiscard]] std::vector<double> default_values() const;
+  /// Throws std::invalid_argument naming the parameter, its value and its range if a value lies
+  /// outside its physical range or is not finite.
+  void check_values(std::span<const double> values) const;
+};
+
+}  // namespace sedwave::sediment
