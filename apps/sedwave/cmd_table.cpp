@@ -74,9 +74,10 @@ channel::PreparedChannel packing_for_table(const channel::ChannelScene& scene, c
 
 table::TableMetadata table_metadata(const table::TableGridFile& grid, const channel::ChannelScene& scene,
                                     const std::string& packing_provenance, std::string packing_hash,
-                                    bool long_wavelength, int member) {
+                                    bool long_wavelength, int member, int packings) {
   table::TableMetadata m;
   m.packing_hash = std::move(packing_hash);
+  m.packings = packings;
   m.scene_toml = scene.text;
   m.engine = long_wavelength ? "sedwave-long-wavelength"
                              : (scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem");
@@ -194,14 +195,15 @@ Command add_table_command(CLI::App& app) {
       const std::string packing_hash =
           o->member >= 0 ? packing_hashes.front() : io::combined_fingerprint(packing_hashes);
       report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid,
-                                    table_metadata(grid, scene, provenance, packing_hash, long_wavelength, o->member),
+                                    table_metadata(grid, scene, provenance, packing_hash, long_wavelength, o->member,
+                                                   static_cast<int>(members.size())),
                                     point, settings);
     } else {
       std::string provenance;
       channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
       table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
       const table::TableMetadata metadata =
-          table_metadata(grid, scene, provenance, channel::packing_fingerprint(packing), false, -1);
+          table_metadata(grid, scene, provenance, channel::packing_fingerprint(packing), false, -1, 1);
       report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, metadata,
                                     table::dem_point_function(packing, scene.contact, scene.drive, grid.grid), settings);
     }

@@ -350,6 +350,11 @@ void analyze_with_restarts(const Setup& s, Theta theta, const FitOptions& option
     theta = solve_local(s, *better, options.max_iterations).theta;
   }
   flag_implausible(options, result);
+  // A model whose own sigma is known to leave something out (a one-packing table) makes every
+  // interval too narrow by an unknown amount.
+  if (const std::string caveat = s.predictor.model().uncertainty_caveat(); !caveat.empty()) {
+    result.flags.push_back({"model", caveat});
+  }
 }
 
 const char* method_name(FitMethod method) {

@@ -149,3 +149,8 @@ sedwave_cli_case(scene.table.transposed_results 1 [=[table_transposed\.h5: datas
   show ${SCENE_DATA}/table_transposed.h5)
 sedwave_cli_case(scene.table.wrong_format_version 1 [=[table_format_version_2\.h5: format_version 2, expected 1]=]
   show ${SCENE_DATA}/table_format_version_2.h5)
+# A table says what its sigma includes: one packing's noise, or an ensemble's standard error.
+sedwave_cli_case(show.one_packing_sigma_is_said 0 "# sigma: one packing: .*does NOT include packing-to-packing"
+  show ${PROJECT_SOURCE_DIR}/data/tables/thesis_w3_small.h5)
+sedwave_cli_case(show.ensemble_sigma_is_said 0 "# sigma: standard error of the mean over 5 independent packings"
+  show ${PROJECT_SOURCE_DIR}/data/tables/field_w3_long_wavelength.h5)

@@ -2,6 +2,7 @@
 // uncertainties, and what the data cannot determine is reported as such.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -150,6 +151,33 @@ struct DrivenTableCase {
     return fit(data, table, start, FitOptions{.method = FitMethod::Ceres});
   }
 };
+
+// A table's sigma enters the fit as model uncertainty; one that leaves out packing-to-packing
+// variation (a table of one packing) makes every interval too narrow, and the fit must say so.
+TEST(SyntheticInversion, OnePackingTableIsFlagged) {
+  const DrivenTableCase c;
+  const FitParameters truth = c.truth(10.0);
+  const ObservationSet data = synthetic_observations(c.table, truth, c.lab_band(1));
+  const auto model_flags = [](const FitResult& r) {
+    return std::count_if(r.flags.begin(), r.flags.end(), [](const PlausibilityFlag& f) { return f.quantity == "model"; });
+  };
+  EXPECT_EQ(model_flags(c.fit_table(data, truth)), 0) << "an ensemble of 5 packings is flagged";
+
+  const forward::table::DispersionTable& ensemble = c.table.table();
+  forward::table::TableMetadata one = ensemble.metadata();
+  ASSERT_EQ(one.packings, 5);
+  one.packings = 1;
+  forward::table::DispersionTable single(ensemble.grid(), one);
+  for (std::size_t g = 0; g < ensemble.n_gamma(); ++g)
+    for (std::size_t w = 0; w < ensemble.n_omega(); ++w) single.set(g, w, ensemble.at(g, w));
+  const forward::table::TableModel one_packing{std::move(single), "one"};
+  FitParameters start = truth;
+  start.spec[kKappa].value *= 0.9;
+  const FitResult r = fit(data, one_packing, start, FitOptions{.method = FitMethod::Ceres, .profile_likelihood = false});
+  ASSERT_EQ(model_flags(r), 1);
+  const auto flag = std::find_if(r.flags.begin(), r.flags.end(), [](const PlausibilityFlag& f) { return f.quantity == "model"; });
+  EXPECT_NE(flag->message.find("one packing"), std::string::npos) << flag->message;
+}
 
 TEST(SyntheticInversion, DrivenTableDeterminesDiameterTheContinuumCannot) {
   // gamma_hat = 10, the overdamped contacts of real sand: the 3D dispersion at 5-60 grains per

@@ -146,6 +146,7 @@ table::DispersionTable merge_member_tables(std::span<const table::DispersionTabl
   std::vector<std::string> hashes;
   for (const auto& [k, hash] : packing_hashes) hashes.push_back(hash);
   metadata.packing_hash = io::combined_fingerprint(hashes);
+  metadata.packings = static_cast<int>(seen.size());
   std::string which;
   for (const int k : seen) which += (which.empty() ? "" : ", ") + std::to_string(k);
   metadata.definitions += "\nMerged by sedwave merge: mean and standard error over members " + which + " of " +

@@ -61,6 +61,19 @@ PointResult failed_point(std::string reason, double wall_seconds) {
   return not_ok_point(PointStatus::failed, std::move(reason), wall_seconds);
 }
 
+std::string sigma_meaning(const TableMetadata& metadata) {
+  const int n = metadata.packings;
+  if (n == 1) {
+    return "one packing: sigma is the measurement's own uncertainty and does NOT include "
+           "packing-to-packing variation (docs/tables.md, \"What a table's sigma includes\")";
+  }
+  if (n >= 2) {
+    return "standard error of the mean over " + std::to_string(n) +
+           " independent packings: includes packing-to-packing variation";
+  }
+  return "not recorded (a closed form, or a table written before it was stored)";
+}
+
 std::string_view standard_definitions() {
   return "omega_hat = omega sqrt(m/kappa); gamma_hat = gamma / sqrt(kappa m); "
          "alpha_hat = alpha d [Np per grain diameter, amplitude ~ exp(-alpha x)]; "

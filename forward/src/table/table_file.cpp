@@ -80,6 +80,8 @@ void write_layout(const h5::Handle& file, const DispersionTable& table) {
   h5::write_string_attribute(file, "engine", m.engine);
   h5::write_string_attribute(file, "definitions", m.definitions);
   h5::write_string_attribute(file, "packing_hash", m.packing_hash);
+  h5::write_int_attribute(file, "packings", m.packings);
+  h5::write_string_attribute(file, "sigma_includes", sigma_meaning(m));
   h5::write_string_dataset(file, "scene", m.scene_toml);
   write_grid(file, table.grid());
   create_results(file, table.grid());
@@ -137,6 +139,7 @@ TableMetadata read_metadata(const h5::Handle& file) {
   m.code_version = h5::read_string_attribute(file, "sedwave_version");
   m.definitions = h5::read_string_attribute(file, "definitions");
   if (h5::has_attribute(file, "packing_hash")) m.packing_hash = h5::read_string_attribute(file, "packing_hash");
+  if (h5::has_attribute(file, "packings")) m.packings = h5::read_int_attribute(file, "packings");
   return m;
 }
 

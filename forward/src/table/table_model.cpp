@@ -229,4 +229,19 @@ double TableModel::long_wavelength_c_hat() const {
   throw std::domain_error("table " + name_ + " has no ok point");
 }
 
+std::string TableModel::uncertainty_caveat() const {
+  const TableMetadata& m = table_.metadata();
+  if (m.packings == 1) {
+    return "table '" + name_ + "' was computed on one packing: its sigma leaves out packing-to-packing " +
+           "variation (for W = 3 channels of 10^4 grains about 1-2 % in c_hat and 1-25 % in alpha_hat), so " +
+           "every interval is too narrow; make the table over an ensemble of packings (docs/tables.md, " +
+           "\"What a table's sigma includes\")";
+  }
+  if (m.packings == 0 && m.engine.starts_with("sedwave-")) {
+    return "table '" + name_ + "' does not record how many packings its sigma spans (" + m.engine +
+           ", written before this was stored): packing-to-packing variation may be missing from it";
+  }
+  return {};
+}
+
 }  // namespace sedwave::forward::table

@@ -39,6 +39,9 @@ class DispersionModel {
   /// dashpots carry no force at zero frequency). 1 for the chains, whose speed scale d sqrt(kappa/m)
   /// is their low-frequency speed; a 3D packing is softer or stiffer.
   [[nodiscard]] virtual double long_wavelength_c_hat() const { return 1.0; }
+  /// What the model's own sigmas are known to leave out, in words (an inversion flags it); empty
+  /// when nothing is known to be missing (closed forms are exact).
+  [[nodiscard]] virtual std::string uncertainty_caveat() const { return {}; }
 };
 
 }  // namespace sedwave::forward

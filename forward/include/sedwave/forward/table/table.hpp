@@ -63,9 +63,17 @@ struct TableMetadata {
   /// Hash of the packing(s) every point starts from (io::Fingerprint); empty where none, or in
   /// tables written before it was recorded. A resumed table must start from the same packing.
   std::string packing_hash;
+  /// Independent packings the per-point sigma spans: 1 = one packing, whose sigma is the
+  /// measurement's own uncertainty and leaves out packing-to-packing variation; n >= 2 = the
+  /// standard error of the mean over n packings, which includes it; 0 = a closed form or not
+  /// recorded (tables written before it was stored). sigma_meaning() says it in words.
+  int packings = 0;
 
   friend bool operator==(const TableMetadata&, const TableMetadata&) = default;
 };
+
+/// What a table's sigma includes, in words (stored beside `packings` as the attribute sigma_includes).
+[[nodiscard]] std::string sigma_meaning(const TableMetadata& metadata);
 
 /// The text stored as TableMetadata::definitions by default.
 [[nodiscard]] std::string_view standard_definitions();

@@ -67,6 +67,9 @@ class TableModel final : public DispersionModel {
   /// The table's c_hat at its lowest omega_hat and, there, its lowest gamma_hat with an ok point:
   /// the closest the table comes to the static limit (its lattice dispersion there is ~omega_hat^2).
   [[nodiscard]] double long_wavelength_c_hat() const override;
+  /// Non-empty for a table of one packing (its sigma leaves out packing-to-packing variation) and
+  /// for an engine-made table that does not record how many packings its sigma spans.
+  [[nodiscard]] std::string uncertainty_caveat() const override;
 
   /// How many evaluations fell back to the lattice theory so far.
   [[nodiscard]] std::uint64_t fallback_count() const { return fallbacks_.load(std::memory_order_relaxed); }
