@@ -30,7 +30,7 @@ void append_shearing_parameters(std::vector<Parameter>& ps, double gamma_p, doub
 }  // namespace
 
 // Buckingham (2005): the reference sediment (porosity 0.377, grain size 1 mm, 0.3 m below the
-// seabed) to which the theory was fitted over the Hamilton-Richardson data set.
+// seabed) of its comparison with the Hamilton and Richardson sediment data.
 GrainShearingModel::GrainShearingModel() {
   const std::string source = "Buckingham 2005 reference sediment";
   parameters_ = mixture_parameters({0.377, 2730.0, 1005.0, 3.6e10, 2.374e9}, source);
