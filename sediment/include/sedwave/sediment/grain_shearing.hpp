@@ -12,7 +12,7 @@
 //
 // Both share one dispersion relation (SI throughout):
 //   k_p = (omega / c_0) [1 + chi_p Psi(omega)]^(-1/2),   chi_p = (gamma_p + 4/3 gamma_s) / (rho_0 c_0^2),
-//   c_p = omega / Re k_p,  alpha_p = Im k_p  (Im k_p > 0 for the time dependence e^{i omega t}),
+//   c_p = omega / Re k_p,  alpha_p = -Im k_p  (the wave e^{i(omega t - k_p x)} decays: Im k_p < 0),
 // where rho_0, c_0 are Wood's mixture of grains and water (the sediment with no frame rigidity):
 //   rho_0 = N rho_w + (1 - N) rho_s,   1/K_0 = N/K_w + (1 - N)/K_s,   c_0 = sqrt(K_0 / rho_0).
 // The memory function Psi is what distinguishes the theories:
