@@ -3,6 +3,7 @@
 // grain-contact wave numbers. std::complex<T> is specified for float, double and long double only,
 // so automatic differentiation through complex algebra needs its own small type.
 #include <cmath>
+#include <numbers>
 
 namespace sedwave::sediment {
 
@@ -61,6 +62,49 @@ Complex<T> polar(const T& magnitude, const T& phase) {
   using std::cos;
   using std::sin;
   return {magnitude * cos(phase), magnitude * sin(phase)};
+}
+
+// ---- Powers of a complex number (grain-shearing models) ----------------------------------------
+// Kept together at the end of the file. All use the principal branch, arg z in (-pi, pi].
+
+/// Principal argument of z, in (-pi, pi].
+template <typename T>
+T arg(const Complex<T>& z) {
+  using std::atan2;
+  return atan2(z.im, z.re);
+}
+
+/// e^z.
+template <typename T>
+Complex<T> exp(const Complex<T>& z) {
+  using std::exp;
+  return polar(T(exp(z.re)), z.im);
+}
+
+/// Principal logarithm ln|z| + i arg z (z != 0).
+template <typename T>
+Complex<T> log(const Complex<T>& z) {
+  using std::log;
+  return {log(abs(z)), arg(z)};
+}
+
+/// Principal power z^p = |z|^p e^{i p arg z} for a real exponent p (z != 0): the polar form keeps
+/// one pow, one atan2 and one cos/sin pair, and is exact in p for Jets.
+template <typename T>
+Complex<T> pow(const Complex<T>& z, const T& p) {
+  using std::exp;
+  using std::log;
+  // |z|^p from ln|z|^2 / 2: no square root, no overflow of |z|^2 for the moduli met here.
+  const T log_modulus = log(z.re * z.re + z.im * z.im) / T(2.0);
+  return polar(T(exp(p * log_modulus)), T(p * arg(z)));
+}
+
+/// (i x)^p for real x > 0 and real p: x^p e^{i p pi/2}, the fractional-derivative factor of
+/// power-law (grain-shearing) memory functions, without a general complex power.
+template <typename T>
+Complex<T> pow_imaginary(double x, const T& p) {
+  using std::pow;
+  return polar(T(pow(x, p)), T(p * (std::numbers::pi / 2.0)));
 }
 
 }  // namespace sedwave::sediment

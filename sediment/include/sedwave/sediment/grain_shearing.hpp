@@ -1,0 +1,152 @@
+#pragma once
+// Buckingham's grain-shearing theories of an unconsolidated, water-saturated granular sediment
+// (no Biot frame-fluid flow; all loss from intergranular shearing), compressional wave only:
+//
+//   GS      M. J. Buckingham, J. Acoust. Soc. Am. 108, 2796-2815 (2000), "Wave propagation,
+//           stress relaxation, and grain-to-grain shearing in saturated, unconsolidated marine
+//           sediments"; the same dispersion relation with the reference parameter set of
+//           M. J. Buckingham, J. Acoust. Soc. Am. 117, 137-152 (2005).
+//   VGS(λ)  M. J. Buckingham, J. Acoust. Soc. Am. 127, 2099 (2010): the viscous grain-shearing
+//           theory of M. J. Buckingham, J. Acoust. Soc. Am. 122, 1486-1501 (2007), in its VGS(λ)
+//           form, whose memory function is viscous below a transition frequency 1/(2 pi tau_p).
+//
+// Both share one dispersion relation (SI throughout):
+//   k_p = (omega / c_0) [1 + chi_p Psi(omega)]^(-1/2),   chi_p = (gamma_p + 4/3 gamma_s) / (rho_0 c_0^2),
+//   c_p = omega / Re k_p,  alpha_p = -Im k_p  (the wave e^{i(omega t - k_p x)} decays: Im k_p < 0),
+// where rho_0, c_0 are Wood's mixture of grains and water (the sediment with no frame rigidity):
+//   rho_0 = N rho_w + (1 - N) rho_s,   1/K_0 = N/K_w + (1 - N)/K_s,   c_0 = sqrt(K_0 / rho_0).
+// The memory function Psi is what distinguishes the theories:
+//   GS:      Psi = (i omega T)^n                                  (power-law strain hardening)
+//   VGS(λ):  Psi = (i omega T)^n (1 + 1/(i omega tau_p))^(n - 1)   (viscous at omega tau_p << 1)
+// with T = 1 s an arbitrary reference time (it fixes the unit of gamma_p, gamma_s) and n the
+// strain-hardening index. The equation numbers of the papers are not quoted: the forms above are
+// identified by their content (the papers' own notation), see docs/models/grain-shearing.md.
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sedwave/sediment/complex.hpp"
+#include "sedwave/sediment/jet_evaluated.hpp"
+
+namespace sedwave::sediment {
+
+/// Reference time T of the grain-shearing memory function [s]: Buckingham's choice T = 1 s makes
+/// (omega T)^n dimensionless without a further parameter (a different T rescales gamma_p, gamma_s).
+inline constexpr double kGrainShearingReferenceTime = 1.0;
+
+/// Grains and water as a suspension: Wood's (1930) mixture, the sediment with no frame rigidity.
+template <typename T>
+struct WoodMixture {
+  T density;       ///< rho_0 [kg/m^3]
+  T bulk_modulus;  ///< K_0 [Pa]
+  T speed;         ///< c_0 = sqrt(K_0 / rho_0) [m/s]
+};
+
+template <typename T>
+WoodMixture<T> wood_mixture(const T& porosity, const T& grain_density, const T& water_density,
+                            const T& grain_bulk_modulus, const T& water_bulk_modulus) {
+  using std::sqrt;
+  const T density = porosity * water_density + (T(1.0) - porosity) * grain_density;
+  const T bulk_modulus = T(1.0) / (porosity / water_bulk_modulus + (T(1.0) - porosity) / grain_bulk_modulus);
+  return {density, bulk_modulus, sqrt(bulk_modulus / density)};
+}
+
+/// The compressional wave k_p = (omega / c_0) (1 + stiffening)^(-1/2), stiffening = chi_p Psi.
+template <typename T>
+WaveOf<T> grain_shearing_compressional_wave(const T& wood_speed, const Complex<T>& stiffening,
+                                            double omega) {
+  const Complex<T> slowness_factor = Complex<T>(T(1.0)) / sqrt(Complex<T>(T(1.0)) + stiffening);
+  return {T(-omega) * slowness_factor.im / wood_speed, wood_speed / slowness_factor.re};
+}
+
+/// The five parameters of the grain-water mixture (porosity, rho_s, rho_w, K_s, K_w), in this
+/// order, with the given defaults (ranges are common).
+struct MixtureDefaults {
+  double porosity = 0.0;
+  double grain_density = 0.0;        ///< [kg/m^3]
+  double water_density = 0.0;        ///< [kg/m^3]
+  double grain_bulk_modulus = 0.0;   ///< [Pa]
+  double water_bulk_modulus = 0.0;   ///< [Pa]
+};
+[[nodiscard]] std::vector<Parameter> mixture_parameters(const MixtureDefaults& defaults, const std::string& source);
+
+/// GS (Buckingham 2000, 2005): parameters porosity, rho_s, rho_w, K_s, K_w, gamma_p, gamma_s, n;
+/// defaults the reference set of Buckingham (2005) (a medium sand at 0.3 m below the seabed).
+class GrainShearingModel final : public JetEvaluated<GrainShearingModel> {
+ public:
+  static constexpr int kParameters = 8;
+  enum Index : int {
+    kPorosity = 0,
+    kGrainDensity = 1,
+    kWaterDensity = 2,
+    kGrainBulkModulus = 3,
+    kWaterBulkModulus = 4,
+    kGammaP = 5,
+    kGammaS = 6,
+    kStrainHardening = 7,
+  };
+
+  GrainShearingModel();
+
+  [[nodiscard]] std::string name() const override { return "grain-shearing"; }
+  [[nodiscard]] std::string summary() const override;
+  [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+
+  template <typename T>
+  WaveOf<T> wave(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const WoodMixture<T> wood =
+        wood_mixture(v[kPorosity], v[kGrainDensity], v[kWaterDensity], v[kGrainBulkModulus], v[kWaterBulkModulus]);
+    // rho_0 c_0^2 = K_0.
+    const T chi = (v[kGammaP] + T(4.0 / 3.0) * v[kGammaS]) / wood.bulk_modulus;
+    const Complex<T> memory = pow_imaginary(omega * kGrainShearingReferenceTime, v[kStrainHardening]);
+    return grain_shearing_compressional_wave(wood.speed, Complex<T>(chi) * memory, omega);
+  }
+
+ private:
+  std::vector<Parameter> parameters_;
+};
+
+/// VGS(λ) (Buckingham 2010): the GS parameters plus the compressional viscous time constant
+/// tau_p [s]; defaults the SAX99 sand of Buckingham (2010).
+class ViscousGrainShearingModel final : public JetEvaluated<ViscousGrainShearingModel> {
+ public:
+  static constexpr int kParameters = 9;
+  enum Index : int {
+    kPorosity = 0,
+    kGrainDensity = 1,
+    kWaterDensity = 2,
+    kGrainBulkModulus = 3,
+    kWaterBulkModulus = 4,
+    kGammaP = 5,
+    kGammaS = 6,
+    kStrainHardening = 7,
+    kViscousTime = 8,
+  };
+
+  ViscousGrainShearingModel();
+
+  [[nodiscard]] std::string name() const override { return "vgs-lambda"; }
+  [[nodiscard]] std::string summary() const override;
+  [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+
+  template <typename T>
+  WaveOf<T> wave(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const WoodMixture<T> wood =
+        wood_mixture(v[kPorosity], v[kGrainDensity], v[kWaterDensity], v[kGrainBulkModulus], v[kWaterBulkModulus]);
+    const T chi = (v[kGammaP] + T(4.0 / 3.0) * v[kGammaS]) / wood.bulk_modulus;
+    const T& n = v[kStrainHardening];
+    // 1 + 1/(i omega tau_p) = 1 - i/(omega tau_p). For omega tau_p >> 1 it tends to 1 (GS); for
+    // omega tau_p << 1, Psi -> i omega T^n tau_p^(1-n): a viscous (Kelvin-Voigt) response, alpha ~ f^2.
+    const Complex<T> viscous_base(T(1.0), T(-1.0) / (T(omega) * v[kViscousTime]));
+    const Complex<T> memory =
+        pow_imaginary(omega * kGrainShearingReferenceTime, n) * pow(viscous_base, T(n - T(1.0)));
+    return grain_shearing_compressional_wave(wood.speed, Complex<T>(chi) * memory, omega);
+  }
+
+ private:
+  std::vector<Parameter> parameters_;
+};
+
+}  // namespace sedwave::sediment
