@@ -1,0 +1,128 @@
+#pragma once
+// Site inputs: the quantities a user measures or looks up for a site (grain size in phi, porosity or
+// bulk density, depth below the seafloor, water temperature and salinity) converted to the SI
+// parameters the sediment models take (grain diameter d, porosity, contact stiffness kappa, water
+// density, bulk modulus and viscosity, permeability).
+//
+// Every function cites its source and refuses an input outside the range in which that source
+// holds with std::invalid_argument naming the quantity, its value and the accepted range. The
+// manual page is docs/models/site-inputs.md.
+#include <string>
+
+namespace sedwave::sediment {
+
+// ---- Grain size -----------------------------------------------------------------------------------
+// Krumbein (1934) phi scale: d = 2^(-phi) mm. Accepted: d in [10 nm, 1 m] (the range of the
+// grain-contact models' d), i.e. phi in [-log2(1000), log2(1e5)] = [-9.966, 16.61].
+
+/// Grain diameter [m] of Krumbein grain size phi.
+[[nodiscard]] double diameter_from_phi(double phi);
+/// Krumbein grain size phi of a grain diameter [m].
+[[nodiscard]] double phi_from_diameter(double diameter);
+
+/// A class of the Wentworth (1922) grade scale; silt's subclasses as in the scale's later usage
+/// (e.g. Folk 1980). A size on a boundary belongs to the coarser class (limits are lower-inclusive).
+struct WentworthClass {
+  std::string name;   ///< e.g. "medium sand"
+  std::string major;  ///< "clay", "silt", "sand" or "gravel"
+  double lower_mm;    ///< smallest diameter of the class [mm] (0 for clay)
+  double upper_mm;    ///< diameter at which the next coarser class starts [mm] (infinity for boulder)
+};
+
+/// The Wentworth class of a grain diameter [m].
+[[nodiscard]] WentworthClass wentworth_class(double diameter);
+
+// ---- Porosity and bulk density ----------------------------------------------------------------
+// Mass balance of a water-saturated sediment: rho_bulk = beta rho_w + (1 - beta) rho_s
+// (e.g. Hamilton 1980, JASA 68, 1313; Jackson & Richardson 2007, High-Frequency Seafloor
+// Acoustics, ch. 5). Accepted: porosity in (0, 1), rho_s in [1000, 8000] kg/m^3,
+// rho_w in [900, 1300] kg/m^3 (fresh water to brine), rho_s > rho_w.
+
+/// Bulk (wet) density [kg/m^3] of a saturated sediment of this porosity.
+[[nodiscard]] double bulk_density(double porosity, double grain_density, double water_density);
+/// Porosity of a saturated sediment of this bulk density [kg/m^3] (strictly between rho_w and rho_s).
+[[nodiscard]] double porosity_from_bulk_density(double bulk_density, double grain_density, double water_density);
+
+// ---- Effective stress at depth ----------------------------------------------------------------
+/// Standard gravity [m/s^2] (CGPM 1901).
+inline constexpr double kStandardGravity = 9.80665;
+
+/// Vertical effective (intergranular) stress [Pa] at depth [m] below the seafloor in a sediment of
+/// uniform porosity with hydrostatic pore pressure: the buoyant weight of the grains above,
+/// sigma_v' = (rho_s - rho_w)(1 - beta) g z (Terzaghi's effective stress; e.g. Jackson & Richardson
+/// 2007, ch. 5). Accepted: z in [0, 1000] m (beyond, porosity varies with depth), g in
+/// [9.76, 9.84] m/s^2 (Earth's surface), densities and porosity as for bulk_density.
+[[nodiscard]] double effective_vertical_stress(double depth, double porosity, double grain_density,
+                                               double water_density, double gravity = kStandardGravity);
+
+/// Mean effective stress [Pa] from the vertical one and the coefficient of lateral earth pressure at
+/// rest K0: p' = sigma_v' (1 + 2 K0) / 3 (horizontal stresses K0 sigma_v'). Jaky (1944):
+/// K0 = 1 - sin(phi') for normally consolidated sand (about 0.4-0.5). Accepted: K0 in (0, 3].
+[[nodiscard]] double mean_effective_stress(double vertical_stress, double k0);
+
+// ---- Hertz contact stiffness at pressure --------------------------------------------------------
+/// An isotropic grain material.
+struct GrainMaterial {
+  double young_modulus;  ///< E [Pa]
+  double poisson_ratio;  ///< nu [-]
+};
+
+/// Quartz from Mavko, Mukerji & Dvorkin, The Rock Physics Handbook (2009), table 7.1: K = 37 GPa,
+/// G = 44 GPa, so E = 9KG/(3K+G) = 94.5 GPa and nu = (3K-2G)/(2(3K+G)) = 0.074.
+inline constexpr GrainMaterial kQuartz{9.45e10, 0.074};
+
+/// Mean normal force [N] per contact in a random pack of equal spheres of diameter d [m], porosity
+/// beta and coordination number Z under isotropic effective pressure p [Pa]:
+/// F = 4 pi R^2 p / (Z (1 - beta)) = pi d^2 p / (Z (1 - beta)) (Digby 1981, J. Appl. Mech. 48, 803;
+/// Walton 1987; Mavko et al. 2009, section 5.4). Accepted: p in (0, 100 MPa], d in [10 nm, 1 m],
+/// porosity in (0, 1), Z in [4, 12] (4: the fewest contacts that hold a frictional pack;
+/// 12: close packing). A dense random pack has beta ~ 0.36, Z ~ 9 (Mavko et al. 2009).
+[[nodiscard]] double contact_force_from_pressure(double pressure, double diameter, double porosity,
+                                                 double coordination);
+
+/// Hertz normal tangent stiffness dF/d delta [N/m] of a contact between two equal spheres of
+/// diameter d [m] of `material` carrying the normal force F [N]:
+/// kappa = 2 E* sqrt(R_eff delta) = (6 E*^2 R_eff F)^(1/3), E* = E / (2 (1 - nu^2)), R_eff = d/4
+/// (Johnson 1985, Contact Mechanics, ch. 4). Uses forward/units.hpp's Hertz functions.
+/// Accepted: E in (0, 1e12] Pa, nu in (-1, 0.5], d in [10 nm, 1 m], F in (0, 1e6] N.
+[[nodiscard]] double hertz_contact_stiffness(const GrainMaterial& material, double diameter, double force);
+
+/// kappa [N/m] of the grains of a random pack at effective pressure p [Pa]:
+/// hertz_contact_stiffness(material, d, contact_force_from_pressure(p, d, beta, Z)).
+[[nodiscard]] double hertz_kappa_at_pressure(const GrainMaterial& material, double diameter, double pressure,
+                                             double porosity, double coordination);
+
+// ---- Sea water --------------------------------------------------------------------------------
+/// Sound speed [m/s] in sea water, Mackenzie (1981), JASA 70, 807, nine-term equation, of
+/// temperature [deg C], salinity [ppt] and depth [m]. Accepted (validity as stated with the
+/// equation by NPL's technical guide on the speed of sound in sea water): T in [2, 30] deg C,
+/// S in [25, 40] ppt, depth in [0, 8000] m.
+[[nodiscard]] double mackenzie_sound_speed(double temperature, double salinity, double depth);
+
+/// Density [kg/m^3] of sea water at atmospheric pressure, the one-atmosphere International Equation
+/// of State of Seawater 1980 (Millero & Poisson 1981; UNESCO Technical Papers in Marine Science 44,
+/// Fofonoff & Millard 1983). Temperature on ITS-90 [deg C] (converted to the equation's IPTS-68
+/// by T68 = 1.00024 T90), practical salinity. Accepted: T in [-2, 40] deg C, S in [0, 42].
+[[nodiscard]] double seawater_density(double temperature, double salinity);
+
+/// Bulk modulus [Pa] of a fluid from its density [kg/m^3] and sound speed [m/s]: K = rho c^2
+/// (the adiabatic modulus, the one a sound wave sees). Accepted: rho in (0, 20000], c in (0, 10000].
+[[nodiscard]] double bulk_modulus(double density, double sound_speed);
+
+/// Bulk modulus [Pa] of sea water at atmospheric pressure: seawater_density(T, S) times the square
+/// of mackenzie_sound_speed(T, S, 0). Accepted: Mackenzie's range, T in [2, 30] deg C, S in [25, 40].
+[[nodiscard]] double seawater_bulk_modulus(double temperature, double salinity);
+
+/// Dynamic viscosity [Pa s] of sea water at atmospheric pressure, Sharqawy, Lienhard & Zubair (2010),
+/// Desalination and Water Treatment 16, 354, eqs. 22-23 (accuracy 1.5 %):
+/// mu = mu_w (1 + A S + B S^2), S in kg/kg. Temperature [deg C], salinity [g/kg].
+/// Accepted (the paper's validity): T in [0, 180] deg C, S in [0, 150] g/kg.
+[[nodiscard]] double seawater_viscosity(double temperature, double salinity);
+
+// ---- Permeability -----------------------------------------------------------------------------
+/// Kozeny-Carman permeability [m^2] of a pack of grains of diameter d [m] and porosity beta:
+/// k = d^2 beta^3 / (180 (1 - beta)^2) (Carman 1937, Trans. Inst. Chem. Eng. 15, 150; Bear 1972,
+/// Dynamics of Fluids in Porous Media, section 5.10). Meant for well-sorted sands. Accepted: d in [10 nm, 1 m], porosity in (0, 1).
+[[nodiscard]] double kozeny_carman_permeability(double diameter, double porosity);
+
+}  // namespace sedwave::sediment
