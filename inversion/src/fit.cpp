@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <initializer_list>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -20,7 +21,7 @@
 namespace sedwave::inversion {
 namespace {
 
-using detail::Jet3;
+using detail::Differentiated;
 using detail::LocalFit;
 using detail::Setup;
 using detail::Theta;
@@ -51,21 +52,9 @@ nlopt::algorithm nlopt_algorithm(const std::string& name) {
 constexpr std::size_t kSearchObservations = 2000;
 
 Setup search_subset(const Setup& s) {
-  Setup subset = s;
-  const std::size_t n = s.residuals.size();
-  if (n <= kSearchObservations) return subset;
-  const std::size_t stride = (n + kSearchObservations - 1) / kSearchObservations;
-  subset.observations.clear();
-  subset.residuals.clear();
-  subset.sigmas.clear();
-  subset.defaulted.clear();
-  for (std::size_t i = 0; i < n; i += stride) {
-    subset.observations.push_back(s.observations[i]);
-    subset.residuals.push_back(s.residuals[i]);
-    subset.sigmas.push_back(s.sigmas[i]);
-    subset.defaulted.push_back(s.defaulted[i]);
-  }
-  return subset;
+  const std::size_t n = s.observations.size();
+  if (n <= kSearchObservations) return s;
+  return detail::every_kth_row(s, (n + kSearchObservations - 1) / kSearchObservations);
 }
 
 GlobalFit solve_global(const Setup& full, const Theta& start, const FitOptions& options) {
@@ -117,57 +106,88 @@ GlobalFit solve_global(const Setup& full, const Theta& start, const FitOptions& 
 }
 
 // ---- Combinations: functions of theta that the data may determine when the parameters are not.
-// Each is ln q(theta) on Jets (value and gradient), so the same code gives the value, the
-// linearised sigma and the likelihood profile.
+// Each is ln q(theta) with its exact gradient, so the same code gives the value, the linearised
+// sigma and the likelihood profile. The grain contact's are log-linear in theta, except through
+// e_n.
 
-forward::GrainScales<Jet3> scales(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
-  return {exp(t[kKappa]), exp(t[kDiameter]), Jet3(s.parameters.density)};
+/// ln q = constant + sum of coefficient * theta_i.
+Differentiated log_linear(const Theta& theta, double constant, std::initializer_list<std::pair<int, double>> terms) {
+  Differentiated q{constant, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(theta.size()))};
+  for (const auto& [i, coefficient] : terms) {
+    q.a += coefficient * theta[i];
+    q.v(i) += coefficient;
+  }
+  return q;
 }
 
-Jet3 log_gamma(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
-  if (s.parameters.damping == DampingForm::Gamma) return t[kDamping];
-  return log(scales(t, s).gamma(forward::gamma_hat_from_restitution(exp(t[kDamping]))));
+/// ln m = ln(pi/6) + ln rho_s + 3 ln d (a sphere's mass).
+Differentiated log_mass(const Theta& t) {
+  return log_linear(t, std::log(std::numbers::pi / 6.0), {{kGrainDensity, 1.0}, {kDiameter, 3.0}});
 }
 
-/// Low-frequency sound speed: the speed scale d sqrt(kappa/m) times the model's c_hat as
-/// omega_hat -> 0 (1 for the chains; a 3D packing's static value for a table).
-Jet3 log_c0(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
-  return log(scales(t, s).speed_scale()) + std::log(s.predictor.model().long_wavelength_c_hat());
+Differentiated plus(Differentiated a, const Differentiated& b, double scale = 1.0) {
+  a.a += scale * b.a;
+  a.v += scale * b.v;
+  return a;
 }
-Jet3 log_tau(const std::array<Jet3, kParameterCount>& t, const Setup& s) { return log_gamma(t, s) - t[kKappa]; }
-Jet3 log_f_star(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
-  return -log_tau(t, s) - std::log(2.0 * std::numbers::pi);
+
+/// ln gamma_hat of the damping entry: for e_n, gamma_hat = sqrt(2) zeta(e_n) (units.hpp).
+Differentiated log_gamma_hat_of_restitution(const Theta& t) {
+  using Jet1 = ceres::Jet<double, 1>;
+  const Jet1 g = forward::gamma_hat_from_restitution(Jet1(std::exp(t[kDamping]), 0));
+  Differentiated q{std::log(g.a), Eigen::VectorXd::Zero(static_cast<Eigen::Index>(t.size()))};
+  q.v(kDamping) = g.v[0] * std::exp(t[kDamping]) / g.a;
+  return q;
 }
-Jet3 log_gamma_hat(const std::array<Jet3, kParameterCount>& t, const Setup& s) {
-  const forward::GrainScales<Jet3> g = scales(t, s);
-  return log_gamma(t, s) - 0.5 * log(g.kappa * g.mass());
+
+Differentiated log_gamma(const Setup& s, const Theta& t) {
+  if (s.parameters.damping_form() == DampingForm::Gamma) return log_linear(t, 0.0, {{kDamping, 1.0}});
+  // gamma = gamma_hat sqrt(kappa m)
+  return plus(plus(log_gamma_hat_of_restitution(t), log_linear(t, 0.0, {{kKappa, 0.5}})), log_mass(t), 0.5);
+}
+
+/// Low-frequency sound speed of the dry frame: the speed scale d sqrt(kappa/m) times the model's
+/// c_hat as omega_hat -> 0 (1 for the chains; a 3D packing's static value for a table).
+Differentiated log_c0(const Setup& s, const Theta& t) {
+  const auto& frame = dynamic_cast<const sediment::GrainContactModel&>(*s.model);
+  const Differentiated scale = log_linear(t, std::log(frame.dimensionless().long_wavelength_c_hat()),
+                                          {{kDiameter, 1.0}, {kKappa, 0.5}});
+  return plus(scale, log_mass(t), -0.5);
+}
+Differentiated log_tau(const Setup& s, const Theta& t) {
+  return plus(log_gamma(s, t), log_linear(t, 0.0, {{kKappa, 1.0}}), -1.0);
+}
+Differentiated log_f_star(const Setup& s, const Theta& t) {
+  Differentiated q = log_tau(s, t);
+  q.a = -q.a - std::log(2.0 * std::numbers::pi);
+  q.v = -q.v;
+  return q;
+}
+Differentiated log_gamma_hat(const Setup& s, const Theta& t) {
+  if (s.parameters.damping_form() == DampingForm::Restitution) return log_gamma_hat_of_restitution(t);
+  return plus(plus(log_gamma(s, t), log_linear(t, 0.0, {{kKappa, 1.0}}), -0.5), log_mass(t), -0.5);
 }
 /// kappa over the Hertz stiffness of quartz grains of the same d at 10 kPa (plausibility.hpp);
 /// Hertz kappa is proportional to d at a given pressure.
-Jet3 log_kappa_over_hertz(const std::array<Jet3, kParameterCount>& t, const Setup&) {
-  return t[kKappa] - t[kDiameter] - std::log(quartz_hertz_kappa(1.0));
+Differentiated log_kappa_over_hertz(const Setup&, const Theta& t) {
+  return log_linear(t, -std::log(quartz_hertz_kappa(1.0)), {{kKappa, 1.0}, {kDiameter, -1.0}});
 }
 
-struct CombinationInfo {
-  const char* name;
-  const char* unit;
-  const char* meaning;
-  Jet3 (*log_value)(const std::array<Jet3, kParameterCount>&, const Setup&);
-};
-
-const std::array<CombinationInfo, 5> kCombinations{{
-    {"c0", "m/s", "low-frequency (f -> 0) sound speed of the model", log_c0},
-    {"tau", "s", "relaxation time gamma/kappa of a contact", log_tau},
-    {"f_star", "Hz", "crossover frequency 1/(2 pi tau) where attenuation bends from f^2 to f^(1/2)", log_f_star},
-    {"gamma_hat", "1", "dimensionless dashpot gamma/sqrt(kappa m)", log_gamma_hat},
-    {"kappa_over_hertz", "1", "kappa over the Hertz stiffness of quartz grains of diameter d at 10 kPa",
-     log_kappa_over_hertz},
-}};
-
-Eigen::VectorXd free_part(const Jet3& log_q, const std::vector<int>& free) {
-  Eigen::VectorXd g(static_cast<Eigen::Index>(free.size()));
-  for (size_t k = 0; k < free.size(); ++k) g(static_cast<Eigen::Index>(k)) = log_q.v[free[k]];
-  return g;
+/// The combinations that mean something for the model in use: the contact's for every model whose
+/// parameters start with the grain contact's; c0 (the frame's own speed) for the dry frame alone.
+std::vector<detail::Combination> combinations_for(const Setup& s) {
+  std::vector<detail::Combination> list;
+  if (!s.parameters.starts_with_grain_contact()) return list;
+  if (dynamic_cast<const sediment::GrainContactModel*>(s.model)) {
+    list.push_back({"c0", "m/s", "low-frequency (f -> 0) sound speed of the model", log_c0});
+  }
+  list.push_back({"tau", "s", "relaxation time gamma/kappa of a contact", log_tau});
+  list.push_back({"f_star", "Hz", "crossover frequency 1/(2 pi tau) where attenuation bends from f^2 to f^(1/2)",
+                  log_f_star});
+  list.push_back({"gamma_hat", "1", "dimensionless dashpot gamma/sqrt(kappa m)", log_gamma_hat});
+  list.push_back({"kappa_over_hertz", "1", "kappa over the Hertz stiffness of quartz grains of diameter d at 10 kPa",
+                  log_kappa_over_hertz});
+  return list;
 }
 
 // ---- The analysis at the solution.
@@ -191,6 +211,7 @@ bool profile_into(const Setup& s, const Theta& theta, double chi2_min, const det
 /// The identifiability, intervals and goodness of fit at theta. Returns a point of lower chi^2 if
 /// a likelihood profile found one (the solvers stopped in a local minimum).
 std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitResult& result) {
+  const std::vector<detail::Combination> combinations = combinations_for(s);
   const Eigen::MatrixXd J = detail::whitened_jacobian(s, theta);
   const JacobianAnalysis analysis = analyze_jacobian(J, detail::kRankTolerance);
   result.covariance = detail::covariance(s, theta);
@@ -199,8 +220,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
   const double chi2_min = chi2_at(s, theta);
   std::optional<detail::Profile> better;
 
-  const DampingForm form = s.parameters.damping;
-  for (int i : s.free) result.free_names.push_back(parameter_name(i, form));
+  for (int i : s.free) result.free_names.push_back(s.parameters.spec[i].name);
   const auto p = static_cast<Eigen::Index>(s.free.size());
   for (Eigen::Index k = 0; k < p; ++k) {
     const double s_k = analysis.singular_values(k);
@@ -211,11 +231,11 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
     }
   }
 
-  for (int i = 0; i < kParameterCount; ++i) {
+  for (int i = 0; i < s.parameters.size(); ++i) {
     const ParameterSpec& spec = s.parameters.spec[i];
     ParameterResult r;
-    r.name = parameter_name(i, form);
-    r.unit = parameter_unit(i, form);
+    r.name = spec.name;
+    r.unit = spec.unit;
     r.value = std::exp(theta[i]);
     r.free = spec.free;
     r.determined = true;  // fixed parameters are known exactly
@@ -238,13 +258,13 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
     result.parameters.push_back(r);
   }
 
-  const detail::ThetaJets t = detail::seeded_jets(theta.data());
-  for (const CombinationInfo& info : kCombinations) {
-    const Jet3 log_q = info.log_value(t, s);
-    const Determination d = determine(free_part(log_q, s.free), analysis, result.covariance, options.determined_log_sigma);
+  for (const detail::Combination& info : combinations) {
+    const Differentiated log_q = info.log_value(s, theta);
+    const Determination d =
+        determine(detail::free_part(log_q.v, s.free), analysis, result.covariance, options.determined_log_sigma);
     const double value = std::exp(log_q.a);
     CombinationResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
-    if (options.profile_likelihood && std::string(info.name) == "f_star") {
+    if (options.profile_likelihood && info.name == "f_star") {
       // f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just before).
       const CombinationResult& tau = result.combinations.back();
       const double k = 1.0 / (2.0 * std::numbers::pi);
@@ -252,9 +272,9 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
       if (tau.profile_lower) c.profile_upper = k / *tau.profile_lower;
       c.determined = tau.determined;
     } else if (options.profile_likelihood && d.null_component < 1.0 - 1e-9) {
-      report_progress(options, std::string("likelihood profile of ") + info.name);
-      const bool closed = profile_into(s, theta, chi2_min, {-1, info.log_value}, d.log_sigma, options,
-                                       c.profile_lower, c.profile_upper, better);
+      report_progress(options, "likelihood profile of " + info.name);
+      const bool closed = profile_into(s, theta, chi2_min, {-1, &info}, d.log_sigma, options, c.profile_lower,
+                                       c.profile_upper, better);
       c.determined = d.determined && closed;
     }
     result.combinations.push_back(c);
@@ -270,18 +290,15 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
   }
 
   // Goodness of fit and per-point residuals.
+  std::vector<double> normalized(s.observations.size());
+  if (!detail::residuals_at(s, theta, normalized.data(), nullptr)) throw std::runtime_error("residual failed at the solution");
+  const std::vector<double> model = detail::predictions_at(s, theta);
   result.chi2 = 0.0;
-  for (size_t r = 0; r < s.residuals.size(); ++r) {
-    PointResidual& point = result.residuals.emplace_back();
-    point.observation = s.observations[r];
-    point.sigma = s.sigmas[r];
-    point.default_sigma = s.defaulted[r];
-    (void)s.residuals[r](&theta[0], &theta[1], &theta[2], &point.normalized);
-    const Prediction<double> model = s.predictor(theta[0], theta[1], theta[2], point.observation.frequency_hz);
-    point.model = point.observation.quantity == Quantity::Attenuation ? model.alpha : model.speed;
-    result.chi2 += point.normalized * point.normalized;
+  for (size_t r = 0; r < s.observations.size(); ++r) {
+    result.residuals.push_back({s.observations[r], s.sigmas[r], s.defaulted[r], model[r], normalized[r]});
+    result.chi2 += normalized[r] * normalized[r];
   }
-  result.n_observations = static_cast<int>(s.residuals.size());
+  result.n_observations = static_cast<int>(s.observations.size());
   result.dof = result.n_observations - result.rank;
   result.aic = result.chi2 + 2.0 * result.rank;
   result.bic = result.chi2 + result.rank * std::log(static_cast<double>(result.n_observations));
@@ -290,7 +307,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
 }
 
 Theta with_values(FitParameters& parameters, const Theta& theta) {
-  for (int i = 0; i < kParameterCount; ++i) parameters.spec[i].value = std::exp(theta[i]);
+  for (int i = 0; i < parameters.size(); ++i) parameters.spec[i].value = std::exp(theta[i]);
   return theta;
 }
 
@@ -352,7 +369,7 @@ void analyze_with_restarts(const Setup& s, Theta theta, const FitOptions& option
   flag_implausible(options, result);
   // A model whose own sigma is known to leave something out (a one-packing table) makes every
   // interval too narrow by an unknown amount.
-  if (const std::string caveat = s.predictor.model().uncertainty_caveat(); !caveat.empty()) {
+  if (const std::string caveat = s.model->uncertainty_caveat(); !caveat.empty()) {
     result.flags.push_back({"model", caveat});
   }
 }
@@ -374,7 +391,7 @@ FitMethod parse_fit_method(const std::string& name) {
   throw std::invalid_argument("unknown fit method '" + name + "' (accepted: ceres, nlopt, global)");
 }
 
-FitResult fit(const ObservationSet& data, const forward::DispersionModel& model, const FitParameters& parameters,
+FitResult fit(const ObservationSet& data, const sediment::SedimentModel& model, const FitParameters& parameters,
               const FitOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   const Setup s = detail::make_setup(data, model, parameters, options);
@@ -420,28 +437,55 @@ FitResult fit(const ObservationSet& data, const forward::DispersionModel& model,
   return result;
 }
 
-std::vector<CurvePoint> model_curves(const FitResult& result, const forward::DispersionModel& model,
+FitResult fit(const ObservationSet& data, const forward::DispersionModel& model, const FitParameters& parameters,
+              const FitOptions& options) {
+  return fit(data, *grain_contact_model(model, parameters.damping_form()), parameters, options);
+}
+
+std::shared_ptr<const sediment::GrainContactModel> grain_contact_model(const forward::DispersionModel& model,
+                                                                       DampingForm form) {
+  // Non-owning: the caller keeps `model` alive for as long as the result is used.
+  const std::shared_ptr<const forward::DispersionModel> borrowed(&model, [](const forward::DispersionModel*) {});
+  return std::make_shared<const sediment::GrainContactModel>(borrowed, form);
+}
+
+std::vector<CurvePoint> model_curves(const FitResult& result, const sediment::SedimentModel& model,
                                      const std::vector<double>& frequencies_hz) {
-  const Predictor predictor(model, result.fitted.damping, result.fitted.density);
   const std::vector<int> free = result.fitted.free_indices();
-  const Theta theta = result.fitted.log_values();
-  const detail::ThetaJets t = detail::seeded_jets(theta.data());
-  auto sigma_of = [&](const Jet3& q) {
-    const Eigen::VectorXd g = free_part(q, free) / q.a;  // d ln q
-    return q.a * std::sqrt(std::max(0.0, g.dot(result.covariance * g)));
+  const std::vector<double> values = result.fitted.values();
+  auto sigma_of = [&](double q, const std::vector<double>& d_value) {
+    Eigen::VectorXd g(static_cast<Eigen::Index>(free.size()));  // d ln q / d theta_free
+    for (std::size_t k = 0; k < free.size(); ++k) g(static_cast<Eigen::Index>(k)) = d_value[free[k]] * values[free[k]] / q;
+    return q * std::sqrt(std::max(0.0, g.dot(result.covariance * g)));
   };
+  const auto* frame = dynamic_cast<const sediment::GrainContactModel*>(&model);
   std::vector<CurvePoint> curves;
   for (double f : frequencies_hz) {
-    Prediction<Jet3> p;
+    sediment::Wave w;
     try {
-      p = predictor(t[0], t[1], t[2], f);
+      w = model.evaluate(values, f, true);
     } catch (const std::domain_error&) {
       continue;
     }
-    curves.push_back({f, p.omega_hat.a, p.gamma_hat.a, p.hat.alpha_hat.a, p.hat.c_hat.a, p.alpha.a, sigma_of(p.alpha),
-                      p.speed.a, sigma_of(p.speed)});
+    CurvePoint c{f, kNotApplicable, kNotApplicable, kNotApplicable, kNotApplicable, w.attenuation,
+                 sigma_of(w.attenuation, w.d_attenuation), w.speed, sigma_of(w.speed, w.d_speed)};
+    if (frame) {
+      const sediment::FrameWave<double> h =
+          sediment::frame_wave(frame->dimensionless(), frame->damping_form(), values[kKappa], values[kDiameter],
+                               values[kDamping], values[kGrainDensity], f);
+      c.omega_hat = h.omega_hat;
+      c.gamma_hat = h.gamma_hat;
+      c.alpha_hat = h.hat.alpha_hat;
+      c.c_hat = h.hat.c_hat;
+    }
+    curves.push_back(c);
   }
   return curves;
+}
+
+std::vector<CurvePoint> model_curves(const FitResult& result, const forward::DispersionModel& model,
+                                     const std::vector<double>& frequencies_hz) {
+  return model_curves(result, *grain_contact_model(model, result.fitted.damping_form()), frequencies_hz);
 }
 
 }  // namespace sedwave::inversion

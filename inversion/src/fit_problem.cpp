@@ -1,7 +1,9 @@
 #include "fit_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -24,37 +26,54 @@ void check_sigma(const Observation& o, double sigma, bool defaulted) {
   throw std::invalid_argument(msg.str());
 }
 
-/// All observations' residuals as one Ceres cost function: one block of n rows instead of n blocks
-/// of one row, which spares Ceres its per-block bookkeeping (5x faster on 10^4 observations). Exact
-/// Jacobians from Jets; a model outside its domain makes the step fail instead of throwing.
+/// Attenuation and speed are usually measured at the same frequencies: the model runs once for each.
+void index_frequencies(Setup& s) {
+  std::map<double, std::size_t> index;
+  s.frequencies.clear();
+  s.frequency_of.clear();
+  for (const Observation& o : s.observations) {
+    const auto [at, inserted] = index.emplace(o.frequency_hz, s.frequencies.size());
+    if (inserted) s.frequencies.push_back(o.frequency_hz);
+    s.frequency_of.push_back(at->second);
+  }
+}
+
+std::vector<double> values_of(const Theta& theta) {
+  std::vector<double> v(theta.size());
+  std::transform(theta.begin(), theta.end(), v.begin(), [](double t) { return std::exp(t); });
+  return v;
+}
+
+/// The model at every distinct frequency; false where it has no answer.
+bool waves_at(const Setup& s, const std::vector<double>& values, bool derivatives, std::vector<sediment::Wave>& waves) {
+  waves.resize(s.frequencies.size());
+  try {
+    for (std::size_t k = 0; k < s.frequencies.size(); ++k) waves[k] = s.model->evaluate(values, s.frequencies[k], derivatives);
+  } catch (const std::domain_error&) {
+    return false;
+  }
+  return true;
+}
+
+/// All observations' residuals as one Ceres cost function over one block per parameter (so any
+/// parameter can be held constant): one block of n rows instead of n blocks of one row, which
+/// spares Ceres its per-block bookkeeping. A model outside its domain makes the step fail.
 class ObservationResiduals final : public ceres::CostFunction {
  public:
   explicit ObservationResiduals(const Setup& s) : setup_(&s) {
-    set_num_residuals(static_cast<int>(s.residuals.size()));
-    for (int i = 0; i < kParameterCount; ++i) mutable_parameter_block_sizes()->push_back(1);
+    set_num_residuals(static_cast<int>(s.observations.size()));
+    for (int i = 0; i < s.parameters.size(); ++i) mutable_parameter_block_sizes()->push_back(1);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    try {
-      if (!jacobians) {
-        for (size_t r = 0; r < setup_->residuals.size(); ++r) {
-          if (!setup_->residuals[r](parameters[0], parameters[1], parameters[2], &residuals[r])) return false;
-        }
-        return true;
-      }
-      const std::array<double, kParameterCount> theta{parameters[0][0], parameters[1][0], parameters[2][0]};
-      const ThetaJets t = seeded_jets(theta.data());
-      for (size_t r = 0; r < setup_->residuals.size(); ++r) {
-        Jet3 value;
-        if (!setup_->residuals[r](&t[0], &t[1], &t[2], &value)) return false;
-        residuals[r] = value.a;
-        for (int i = 0; i < kParameterCount; ++i) {
-          if (jacobians[i]) jacobians[i][r] = value.v[i];
-        }
-      }
-      return true;
-    } catch (const std::domain_error&) {
-      return false;
+    Theta theta(static_cast<std::size_t>(setup_->parameters.size()));
+    for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = parameters[i][0];
+    if (!jacobians) return residuals_at(*setup_, theta, residuals, nullptr);
+    Eigen::MatrixXd J;
+    if (!residuals_at(*setup_, theta, residuals, &J)) return false;
+    for (Eigen::Index i = 0; i < J.cols(); ++i) {
+      if (jacobians[i]) Eigen::Map<Eigen::VectorXd>(jacobians[i], J.rows()) = J.col(i);
     }
+    return true;
   }
 
  private:
@@ -62,17 +81,20 @@ class ObservationResiduals final : public ceres::CostFunction {
 };
 
 /// The residual (ln q(theta) - target) / tolerance of a Constraint, with its exact gradient.
-class ConstraintResidual final : public ceres::SizedCostFunction<1, 1, 1, 1> {
+class ConstraintResidual final : public ceres::CostFunction {
  public:
-  ConstraintResidual(const Setup& s, const Constraint& c) : setup_(&s), constraint_(c) {}
+  ConstraintResidual(const Setup& s, const Constraint& c) : setup_(&s), constraint_(c) {
+    set_num_residuals(1);
+    for (int i = 0; i < s.parameters.size(); ++i) mutable_parameter_block_sizes()->push_back(1);
+  }
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
-    const std::array<double, kParameterCount> theta{parameters[0][0], parameters[1][0], parameters[2][0]};
-    const ThetaJets t = seeded_jets(theta.data());
-    const Jet3 q = constraint_.log_value(t, *setup_);
+    Theta theta(static_cast<std::size_t>(setup_->parameters.size()));
+    for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = parameters[i][0];
+    const Differentiated q = constraint_.combination->log_value(*setup_, theta);
     residual[0] = (q.a - constraint_.target) / constraint_.tolerance;
     if (jacobians) {
-      for (int i = 0; i < kParameterCount; ++i) {
-        if (jacobians[i]) jacobians[i][0] = q.v[i] / constraint_.tolerance;
+      for (Eigen::Index i = 0; i < q.v.size(); ++i) {
+        if (jacobians[i]) jacobians[i][0] = q.v(i) / constraint_.tolerance;
       }
     }
     return std::isfinite(residual[0]);
@@ -83,45 +105,87 @@ class ConstraintResidual final : public ceres::SizedCostFunction<1, 1, 1, 1> {
   Constraint constraint_;
 };
 
+std::vector<double*> blocks_of(Theta& theta) {
+  std::vector<double*> blocks;
+  for (double& t : theta) blocks.push_back(&t);
+  return blocks;
+}
+
 }  // namespace
 
-Setup make_setup(const ObservationSet& data, const forward::DispersionModel& model, const FitParameters& parameters,
+Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& model, const FitParameters& parameters,
                  const FitOptions& options) {
   if (data.observations.empty()) throw std::invalid_argument("no observations to fit");
+  parameters.require_parameters_of(model);
   parameters.validate();
-  Setup s{data.observations, {}, {}, {}, Predictor(model, parameters.damping, parameters.density), parameters,
-          parameters.free_indices()};
+  Setup s;
+  s.observations = data.observations;
+  s.model = &model;
+  s.parameters = parameters;
+  s.free = parameters.free_indices();
   for (const Observation& o : data.observations) {
     const bool missing = !o.sigma.has_value();
     const double sigma = missing ? options.default_relative_sigma * o.value : *o.sigma;
     check_sigma(o, sigma, missing);
-    s.residuals.emplace_back(s.predictor, o, sigma);
     s.sigmas.push_back(sigma);
     s.defaulted.push_back(missing);
   }
+  index_frequencies(s);
   return s;
 }
 
-double chi2_at(const Setup& s, const Theta& theta) {
-  double chi2 = 0.0;
-  for (const ObservationResidual& r : s.residuals) {
-    double value = 0.0;
-    try {
-      if (!r(&theta[0], &theta[1], &theta[2], &value)) return std::numeric_limits<double>::infinity();
-    } catch (const std::domain_error&) {
-      return std::numeric_limits<double>::infinity();
-    }
-    chi2 += value * value;
+Setup every_kth_row(const Setup& s, std::size_t stride) {
+  Setup subset = s;
+  subset.observations.clear();
+  subset.sigmas.clear();
+  subset.defaulted.clear();
+  for (std::size_t i = 0; i < s.observations.size(); i += stride) {
+    subset.observations.push_back(s.observations[i]);
+    subset.sigmas.push_back(s.sigmas[i]);
+    subset.defaulted.push_back(s.defaulted[i]);
   }
+  index_frequencies(subset);
+  return subset;
+}
+
+bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian) {
+  const std::vector<double> values = values_of(theta);
+  std::vector<sediment::Wave> waves;
+  if (!waves_at(s, values, jacobian != nullptr, waves)) return false;
+  const auto n = static_cast<Eigen::Index>(values.size());
+  if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
+  Eigen::VectorXd row(n);
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    const sediment::Wave& w = waves[s.frequency_of[r]];
+    if (!whitened_residual(s.observations[r], s.sigmas[r], w, values, residuals[r], jacobian ? row.data() : nullptr)) {
+      return false;
+    }
+    if (jacobian) jacobian->row(static_cast<Eigen::Index>(r)) = row;
+  }
+  return true;
+}
+
+std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
+  std::vector<sediment::Wave> waves;
+  if (!waves_at(s, values_of(theta), false, waves)) throw std::runtime_error("the model cannot be evaluated at the fit");
+  std::vector<double> out;
+  for (std::size_t r = 0; r < s.observations.size(); ++r) out.push_back(predicted_value(s.observations[r], waves[s.frequency_of[r]]));
+  return out;
+}
+
+double chi2_at(const Setup& s, const Theta& theta) {
+  std::vector<double> r(s.observations.size());
+  if (!residuals_at(s, theta, r.data(), nullptr)) return std::numeric_limits<double>::infinity();
+  double chi2 = 0.0;
+  for (double x : r) chi2 += x * x;
   return std::isfinite(chi2) ? chi2 : std::numeric_limits<double>::infinity();
 }
 
 void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem, int held, const Constraint* constraint) {
-  problem.AddResidualBlock(new ObservationResiduals(s), nullptr, &theta[0], &theta[1], &theta[2]);
-  if (constraint) {
-    problem.AddResidualBlock(new ConstraintResidual(s, *constraint), nullptr, &theta[0], &theta[1], &theta[2]);
-  }
-  for (int i = 0; i < kParameterCount; ++i) {
+  const std::vector<double*> blocks = blocks_of(theta);
+  problem.AddResidualBlock(new ObservationResiduals(s), nullptr, blocks);
+  if (constraint) problem.AddResidualBlock(new ConstraintResidual(s, *constraint), nullptr, blocks);
+  for (int i = 0; i < s.parameters.size(); ++i) {
     const ParameterSpec& spec = s.parameters.spec[i];
     if (!spec.free || i == held) {
       problem.SetParameterBlockConstant(&theta[i]);
@@ -154,17 +218,13 @@ LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held, 
 }
 
 Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
-  const ThetaJets t = seeded_jets(theta.data());
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(s.residuals.size()), static_cast<Eigen::Index>(s.free.size()));
-  for (size_t r = 0; r < s.residuals.size(); ++r) {
-    Jet3 value;
-    if (!s.residuals[r](&t[0], &t[1], &t[2], &value)) throw std::runtime_error("residual failed at the solution");
-    for (size_t k = 0; k < s.free.size(); ++k) {
-      J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) = value.v[s.free[k]];
-    }
-  }
+  std::vector<double> r(s.observations.size());
+  Eigen::MatrixXd all;
+  if (!residuals_at(s, theta, r.data(), &all)) throw std::runtime_error("residual failed at the solution");
+  Eigen::MatrixXd J(all.rows(), static_cast<Eigen::Index>(s.free.size()));
+  for (std::size_t k = 0; k < s.free.size(); ++k) J.col(static_cast<Eigen::Index>(k)) = all.col(s.free[k]);
   if (!J.allFinite()) {
-    throw std::runtime_error("the derivatives of model " + s.predictor.model().name() +
+    throw std::runtime_error("the derivatives of model " + s.model->name() +
                              " are not finite at the fitted point; it cannot be analysed there");
   }
   return J;

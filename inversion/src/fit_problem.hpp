@@ -4,8 +4,9 @@
 // solvers (fit.cpp) and the likelihood profiles (profile.cpp) both build on it.
 #include <ceres/ceres.h>
 
-#include <array>
+#include <Eigen/Dense>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,51 +15,68 @@
 
 namespace sedwave::inversion::detail {
 
-using Theta = std::array<double, kParameterCount>;
-using Jet3 = ceres::Jet<double, kParameterCount>;
-using ThetaJets = std::array<Jet3, kParameterCount>;
+/// ln of every parameter value, in the model's order.
+using Theta = std::vector<double>;
 
-/// theta as Jets seeded with the unit derivative of each ln-parameter: one evaluation then gives a
-/// function of theta with its gradient.
-[[nodiscard]] inline ThetaJets seeded_jets(const double* theta) {
-  ThetaJets t;
-  for (int i = 0; i < kParameterCount; ++i) t[i] = Jet3(theta[i], i);
-  return t;
-}
+/// A function of theta with its gradient d/d theta (one entry per parameter).
+struct Differentiated {
+  double a = 0.0;
+  Eigen::VectorXd v;
+};
 
-/// Everything a fit needs besides the solver: observations with resolved sigmas and the predictor.
+/// Everything a fit needs besides the solver: observations with resolved sigmas and the model.
 struct Setup {
   std::vector<Observation> observations;
-  std::vector<ObservationResidual> residuals;
   std::vector<double> sigmas;
   std::vector<bool> defaulted;
-  Predictor predictor;
+  std::vector<double> frequencies;        ///< distinct frequencies [Hz]: the model runs once per frequency
+  std::vector<std::size_t> frequency_of;  ///< row -> index into frequencies
+  const sediment::SedimentModel* model = nullptr;
   FitParameters parameters;
   std::vector<int> free;
 };
 
 /// Throws std::invalid_argument, naming file and line, for a sigma that is not a usable positive
-/// number (see fit.cpp).
-[[nodiscard]] Setup make_setup(const ObservationSet& data, const forward::DispersionModel& model,
+/// number; and if `parameters` are not those of `model`.
+[[nodiscard]] Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& model,
                                const FitParameters& parameters, const FitOptions& options);
+
+/// The rows 0, stride, 2 stride, ... of s (frequencies re-indexed).
+[[nodiscard]] Setup every_kth_row(const Setup& s, std::size_t stride);
+
+/// Whitened residuals at theta, and (if `jacobian`) d residual / d theta for every parameter
+/// (rows x parameters). False where the model cannot be evaluated (std::domain_error) or a residual
+/// is not defined.
+[[nodiscard]] bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian);
+
+/// The model's wave at every row's frequency (SI).
+[[nodiscard]] std::vector<double> predictions_at(const Setup& s, const Theta& theta);
 
 /// chi^2 at theta; +inf where the model cannot be evaluated.
 [[nodiscard]] double chi2_at(const Setup& s, const Theta& theta);
 
-/// An extra residual that ties a function of theta to a target value (a likelihood profile of a
+/// A function of the parameters that the data may determine even when they do not (c0, tau ...).
+struct Combination {
+  std::string name;
+  std::string unit;
+  std::string meaning;
+  /// ln q(theta) and its gradient.
+  std::function<Differentiated(const Setup&, const Theta&)> log_value;
+};
+
+/// An extra residual that ties a combination to a target value (a likelihood profile of a
 /// combination holds it fixed this way).
 struct Constraint {
-  /// ln q(theta) with its gradient; evaluated on Jets.
-  Jet3 (*log_value)(const std::array<Jet3, kParameterCount>& theta, const Setup& s) = nullptr;
-  double target = 0.0;  ///< in ln units
+  const Combination* combination = nullptr;
+  double target = 0.0;      ///< in ln units
   double tolerance = 1e-5;  ///< the residual is (ln q - target) / tolerance
 };
 
 struct LocalFit {
   Theta theta;
-  bool converged;
+  bool converged = false;
   std::string message;
-  double chi2;  ///< of the observations alone (a constraint's residual is not counted)
+  double chi2 = 0.0;  ///< of the observations alone (a constraint's residual is not counted)
 };
 
 /// Levenberg-Marquardt from theta within the bounds. `held` (>= 0) is a free parameter held at its
@@ -75,8 +93,8 @@ inline constexpr double kRankTolerance = 1e-8;
 void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem, int held = -1,
                    const Constraint* constraint = nullptr);
 
-/// Whitened Jacobian d residual / d theta_free, by forward-mode automatic differentiation. Throws
-/// std::runtime_error if the model cannot be evaluated there or its derivatives are not finite.
+/// Whitened Jacobian d residual / d theta_free. Throws std::runtime_error if the model cannot be
+/// evaluated there or its derivatives are not finite.
 [[nodiscard]] Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta);
 
 /// Covariance of the free ln-parameters at theta (ceres::Covariance, pseudo-inverse when singular).
@@ -84,5 +102,12 @@ void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem, int he
 
 [[nodiscard]] inline double log_lower(const Setup& s, int i) { return std::log(s.parameters.spec[i].lower); }
 [[nodiscard]] inline double log_upper(const Setup& s, int i) { return std::log(s.parameters.spec[i].upper); }
+
+/// The free entries of a gradient over all parameters.
+[[nodiscard]] inline Eigen::VectorXd free_part(const Eigen::VectorXd& gradient, const std::vector<int>& free) {
+  Eigen::VectorXd g(static_cast<Eigen::Index>(free.size()));
+  for (std::size_t k = 0; k < free.size(); ++k) g(static_cast<Eigen::Index>(k)) = gradient(free[k]);
+  return g;
+}
 
 }  // namespace sedwave::inversion::detail

@@ -5,13 +5,49 @@
 #include <stdexcept>
 
 namespace sedwave::inversion {
+namespace {
+
+std::vector<ParameterSpec> specs_of(const std::vector<sediment::Parameter>& parameters) {
+  std::vector<ParameterSpec> spec;
+  for (const sediment::Parameter& p : parameters) {
+    spec.push_back({p.name, p.unit, p.default_value, p.lower, p.upper, false});
+  }
+  return spec;
+}
+
+bool is_damping_name(const std::string& name) { return name == "gamma" || name == "en" || name == "e_n"; }
+
+}  // namespace
+
+FitParameters::FitParameters() : spec(specs_of(sediment::grain_contact_parameters(DampingForm::Gamma))) {
+  for (int i : {kKappa, kDiameter, kDamping}) spec[i].free = true;
+}
+
+FitParameters::FitParameters(const std::vector<sediment::Parameter>& parameters) : spec(specs_of(parameters)) {}
+
+int FitParameters::index_of(const std::string& name) const {
+  for (int i = 0; i < size(); ++i) {
+    if (spec[i].name == name) return i;
+  }
+  std::string accepted;
+  for (const ParameterSpec& s : spec) accepted += (accepted.empty() ? "" : ", ") + s.name;
+  throw std::invalid_argument("unknown parameter '" + name + "' (accepted: " + accepted + ")");
+}
+
+bool FitParameters::starts_with_grain_contact() const {
+  return size() >= 4 && spec[kKappa].name == "kappa" && spec[kDiameter].name == "d" &&
+         (spec[kDamping].name == "gamma" || spec[kDamping].name == "en") && spec[kGrainDensity].name == "rho_s";
+}
+
+DampingForm FitParameters::damping_form() const {
+  return starts_with_grain_contact() && spec[kDamping].name == "en" ? DampingForm::Restitution : DampingForm::Gamma;
+}
 
 void FitParameters::set_damping_form(DampingForm form) {
-  damping = form;
+  if (!starts_with_grain_contact()) throw std::invalid_argument("this model has no contact damping to switch");
   const bool was_free = spec[kDamping].free;
-  // e_n < 1 strictly: e_n = 1 means no dashpot, where attenuation (fitted in log space) vanishes.
-  spec[kDamping] = form == DampingForm::Gamma ? ParameterSpec{1.0e-2, 1.0e-12, 1.0e8, was_free}
-                                              : ParameterSpec{0.5, 1.0e-6, 0.999999, was_free};
+  const sediment::Parameter p = sediment::grain_contact_parameters(form)[kDamping];
+  spec[kDamping] = {p.name, p.unit, p.default_value, p.lower, p.upper, was_free};
 }
 
 void FitParameters::set_free_from_list(const std::string& list) {
@@ -21,11 +57,7 @@ void FitParameters::set_free_from_list(const std::string& list) {
   std::string damping_named;  // "gamma" or "en" once the damping is named
   while (std::getline(stream, name, ',')) {
     int index = -1;
-    if (name == "kappa") {
-      index = kKappa;
-    } else if (name == "d") {
-      index = kDiameter;
-    } else if (name == "gamma" || name == "en" || name == "e_n") {
+    if (starts_with_grain_contact() && is_damping_name(name)) {
       const std::string form_name = name == "gamma" ? "gamma" : "en";
       if (!damping_named.empty() && damping_named != form_name) {
         throw std::invalid_argument("--fit '" + list + "' names both gamma and en: the damping is one parameter, "
@@ -33,11 +65,14 @@ void FitParameters::set_free_from_list(const std::string& list) {
       }
       damping_named = form_name;
       const DampingForm form = name == "gamma" ? DampingForm::Gamma : DampingForm::Restitution;
-      if (form != damping) set_damping_form(form);
+      if (form != damping_form()) set_damping_form(form);
       index = kDamping;
     } else {
-      throw std::invalid_argument("unknown fit parameter '" + name + "' in --fit '" + list +
-                                  "' (accepted: kappa, d, gamma, en)");
+      try {
+        index = index_of(name);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("--fit '" + list + "': " + e.what());
+      }
     }
     if (spec[index].free) throw std::invalid_argument("--fit '" + list + "' names '" + name + "' twice");
     spec[index].free = true;
@@ -47,45 +82,48 @@ void FitParameters::set_free_from_list(const std::string& list) {
 
 std::vector<int> FitParameters::free_indices() const {
   std::vector<int> free;
-  for (int i = 0; i < kParameterCount; ++i) {
+  for (int i = 0; i < size(); ++i) {
     if (spec[i].free) free.push_back(i);
   }
   return free;
 }
 
-std::array<double, kParameterCount> FitParameters::log_values() const {
-  return {std::log(spec[0].value), std::log(spec[1].value), std::log(spec[2].value)};
+std::vector<double> FitParameters::values() const {
+  std::vector<double> v;
+  for (const ParameterSpec& s : spec) v.push_back(s.value);
+  return v;
+}
+
+std::vector<double> FitParameters::log_values() const {
+  std::vector<double> v;
+  for (const ParameterSpec& s : spec) v.push_back(std::log(s.value));
+  return v;
 }
 
 void FitParameters::validate() const {
-  if (!(density > 0.0)) throw std::invalid_argument("grain density must be positive");
-  for (int i = 0; i < kParameterCount; ++i) {
-    const ParameterSpec& s = spec[i];
-    const std::string name = parameter_name(i, damping);
+  for (const ParameterSpec& s : spec) {
     if (!(s.lower > 0.0) || !(s.upper > s.lower)) {
-      throw std::invalid_argument("bounds of " + name + " must satisfy 0 < lower < upper");
+      std::ostringstream msg;
+      msg << "bounds of " << s.name << " [" << s.lower << ", " << s.upper << "] must satisfy 0 < lower < upper";
+      throw std::invalid_argument(msg.str());
     }
     if (!(s.value >= s.lower && s.value <= s.upper)) {
       std::ostringstream msg;
-      msg << name << " = " << s.value << " lies outside its bounds [" << s.lower << ", " << s.upper << "]";
+      msg << s.name << " = " << s.value << " " << s.unit << " lies outside its bounds [" << s.lower << ", " << s.upper
+          << "] " << s.unit;
       throw std::invalid_argument(msg.str());
     }
   }
 }
 
-std::string parameter_name(int index, DampingForm form) {
-  switch (index) {
-    case kKappa: return "kappa";
-    case kDiameter: return "d";
-    default: return form == DampingForm::Gamma ? "gamma" : "e_n";
-  }
-}
-
-std::string parameter_unit(int index, DampingForm form) {
-  switch (index) {
-    case kKappa: return "N/m";
-    case kDiameter: return "m";
-    default: return form == DampingForm::Gamma ? "kg/s" : "1";
+void FitParameters::require_parameters_of(const sediment::SedimentModel& model) const {
+  const std::vector<sediment::Parameter>& ps = model.parameters();
+  bool same = ps.size() == spec.size();
+  for (std::size_t i = 0; same && i < ps.size(); ++i) same = ps[i].name == spec[i].name;
+  if (!same) {
+    std::string names;
+    for (const sediment::Parameter& p : ps) names += (names.empty() ? "" : ", ") + p.name;
+    throw std::invalid_argument("the parameters given are not those of model '" + model.name() + "' (" + names + ")");
   }
 }
 

@@ -38,9 +38,7 @@ Theta predicted_start(const Setup& s, const Theta& from, const ProfiledQuantity&
   // Regularised so an unseen direction gets a large but finite weight: the step then follows it.
   const double scale = std::max(H.diagonal().maxCoeff(), 1e-300);
   H.diagonal().array() += 1e-10 * scale;
-  const Jet3 lq = log_quantity(s, from, q);
-  Eigen::VectorXd a(p);
-  for (Eigen::Index k = 0; k < p; ++k) a(k) = lq.v[s.free[static_cast<size_t>(k)]];
+  const Eigen::VectorXd a = free_part(log_quantity(s, from, q).v, s.free);
   const Eigen::VectorXd h = H.ldlt().solve(a);
   const double norm = a.dot(h);
   Theta start = from;
@@ -58,7 +56,7 @@ Theta predicted_start(const Setup& s, const Theta& from, const ProfiledQuantity&
 double conditional_minimum(const Setup& s, Theta& theta, const ProfiledQuantity& q, double t, int max_iterations,
                            double enough) {
   const double dt = t - log_quantity(s, theta, q).a;
-  std::array<Theta, 2> starts{predicted_start(s, theta, q, dt), theta};
+  const std::array<Theta, 2> starts{predicted_start(s, theta, q, dt), theta};
   LocalFit best{theta, false, "", std::numeric_limits<double>::infinity()};
   for (Theta start : starts) {
     LocalFit f;
@@ -66,7 +64,7 @@ double conditional_minimum(const Setup& s, Theta& theta, const ProfiledQuantity&
       start[q.parameter] = t;
       f = solve_local(s, start, max_iterations, q.parameter);
     } else {
-      const Constraint constraint{q.log_value, t};
+      const Constraint constraint{q.combination, t};
       f = solve_local(s, start, max_iterations, -1, &constraint);
     }
     if (f.chi2 < best.chi2) best = f;
@@ -88,9 +86,11 @@ bool passes_two_sigma(double t, Theta theta, double limit, int side, DeltaChi2& 
 
 }  // namespace
 
-Jet3 log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q) {
-  const ThetaJets t = seeded_jets(theta.data());
-  return q.parameter >= 0 ? t[q.parameter] : q.log_value(t, s);
+Differentiated log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q) {
+  if (q.combination) return q.combination->log_value(s, theta);
+  Differentiated own{theta[q.parameter], Eigen::VectorXd::Zero(static_cast<Eigen::Index>(theta.size()))};
+  own.v(q.parameter) = 1.0;
+  return own;
 }
 
 Profile profile(const Setup& s, const Theta& best, double chi2_min, const ProfiledQuantity& q, double linear_sigma,

@@ -20,8 +20,8 @@ namespace sedwave::inversion::detail {
 
 /// What is profiled: a free parameter (held exactly) or a combination (held by a constraint).
 struct ProfiledQuantity {
-  int parameter = -1;  ///< index into theta, or -1 for a combination
-  Jet3 (*log_value)(const std::array<Jet3, kParameterCount>& theta, const Setup& s) = nullptr;
+  int parameter = -1;                      ///< index into theta, or -1 for a combination
+  const Combination* combination = nullptr;
 };
 
 struct Profile {
@@ -36,6 +36,6 @@ struct Profile {
                               double linear_sigma, int max_iterations);
 
 /// ln q at theta (a parameter's own value, or the combination's).
-[[nodiscard]] Jet3 log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q);
+[[nodiscard]] Differentiated log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q);
 
 }  // namespace sedwave::inversion::detail

@@ -28,7 +28,6 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
   j["sedwave_version"] = kVersion;
   j["model"] = r.model;
   j["method"] = r.method;
-  j["grain_density"] = {{"value", r.fitted.density}, {"unit", "kg/m^3"}, {"fixed", true}};
   if (data.water_sound_speed) j["water_sound_speed"] = {{"value", *data.water_sound_speed}, {"unit", "m/s"}};
   for (const ParameterResult& p : r.parameters) {
     j["parameters"][p.name] = {{"value", p.value},

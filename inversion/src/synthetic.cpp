@@ -8,13 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/residuals.hpp"
 #include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::inversion {
 
-ObservationSet synthetic_observations(const forward::DispersionModel& model, const FitParameters& truth,
+ObservationSet synthetic_observations(const sediment::SedimentModel& model, const FitParameters& truth,
                                       const SyntheticDesign& design) {
+  truth.require_parameters_of(model);
   if (!(design.lowest_hz > 0.0 && design.highest_hz > design.lowest_hz && design.points >= 2)) {
     throw std::invalid_argument("synthetic band: need 0 < lowest < highest frequency and at least 2 points");
   }
@@ -23,22 +25,26 @@ ObservationSet synthetic_observations(const forward::DispersionModel& model, con
   }
   std::mt19937_64 rng(design.seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  const Predictor predictor(model, truth.damping, truth.density);
-  const auto theta = truth.log_values();
+  const std::vector<double> values = truth.values();
   ObservationSet set;
   for (int i = 0; i < design.points; ++i) {
     const double f = design.lowest_hz * std::pow(design.highest_hz / design.lowest_hz, i / (design.points - 1.0));
-    const Prediction<double> p = predictor(theta[kKappa], theta[kDiameter], theta[kDamping], f);
+    const sediment::Wave p = model.evaluate(values, f, false);
     // Attenuation is compared in ln space with sigma/value as its sigma (residuals.hpp), so its noise
     // is drawn there: log-normal, with the stated sigma the same fraction of the value drawn. Then the
     // synthetic data follow exactly the likelihood the fit assumes, and intervals can be calibrated
     // on them (multiplying by 1 + eps N instead biases ln alpha by -eps^2/2).
-    const double alpha = p.alpha * std::exp(design.alpha_noise * normal(rng));
+    const double alpha = p.attenuation * std::exp(design.alpha_noise * normal(rng));
     set.observations.push_back({Quantity::Attenuation, f, alpha, design.alpha_noise * alpha, "Np/m", "synthetic", i + 1});
     set.observations.push_back({Quantity::SoundSpeed, f, p.speed * (1.0 + design.speed_noise * normal(rng)),
                                 design.speed_noise * p.speed, "m/s", "synthetic", i + 1});
   }
   return set;
+}
+
+ObservationSet synthetic_observations(const forward::DispersionModel& model, const FitParameters& truth,
+                                      const SyntheticDesign& design) {
+  return synthetic_observations(*grain_contact_model(model, truth.damping_form()), truth, design);
 }
 
 void write_observation_csv(const std::filesystem::path& path, const ObservationSet& set,

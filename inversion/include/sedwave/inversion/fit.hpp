@@ -8,6 +8,8 @@
 // pseudo-inverse when the data leave directions undetermined), identifiability, and goodness of fit.
 #include <Eigen/Dense>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +18,8 @@
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/parameters.hpp"
 #include "sedwave/inversion/plausibility.hpp"
+#include "sedwave/sediment/grain_contact.hpp"
+#include "sedwave/sediment/sediment_model.hpp"
 
 namespace sedwave::inversion {
 
@@ -120,13 +124,24 @@ struct FitResult {
   double wall_seconds = 0.0;
 };
 
-/// Fits `parameters` (free ones from their start values) to `data` with `model`.
-/// Throws std::invalid_argument for unusable input (no observations, ratio without water speed...).
+/// Fits `parameters` (free ones from their start values; the model's own parameters, in its order)
+/// to `data` with `model`. Throws std::invalid_argument for unusable input (no observations, ratio
+/// without water speed, parameters of another model ...).
+[[nodiscard]] FitResult fit(const ObservationSet& data, const sediment::SedimentModel& model,
+                            const FitParameters& parameters, const FitOptions& options);
+/// The same with a dimensionless model as a dry grain-contact frame (grain_contact_model()).
 [[nodiscard]] FitResult fit(const ObservationSet& data, const forward::DispersionModel& model,
                             const FitParameters& parameters, const FitOptions& options);
 
+/// A dimensionless model as the grain-contact sediment model, borrowing `model` (which must
+/// outlive the result).
+[[nodiscard]] std::shared_ptr<const sediment::GrainContactModel> grain_contact_model(
+    const forward::DispersionModel& model, DampingForm form);
+
 /// Physical predictions of a fitted model on a frequency grid, with 1-sigma bands from the
-/// covariance (attenuation in Np/m, speed in m/s).
+/// covariance (attenuation in Np/m, speed in m/s). The dimensionless coordinates are those of a dry
+/// grain-contact frame, kNotApplicable (NaN) for other models.
+inline constexpr double kNotApplicable = std::numeric_limits<double>::quiet_NaN();
 struct CurvePoint {
   double frequency_hz;
   double omega_hat, gamma_hat, alpha_hat, c_hat;
@@ -135,6 +150,8 @@ struct CurvePoint {
 };
 /// The fitted model at each frequency; frequencies outside the model's domain (a table's range) are
 /// left out, so the curve stops where the model does.
+[[nodiscard]] std::vector<CurvePoint> model_curves(const FitResult& result, const sediment::SedimentModel& model,
+                                                   const std::vector<double>& frequencies_hz);
 [[nodiscard]] std::vector<CurvePoint> model_curves(const FitResult& result, const forward::DispersionModel& model,
                                                    const std::vector<double>& frequencies_hz);
 

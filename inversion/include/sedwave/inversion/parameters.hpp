@@ -1,52 +1,65 @@
 #pragma once
-// The physical parameters an inversion can fit, their units, bounds and which ones are free.
+// The physical parameters an inversion can fit: one entry per parameter of the sediment model
+// (sediment/sediment_model.hpp), with its SI unit, start or fixed value, search bounds and whether
+// it is free. The fit works in natural logarithms of the values, so steps are relative and decades
+// apart are equal; every parameter is therefore positive.
 //
-// Three parameters describe a grain contact: stiffness kappa [N/m], grain diameter d [m] and the
-// normal damping, either as the dashpot gamma [kg/s] or as the restitution coefficient e_n [-] of a
-// binary collision of two equal grains. The grain density rho_s [kg/m^3] is always fixed. The fit
-// works in natural logarithms of the three, so steps are relative and decades apart are equal.
-#include <array>
+// The default set is the grain-contact family's: contact stiffness kappa [N/m], grain diameter
+// d [m], the normal damping as the dashpot gamma [kg/s] or the restitution coefficient e_n [-] of
+// a collision of two equal grains, and the grain density rho_s [kg/m^3] (fixed).
 #include <string>
 #include <vector>
 
+#include "sedwave/sediment/grain_contact.hpp"
+#include "sedwave/sediment/sediment_model.hpp"
+
 namespace sedwave::inversion {
 
-enum class DampingForm { Gamma, Restitution };
+using sediment::DampingForm;
 
-/// Index of each fitted quantity in the parameter vector theta = (ln kappa, ln d, ln damping).
-enum ParameterIndex : int { kKappa = 0, kDiameter = 1, kDamping = 2, kParameterCount = 3 };
+/// Positions of the grain-contact parameters (in every model whose parameters start with them).
+enum ParameterIndex : int { kKappa = 0, kDiameter = 1, kDamping = 2, kGrainDensity = 3 };
 
 struct ParameterSpec {
-  double value;  ///< start value if free, the value used if fixed [SI]
-  double lower;  ///< bound [SI]
-  double upper;  ///< bound [SI]
-  bool free;
+  std::string name;
+  std::string unit;
+  double value = 0.0;  ///< start value if free, the value used if fixed [unit]
+  double lower = 0.0;  ///< search bound [unit]
+  double upper = 0.0;  ///< search bound [unit]
+  bool free = false;
 };
 
-/// All parameters of one inversion, in SI.
+/// All parameters of one inversion, in SI, in the model's order.
 struct FitParameters {
-  DampingForm damping = DampingForm::Gamma;
-  double density = 2650.0;  ///< grain density rho_s [kg/m^3], fixed
-  std::array<ParameterSpec, kParameterCount> spec{{
-      {6.0e3, 1.0e-3, 1.0e13, true},   // kappa [N/m]
-      {2.0e-4, 1.0e-8, 1.0, true},     // d [m]: 10 nm (clay) to 1 m (boulders)
-      {1.0e-2, 1.0e-12, 1.0e8, true},  // gamma [kg/s]; see set_damping_form for e_n
-  }};
+  std::vector<ParameterSpec> spec;
 
-  /// Switch between gamma and e_n, resetting the damping entry to that form's defaults.
+  /// The grain-contact family with the dashpot gamma: kappa, d, gamma free; rho_s fixed at 2650.
+  FitParameters();
+  /// A model's parameters at their defaults, search bounds = physical ranges, all fixed.
+  explicit FitParameters(const std::vector<sediment::Parameter>& parameters);
+
+  [[nodiscard]] int size() const { return static_cast<int>(spec.size()); }
+  /// Index by name; throws std::invalid_argument listing the accepted names.
+  [[nodiscard]] int index_of(const std::string& name) const;
+  /// True when the first four parameters are the grain contact's (kappa, d, gamma or en, rho_s).
+  [[nodiscard]] bool starts_with_grain_contact() const;
+  /// The damping form of a grain-contact parameter set (by the name of entry kDamping).
+  [[nodiscard]] DampingForm damping_form() const;
+  /// Switch between gamma and e_n (grain-contact sets only), resetting that entry to the form's
+  /// defaults and keeping whether it is free.
   void set_damping_form(DampingForm form);
-  /// Mark free exactly the parameters named in a list like "kappa,d,gamma" (others fixed).
-  /// Accepted names: kappa, d, gamma, en (e_n also accepted). Throws std::invalid_argument.
+  /// Mark free exactly the parameters named in a list like "kappa,d,gamma" (others fixed). For a
+  /// grain-contact set, naming gamma or en (e_n) selects that damping form. Throws
+  /// std::invalid_argument naming an unknown, repeated or conflicting name.
   void set_free_from_list(const std::string& list);
   [[nodiscard]] std::vector<int> free_indices() const;
-  /// theta = natural logarithms of the three values.
-  [[nodiscard]] std::array<double, kParameterCount> log_values() const;
+  [[nodiscard]] std::vector<double> values() const;
+  /// theta = natural logarithms of the values.
+  [[nodiscard]] std::vector<double> log_values() const;
   /// Throws std::invalid_argument if a value lies outside its bounds or bounds are not positive.
   void validate() const;
+  /// Throws std::invalid_argument unless these are the parameters of `model` (same names, order).
+  void require_parameters_of(const sediment::SedimentModel& model) const;
 };
-
-/// Name, symbol and SI unit of each parameter (the damping one depends on the form).
-[[nodiscard]] std::string parameter_name(int index, DampingForm form);
-[[nodiscard]] std::string parameter_unit(int index, DampingForm form);
 
 }  // namespace sedwave::inversion

@@ -12,6 +12,7 @@
 #include "sedwave/forward/dispersion.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/parameters.hpp"
+#include "sedwave/sediment/sediment_model.hpp"
 
 namespace sedwave::inversion {
 
@@ -31,6 +32,9 @@ struct SyntheticDesign {
 /// sigma = speed_noise * the noise-free value. Throws
 /// std::invalid_argument for a design that is not a band of >= 2 positive frequencies, and whatever
 /// the model throws where it has no value (a table: std::domain_error).
+[[nodiscard]] ObservationSet synthetic_observations(const sediment::SedimentModel& model, const FitParameters& truth,
+                                                    const SyntheticDesign& design);
+/// The same with a dimensionless model as a dry grain-contact frame.
 [[nodiscard]] ObservationSet synthetic_observations(const forward::DispersionModel& model, const FitParameters& truth,
                                                     const SyntheticDesign& design);
 

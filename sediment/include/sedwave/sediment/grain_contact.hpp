@@ -88,6 +88,7 @@ class GrainContactModel final : public JetEvaluated<GrainContactModel> {
   [[nodiscard]] std::string name() const override { return model_->name(); }
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+  [[nodiscard]] std::string uncertainty_caveat() const override { return model_->uncertainty_caveat(); }
   [[nodiscard]] const forward::DispersionModel& dimensionless() const { return *model_; }
   [[nodiscard]] DampingForm damping_form() const { return form_; }
 

@@ -54,6 +54,10 @@ class SedimentModel {
   [[nodiscard]] virtual Wave evaluate(std::span<const double> values, double frequency_hz,
                                       bool derivatives) const = 0;
 
+  /// What the model's own sigmas are known to leave out, in words (an inversion flags it); empty
+  /// when nothing is known to be missing.
+  [[nodiscard]] virtual std::string uncertainty_caveat() const { return {}; }
+
   /// Index of a parameter by name; throws std::invalid_argument listing the accepted names.
   [[nodiscard]] int index_of(const std::string& name) const;
   /// The defaults, in parameters() order.
