@@ -27,6 +27,8 @@
 //   (H M - C^2) s^2 - (H m~ + rho M - 2 C rho_f) s + (rho m~ - rho_f^2) = 0,
 //   m~ = alpha_inf rho_f / beta + i eta F*(kappa) / (k omega).
 // The two roots are the fast and the slow (Biot type II) compressional waves.
+#include <ceres/jet.h>
+
 #include <cmath>
 #include <numbers>
 
@@ -39,6 +41,12 @@ inline double value_of(double x) { return x; }
 template <typename J>
 double value_of(const J& x) {
   return x.a;
+}
+/// |z| of the value part only: loop stopping rules need no derivatives.
+template <typename T>
+double magnitude(const Complex<T>& z) {
+  const double re = value_of(z.re), im = value_of(z.im);
+  return std::sqrt(re * re + im * im);  // not std::hypot: several times slower, and no overflow here
 }
 }  // namespace biot_detail
 
@@ -121,7 +129,7 @@ Complex<T> reduced_bessel_i_series(int n, const Complex<T>& w) {
   for (int j = 1; j < 80; ++j) {
     term = term * w / T(static_cast<double>(j) * static_cast<double>(j + n));
     sum = sum + term;
-    if (biot_detail::value_of(abs(term)) < 1e-17 * biot_detail::value_of(abs(sum))) break;
+    if (biot_detail::magnitude(term) < 1e-17 * biot_detail::magnitude(sum)) break;
   }
   return sum;
 }
@@ -137,7 +145,7 @@ Complex<T> bessel_i_asymptotic_factor(int n, const Complex<T>& z) {
   for (int k = 1; k < 40; ++k) {
     const double odd = 2.0 * k - 1.0;
     term = term * inverse * T(-(mu - odd * odd) / (8.0 * k));
-    const double size = biot_detail::value_of(abs(term));
+    const double size = biot_detail::magnitude(term);
     if (size > previous) break;  // the asymptotic series starts to diverge: stop at its smallest term
     sum = sum + term;
     if (size < 1e-17) break;
@@ -184,13 +192,26 @@ Complex<T> kelvin_ber_bei_derivative(const T& x) {
 /// With the Bessel forms above F = (z/4) I_1(z) / I_2(z); the series form R_1/(2 R_2) of the
 /// reduced sums avoids the 0/0 of Biot's expression at small kappa.
 template <typename T>
-Complex<T> biot_viscous_correction(const T& kappa) {
+Complex<T> biot_viscous_correction_direct(const T& kappa) {
   const Complex<T> z = kelvin_argument(kappa);
   if (biot_detail::value_of(kappa) < kKelvinSeriesLimit) {
     const Complex<T> w = z * z / T(4.0);
     return reduced_bessel_i_series(1, w) / (reduced_bessel_i_series(2, w) * T(2.0));
   }
   return z / T(4.0) * bessel_i_asymptotic_factor(1, z) / bessel_i_asymptotic_factor(2, z);
+}
+
+inline Complex<double> biot_viscous_correction(double kappa) { return biot_viscous_correction_direct(kappa); }
+
+/// F(kappa) for a Jet with many derivatives: F depends on the one scalar kappa, so it is evaluated
+/// once with a single-derivative Jet and carried onto the N derivatives by the chain rule (the
+/// series in N-derivative Jets would cost N times as much).
+template <int N>
+Complex<ceres::Jet<double, N>> biot_viscous_correction(const ceres::Jet<double, N>& kappa) {
+  using Scalar = ceres::Jet<double, 1>;
+  const Complex<Scalar> f = biot_viscous_correction_direct(Scalar(kappa.a, 0));
+  using J = ceres::Jet<double, N>;
+  return {J(f.re.a, f.re.v[0] * kappa.v), J(f.im.a, f.im.v[0] * kappa.v)};
 }
 
 // ---- The medium and its compressional waves -------------------------------------------------------
