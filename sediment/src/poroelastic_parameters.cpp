@@ -8,7 +8,7 @@ namespace sedwave::sediment {
 
 Parameter porosity_parameter() {
   return {"porosity", "1", 0.40, 0.01, 0.99, false,
-          "pore volume fraction; well-sorted sands 0.35-0.45 (SAX99 medium sand: 0.385, Williams et al. 2002)"};
+          "pore volume fraction; well-sorted sands 0.35-0.45"};
 }
 
 Parameter grain_bulk_parameter() {
@@ -37,8 +37,9 @@ Parameter permeability_parameter() {
 }
 
 Parameter tortuosity_parameter() {
-  return {"tortuosity", "1", 1.35, 1.0, 10.0, false,
-          "tortuosity alpha_inf (Stoll's structure factor), >= 1; SAX99 sand 1.35 (Williams et al. 2002)"};
+  return {"tortuosity", "1", 1.75, 1.0, 10.0, false,
+          "tortuosity alpha_inf (Stoll's structure factor), >= 1; default = 1 + (1/beta - 1)/2 for spheres at "
+          "beta = 0.4 (Berryman, Appl. Phys. Lett. 37, 382, 1980)"};
 }
 
 Parameter pore_size_parameter() {

@@ -1,9 +1,9 @@
 // EDFM (Williams 2001) and Biot-Stoll (Stoll 1989): limits and asymptotes against closed forms.
 //
 // Published values: Williams et al., IEEE J. Ocean. Eng. 27, 413 (2002) compare both models with
-// the SAX99 measurements, but their predictions are available here only as figures (the paper's
-// text and tables could not be consulted), so no printed value is tested. The tests check the
-// closed forms the models must reduce to instead.
+// the SAX99 measurements, but neither that paper's parameter table nor its predictions could be
+// consulted, so no printed value is tested. The tests check the closed forms the models must
+// reduce to instead.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <numbers>
 #include <vector>
 
@@ -128,8 +129,9 @@ TEST(SaturatedGranularModel, KozenyCarmanModeEqualsGivenPermeabilityAtTheClosedF
 }
 
 TEST(SaturatedGranularModel, GradientMatchesCentralDifferences) {
-  for (const PermeabilityFrom mode : {PermeabilityFrom::Parameter, PermeabilityFrom::KozenyCarman}) {
-    const S model(chain("lattice"), DampingForm::Gamma, mode);
+  for (const auto& [mode, form] : {std::pair{PermeabilityFrom::Parameter, DampingForm::Gamma},
+                                   std::pair{PermeabilityFrom::KozenyCarman, DampingForm::Restitution}}) {
+    const S model(chain("lattice"), form, mode);
     const std::vector<double> v = model.default_values();
     for (const double f : {3e3, 1e5}) {
       const Wave w = model.evaluate(v, f, true);

@@ -13,7 +13,7 @@
 // Permeability k and pore size a are either parameters, or derived from d and porosity:
 //   Kozeny-Carman: k = d^2 beta^3 / (180 (1 - beta)^2)   (Carman, Trans. Inst. Chem. Eng. 15, 150
 //                  (1937); the constant 180 for spheres as in Bear, Dynamics of Fluids in Porous
-//                  Media (1972), eq. 5.10.18),
+//                  Media (1972)),
 //   pore size:     a = d beta / (3 (1 - beta))           (twice the hydraulic radius of a pack of
 //                  spheres of diameter d; Hovem & Ingram, J. Acoust. Soc. Am. 66, 1807 (1979)).
 #include <memory>
