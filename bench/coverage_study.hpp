@@ -50,7 +50,7 @@ inline Truth draw_truth(std::mt19937_64& rng) {
   const double m = forward::grain_mass(density, d);
   const double kappa = c0 * c0 * m / (d * d);
   const double gamma = t.gamma_hat * std::sqrt(kappa * m);
-  t.parameters.density = density;
+  t.parameters.spec[inversion::kGrainDensity].value = density;
   t.parameters.spec[inversion::kKappa].value = kappa;
   t.parameters.spec[inversion::kDiameter].value = d;
   t.parameters.spec[inversion::kDamping].value = gamma;
@@ -82,11 +82,10 @@ struct DataSetResult {
 inline inversion::FitResult design_analysis(const inversion::ObservationSet& data, const forward::DispersionModel& model,
                                             const inversion::FitParameters& truth) {
   inversion::ObservationSet clean = data;
-  const inversion::Predictor predictor(model, truth.damping, truth.density);
-  const auto theta = truth.log_values();
+  const auto frame = inversion::grain_contact_model(model, truth.damping_form());
+  const std::vector<double> values = truth.values();
   for (inversion::Observation& o : clean.observations) {
-    const auto p = predictor(theta[0], theta[1], theta[2], o.frequency_hz);
-    o.value = o.quantity == inversion::Quantity::Attenuation ? p.alpha : p.speed;
+    o.value = inversion::predicted_value(o, frame->evaluate(values, o.frequency_hz, false));
   }
   inversion::FitOptions linear;
   linear.method = inversion::FitMethod::Ceres;
@@ -100,7 +99,7 @@ inline DataSetResult run_data_set(unsigned seed, int index) {
   DataSetResult r;
   r.truth = draw_truth(rng);
   const forward::LatticeModel lattice;
-  const double m = forward::grain_mass(r.truth.parameters.density, r.truth.values[1]);
+  const double m = forward::grain_mass(r.truth.parameters.spec[inversion::kGrainDensity].value, r.truth.values[1]);
   const double omega_scale = std::sqrt(r.truth.values[0] / m);  // omega = omega_hat sqrt(kappa/m)
   const double top_hz = r.truth.top_omega_hat * omega_scale / (2.0 * std::numbers::pi);
   const inversion::SyntheticDesign design{top_hz / 500.0, top_hz, 30, r.truth.alpha_noise,
@@ -146,7 +145,7 @@ inline std::pair<int, int> verify_open_sides(unsigned seed, int index) {
   std::mt19937_64 rng(seed * 1000003ull + static_cast<unsigned>(index));
   const Truth truth = draw_truth(rng);
   const forward::LatticeModel lattice;
-  const double m = forward::grain_mass(truth.parameters.density, truth.values[1]);
+  const double m = forward::grain_mass(truth.parameters.spec[inversion::kGrainDensity].value, truth.values[1]);
   const double top_hz = truth.top_omega_hat * std::sqrt(truth.values[0] / m) / (2.0 * std::numbers::pi);
   const inversion::SyntheticDesign design{top_hz / 500.0, top_hz, 30, truth.alpha_noise, truth.alpha_noise / 5.0,
                                           seed * 7919u + static_cast<unsigned>(index)};
@@ -155,7 +154,7 @@ inline std::pair<int, int> verify_open_sides(unsigned seed, int index) {
   int checked = 0, wrong = 0;
   inversion::FitOptions quick;
   quick.profile_likelihood = false;
-  for (int i = 0; i < inversion::kParameterCount; ++i) {
+  for (int i = 0; i < inversion::kGrainDensity; ++i) {  // the free ones: kappa, d, gamma
     const auto& p = fit.parameters[static_cast<size_t>(i)];
     for (bool lower : {true, false}) {
       if ((lower ? p.profile_lower : p.profile_upper).has_value()) continue;

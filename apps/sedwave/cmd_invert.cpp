@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "model_options.hpp"
 #include "option_checks.hpp"
 #include "output_paths.hpp"
 #include "sedwave/io/atomic_file.hpp"
@@ -21,6 +22,8 @@
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/report.hpp"
+#include "sedwave/sediment/catalog.hpp"
+#include "sedwave/sediment/saturated_granular.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -29,13 +32,9 @@ struct InvertOptions {
   std::vector<std::string> files;
   std::vector<std::string> digitized_files;
   std::vector<std::string> digitized_specs;
-  std::string model = "lattice";
-  std::string fit = "kappa,d,gamma";
+  ModelOptions model;
   std::string method = "global";
   std::string out = "sedwave-fit";
-  std::optional<double> kappa, diameter, gamma, restitution;
-  std::vector<double> kappa_bounds, diameter_bounds, gamma_bounds, restitution_bounds;
-  double density = 2650.0;
   std::optional<double> water_speed, sediment_speed;
   inversion::FitOptions fit_options;
   bool plot = true;
@@ -76,51 +75,11 @@ inversion::ObservationSet read_all(const InvertOptions& o) {
   return all;
 }
 
-void apply_value(inversion::ParameterSpec& spec, const std::optional<double>& value, const std::vector<double>& bounds) {
-  if (bounds.size() == 2) {
-    spec.lower = bounds[0];
-    spec.upper = bounds[1];
-  }
-  if (value) spec.value = *value;
-}
-
-bool names_in_list(const std::string& list, std::initializer_list<const char*> names) {
-  std::stringstream stream(list);
-  for (std::string item; std::getline(stream, item, ',');) {
-    for (const char* name : names) {
-      if (item == name) return true;
-    }
-  }
-  return false;
-}
-
-/// The damping is one parameter, given as gamma or as e_n: options naming both forms conflict.
-bool uses_restitution(const InvertOptions& o) {
-  const bool gamma_named = names_in_list(o.fit, {"gamma"}) || o.gamma || !o.gamma_bounds.empty();
-  const bool en_named = names_in_list(o.fit, {"en", "e_n"}) || o.restitution || !o.restitution_bounds.empty();
-  if (gamma_named && en_named) {
-    throw std::invalid_argument(
-        "the damping is one parameter, given either as the dashpot gamma (--gamma, --gamma-bounds, --fit gamma) or "
-        "as the restitution e_n (--en, --en-bounds, --fit en); these options name both");
-  }
-  return en_named;
-}
-
-inversion::FitParameters make_parameters(const InvertOptions& o) {
-  inversion::FitParameters p;
-  p.density = o.density;
-  const bool restitution = uses_restitution(o);
-  if (restitution) p.set_damping_form(inversion::DampingForm::Restitution);
-  p.set_free_from_list(o.fit);
-  apply_value(p.spec[inversion::kKappa], o.kappa, o.kappa_bounds);
-  apply_value(p.spec[inversion::kDiameter], o.diameter, o.diameter_bounds);
-  if (restitution) {
-    apply_value(p.spec[inversion::kDamping], o.restitution, o.restitution_bounds);
-  } else {
-    apply_value(p.spec[inversion::kDamping], o.gamma, o.gamma_bounds);
-  }
-  p.validate();
-  return p;
+/// The dimensionless engine behind a grain-contact model (dry or saturated), if any.
+const forward::DispersionModel* dimensionless_of(const sediment::SedimentModel& model) {
+  if (const auto* dry = dynamic_cast<const sediment::GrainContactModel*>(&model)) return &dry->dimensionless();
+  if (const auto* wet = dynamic_cast<const sediment::SaturatedGranularModel*>(&model)) return &wet->dimensionless();
+  return nullptr;
 }
 
 /// "open" for a missing end of a profile interval (the search bound lies within it).
@@ -160,7 +119,7 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
     print_quantity(p.name, p.unit, p.value, p.sigma, p.free, p.determined, p.at_bound, p.profile_lower,
                    p.profile_upper, profiled && p.free);
   }
-  std::printf("\ncombinations the data may determine:\n");
+  if (!r.combinations.empty()) std::printf("\ncombinations the data may determine:\n");
   for (const auto& c : r.combinations) {
     print_quantity(c.name, c.unit, c.value, c.sigma, true, c.determined, false, c.profile_lower, c.profile_upper,
                    profiled);
@@ -208,7 +167,7 @@ constexpr std::size_t kProgressObservations = 10000;
 std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
   std::vector<std::filesystem::path> inputs(o.files.begin(), o.files.end());
   inputs.insert(inputs.end(), o.digitized_files.begin(), o.digitized_files.end());
-  if (const auto table = forward::dispersion_model_file(o.model)) inputs.emplace_back(*table);
+  if (const auto table = sediment::sediment_model_file(o.model.model)) inputs.emplace_back(*table);
   return inputs;
 }
 
@@ -225,34 +184,16 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
 Command add_invert_command(CLI::App& app) {
   auto o = std::make_shared<InvertOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "invert", "Fit kappa, d and gamma (or e_n) to attenuation/sound-speed observations (SI units; "
-                "see docs/cli.md)");
+      "invert", "Fit a sediment model's parameters (by default the grain contact's kappa, d and gamma or e_n) to "
+                "attenuation/sound-speed observations (SI units; see docs/cli.md, sedwave models)");
   cmd->add_option("files", o->files, "observation CSV files (docs/file-formats.md)");
   cmd->add_option("--digitized-file", o->digitized_files, "WebPlotDigitizer x,y export (repeatable)");
   cmd->add_option("--digitized", o->digitized_specs,
                   "QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA] for --digitized-file (one for all, or one each)");
-  cmd->add_option("--model", o->model,
-                  "forward model: continuum | lattice | table:FILE.h5[?extrapolate=theory|long-wavelength] (docs/tables.md)")
-      ->capture_default_str();
-  cmd->add_option("--fit", o->fit, "free parameters among kappa,d,gamma|en (others fixed)")->capture_default_str();
+  add_model_options(*cmd, o->model, ModelUse::Fit);
   cmd->add_option("--method", o->method, "ceres (local) | nlopt (global search) | global (search + polish)")->capture_default_str()
       ->check(CLI::IsMember({"ceres", "nlopt", "global"}));
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
-  cmd->add_option("--kappa", o->kappa, "contact stiffness [N/m]: start value, or the value if fixed")
-      ->check(finite_positive());
-  cmd->add_option("--d", o->diameter, "grain diameter [m]: start value, or the value if fixed")->check(finite_positive());
-  cmd->add_option("--gamma", o->gamma, "normal dashpot [kg/s]: start value, or the value if fixed")
-      ->check(finite_positive());
-  cmd->add_option("--en", o->restitution, "restitution coefficient e_n (0,1): start value, or the value if fixed")
-      ->check(finite_in(1e-6, 0.999999));
-  cmd->add_option("--kappa-bounds", o->kappa_bounds, "LO,HI [N/m]")->delimiter(',')->expected(2)->check(finite_positive());
-  cmd->add_option("--d-bounds", o->diameter_bounds, "LO,HI [m]")->delimiter(',')->expected(2)->check(finite_positive());
-  cmd->add_option("--gamma-bounds", o->gamma_bounds, "LO,HI [kg/s]")->delimiter(',')->expected(2)
-      ->check(finite_positive());
-  cmd->add_option("--en-bounds", o->restitution_bounds, "LO,HI")->delimiter(',')->expected(2)
-      ->check(finite_in(1e-6, 0.999999));
-  cmd->add_option("--density", o->density, "grain density rho_s [kg/m^3] (fixed)")->capture_default_str()
-      ->check(finite_in(100.0, 25000.0));
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));
   cmd->add_option("--sediment-speed", o->sediment_speed, "sediment sound speed [m/s] to convert dB/wavelength")
@@ -276,7 +217,8 @@ Command add_invert_command(CLI::App& app) {
             const std::filesystem::path out(o->out);
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
-            const auto model = forward::make_dispersion_model(o->model);
+            const auto model = make_model(o->model);
+            const inversion::FitParameters parameters = make_parameters(o->model, *model, ModelUse::Fit);
             inversion::FitOptions options = o->fit_options;
             options.method = inversion::parse_fit_method(o->method);
             if (data.observations.size() >= kProgressObservations) {
@@ -286,12 +228,12 @@ Command add_invert_command(CLI::App& app) {
                 std::fprintf(stderr, "sedwave invert: %7.1f s: %s\n", s, stage.c_str());
               };
             }
-            const inversion::FitResult result = inversion::fit(data, *model, make_parameters(*o), options);
+            const inversion::FitResult result = inversion::fit(data, *model, parameters, options);
 
             nlohmann::json report = inversion::fit_report(result, data);
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
             // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
-            if (const auto* table = dynamic_cast<const forward::table::TableModel*>(model.get())) {
+            if (const auto* table = dynamic_cast<const forward::table::TableModel*>(dimensionless_of(*model))) {
               report["table_fallback_evaluations"] = table->fallback_count();
               report["table_long_wavelength_evaluations"] = table->extrapolated_count();
               if (table->fallback_count() > 0) {
@@ -315,8 +257,8 @@ Command add_invert_command(CLI::App& app) {
             inversion::write_observations_table(out / "observations.csv", data, result);
             inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
             if (o->plot) {
-              plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model +
-                                                       (result.model.starts_with("table:") ? "" : " chain model"),
+              const bool chain = o->model.model == "lattice" || o->model.model == "continuum";
+              plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model + (chain ? " chain model" : ""),
                                               data.water_sound_speed.has_value(), result);
             }
             print_summary(result, plot, o->out, options.profile_likelihood);

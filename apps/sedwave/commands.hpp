@@ -26,5 +26,6 @@ Command add_table_command(CLI::App& app);
 Command add_synthesize_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
 Command add_show_command(CLI::App& app);
+Command add_models_command(CLI::App& app);
 
 }  // namespace sedwave::app

@@ -44,12 +44,14 @@ std::vector<double> values_of(const Theta& theta) {
   return v;
 }
 
-/// The model at every distinct frequency; false where it has no answer.
-bool waves_at(const Setup& s, const std::vector<double>& values, bool derivatives, std::vector<sediment::Wave>& waves) {
+/// The model at every distinct frequency; false where it has no answer (and why, if asked).
+bool waves_at(const Setup& s, const std::vector<double>& values, bool derivatives, std::vector<sediment::Wave>& waves,
+              std::string* why = nullptr) {
   waves.resize(s.frequencies.size());
   try {
     for (std::size_t k = 0; k < s.frequencies.size(); ++k) waves[k] = s.model->evaluate(values, s.frequencies[k], derivatives);
-  } catch (const std::domain_error&) {
+  } catch (const std::domain_error& e) {
+    if (why) *why = e.what();
     return false;
   }
   return true;
@@ -148,10 +150,10 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
   return subset;
 }
 
-bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian) {
+bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian, std::string* why) {
   const std::vector<double> values = values_of(theta);
   std::vector<sediment::Wave> waves;
-  if (!waves_at(s, values, jacobian != nullptr, waves)) return false;
+  if (!waves_at(s, values, jacobian != nullptr, waves, why)) return false;
   const auto n = static_cast<Eigen::Index>(values.size());
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
   Eigen::VectorXd row(n);
@@ -167,7 +169,8 @@ bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::
 
 std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
   std::vector<sediment::Wave> waves;
-  if (!waves_at(s, values_of(theta), false, waves)) throw std::runtime_error("the model cannot be evaluated at the fit");
+  std::string why;
+  if (!waves_at(s, values_of(theta), false, waves, &why)) throw std::runtime_error(why);
   std::vector<double> out;
   for (std::size_t r = 0; r < s.observations.size(); ++r) out.push_back(predicted_value(s.observations[r], waves[s.frequency_of[r]]));
   return out;
@@ -220,7 +223,8 @@ LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held, 
 Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
   std::vector<double> r(s.observations.size());
   Eigen::MatrixXd all;
-  if (!residuals_at(s, theta, r.data(), &all)) throw std::runtime_error("residual failed at the solution");
+  std::string why = "a residual is not defined at the solution (a non-positive model attenuation)";
+  if (!residuals_at(s, theta, r.data(), &all, &why)) throw std::runtime_error(why);
   Eigen::MatrixXd J(all.rows(), static_cast<Eigen::Index>(s.free.size()));
   for (std::size_t k = 0; k < s.free.size(); ++k) J.col(static_cast<Eigen::Index>(k)) = all.col(s.free[k]);
   if (!J.allFinite()) {

@@ -46,8 +46,9 @@ struct Setup {
 
 /// Whitened residuals at theta, and (if `jacobian`) d residual / d theta for every parameter
 /// (rows x parameters). False where the model cannot be evaluated (std::domain_error) or a residual
-/// is not defined.
-[[nodiscard]] bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian);
+/// is not defined; `why` (if given) then receives the model's reason.
+[[nodiscard]] bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian,
+                                std::string* why = nullptr);
 
 /// The model's wave at every row's frequency (SI).
 [[nodiscard]] std::vector<double> predictions_at(const Setup& s, const Theta& theta);

@@ -36,11 +36,11 @@ int FitParameters::index_of(const std::string& name) const {
 
 bool FitParameters::starts_with_grain_contact() const {
   return size() >= 4 && spec[kKappa].name == "kappa" && spec[kDiameter].name == "d" &&
-         (spec[kDamping].name == "gamma" || spec[kDamping].name == "en") && spec[kGrainDensity].name == "rho_s";
+         (spec[kDamping].name == "gamma" || spec[kDamping].name == "e_n") && spec[kGrainDensity].name == "rho_s";
 }
 
 DampingForm FitParameters::damping_form() const {
-  return starts_with_grain_contact() && spec[kDamping].name == "en" ? DampingForm::Restitution : DampingForm::Gamma;
+  return starts_with_grain_contact() && spec[kDamping].name == "e_n" ? DampingForm::Restitution : DampingForm::Gamma;
 }
 
 void FitParameters::set_damping_form(DampingForm form) {

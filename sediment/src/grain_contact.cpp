@@ -16,7 +16,7 @@ std::vector<Parameter> grain_contact_parameters(DampingForm form) {
   };
   if (form == DampingForm::Restitution) {
     // e_n < 1 strictly: e_n = 1 means no dashpot, where attenuation (fitted in log space) vanishes.
-    ps[GrainContactModel::kDamping] = {"en", "1", 0.5, 1.0e-6, 0.999999, true,
+    ps[GrainContactModel::kDamping] = {"e_n", "1", 0.5, 1.0e-6, 0.999999, true,
                                        "normal restitution coefficient of a collision of two equal grains"};
   }
   return ps;

@@ -218,8 +218,7 @@ double seawater_viscosity(double temperature, double salinity) {
 double kozeny_carman_permeability(double diameter, double porosity) {
   require_diameter(diameter);
   require_porosity(porosity);
-  const double solid = 1.0 - porosity;
-  return diameter * diameter * porosity * porosity * porosity / (180.0 * solid * solid);
+  return kozeny_carman_formula(diameter, porosity);
 }
 
 }  // namespace sedwave::sediment

@@ -58,10 +58,10 @@ TEST(GrainContactModel, RefusesValuesOutsideTheirRangeNamingThem) {
     model.check_values(v);
     FAIL() << "e_n = 1.5 accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("en = 1.5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("e_n = 1.5"), std::string::npos) << e.what();
   }
   EXPECT_THROW((void)model.index_of("gamma"), std::invalid_argument);
-  EXPECT_EQ(model.index_of("en"), GrainContactModel::kDamping);
+  EXPECT_EQ(model.index_of("e_n"), GrainContactModel::kDamping);
 }
 
 }  // namespace

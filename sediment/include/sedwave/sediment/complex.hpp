@@ -26,6 +26,10 @@ struct Complex {
     const T n = b.re * b.re + b.im * b.im;
     return {(a.re * b.re + a.im * b.im) / n, (a.im * b.re - a.re * b.im) / n};
   }
+  // Real scalars of type T without a detour through Complex (half the multiplications).
+  friend Complex operator*(const Complex& a, const T& s) { return {a.re * s, a.im * s}; }
+  friend Complex operator*(const T& s, const Complex& a) { return {a.re * s, a.im * s}; }
+  friend Complex operator/(const Complex& a, const T& s) { return {a.re / s, a.im / s}; }
 };
 
 template <typename T>
@@ -64,8 +68,8 @@ Complex<T> polar(const T& magnitude, const T& phase) {
   return {magnitude * cos(phase), magnitude * sin(phase)};
 }
 
-// ---- Powers of a complex number (grain-shearing models) ----------------------------------------
-// Kept together at the end of the file. All use the principal branch, arg z in (-pi, pi].
+// ---- Logarithms, exponentials and powers ------------------------------------------------------
+// All use the principal branch, arg z in (-pi, pi].
 
 /// Principal argument of z, in (-pi, pi].
 template <typename T>
@@ -74,7 +78,7 @@ T arg(const Complex<T>& z) {
   return atan2(z.im, z.re);
 }
 
-/// e^z.
+/// e^z = e^{re} (cos im + i sin im).
 template <typename T>
 Complex<T> exp(const Complex<T>& z) {
   using std::exp;

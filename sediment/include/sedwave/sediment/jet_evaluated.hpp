@@ -11,6 +11,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "sedwave/sediment/sediment_model.hpp"
 
@@ -25,40 +26,51 @@ struct WaveOf {
   double sigma_speed = 0.0;        ///< [m/s]
 };
 
+/// Evaluates `wave_of(const T* values)` (a generic callable returning WaveOf<T>) as doubles, or with
+/// N Jet-seeded values for the gradient. For models whose parameter count is chosen at construction
+/// (and so cannot be one static constant); JetEvaluated<M> is the usual way in.
+template <int N, typename WaveFunction>
+Wave evaluate_with_jets(const std::string& model_name, std::span<const double> values, double frequency_hz,
+                        bool derivatives, const WaveFunction& wave_of) {
+  if (values.size() != static_cast<std::size_t>(N)) {
+    throw std::invalid_argument(model_name + ": " + std::to_string(N) + " parameter values expected, got " +
+                                std::to_string(values.size()));
+  }
+  Wave w;
+  if (!derivatives) {
+    const WaveOf<double> v = wave_of(values.data());
+    w.attenuation = v.attenuation;
+    w.speed = v.speed;
+    w.sigma_attenuation = v.sigma_attenuation;
+    w.sigma_speed = v.sigma_speed;
+  } else {
+    using Jet = ceres::Jet<double, N>;
+    Jet x[N];
+    for (int i = 0; i < N; ++i) x[i] = Jet(values[static_cast<std::size_t>(i)], i);
+    const WaveOf<Jet> v = wave_of(static_cast<const Jet*>(x));
+    w.attenuation = v.attenuation.a;
+    w.speed = v.speed.a;
+    w.d_attenuation.assign(v.attenuation.v.data(), v.attenuation.v.data() + N);
+    w.d_speed.assign(v.speed.v.data(), v.speed.v.data() + N);
+    w.sigma_attenuation = v.sigma_attenuation;
+    w.sigma_speed = v.sigma_speed;
+  }
+  if (!std::isfinite(w.attenuation) || !std::isfinite(w.speed)) {
+    throw std::domain_error(model_name + ": no finite wave at " + std::to_string(frequency_hz) + " Hz");
+  }
+  return w;
+}
+
 template <typename M>
 class JetEvaluated : public SedimentModel {
  public:
   [[nodiscard]] Wave evaluate(std::span<const double> values, double frequency_hz,
                               bool derivatives) const final {
-    constexpr int n = M::kParameters;
-    if (values.size() != static_cast<std::size_t>(n)) {
-      throw std::invalid_argument(name() + ": " + std::to_string(n) + " parameter values expected, got " +
-                                  std::to_string(values.size()));
-    }
     const M& model = static_cast<const M&>(*this);
-    Wave w;
-    if (!derivatives) {
-      const WaveOf<double> v = model.template wave<double>(values.data(), frequency_hz);
-      w.attenuation = v.attenuation;
-      w.speed = v.speed;
-      w.sigma_attenuation = v.sigma_attenuation;
-      w.sigma_speed = v.sigma_speed;
-    } else {
-      using Jet = ceres::Jet<double, n>;
-      Jet x[n];
-      for (int i = 0; i < n; ++i) x[i] = Jet(values[i], i);
-      const WaveOf<Jet> v = model.template wave<Jet>(x, frequency_hz);
-      w.attenuation = v.attenuation.a;
-      w.speed = v.speed.a;
-      w.d_attenuation.assign(v.attenuation.v.data(), v.attenuation.v.data() + n);
-      w.d_speed.assign(v.speed.v.data(), v.speed.v.data() + n);
-      w.sigma_attenuation = v.sigma_attenuation;
-      w.sigma_speed = v.sigma_speed;
-    }
-    if (!std::isfinite(w.attenuation) || !std::isfinite(w.speed)) {
-      throw std::domain_error(name() + ": no finite wave at " + std::to_string(frequency_hz) + " Hz");
-    }
-    return w;
+    return evaluate_with_jets<M::kParameters>(name(), values, frequency_hz, derivatives, [&](const auto* x) {
+      using T = std::remove_cvref_t<decltype(*x)>;
+      return model.template wave<T>(x, frequency_hz);
+    });
   }
 };
 

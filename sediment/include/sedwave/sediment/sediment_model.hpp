@@ -19,9 +19,10 @@ struct Parameter {
   std::string name;     ///< command-line name, e.g. "porosity" (an option --porosity sets it)
   std::string unit;     ///< SI unit; "1" for a dimensionless number
   double default_value = 0.0;  ///< documented default (quartz sand in sea water unless said)
-  double lower = 0.0;   ///< physical range: values outside [lower, upper] are refused
+  double lower = 0.0;   ///< physical range, lower > 0: values outside [lower, upper] are refused
   double upper = 0.0;
-  /// Fitted in ln (a positive quantity spanning decades) rather than linearly.
+  /// Spans decades (a log-uniform prior suits it) rather than a narrow linear range. Every
+  /// parameter is positive, and the inversion steps all of them in ln.
   bool log_scale = true;
   std::string meaning;  ///< one line, with its source where it has one
 };

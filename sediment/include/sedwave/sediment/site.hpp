@@ -125,4 +125,11 @@ inline constexpr GrainMaterial kQuartz{9.45e10, 0.074};
 /// Dynamics of Fluids in Porous Media, section 5.10). Meant for well-sorted sands. Accepted: d in [10 nm, 1 m], porosity in (0, 1).
 [[nodiscard]] double kozeny_carman_permeability(double diameter, double porosity);
 
+/// The same formula unchecked, on any scalar type (the saturated model evaluates it on Jets).
+template <typename T>
+T kozeny_carman_formula(const T& diameter, const T& porosity) {
+  const T solid = 1.0 - porosity;
+  return diameter * diameter * porosity * porosity * porosity / (180.0 * solid * solid);
+}
+
 }  // namespace sedwave::sediment

@@ -1,0 +1,38 @@
+// `sedwave models`: every sediment model `invert` and `synthesize` accept, with each parameter's
+// unit, default and physical range (docs/models/).
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "sedwave/sediment/catalog.hpp"
+
+namespace sedwave::app {
+
+Command add_models_command(CLI::App& app) {
+  auto name = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand(
+      "models", "List the sediment models (--model of invert and synthesize) with their parameters: SI unit, "
+                "default, physical range (docs/models/)");
+  cmd->add_option("model", *name, "one model's specification (e.g. biot-stoll); all when omitted");
+  return {cmd, [name]() {
+    std::printf("# models: %s\n", name->empty() ? "all (a table stands for every table; saturated-X for any frame X)"
+                                                : name->c_str());
+    const auto models = name->empty() ? sediment::model_examples()
+                                      : std::vector<std::shared_ptr<const sediment::SedimentModel>>{
+                                            sediment::make_sediment_model(*name)};
+    for (const auto& m : models) {
+      std::printf("\n%s: %s\n", m->name().c_str(), m->summary().c_str());
+      std::printf("  %-14s %-8s %12s  %-25s %s\n", "parameter", "unit", "default", "physical range", "meaning");
+      for (const sediment::Parameter& p : m->parameters()) {
+        char range[64];
+        std::snprintf(range, sizeof range, "[%.3g, %.3g]", p.lower, p.upper);
+        std::printf("  %-14s %-8s %12.4g  %-25s %s\n", p.name.c_str(), p.unit.c_str(), p.default_value, range,
+                    p.meaning.c_str());
+      }
+    }
+    return kExitOk;
+  }};
+}
+
+}  // namespace sedwave::app

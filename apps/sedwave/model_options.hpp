@@ -1,0 +1,39 @@
+#pragma once
+// The command-line options that choose a sediment model and set its parameters, shared by
+// `sedwave invert` (start values, bounds, which are free) and `sedwave synthesize` (the truth).
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sedwave/inversion/parameters.hpp"
+#include "sedwave/sediment/sediment_model.hpp"
+
+namespace sedwave::app {
+
+struct ModelOptions {
+  std::string model = "lattice";
+  std::string fit;  ///< empty: kappa,d,gamma for models with grain contacts; required for the others
+  std::optional<double> kappa, diameter, gamma, restitution, density;
+  std::vector<double> kappa_bounds, diameter_bounds, gamma_bounds, restitution_bounds;
+  std::vector<std::string> set_values;  ///< NAME=VALUE
+  std::vector<std::string> set_bounds;  ///< NAME=LO,HI
+};
+
+enum class ModelUse { Fit, Truth };
+
+/// --model, --set, --kappa, --d, --gamma, --en, --density; for fits also --fit, --bounds, --*-bounds.
+void add_model_options(CLI::App& cmd, ModelOptions& options, ModelUse use);
+
+/// The model the options name (damping form and permeability mode follow from the options).
+[[nodiscard]] std::shared_ptr<const sediment::SedimentModel> make_model(const ModelOptions& options);
+
+/// The model's parameters with the options applied. Throws UsageError for a name the model does not
+/// have or a malformed --set/--bounds, std::invalid_argument for a value or bound outside the
+/// parameter's physical range (naming it).
+[[nodiscard]] inversion::FitParameters make_parameters(const ModelOptions& options,
+                                                       const sediment::SedimentModel& model, ModelUse use);
+
+}  // namespace sedwave::app

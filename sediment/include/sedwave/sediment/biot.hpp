@@ -1,0 +1,323 @@
+#pragma once
+// Biot's theory of a fluid-saturated porous frame, in the form Stoll uses for marine sediments:
+// the fast compressional wave's complex wave number, templated on the scalar type T (double or
+// ceres::Jet) so that every model built on it gets exact gradients.
+//
+// Sources:
+//   M. A. Biot, J. Acoust. Soc. Am. 28, 168-178 (1956) (low-frequency range) and 28, 179-191
+//     (1956) (higher frequency range: the viscous correction F(kappa)).
+//   R. D. Stoll, "Acoustic waves in saturated sediments", in Physics of Sound in Marine Sediments
+//     (Plenum, 1974), and Sediment Acoustics (Springer, 1989), ch. 2: H, C, M and the determinant.
+//   R. D. Stoll and T. K. Kan, J. Acoust. Soc. Am. 70, 149-156 (1981): the same equations as used
+//     for reflection at the sea floor.
+//   F. Gassmann, Vierteljahrsschr. Naturforsch. Ges. Zuerich 96, 1-23 (1951); A. B. Wood, A
+//     Textbook of Sound (Bell, 1930).
+//
+// Sign convention: fields vary as exp(i(k x - omega t)); a wave that decays along +x has
+// Im k > 0, and attenuation = Im k [Np/m], phase speed = omega / Re k. In this convention a lossy
+// modulus has a NEGATIVE imaginary part (Stoll writes exp(+i omega t) and K(1 + i delta/pi); here
+// that is K(1 - i delta/pi)), and the viscous drag adds +i eta F* / (k omega) to the fluid's
+// effective density.
+//
+// The equations of motion (Stoll 1989, ch. 2) for the dilatations e (frame) and zeta (relative
+// fluid flow), with the frame P-wave modulus inside H:
+//   laplacian(H e - C zeta) = d2/dt2 (rho e - rho_f zeta)
+//   laplacian(C e - M zeta) = d2/dt2 (rho_f e - m zeta) - (eta F / k) d/dt zeta
+// give, with s = (k/omega)^2 (slowness squared),
+//   (H M - C^2) s^2 - (H m~ + rho M - 2 C rho_f) s + (rho m~ - rho_f^2) = 0,
+//   m~ = alpha_inf rho_f / beta + i eta F*(kappa) / (k omega).
+// The two roots are the fast and the slow (Biot type II) compressional waves.
+#include <ceres/jet.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sedwave/sediment/complex.hpp"
+
+namespace sedwave::sediment {
+
+namespace biot_detail {
+inline double value_of(double x) { return x; }
+template <typename J>
+double value_of(const J& x) {
+  return x.a;
+}
+/// |z| of the value part only: loop stopping rules need no derivatives.
+template <typename T>
+double magnitude(const Complex<T>& z) {
+  const double re = value_of(z.re), im = value_of(z.im);
+  return std::sqrt(re * re + im * im);  // not std::hypot: several times slower, and no overflow here
+}
+}  // namespace biot_detail
+
+// ---- Mixtures: Wood and Gassmann ------------------------------------------------------------------
+
+/// Density [kg/m^3] of the saturated sediment: rho = beta rho_f + (1 - beta) rho_s.
+template <typename T>
+T mixture_density(const T& porosity, const T& grain_density, const T& fluid_density) {
+  return porosity * fluid_density + (1.0 - porosity) * grain_density;
+}
+
+/// Wood's (1930) bulk modulus [Pa] of a suspension: 1/K = beta/K_f + (1 - beta)/K_s (Reuss average).
+template <typename T>
+T wood_bulk_modulus(const T& porosity, const T& grain_bulk, const T& fluid_bulk) {
+  return 1.0 / (porosity / fluid_bulk + (1.0 - porosity) / grain_bulk);
+}
+
+/// Wood's sound speed [m/s]: sqrt(K_Wood / rho).
+template <typename T>
+T wood_speed(const T& porosity, const T& grain_density, const T& grain_bulk, const T& fluid_density,
+             const T& fluid_bulk) {
+  using std::sqrt;
+  return sqrt(wood_bulk_modulus(porosity, grain_bulk, fluid_bulk) /
+              mixture_density(porosity, grain_density, fluid_density));
+}
+
+/// Biot's elastic coefficients [Pa] in Stoll's notation (Stoll 1989, ch. 2; Stoll & Kan 1981):
+///   D = K_s (1 + beta (K_s/K_f - 1)),
+///   H = (K_s - K_b)^2 / (D - K_b) + K_b + 4/3 mu,  C = K_s (K_s - K_b) / (D - K_b),
+///   M = K_s^2 / (D - K_b).
+/// H is Gassmann's saturated P-wave modulus (K_Gassmann + 4/3 mu).
+template <typename T>
+struct BiotModuli {
+  Complex<T> H;
+  Complex<T> C;
+  Complex<T> M;
+};
+
+template <typename T>
+BiotModuli<T> biot_moduli(const Complex<T>& frame_bulk, const Complex<T>& frame_shear, const T& porosity,
+                          const T& grain_bulk, const T& fluid_bulk) {
+  const T d = grain_bulk * (1.0 + porosity * (grain_bulk / fluid_bulk - 1.0));
+  const Complex<T> denominator = Complex<T>(d) - frame_bulk;
+  const Complex<T> ks_minus_kb = Complex<T>(grain_bulk) - frame_bulk;
+  const Complex<T> H = ks_minus_kb * ks_minus_kb / denominator + frame_bulk + frame_shear * T(4.0 / 3.0);
+  const Complex<T> C = grain_bulk * ks_minus_kb / denominator;
+  const Complex<T> M = Complex<T>(grain_bulk * grain_bulk) / denominator;
+  return {H, C, M};
+}
+
+/// Gassmann's (1951) saturated bulk modulus [Pa] in its textbook form
+///   K = K_b + (1 - K_b/K_s)^2 / (beta/K_f + (1 - beta)/K_s - K_b/K_s^2),
+/// written independently of biot_moduli (whose H - 4/3 mu is the same quantity).
+template <typename T>
+Complex<T> gassmann_bulk_modulus(const Complex<T>& frame_bulk, const T& porosity, const T& grain_bulk,
+                                 const T& fluid_bulk) {
+  const Complex<T> one_minus = Complex<T>(T(1.0)) - frame_bulk / grain_bulk;
+  const Complex<T> denominator =
+      Complex<T>(porosity / fluid_bulk + (1.0 - porosity) / grain_bulk) - frame_bulk / (grain_bulk * grain_bulk);
+  return frame_bulk + one_minus * one_minus / denominator;
+}
+
+// ---- Kelvin functions and Biot's viscous correction F(kappa) --------------------------------------
+// ber x + i bei x = I_0(z) and ber' x + i bei' x = e^{i pi/4} I_1(z) at z = x e^{i pi/4}
+// (Abramowitz & Stegun 9.9.1, 9.6.3). Below kKelvinSeriesLimit the ascending series
+//   I_n(z) = (z/2)^n sum_j (z^2/4)^j / (j! (j+n)!)          (A&S 9.6.10)
+// converges without harmful cancellation; above it the asymptotic expansion
+//   I_n(z) ~ e^z / sqrt(2 pi z) sum_k (-1)^k a_k(n) / z^k,  a_k = prod_{j<=k} (4n^2 - (2j-1)^2) / (k! 8^k)
+// (A&S 9.7.1) is accurate to the neglected e^{-z} branch, relatively e^{-sqrt(2) x} < 1e-11 there.
+
+inline constexpr double kKelvinSeriesLimit = 18.0;
+
+/// sum_j w^j / (j! (j+n)!) with w = z^2/4: I_n(z) / (z/2)^n.
+template <typename T>
+Complex<T> reduced_bessel_i_series(int n, const Complex<T>& w) {
+  double factorial_n = 1.0;
+  for (int i = 2; i <= n; ++i) factorial_n *= i;
+  Complex<T> term(T(1.0 / factorial_n));
+  Complex<T> sum = term;
+  for (int j = 1; j < 80; ++j) {
+    term = term * w / T(static_cast<double>(j) * static_cast<double>(j + n));
+    sum = sum + term;
+    if (biot_detail::magnitude(term) < 1e-17 * biot_detail::magnitude(sum)) break;
+  }
+  return sum;
+}
+
+/// sum_k (-1)^k a_k(n) / z^k: I_n(z) sqrt(2 pi z) e^{-z} for large |z|, |arg z| < pi/2.
+template <typename T>
+Complex<T> bessel_i_asymptotic_factor(int n, const Complex<T>& z) {
+  const double mu = 4.0 * n * n;
+  const Complex<T> inverse = Complex<T>(T(1.0)) / z;
+  Complex<T> term(T(1.0));
+  Complex<T> sum = term;
+  double previous = 1.0;
+  for (int k = 1; k < 40; ++k) {
+    const double odd = 2.0 * k - 1.0;
+    term = term * inverse * T(-(mu - odd * odd) / (8.0 * k));
+    const double size = biot_detail::magnitude(term);
+    if (size > previous) break;  // the asymptotic series starts to diverge: stop at its smallest term
+    sum = sum + term;
+    if (size < 1e-17) break;
+    previous = size;
+  }
+  return sum;
+}
+
+/// z = x e^{i pi/4}.
+template <typename T>
+Complex<T> kelvin_argument(const T& x) {
+  return Complex<T>(x * std::numbers::sqrt2 / 2.0, x * std::numbers::sqrt2 / 2.0);
+}
+
+/// I_n(z) at z = x e^{i pi/4}, x >= 0, by the series or the asymptotic form.
+template <typename T>
+Complex<T> bessel_i_on_kelvin_ray(int n, const T& x) {
+  const Complex<T> z = kelvin_argument(x);
+  if (biot_detail::value_of(x) < kKelvinSeriesLimit) {
+    Complex<T> half_power(T(1.0));
+    for (int i = 0; i < n; ++i) half_power = half_power * z / T(2.0);
+    return half_power * reduced_bessel_i_series(n, z * z / T(4.0));
+  }
+  return exp(z) / sqrt(z * T(2.0 * std::numbers::pi)) * bessel_i_asymptotic_factor(n, z);
+}
+
+/// ber x + i bei x (Kelvin functions of order 0), x >= 0.
+template <typename T>
+Complex<T> kelvin_ber_bei(const T& x) {
+  return bessel_i_on_kelvin_ray(0, x);
+}
+
+/// ber' x + i bei' x, x >= 0.
+template <typename T>
+Complex<T> kelvin_ber_bei_derivative(const T& x) {
+  const T h = T(std::numbers::sqrt2 / 2.0);
+  return Complex<T>(h, h) * bessel_i_on_kelvin_ray(1, x);
+}
+
+/// Biot's (1956b) viscous correction F(kappa) for oscillatory flow in a pore of size a,
+/// kappa = a sqrt(omega rho_f / eta), as Biot defines it (his exp(+i omega t) convention):
+///   F = (kappa/4) T / (1 - 2 T / (i kappa)),  T = (ber' + i bei') / (ber + i bei).
+/// F -> 1 for kappa -> 0 (Poiseuille flow) and F -> kappa (1 + i) / (4 sqrt 2) for kappa -> inf.
+/// With the Bessel forms above F = (z/4) I_1(z) / I_2(z); the series form R_1/(2 R_2) of the
+/// reduced sums avoids the 0/0 of Biot's expression at small kappa.
+template <typename T>
+Complex<T> biot_viscous_correction_direct(const T& kappa) {
+  const Complex<T> z = kelvin_argument(kappa);
+  if (biot_detail::value_of(kappa) < kKelvinSeriesLimit) {
+    const Complex<T> w = z * z / T(4.0);
+    return reduced_bessel_i_series(1, w) / (reduced_bessel_i_series(2, w) * T(2.0));
+  }
+  return z / T(4.0) * bessel_i_asymptotic_factor(1, z) / bessel_i_asymptotic_factor(2, z);
+}
+
+inline Complex<double> biot_viscous_correction(double kappa) { return biot_viscous_correction_direct(kappa); }
+
+/// F(kappa) for a Jet with many derivatives: F depends on the one scalar kappa, so it is evaluated
+/// once with a single-derivative Jet and carried onto the N derivatives by the chain rule (the
+/// series in N-derivative Jets would cost N times as much).
+template <int N>
+Complex<ceres::Jet<double, N>> biot_viscous_correction(const ceres::Jet<double, N>& kappa) {
+  using Scalar = ceres::Jet<double, 1>;
+  const Complex<Scalar> f = biot_viscous_correction_direct(Scalar(kappa.a, 0));
+  using J = ceres::Jet<double, N>;
+  return {J(f.re.a, f.re.v[0] * kappa.v), J(f.im.a, f.im.v[0] * kappa.v)};
+}
+
+// ---- The medium and its compressional waves -------------------------------------------------------
+
+/// A saturated porous medium in SI units. Frame moduli are complex (loss: Im < 0, see the top).
+template <typename T>
+struct BiotMedium {
+  Complex<T> frame_bulk;   ///< K_b [Pa], drained frame bulk modulus
+  Complex<T> frame_shear;  ///< mu [Pa], frame shear modulus
+  T porosity;              ///< beta [1]
+  T grain_density;         ///< rho_s [kg/m^3]
+  T grain_bulk;            ///< K_s [Pa]
+  T fluid_density;         ///< rho_f [kg/m^3]
+  T fluid_bulk;            ///< K_f [Pa]
+  T viscosity;             ///< eta [Pa s]
+  T permeability;          ///< k [m^2]
+  T tortuosity;            ///< alpha_inf [1] (Stoll's structure factor), >= 1
+  T pore_size;             ///< a [m], the pore-size parameter of F(kappa)
+};
+
+/// The fluid's effective density [kg/m^3] in relative motion:
+///   m~ = alpha_inf rho_f / beta + i eta F*(kappa) / (k omega),  kappa = a sqrt(omega rho_f / eta).
+/// F* because F is published for exp(+i omega t) (Biot 1956b).
+template <typename T>
+Complex<T> biot_effective_fluid_density(const BiotMedium<T>& m, double omega) {
+  using std::sqrt;
+  const T kappa = m.pore_size * sqrt(omega * m.fluid_density / m.viscosity);
+  const Complex<T> f = biot_viscous_correction(kappa);
+  const T drag = m.viscosity / (m.permeability * omega);
+  return {m.tortuosity * m.fluid_density / m.porosity + drag * f.im, drag * f.re};
+}
+
+/// The slowness-squared quadratic a s^2 - b s + c = 0 (see the top of this file).
+template <typename T>
+struct BiotQuadratic {
+  Complex<T> a;
+  Complex<T> b;
+  Complex<T> c;
+  /// sqrt(b^2 - 4 a c) with the sign that makes |b + root| the larger (no cancellation).
+  Complex<T> root;
+};
+
+template <typename T>
+BiotQuadratic<T> biot_quadratic(const BiotMedium<T>& m, double omega) {
+  const BiotModuli<T> bm = biot_moduli(m.frame_bulk, m.frame_shear, m.porosity, m.grain_bulk, m.fluid_bulk);
+  const Complex<T> m_eff = biot_effective_fluid_density(m, omega);
+  const T rho = mixture_density(m.porosity, m.grain_density, m.fluid_density);
+  const T& rho_f = m.fluid_density;
+  BiotQuadratic<T> q;
+  q.a = bm.H * bm.M - bm.C * bm.C;
+  q.b = bm.H * m_eff + bm.M * rho - bm.C * (T(2.0) * rho_f);
+  q.c = m_eff * rho - Complex<T>(rho_f * rho_f);
+  q.root = sqrt(q.b * q.b - q.a * q.c * T(4.0));
+  // Re(conj(b) root) >= 0 puts root along b: |b + root| >= |b - root|.
+  if (biot_detail::value_of(q.b.re * q.root.re + q.b.im * q.root.im) < 0.0) q.root = -q.root;
+  return q;
+}
+
+/// Wave number k [1/m] from slowness squared s at omega: k = omega sqrt(s), Re k > 0.
+template <typename T>
+Complex<T> wavenumber_from_slowness_squared(const Complex<T>& s, double omega) {
+  return sqrt(s) * T(omega);
+}
+
+/// The fast compressional wave's wave number [1/m]. The fast wave is the root of smaller |s|:
+/// s_fast = 2c / (b + root) (no cancellation; finite also where a = 0, a frame without rigidity).
+/// By the choice of root, |s_fast| <= |s_slow| always, so the slow wave is never returned.
+template <typename T>
+Complex<T> biot_fast_wavenumber(const BiotMedium<T>& m, double omega) {
+  const BiotQuadratic<T> q = biot_quadratic(m, omega);
+  return wavenumber_from_slowness_squared(q.c * T(2.0) / (q.b + q.root), omega);
+}
+
+/// The slow (Biot type II) wave's wave number [1/m]: s_slow = (b + root) / (2a). Infinite when the
+/// frame has no rigidity (a = 0); for checks and completeness.
+template <typename T>
+Complex<T> biot_slow_wavenumber(const BiotMedium<T>& m, double omega) {
+  const BiotQuadratic<T> q = biot_quadratic(m, omega);
+  return wavenumber_from_slowness_squared((q.b + q.root) / (q.a * T(2.0)), omega);
+}
+
+/// Attenuation [Np/m] and phase speed [m/s] of a wave number.
+template <typename T>
+struct AttenuationSpeed {
+  T attenuation;
+  T speed;
+};
+
+template <typename T>
+AttenuationSpeed<T> attenuation_and_speed(const Complex<T>& k, double omega) {
+  return {k.im, T(omega) / k.re};
+}
+
+/// Frame moduli from a P-wave modulus M_b = K_b + 4/3 mu and the frame's Poisson ratio nu:
+///   K_b = M_b (1 + nu) / (3 (1 - nu)),  mu = M_b (1 - 2 nu) / (2 (1 - nu)).
+template <typename T>
+struct FrameModuli {
+  Complex<T> bulk;
+  Complex<T> shear;
+};
+
+template <typename T>
+FrameModuli<T> split_p_wave_modulus(const Complex<T>& p_wave_modulus, const T& poisson_ratio) {
+  const T one_minus = 1.0 - poisson_ratio;
+  return {p_wave_modulus * ((1.0 + poisson_ratio) / (3.0 * one_minus)),
+          p_wave_modulus * ((1.0 - 2.0 * poisson_ratio) / (2.0 * one_minus))};
+}
+
+}  // namespace sedwave::sediment

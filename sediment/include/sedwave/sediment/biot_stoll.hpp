@@ -1,0 +1,59 @@
+#pragma once
+// The Biot-Stoll model: Biot's theory (biot.hpp) with a frame whose bulk and shear moduli are
+// complex with constant logarithmic decrements, R. D. Stoll, Sediment Acoustics (Springer, 1989),
+// ch. 2, and Stoll & Kan, J. Acoust. Soc. Am. 70, 149-156 (1981):
+//   K_b (1 + i delta_b / pi),  mu (1 + i delta_s / pi)   in Stoll's exp(+i omega t) convention,
+// i.e. K_b (1 - i delta_b / pi), mu (1 - i delta_s / pi) in this library's exp(-i omega t).
+// The frame loss is frequency independent (a constant Q = pi / delta), the pore-fluid loss is
+// Biot's viscous flow with the correction F(kappa).
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sedwave/sediment/biot.hpp"
+#include "sedwave/sediment/jet_evaluated.hpp"
+
+namespace sedwave::sediment {
+
+class BiotStollModel final : public JetEvaluated<BiotStollModel> {
+ public:
+  static constexpr int kParameters = 13;
+  enum Index : int {
+    kPorosity = 0,
+    kGrainDensity = 1,
+    kGrainBulk = 2,
+    kWaterDensity = 3,
+    kWaterBulk = 4,
+    kViscosity = 5,
+    kPermeability = 6,
+    kTortuosity = 7,
+    kPoreSize = 8,
+    kFrameBulk = 9,
+    kFrameShear = 10,
+    kBulkDecrement = 11,
+    kShearDecrement = 12,
+  };
+
+  BiotStollModel();
+
+  [[nodiscard]] std::string name() const override { return "biot-stoll"; }
+  [[nodiscard]] std::string summary() const override;
+  [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+
+  template <typename T>
+  WaveOf<T> wave(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const Complex<T> bulk(v[kFrameBulk], -v[kFrameBulk] * v[kBulkDecrement] / std::numbers::pi);
+    const Complex<T> shear(v[kFrameShear], -v[kFrameShear] * v[kShearDecrement] / std::numbers::pi);
+    const BiotMedium<T> medium{bulk,          shear,           v[kPorosity],     v[kGrainDensity],
+                               v[kGrainBulk], v[kWaterDensity], v[kWaterBulk],   v[kViscosity],
+                               v[kPermeability], v[kTortuosity], v[kPoreSize]};
+    const AttenuationSpeed<T> fast = attenuation_and_speed(biot_fast_wavenumber(medium, omega), omega);
+    return {fast.attenuation, fast.speed};
+  }
+
+ private:
+  std::vector<Parameter> parameters_;
+};
+
+}  // namespace sedwave::sediment

@@ -1,0 +1,56 @@
+#pragma once
+// The effective density fluid model (EDFM): Biot's theory with a frame that has no rigidity
+// (K_b = mu = 0), K. L. Williams, J. Acoust. Soc. Am. 110, 2276-2281 (2001).
+//
+// Without frame moduli H = C = M = K_Wood (Wood's bulk modulus), the Biot quadratic loses its
+// s^2 term and the one remaining (fast) wave is that of a fluid of bulk modulus K_Wood and
+// effective density
+//   rho_eff = (rho m~ - rho_f^2) / (m~ + rho - 2 rho_f),  m~ = alpha_inf rho_f / beta + i eta F* / (k omega)
+// (Williams 2001, section II; biot.hpp for m~ and F). Low frequency: rho_eff -> rho, the speed is
+// Wood's and attenuation grows as f^2; high frequency: rho_eff -> the tortuosity-coupled inertia
+// (rho alpha_inf rho_f/beta - rho_f^2) / (alpha_inf rho_f/beta + rho - 2 rho_f), attenuation ~ f^(1/2).
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sedwave/sediment/biot.hpp"
+#include "sedwave/sediment/jet_evaluated.hpp"
+
+namespace sedwave::sediment {
+
+class EffectiveDensityFluidModel final : public JetEvaluated<EffectiveDensityFluidModel> {
+ public:
+  static constexpr int kParameters = 9;
+  enum Index : int {
+    kPorosity = 0,
+    kGrainDensity = 1,
+    kGrainBulk = 2,
+    kWaterDensity = 3,
+    kWaterBulk = 4,
+    kViscosity = 5,
+    kPermeability = 6,
+    kTortuosity = 7,
+    kPoreSize = 8,
+  };
+
+  EffectiveDensityFluidModel();
+
+  [[nodiscard]] std::string name() const override { return "edfm"; }
+  [[nodiscard]] std::string summary() const override;
+  [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+
+  template <typename T>
+  WaveOf<T> wave(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const BiotMedium<T> medium{Complex<T>(T(0.0)), Complex<T>(T(0.0)), v[kPorosity],   v[kGrainDensity],
+                               v[kGrainBulk],      v[kWaterDensity],   v[kWaterBulk],  v[kViscosity],
+                               v[kPermeability],   v[kTortuosity],     v[kPoreSize]};
+    const AttenuationSpeed<T> fast = attenuation_and_speed(biot_fast_wavenumber(medium, omega), omega);
+    return {fast.attenuation, fast.speed};
+  }
+
+ private:
+  std::vector<Parameter> parameters_;
+};
+
+}  // namespace sedwave::sediment
