@@ -332,6 +332,24 @@ void flag_range(const std::string& quantity, double value, std::pair<double, dou
   result.flags.push_back({quantity, text});
 }
 
+/// A sand (d >= 62.5 um) looser than any sand: the joint check of grain size and porosity.
+void flag_loose_sand(FitResult& result) {
+  const auto find = [&](const char* name) {
+    return std::find_if(result.parameters.begin(), result.parameters.end(),
+                        [&](const ParameterResult& p) { return p.name == name; });
+  };
+  const auto d = find("d"), porosity = find("porosity");
+  if (d == result.parameters.end() || porosity == result.parameters.end()) return;
+  if (d->value < kSandDiameter || porosity->value <= kLoosestSandPorosity) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "porosity = %.3g with sand-sized grains (d = %.3g m): sands have porosities 0.37-0.47 (Hamilton 1980), "
+                "none above %.2g; the model lowers the mixture's modulus through porosity to fit the data, so its "
+                "mixture (water speed, grain moduli) or its loss mechanism does not describe them",
+                porosity->value, d->value, kLoosestSandPorosity);
+  result.flags.push_back({"porosity", text});
+}
+
 /// Physical plausibility of every reported value (plausibility.hpp), and parameters at a bound.
 void flag_implausible(const FitOptions& options, FitResult& result) {
   for (const ParameterResult& p : result.parameters) {
@@ -351,6 +369,7 @@ void flag_implausible(const FitOptions& options, FitResult& result) {
     flag_range(c.name, c.value, credible_span(c.value, c.profile_lower, c.profile_upper, options.profile_likelihood),
                result);
   }
+  flag_loose_sand(result);
 }
 
 /// Analyses the fit at theta; if a profile finds a lower chi^2, polishes from there and analyses

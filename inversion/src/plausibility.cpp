@@ -11,7 +11,7 @@ double quartz_hertz_kappa(double diameter, double pressure) {
 }
 
 const PlausibleRange* plausible_range(const std::string& quantity) {
-  static const std::array<std::pair<const char*, PlausibleRange>, 5> kRanges{{
+  static const std::array<std::pair<const char*, PlausibleRange>, 6> kRanges{{
       {"d",
        {1e-6, 6.4e-2, "clay (1 um) to pebble gravel (64 mm)",
         "a grain size below clay: the fit slid along a direction the data do not see (d trades with kappa and "
@@ -33,6 +33,11 @@ const PlausibleRange* plausible_range(const std::string& quantity) {
         "a dashpot beyond any contact: attenuation in the wrong unit, or loss the model puts in the contacts "
         "that belongs elsewhere"}},
       {"e_n", {1e-6, 1.0, "restitution of a binary collision, (0, 1]", "", ""}},
+      {"porosity",
+       {0.25, 0.9, "marine sediments, from poorly sorted sands to clays (Hamilton 1980: sands 0.37-0.47, clays to 0.85)",
+        "denser than any unconsolidated sediment: the model puts too much stiffness or mass in the mixture",
+        "looser than a clay: the model lowers the mixture's modulus through porosity to match a slow speed or to "
+        "free the attenuation; check the water sound speed and the model"}},
   }};
   for (const auto& [name, range] : kRanges) {
     if (quantity == name) return &range;

@@ -16,6 +16,10 @@
 //   gamma_hat                 1e-3 .. 1e3: from nearly elastic contacts (e_n = 0.998) to the heavy
 //                             overdamping that sediment attenuation needs in the chain model.
 //   e_n                       (0, 1].
+//   porosity                  0.25 .. 0.9: marine sediments (Hamilton 1980, JASA 68, 1313: sands
+//                             0.37-0.47, silts and clays up to 0.85); and for sand-sized grains
+//                             (d >= 62.5 um, Wentworth) at most 0.6, since a sand that loose does
+//                             not support itself.
 #include <string>
 #include <vector>
 
@@ -41,8 +45,12 @@ struct PlausibleRange {
   const char* above_cause;  ///< likely cause of a value above it
 };
 
-/// The range of a reported quantity by name (d, c0, kappa_over_hertz, gamma_hat, e_n), or nullptr.
+/// The range of a reported quantity by name (d, c0, kappa_over_hertz, gamma_hat, e_n, porosity), or nullptr.
 [[nodiscard]] const PlausibleRange* plausible_range(const std::string& quantity);
+
+/// Largest porosity of a sand (d >= 62.5 um) that the joint check accepts.
+inline constexpr double kLoosestSandPorosity = 0.6;
+inline constexpr double kSandDiameter = 62.5e-6;  ///< [m], Wentworth's silt-sand boundary
 
 /// One flagged result.
 struct PlausibilityFlag {

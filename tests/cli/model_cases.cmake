@@ -1,0 +1,39 @@
+# Sediment models on the command line (`sedwave models`, `invert --model`, `synthesize --model`):
+# every model is listed with its parameters; unknown models and parameters are refused with the
+# accepted ones; values outside a parameter's physical range are refused with the range.
+set(OBS ${PROJECT_SOURCE_DIR}/data/field/zhou2009_regression.csv)
+set(FAST --no-plot --method ceres --out ${CLI_OUT}/models_never)
+
+# (expect.sh matches one line: one case per line that must be there)
+sedwave_cli_case(models.lists_the_saturated_frame 0 "^saturated-lattice: granular frame 'lattice' saturated" models)
+sedwave_cli_case(models.lists_vgs_parameters 0 "^  tau_p +s +0.00012 +\\[1e-09, 1e\\+03\\]" models)
+sedwave_cli_case(models.one_model 0 "^  permeability +m\\^2 +4e-11 +\\[1e-20, 1e-05\\]" models edfm)
+sedwave_cli_case(models.unknown 1 "unknown model 'bort'.*accepted: continuum, lattice.*vgs-lambda" models bort)
+sedwave_cli_case(invert.model_needs_fit 2 "model 'biot-stoll': give --fit.*porosity,rho_s" invert ${OBS} --model biot-stoll ${FAST})
+sedwave_cli_case(invert.model_unknown_parameter 1 "--fit 'kappa': unknown parameter 'kappa'.*accepted: porosity"
+  invert ${OBS} --model edfm --fit kappa ${FAST})
+sedwave_cli_case(invert.set_unknown_parameter 2 "--set: unknown parameter 'porosty'.*accepted: porosity"
+  invert ${OBS} --model edfm --fit permeability --set porosty=0.4 ${FAST})
+sedwave_cli_case(invert.set_outside_physical_range 1 "porosity \\(value 1.5.*physical range \\[0.01, 0.99\\]"
+  invert ${OBS} --model edfm --fit permeability --set porosity=1.5 ${FAST})
+sedwave_cli_case(invert.bounds_outside_physical_range 1 "n \\(value .*search bounds \\[0.001, 2\\]\\).*physical range \\[0.001, 0.99\\]"
+  invert ${OBS} --model grain-shearing --fit n --bounds n=0.001,2 ${FAST})
+sedwave_cli_case(invert.set_not_a_number 2 "--set 'porosity=abc': 'abc' is not a finite number"
+  invert ${OBS} --model edfm --fit permeability --set porosity=abc ${FAST})
+sedwave_cli_case(invert.kappa_for_model_without_contacts 2 "--kappa: unknown parameter 'kappa'.*model 'edfm'"
+  invert ${OBS} --model edfm --fit permeability --kappa 1e6 ${FAST})
+# The water-saturated frame on the shipped field data: a fit, with a sand looser than any sand flagged.
+sedwave_cli_case(invert.saturated_frame_flags_mud_porosity 3 "! porosity = 0.8[0-9]* with sand-sized grains"
+  invert ${OBS} --model saturated-lattice --fit kappa,gamma,porosity,permeability --d 3e-4 ${FAST})
+
+# Synthesize with a model, then fit it back: the truth is recovered (EDFM: porosity and permeability).
+sedwave_cli_case(synthesize.edfm 0 "24 observations from edfm"
+  synthesize --model edfm --set porosity=0.42 --set permeability=3e-11 --from 100 --to 1e5 --points 12
+  --alpha-noise 0.02 --speed-noise 0.003 --out ${CLI_OUT}/edfm_synthetic.csv)
+set_tests_properties(cli.synthesize.edfm PROPERTIES FIXTURES_SETUP edfm_synthetic)
+sedwave_cli_case(invert.edfm_recovers_its_porosity 0 "^  porosity +\\[1 +\\] 0\\.4[12][0-9]* \\+- 0\\.00[0-9]+ "
+  invert ${CLI_OUT}/edfm_synthetic.csv --model edfm --fit porosity,permeability ${FAST})
+set_tests_properties(cli.invert.edfm_recovers_its_porosity PROPERTIES FIXTURES_REQUIRED edfm_synthetic)
+sedwave_cli_case(invert.edfm_recovers_its_permeability 0 "^  permeability +\\[m\\^2 \\] (2\\.9|3\\.0|3\\.1)[0-9]*e-11 \\+- "
+  invert ${CLI_OUT}/edfm_synthetic.csv --model edfm --fit porosity,permeability ${FAST})
+set_tests_properties(cli.invert.edfm_recovers_its_permeability PROPERTIES FIXTURES_REQUIRED edfm_synthetic)
