@@ -29,7 +29,7 @@ GrainContactModel::GrainContactModel(std::shared_ptr<const forward::DispersionMo
 
 std::string GrainContactModel::summary() const {
   return "dry granular frame, spring-dashpot contacts, dimensionless model '" + model_->name() +
-         "' (docs/theory.md, docs/tables.md)";
+         "' (docs/physics.md, docs/tables.md)";
 }
 
 }  // namespace sedwave::sediment
