@@ -218,7 +218,9 @@ Command add_invert_command(CLI::App& app) {
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
             const auto model = make_model(o->model);
-            const inversion::FitParameters parameters = make_parameters(o->model, *model, ModelUse::Fit);
+            std::vector<std::string> site_notes;
+            const inversion::FitParameters parameters = make_parameters(o->model, *model, ModelUse::Fit, &site_notes);
+            for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
             inversion::FitOptions options = o->fit_options;
             options.method = inversion::parse_fit_method(o->method);
             if (data.observations.size() >= kProgressObservations) {
@@ -231,6 +233,7 @@ Command add_invert_command(CLI::App& app) {
             const inversion::FitResult result = inversion::fit(data, *model, parameters, options);
 
             nlohmann::json report = inversion::fit_report(result, data);
+            if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
             // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
             if (const auto* table = dynamic_cast<const forward::table::TableModel*>(dimensionless_of(*model))) {

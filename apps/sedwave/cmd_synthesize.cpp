@@ -41,10 +41,22 @@ Command add_synthesize_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "observation CSV to write")->required();
   return {cmd, [o]() {
     const auto model = make_model(o->model);
-    const inversion::FitParameters truth = make_parameters(o->model, *model, ModelUse::Truth);
+    std::vector<std::string> site_notes;
+    const inversion::FitParameters truth = make_parameters(o->model, *model, ModelUse::Truth, &site_notes);
+    for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
     // The grain contact has no typical values to fall back on: its truth must be given.
     if (truth.starts_with_grain_contact()) {
-      if (!o->model.kappa || !o->model.diameter) throw std::invalid_argument("give the grain contact: --kappa and --d");
+      const auto sets = [&](const char* name) {
+        for (const std::string& item : o->model.set_values) {
+          if (item.starts_with(std::string(name) + "=")) return true;
+        }
+        return false;
+      };
+      const bool kappa = o->model.kappa || o->model.depth || o->model.effective_pressure || sets("kappa");
+      const bool diameter = o->model.diameter || o->model.phi || sets("d");
+      if (!kappa || !diameter) {
+        throw std::invalid_argument("give the grain contact: --kappa (or --depth, --effective-pressure) and --d (or --phi)");
+      }
       if (!o->model.gamma && !o->model.restitution) throw std::invalid_argument("give the damping: --gamma or --en");
     }
     if (!(o->design.highest_hz > o->design.lowest_hz)) {

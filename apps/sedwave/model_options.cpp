@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <sstream>
+#include <cstdio>
+#include <set>
 #include <stdexcept>
 
 #include "option_checks.hpp"
 #include "output_paths.hpp"
 #include "sedwave/sediment/catalog.hpp"
+#include "sedwave/sediment/site.hpp"
 
 namespace sedwave::app {
 
@@ -99,7 +102,97 @@ void check_physical(const inversion::ParameterSpec& spec, const sediment::Parame
   }
 }
 
-inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::SedimentModel& model, ModelUse use) {
+namespace {
+
+/// Defaults where a model lacks the parameter a site conversion needs (quartz sand in sea water).
+constexpr double kSitePorosity = 0.4;
+constexpr double kSiteGrainDensity = 2650.0;
+constexpr double kSiteWaterDensity = 1025.0;
+/// Lateral earth pressure at rest of a normally consolidated sand (Jaky 1944: 1 - sin 30 deg).
+constexpr double kSiteK0 = 0.5;
+/// Coordination number of a dense random sphere pack (Mavko et al. 2009, section 5.4: Z ~ 9 at
+/// porosity 0.36).
+constexpr double kSiteCoordination = 9.0;
+
+std::string shown(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", x);
+  return text;
+}
+
+/// The value of a parameter the model has, or a default.
+double value_or(const inversion::FitParameters& p, const char* name, double fallback) {
+  for (const auto& s : p.spec) {
+    if (s.name == name) return s.value;
+  }
+  return fallback;
+}
+
+/// What users measure at a site, turned into parameters (sediment/site.hpp; docs/models/site-inputs.md).
+/// A parameter also given directly (--set, --d, --kappa ...) conflicts with its site input.
+void apply_site_inputs(const ModelOptions& o, const std::set<std::string>& given, inversion::FitParameters& p,
+                       const std::string& model, std::vector<std::string>& notes) {
+  const auto target = [&](const char* name, const char* option) -> inversion::ParameterSpec& {
+    if (given.count(name)) {
+      throw UsageError(std::string(option) + " and a direct value of " + name + " both set it: give one");
+    }
+    for (auto& s : p.spec) {
+      if (s.name == name) return s;
+    }
+    throw UsageError(std::string(option) + ": model '" + model + "' has no parameter '" + name + "'");
+  };
+  if (o.water_temperature || o.salinity) {
+    if (!o.water_temperature || !o.salinity) throw UsageError("--water-temperature and --salinity go together");
+    const double t = *o.water_temperature, sal = *o.salinity;
+    const double rho = sediment::seawater_density(t, sal), k = sediment::seawater_bulk_modulus(t, sal);
+    const double eta = sediment::seawater_viscosity(t, sal);
+    bool used = false;
+    for (auto& s : p.spec) {
+      const bool water = s.name == "rho_w" || s.name == "K_w" || s.name == "eta";
+      if (!water) continue;
+      if (given.count(s.name)) throw UsageError("--water-temperature and a direct value of " + s.name + " both set it");
+      s.value = s.name == "rho_w" ? rho : s.name == "K_w" ? k : eta;
+      used = true;
+    }
+    if (!used) throw UsageError("--water-temperature: model '" + model + "' has no pore-water parameters");
+    notes.push_back("sea water at " + shown(t) + " deg C, " + shown(sal) + " ppt: rho_w " + shown(rho) +
+                    " kg/m^3, K_w " + shown(k) + " Pa (EOS-80, Mackenzie 1981), eta " + shown(eta) +
+                    " Pa s (Sharqawy et al. 2010)");
+  }
+  if (o.phi) {
+    const double d = sediment::diameter_from_phi(*o.phi);
+    target("d", "--phi").value = d;
+    notes.push_back("d = " + shown(d) + " m from phi " + shown(*o.phi) + " (" + sediment::wentworth_class(d).name + ")");
+  }
+  if (o.bulk_density) {
+    const double rho_s = value_or(p, "rho_s", kSiteGrainDensity), rho_w = value_or(p, "rho_w", kSiteWaterDensity);
+    const double porosity = sediment::porosity_from_bulk_density(*o.bulk_density, rho_s, rho_w);
+    target("porosity", "--bulk-density").value = porosity;
+    notes.push_back("porosity = " + shown(porosity) + " from bulk density " + shown(*o.bulk_density) + " kg/m^3");
+  }
+  if (o.depth && o.effective_pressure) throw UsageError("--depth and --effective-pressure both set the pressure: give one");
+  if (o.depth || o.effective_pressure) {
+    const char* option = o.depth ? "--depth" : "--effective-pressure";
+    const double porosity = value_or(p, "porosity", kSitePorosity);
+    const double rho_s = value_or(p, "rho_s", kSiteGrainDensity), rho_w = value_or(p, "rho_w", kSiteWaterDensity);
+    const double pressure =
+        o.depth ? sediment::mean_effective_stress(
+                      sediment::effective_vertical_stress(*o.depth, porosity, rho_s, rho_w), kSiteK0)
+                : *o.effective_pressure;
+    inversion::ParameterSpec& kappa = target("kappa", option);
+    const double d = value_or(p, "d", 0.0);
+    kappa.value = sediment::hertz_kappa_at_pressure(sediment::kQuartz, d, pressure, porosity, kSiteCoordination);
+    notes.push_back("kappa = " + shown(kappa.value) + " N/m: Hertz, quartz grains of d = " + shown(d) + " m at " +
+                    shown(pressure) + " Pa mean effective pressure" +
+                    (o.depth ? " (" + shown(*o.depth) + " m below the seafloor, K0 0.5)" : std::string()) +
+                    ", porosity " + shown(porosity) + ", 9 contacts per grain");
+  }
+}
+
+}  // namespace
+
+inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::SedimentModel& model, ModelUse use,
+                                         std::vector<std::string>* site_notes) {
   inversion::FitParameters p(model.parameters());
   if (use == ModelUse::Fit) {
     const std::string fit = !o.fit.empty() ? o.fit : p.starts_with_grain_contact() ? "kappa,d," + p.spec[2].name : "";
@@ -124,10 +217,18 @@ inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::
     apply_value(named("e_n", "--en"), o.restitution, o.restitution_bounds);
   }
   if (o.density) apply_value(named("rho_s", "--density"), o.density, {});
+  std::set<std::string> given;  // parameters whose value the command line gives directly
+  if (o.kappa) given.insert("kappa");
+  if (o.diameter) given.insert("d");
+  if (o.density) given.insert("rho_s");
   for (const std::string& item : o.set_values) {
     const auto [name, text] = name_and_value(item, "--set");
     named(name.c_str(), "--set").value = number_in(text, item, "--set");
+    given.insert(name);
   }
+  std::vector<std::string> notes;
+  apply_site_inputs(o, given, p, model.name(), notes);
+  if (site_notes) *site_notes = notes;
   for (const std::string& item : o.set_bounds) {
     const auto [name, text] = name_and_value(item, "--bounds");
     const auto comma = text.find(',');
@@ -164,6 +265,22 @@ void add_model_options(CLI::App& cmd, ModelOptions& o, ModelUse use) {
   if (!fit) gamma->excludes(en);
   cmd.add_option("--density", o.density, "grain density rho_s [kg/m^3] (same as --set rho_s=VALUE; default 2650)")
       ->check(finite_in(100.0, 25000.0));
+  // What users measure at a site (docs/models/site-inputs.md).
+  cmd.add_option("--phi", o.phi, "site: mean grain size in Krumbein phi units, d = 2^-phi mm (sets d)")
+      ->check(finite_in(-10.0, 14.0));
+  cmd.add_option("--bulk-density", o.bulk_density, "site: wet bulk density [kg/m^3] (sets porosity)")
+      ->check(finite_positive());
+  cmd.add_option("--depth", o.depth,
+                 "site: depth below the seafloor [m]; kappa from the Hertz stiffness of quartz grains at its effective "
+                 "pressure (sets kappa)")
+      ->check(finite_in(0.0, 1000.0));
+  cmd.add_option("--effective-pressure", o.effective_pressure,
+                 "site: mean effective pressure [Pa]; kappa from Hertz as for --depth (sets kappa)")
+      ->check(finite_positive());
+  cmd.add_option("--water-temperature", o.water_temperature,
+                 "site: bottom-water temperature [deg C], with --salinity (sets rho_w, K_w, eta)")
+      ->check(finite_in(-2.0, 40.0));
+  cmd.add_option("--salinity", o.salinity, "site: salinity [ppt], with --water-temperature")->check(finite_in(0.0, 45.0));
   if (!fit) return;
   cmd.add_option("--bounds", o.set_bounds, "NAME=LO,HI: a parameter's search bounds [SI] (repeatable)");
   cmd.add_option("--kappa-bounds", o.kappa_bounds, "LO,HI [N/m]")->delimiter(',')->expected(2)->check(finite_positive());

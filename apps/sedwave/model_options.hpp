@@ -20,20 +20,26 @@ struct ModelOptions {
   std::vector<double> kappa_bounds, diameter_bounds, gamma_bounds, restitution_bounds;
   std::vector<std::string> set_values;  ///< NAME=VALUE
   std::vector<std::string> set_bounds;  ///< NAME=LO,HI
+  /// What users measure at a site, converted to parameters (docs/models/site-inputs.md).
+  std::optional<double> phi, bulk_density, depth, effective_pressure, water_temperature, salinity;
 };
 
 enum class ModelUse { Fit, Truth };
 
-/// --model, --set, --kappa, --d, --gamma, --en, --density; for fits also --fit, --bounds, --*-bounds.
+/// --model, --set, --kappa, --d, --gamma, --en, --density, the site inputs (--phi, --bulk-density,
+/// --depth, --effective-pressure, --water-temperature, --salinity); for fits also --fit, --bounds,
+/// --*-bounds.
 void add_model_options(CLI::App& cmd, ModelOptions& options, ModelUse use);
 
 /// The model the options name (damping form and permeability mode follow from the options).
 [[nodiscard]] std::shared_ptr<const sediment::SedimentModel> make_model(const ModelOptions& options);
 
-/// The model's parameters with the options applied. Throws UsageError for a name the model does not
-/// have or a malformed --set/--bounds, std::invalid_argument for a value or bound outside the
-/// parameter's physical range (naming it).
+/// The model's parameters with the options applied; `site_notes` (if given) receives one line per
+/// site input converted (what it set, from what, by which relation). Throws UsageError for a name the
+/// model does not have, a malformed --set/--bounds or a parameter set twice (directly and from a site
+/// input), std::invalid_argument for a value or bound outside the parameter's physical range.
 [[nodiscard]] inversion::FitParameters make_parameters(const ModelOptions& options,
-                                                       const sediment::SedimentModel& model, ModelUse use);
+                                                       const sediment::SedimentModel& model, ModelUse use,
+                                                       std::vector<std::string>* site_notes = nullptr);
 
 }  // namespace sedwave::app

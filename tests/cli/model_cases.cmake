@@ -37,3 +37,20 @@ set_tests_properties(cli.invert.edfm_recovers_its_porosity PROPERTIES FIXTURES_R
 sedwave_cli_case(invert.edfm_recovers_its_permeability 0 "^  permeability +\\[m\\^2 \\] (2\\.9|3\\.0|3\\.1)[0-9]*e-11 \\+- "
   invert ${CLI_OUT}/edfm_synthetic.csv --model edfm --fit porosity,permeability ${FAST})
 set_tests_properties(cli.invert.edfm_recovers_its_permeability PROPERTIES FIXTURES_REQUIRED edfm_synthetic)
+
+# Site inputs (docs/models/site-inputs.md): what they set is printed; a parameter set twice, or one
+# the model lacks, is refused.
+sedwave_cli_case(invert.site_phi_sets_d 0 "^site: d = 0.0002973 m from phi 1.75 \\(medium sand\\)"
+  invert ${OBS} --model saturated-lattice --fit gamma,permeability --phi 1.75 --bulk-density 1950 --depth 1
+  --water-temperature 15 --salinity 35 ${FAST})
+sedwave_cli_case(invert.site_depth_sets_kappa_from_hertz 0 "^site: kappa = 6.909e\\+04 N/m: Hertz, quartz grains .* at 6041 Pa"
+  invert ${OBS} --model saturated-lattice --fit gamma,permeability --phi 1.75 --bulk-density 1950 --depth 1
+  --water-temperature 15 --salinity 35 ${FAST})
+sedwave_cli_case(invert.site_phi_and_d 2 "--phi and a direct value of d both set it"
+  invert ${OBS} --phi 2 --d 3e-4 ${FAST})
+sedwave_cli_case(invert.site_depth_without_contacts 2 "--depth: model 'edfm' has no parameter 'kappa'"
+  invert ${OBS} --model edfm --fit permeability --depth 1 ${FAST})
+sedwave_cli_case(invert.site_temperature_needs_salinity 2 "--water-temperature and --salinity go together"
+  invert ${OBS} --model edfm --fit permeability --water-temperature 10 ${FAST})
+sedwave_cli_case(invert.site_temperature_outside_mackenzie 1 "temperature T = 35 deg C lies outside the accepted range \\[2, 30\\]"
+  invert ${OBS} --model edfm --fit permeability --water-temperature 35 --salinity 35 ${FAST})
