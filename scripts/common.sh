@@ -31,9 +31,18 @@ sedwave_install_packages() {
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 }
 
+# Where ccache is installed (not required), rebuilds of unchanged sources are served from its cache;
+# CCACHE_BASEDIR makes the cache shared by checkouts in different folders.
+sedwave_compiler_cache() {
+  if command -v ccache >/dev/null 2>&1; then
+    export CCACHE_BASEDIR="$SEDWAVE_ROOT"
+    echo "-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
+  fi
+}
+
 sedwave_build() {
   local type="${1:-Release}"
   shift || true
-  cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$type" "$@" >/dev/null
+  cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$type" $(sedwave_compiler_cache) "$@" >/dev/null
   cmake --build "$BUILD_DIR" -j "$JOBS"
 }

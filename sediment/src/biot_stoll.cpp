@@ -5,23 +5,17 @@
 namespace sedwave::sediment {
 
 BiotStollModel::BiotStollModel()
-    : parameters_{porosity_parameter(),
-                  {"rho_s", "kg/m^3", 2650.0, 1000.0, 8000.0, true, "grain density (quartz 2650)"},
-                  grain_bulk_parameter(),
-                  water_density_parameter(),
-                  water_bulk_parameter(),
-                  viscosity_parameter(),
-                  permeability_parameter(),
-                  tortuosity_parameter(),
-                  pore_size_parameter(),
-                  {"K_b", "Pa", 4.4e7, 1.0e3, 1.0e11, true,
+    : parameters_(pore_space_parameters()) {
+  parameters_.insert(parameters_.end(),
+                 {{"K_b", "Pa", 4.4e7, 1.0e3, 1.0e11, true,
                    "drained frame bulk modulus; unconsolidated sand 1e7-1e8 (Stoll 1989, ch. 2)"},
                   {"mu", "Pa", 2.9e7, 1.0e2, 1.0e11, true,
                    "frame shear modulus; unconsolidated sand 1e7-1e8 (Stoll 1989, ch. 2)"},
                   {"delta_b", "1", 0.15, 1.0e-6, 2.0, false,
                    "logarithmic decrement of the frame bulk modulus, pi/Q; sands ~0.1-0.2 (Stoll 1989)"},
                   {"delta_s", "1", 0.15, 1.0e-6, 2.0, false,
-                   "logarithmic decrement of the frame shear modulus, pi/Q; sands ~0.1-0.2 (Stoll 1989)"}} {}
+                   "logarithmic decrement of the frame shear modulus, pi/Q; sands ~0.1-0.2 (Stoll 1989)"}});
+}
 
 std::string BiotStollModel::summary() const {
   return "Biot-Stoll: Biot's theory with a constant-decrement frame (Biot 1956; Stoll 1989; Stoll & Kan 1981) "

@@ -54,4 +54,16 @@ Parameter frame_poisson_parameter() {
           "quartz) and the frictionless Walton pack (0.25) (Mavko et al., The Rock Physics Handbook)"};
 }
 
+std::vector<Parameter> PoreSpace::pore_space_parameters() {
+  return {porosity_parameter(),
+          {"rho_s", "kg/m^3", 2650.0, 1000.0, 8000.0, true, "grain density (quartz 2650)"},
+          grain_bulk_parameter(),
+          water_density_parameter(),
+          water_bulk_parameter(),
+          viscosity_parameter(),
+          permeability_parameter(),
+          tortuosity_parameter(),
+          pore_size_parameter()};
+}
+
 }  // namespace sedwave::sediment

@@ -12,22 +12,15 @@
 
 #include "sedwave/sediment/biot.hpp"
 #include "sedwave/sediment/jet_evaluated.hpp"
+#include "sedwave/sediment/poroelastic_parameters.hpp"
 
 namespace sedwave::sediment {
 
-class BiotStollModel final : public JetEvaluated<BiotStollModel> {
+class BiotStollModel final : public JetEvaluated<BiotStollModel>, public PoreSpace {
  public:
   static constexpr int kParameters = 13;
+  /// The pore space (PoreSpaceIndex, 0-8), then the frame:
   enum Index : int {
-    kPorosity = 0,
-    kGrainDensity = 1,
-    kGrainBulk = 2,
-    kWaterDensity = 3,
-    kWaterBulk = 4,
-    kViscosity = 5,
-    kPermeability = 6,
-    kTortuosity = 7,
-    kPoreSize = 8,
     kFrameBulk = 9,
     kFrameShear = 10,
     kBulkDecrement = 11,
@@ -45,9 +38,7 @@ class BiotStollModel final : public JetEvaluated<BiotStollModel> {
     const double omega = 2.0 * std::numbers::pi * frequency_hz;
     const Complex<T> bulk(v[kFrameBulk], -v[kFrameBulk] * v[kBulkDecrement] / std::numbers::pi);
     const Complex<T> shear(v[kFrameShear], -v[kFrameShear] * v[kShearDecrement] / std::numbers::pi);
-    const BiotMedium<T> medium{bulk,          shear,           v[kPorosity],     v[kGrainDensity],
-                               v[kGrainBulk], v[kWaterDensity], v[kWaterBulk],   v[kViscosity],
-                               v[kPermeability], v[kTortuosity], v[kPoreSize]};
+    const BiotMedium<T> medium = pore_space_medium(v, bulk, shear);
     const AttenuationSpeed<T> fast = attenuation_and_speed(biot_fast_wavenumber(medium, omega), omega);
     return {fast.attenuation, fast.speed};
   }

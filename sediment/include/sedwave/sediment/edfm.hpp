@@ -15,23 +15,13 @@
 
 #include "sedwave/sediment/biot.hpp"
 #include "sedwave/sediment/jet_evaluated.hpp"
+#include "sedwave/sediment/poroelastic_parameters.hpp"
 
 namespace sedwave::sediment {
 
-class EffectiveDensityFluidModel final : public JetEvaluated<EffectiveDensityFluidModel> {
+class EffectiveDensityFluidModel final : public JetEvaluated<EffectiveDensityFluidModel>, public PoreSpace {
  public:
-  static constexpr int kParameters = 9;
-  enum Index : int {
-    kPorosity = 0,
-    kGrainDensity = 1,
-    kGrainBulk = 2,
-    kWaterDensity = 3,
-    kWaterBulk = 4,
-    kViscosity = 5,
-    kPermeability = 6,
-    kTortuosity = 7,
-    kPoreSize = 8,
-  };
+  static constexpr int kParameters = kPoreSpaceParameters;  ///< PoreSpaceIndex order
 
   EffectiveDensityFluidModel();
 
@@ -42,9 +32,7 @@ class EffectiveDensityFluidModel final : public JetEvaluated<EffectiveDensityFlu
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
     const double omega = 2.0 * std::numbers::pi * frequency_hz;
-    const BiotMedium<T> medium{Complex<T>(T(0.0)), Complex<T>(T(0.0)), v[kPorosity],   v[kGrainDensity],
-                               v[kGrainBulk],      v[kWaterDensity],   v[kWaterBulk],  v[kViscosity],
-                               v[kPermeability],   v[kTortuosity],     v[kPoreSize]};
+    const BiotMedium<T> medium = pore_space_medium(v, Complex<T>(T(0.0)), Complex<T>(T(0.0)));
     const AttenuationSpeed<T> fast = attenuation_and_speed(biot_fast_wavenumber(medium, omega), omega);
     return {fast.attenuation, fast.speed};
   }
