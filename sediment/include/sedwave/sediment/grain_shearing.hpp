@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/sediment/biot.hpp"
 #include "sedwave/sediment/complex.hpp"
 #include "sedwave/sediment/jet_evaluated.hpp"
 
@@ -46,8 +47,8 @@ template <typename T>
 WoodMixture<T> wood_mixture(const T& porosity, const T& grain_density, const T& water_density,
                             const T& grain_bulk_modulus, const T& water_bulk_modulus) {
   using std::sqrt;
-  const T density = porosity * water_density + (T(1.0) - porosity) * grain_density;
-  const T bulk_modulus = T(1.0) / (porosity / water_bulk_modulus + (T(1.0) - porosity) / grain_bulk_modulus);
+  const T density = mixture_density(porosity, grain_density, water_density);
+  const T bulk_modulus = wood_bulk_modulus(porosity, grain_bulk_modulus, water_bulk_modulus);
   return {density, bulk_modulus, sqrt(bulk_modulus / density)};
 }
 
