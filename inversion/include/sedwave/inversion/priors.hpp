@@ -1,0 +1,55 @@
+#pragma once
+// Prior distributions of a model's parameters: what a user knows before the data.
+//
+// Kinds (values in the parameter's SI unit):
+//   uniform:A,B        flat in the value on [A, B]
+//   log-uniform:A,B    flat in ln(value) on [A, B] (scale-free: each decade as likely)
+//   normal:MEAN,SD     Gaussian in the value (truncated to the search bounds)
+//   log-normal:MEDIAN,SD_LN   Gaussian in ln(value) with median MEDIAN and sd SD_LN of ln(value)
+// A parameter without a prior gets the default: log-uniform over its search bounds (broad but
+// physical: the bounds lie inside its physical range).
+//
+// The fit and the sampler work in theta = ln(value), so every density here is returned in theta:
+// p(theta) = p(value) * value (the Jacobian of value = e^theta). Densities are normalised over the
+// search bounds, so a log evidence can use them.
+#include <string>
+#include <vector>
+
+#include "sedwave/inversion/parameters.hpp"
+
+namespace sedwave::inversion {
+
+enum class PriorKind { Uniform, LogUniform, Normal, LogNormal };
+
+struct Prior {
+  PriorKind kind = PriorKind::LogUniform;
+  double a = 0.0;  ///< lower end, mean or median [unit]
+  double b = 0.0;  ///< upper end [unit], sd [unit] (normal) or sd of ln(value) (log-normal)
+  std::string source = "default";  ///< "default", "command line", or what derived it
+  double lower = 0.0;  ///< support: the search bounds [unit]
+  double upper = 0.0;
+
+  /// ln p(theta) at theta = ln(value), normalised over [lower, upper]; -inf outside the support.
+  [[nodiscard]] double log_density_theta(double theta) const;
+  /// One line, e.g. "log-normal(median 8.2e4 N/m, sd_ln 0.5) on [1e3, 1e7] (command line)".
+  [[nodiscard]] std::string describe(const std::string& unit) const;
+};
+
+/// The default prior of a parameter: log-uniform over its search bounds.
+[[nodiscard]] Prior default_prior(const ParameterSpec& spec);
+
+/// "KIND:A,B" for a parameter (its spec gives the support and unit). Throws std::invalid_argument
+/// naming the option text, the kind and the accepted forms; refuses a prior whose support does not
+/// meet the search bounds, a non-positive sd, or A >= B for the flat kinds.
+[[nodiscard]] Prior parse_prior(const std::string& text, const ParameterSpec& spec);
+
+/// One prior per parameter of `parameters` (fixed ones included, unused): "NAME=KIND:A,B" items
+/// override the defaults. Throws std::invalid_argument for an unknown name, a repeated one, or a
+/// prior on a fixed parameter.
+[[nodiscard]] std::vector<Prior> make_priors(const FitParameters& parameters, const std::vector<std::string>& items);
+
+/// Sum of the free parameters' ln p(theta_i) (independent priors).
+[[nodiscard]] double log_prior(const FitParameters& parameters, const std::vector<Prior>& priors,
+                               const std::vector<double>& theta);
+
+}  // namespace sedwave::inversion

@@ -1,0 +1,129 @@
+#include "sedwave/inversion/priors.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace sedwave::inversion {
+namespace {
+
+constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+
+/// Standard normal CDF.
+double phi(double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
+
+/// ln of the normal density N(x; mean, sd), truncated to [lo, hi].
+double truncated_normal_log_density(double x, double mean, double sd, double lo, double hi) {
+  const double mass = phi((hi - mean) / sd) - phi((lo - mean) / sd);
+  const double z = (x - mean) / sd;
+  return -0.5 * z * z - std::log(sd * std::sqrt(2.0 * std::numbers::pi)) - std::log(mass);
+}
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", x);
+  return text;
+}
+
+}  // namespace
+
+double Prior::log_density_theta(double theta) const {
+  const double value = std::exp(theta);
+  const double lo = std::max(lower, kind == PriorKind::Uniform || kind == PriorKind::LogUniform ? a : lower);
+  const double hi = std::min(upper, kind == PriorKind::Uniform || kind == PriorKind::LogUniform ? b : upper);
+  if (!(value >= lo && value <= hi)) return kMinusInfinity;
+  switch (kind) {
+    case PriorKind::Uniform: return theta - std::log(hi - lo);  // p(v) = 1/(hi-lo), times v
+    case PriorKind::LogUniform: return -std::log(std::log(hi / lo));
+    case PriorKind::Normal: return truncated_normal_log_density(value, a, b, lo, hi) + theta;
+    default: return truncated_normal_log_density(theta, std::log(a), b, std::log(lo), std::log(hi));
+  }
+}
+
+std::string Prior::describe(const std::string& unit) const {
+  const std::string u = unit == "1" ? "" : " " + unit;
+  std::string what;
+  switch (kind) {
+    case PriorKind::Uniform: what = "uniform(" + number(a) + " .. " + number(b) + u + ")"; break;
+    case PriorKind::LogUniform: what = "log-uniform(" + number(std::max(a, lower)) + " .. " + number(std::min(b, upper)) + u + ")"; break;
+    case PriorKind::Normal: what = "normal(mean " + number(a) + u + ", sd " + number(b) + u + ")"; break;
+    default: what = "log-normal(median " + number(a) + u + ", sd of ln " + number(b) + ")"; break;
+  }
+  return what + " on the bounds [" + number(lower) + ", " + number(upper) + "] (" + source + ")";
+}
+
+Prior default_prior(const ParameterSpec& spec) {
+  return {PriorKind::LogUniform, spec.lower, spec.upper, "default", spec.lower, spec.upper};
+}
+
+Prior parse_prior(const std::string& text, const ParameterSpec& spec) {
+  const std::string accepted = "accepted: uniform:A,B | log-uniform:A,B | normal:MEAN,SD | log-normal:MEDIAN,SD_LN";
+  const auto colon = text.find(':');
+  const auto comma = text.find(',', colon == std::string::npos ? 0 : colon);
+  if (colon == std::string::npos || comma == std::string::npos) {
+    throw std::invalid_argument("--prior " + spec.name + "=" + text + ": expected KIND:A,B (" + accepted + ")");
+  }
+  const std::string kind = text.substr(0, colon);
+  Prior p{PriorKind::Uniform, 0.0, 0.0, "command line", spec.lower, spec.upper};
+  if (kind == "uniform") p.kind = PriorKind::Uniform;
+  else if (kind == "log-uniform") p.kind = PriorKind::LogUniform;
+  else if (kind == "normal") p.kind = PriorKind::Normal;
+  else if (kind == "log-normal") p.kind = PriorKind::LogNormal;
+  else throw std::invalid_argument("--prior " + spec.name + "=" + text + ": unknown kind '" + kind + "' (" + accepted + ")");
+  const auto read = [&](const std::string& s) {
+    std::size_t used = 0;
+    double x = std::numeric_limits<double>::quiet_NaN();
+    try {
+      x = std::stod(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || !std::isfinite(x)) {
+      throw std::invalid_argument("--prior " + spec.name + "=" + text + ": '" + s + "' is not a finite number");
+    }
+    return x;
+  };
+  p.a = read(text.substr(colon + 1, comma - colon - 1));
+  p.b = read(text.substr(comma + 1));
+  const std::string where = "--prior " + spec.name + "=" + text + ": ";
+  const bool flat = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
+  if (flat && !(p.a < p.b)) throw std::invalid_argument(where + "needs A < B");
+  if (flat && (p.b <= spec.lower || p.a >= spec.upper)) {
+    throw std::invalid_argument(where + "[A, B] does not meet the search bounds [" + number(spec.lower) + ", " +
+                                number(spec.upper) + "] " + spec.unit);
+  }
+  if (p.kind == PriorKind::LogUniform && !(p.a > 0.0)) throw std::invalid_argument(where + "needs A > 0");
+  if (!flat && !(p.b > 0.0)) throw std::invalid_argument(where + "the sd must be positive");
+  if (p.kind == PriorKind::LogNormal && !(p.a > 0.0)) throw std::invalid_argument(where + "the median must be positive");
+  return p;
+}
+
+std::vector<Prior> make_priors(const FitParameters& parameters, const std::vector<std::string>& items) {
+  std::vector<Prior> priors;
+  for (const ParameterSpec& s : parameters.spec) priors.push_back(default_prior(s));
+  std::set<std::string> seen;
+  for (const std::string& item : items) {
+    const auto at = item.find('=');
+    if (at == std::string::npos) throw std::invalid_argument("--prior '" + item + "': expected NAME=KIND:A,B");
+    const std::string name = item.substr(0, at);
+    const int i = parameters.index_of(name);
+    if (!parameters.spec[i].free) {
+      throw std::invalid_argument("--prior '" + item + "': " + name + " is fixed; name it in --fit to give it a prior");
+    }
+    if (!seen.insert(name).second) throw std::invalid_argument("--prior names '" + name + "' twice");
+    priors[i] = parse_prior(item.substr(at + 1), parameters.spec[i]);
+  }
+  return priors;
+}
+
+double log_prior(const FitParameters& parameters, const std::vector<Prior>& priors, const std::vector<double>& theta) {
+  double sum = 0.0;
+  for (int i : parameters.free_indices()) sum += priors[i].log_density_theta(theta[i]);
+  return sum;
+}
+
+}  // namespace sedwave::inversion
