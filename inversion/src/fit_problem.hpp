@@ -65,6 +65,11 @@ struct Combination {
   std::function<Differentiated(const Setup&, const Theta&)> log_value;
 };
 
+/// The combinations that mean something for the model in use: tau, f_star, gamma_hat and
+/// kappa_over_hertz for every model whose parameters start with the grain contact's; c0 (the frame's
+/// own low-frequency speed) for the dry frame alone (combinations.cpp).
+[[nodiscard]] std::vector<Combination> combinations_for(const Setup& s);
+
 /// An extra residual that ties a combination to a target value (a likelihood profile of a
 /// combination holds it fixed this way).
 struct Constraint {
