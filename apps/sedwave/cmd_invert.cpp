@@ -21,6 +21,7 @@
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
+#include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
@@ -37,6 +38,8 @@ struct InvertOptions {
   std::string out = "sedwave-fit";
   std::optional<double> water_speed, sediment_speed;
   inversion::FitOptions fit_options;
+  std::vector<std::string> priors;  ///< NAME=KIND:A,B
+  inversion::PosteriorOptions posterior;
   bool plot = true;
 };
 
@@ -160,6 +163,28 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
   std::printf("\nreport: %s/fit.json, curves: %s/curves.csv\n%s\n", out.c_str(), out.c_str(), plot.message.c_str());
 }
 
+void print_posterior(const inversion::PosteriorResult& p, const std::string& out) {
+  std::printf("\nposterior (%d walkers x %d steps, first half burn-in; acceptance %.2f; %.1f s):\n", p.walkers, p.steps,
+              p.acceptance, p.wall_seconds);
+  std::printf("  priors:\n");
+  for (const std::string& line : p.priors) std::printf("    %s\n", line.c_str());
+  std::printf("  %-16s %-6s %11s  %-23s  %-23s %6s %7s\n", "quantity", "unit", "median", "68% credible",
+              "95% credible", "R-hat", "ESS");
+  const auto row = [](const inversion::PosteriorQuantity& q) {
+    std::printf("  %-16s %-6s %11.4g  %10.4g .. %-10.4g  %10.4g .. %-10.4g %6.3f %7.0f%s\n", q.name.c_str(),
+                q.unit.c_str(), q.median, q.lower_68, q.upper_68, q.lower_95, q.upper_95, q.split_rhat,
+                q.effective_samples, q.prior_dominated ? "  (prior: the data did not inform it)" : "");
+  };
+  for (const auto& q : p.parameters) row(q);
+  for (const auto& q : p.combinations) row(q);
+  if (p.converged) {
+    std::printf("  converged (split R-hat and effective sample sizes within their thresholds)\n");
+  } else {
+    std::printf("  NOT CONVERGED: %s\n", p.advice.c_str());
+  }
+  std::printf("  samples: %s/posterior_samples.csv\n", out.c_str());
+}
+
 /// From this many observations on, a fit takes seconds to minutes: it reports its stages on stderr.
 constexpr std::size_t kProgressObservations = 10000;
 
@@ -173,7 +198,8 @@ std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
 
 std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   std::vector<OutputPath> outputs;
-  for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg"}) {
+  for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg",
+                           "posterior_samples.csv"}) {
     outputs.push_back({"--out", out / name});
   }
   return outputs;
@@ -191,8 +217,17 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--digitized", o->digitized_specs,
                   "QUANTITY:FREQ_UNIT:VALUE_UNIT[:REL_SIGMA] for --digitized-file (one for all, or one each)");
   add_model_options(*cmd, o->model, ModelUse::Fit);
-  cmd->add_option("--method", o->method, "ceres (local) | nlopt (global search) | global (search + polish)")->capture_default_str()
-      ->check(CLI::IsMember({"ceres", "nlopt", "global"}));
+  cmd->add_option("--method", o->method,
+                  "ceres (local) | nlopt (global search) | global (search + polish) | posterior (global, then the "
+                  "Bayesian posterior with --prior; docs/inversion.md)")
+      ->capture_default_str()->check(CLI::IsMember({"ceres", "nlopt", "global", "posterior"}));
+  cmd->add_option("--prior", o->priors,
+                  "NAME=KIND:A,B, KIND uniform | log-uniform | normal | log-normal (A,B: bounds, mean and sd, or median "
+                  "and sd of ln) [SI]; default log-uniform over the search bounds (repeatable; --method posterior)");
+  cmd->add_option("--walkers", o->posterior.walkers, "posterior: ensemble walkers (0: max(4 x free, 16))")
+      ->capture_default_str()->check(CLI::Range(0, 100000));
+  cmd->add_option("--steps", o->posterior.steps, "posterior: ensemble updates, the first half discarded as burn-in")
+      ->capture_default_str()->check(CLI::Range(10, 10000000));
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));
@@ -222,7 +257,10 @@ Command add_invert_command(CLI::App& app) {
             const inversion::FitParameters parameters = make_parameters(o->model, *model, ModelUse::Fit, &site_notes);
             for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
             inversion::FitOptions options = o->fit_options;
-            options.method = inversion::parse_fit_method(o->method);
+            const bool posterior = o->method == "posterior";
+            options.method = inversion::parse_fit_method(posterior ? "global" : o->method);
+            if (!o->priors.empty() && !posterior) throw UsageError("--prior is for --method posterior");
+            const std::vector<inversion::Prior> priors = inversion::make_priors(parameters, o->priors);
             if (data.observations.size() >= kProgressObservations) {
               const auto started = std::chrono::steady_clock::now();
               options.progress = [started](const std::string& stage) {
@@ -233,6 +271,12 @@ Command add_invert_command(CLI::App& app) {
             const inversion::FitResult result = inversion::fit(data, *model, parameters, options);
 
             nlohmann::json report = inversion::fit_report(result, data);
+            std::optional<inversion::PosteriorResult> sampled;
+            if (posterior) {
+              sampled = inversion::sample_posterior(data, *model, result, priors, options, o->posterior);
+              report["posterior"] = inversion::posterior_report(*sampled);
+              inversion::write_posterior_samples_csv(out / "posterior_samples.csv", *sampled);
+            }
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
             // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
@@ -265,7 +309,9 @@ Command add_invert_command(CLI::App& app) {
                                               data.water_sound_speed.has_value(), result);
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
-            return result.converged && result.flags.empty() ? kExitOk : kExitIncomplete;
+            if (sampled) print_posterior(*sampled, o->out);
+            const bool sampled_ok = !sampled || sampled->converged;
+            return result.converged && sampled_ok && result.flags.empty() ? kExitOk : kExitIncomplete;
           }};
 }
 

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <initializer_list>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
