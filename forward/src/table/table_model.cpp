@@ -1,5 +1,6 @@
 #include "sedwave/forward/table/table_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -38,6 +39,13 @@ void require_usable(const PointResult& p, std::size_t i_gamma, std::size_t i_ome
   }
 }
 
+/// The lattice theory where a correction table needs it: positive and finite, or the reason it is not.
+bool theory_usable(const DispersionPoint& t) {
+  return t.alpha_hat > 0.0 && std::isfinite(t.alpha_hat) && t.c_hat > 0.0 && std::isfinite(t.c_hat) &&
+         std::isfinite(t.d_alpha_hat.d_omega_hat) && std::isfinite(t.d_alpha_hat.d_gamma_hat) &&
+         std::isfinite(t.d_c_hat.d_omega_hat) && std::isfinite(t.d_c_hat.d_gamma_hat);
+}
+
 }  // namespace
 
 /// Everything evaluate() needs, built once from the table.
@@ -47,7 +55,7 @@ struct TableModel::Interpolant {
   HermiteSurface log_alpha, log_c;
   std::vector<double> relative_sigma_alpha, relative_sigma_c;
 
-  static Interpolant build(const DispersionTable& table) {
+  static Interpolant build(const DispersionTable& table, Interpolation interpolation) {
     const std::size_t n = table.grid().size();
     std::vector<bool> usable(n);
     std::vector<double> log_alpha(n, 0.0), log_c(n, 0.0), rel_alpha(n, 0.0), rel_c(n, 0.0);
@@ -59,6 +67,20 @@ struct TableModel::Interpolant {
       require_usable(p, g, w);
       log_alpha[k] = std::log(p.alpha_hat);
       log_c[k] = std::log(p.c_hat);
+      if (interpolation == Interpolation::correction) {
+        const double omega_hat = table.grid().omega_hat[w], gamma_hat = table.grid().gamma_hat[g];
+        const DispersionPoint t = LatticeModel().evaluate(omega_hat, gamma_hat);
+        if (!theory_usable(t)) {
+          throw std::invalid_argument(
+              "table point (omega_hat=" + str(omega_hat) + ", gamma_hat=" + str(gamma_hat) +
+              ") is ok but the lattice theory has no positive, finite value there (alpha_hat=" + str(t.alpha_hat) +
+              ", c_hat=" + str(t.c_hat) +
+              "; an undamped chain at or below its band edge, or an underflow): interpolate=correction "
+              "divides the table by the theory; use interpolate=direct for this table");
+        }
+        log_alpha[k] -= std::log(t.alpha_hat);
+        log_c[k] -= std::log(t.c_hat);
+      }
       rel_alpha[k] = p.sigma_alpha_hat / p.alpha_hat;
       rel_c[k] = p.sigma_c_hat / p.c_hat;
     }
@@ -81,11 +103,12 @@ struct TableModel::Interpolant {
   }
 };
 
-TableModel::TableModel(DispersionTable table, std::string name, OutsideTable outside)
+TableModel::TableModel(DispersionTable table, std::string name, OutsideTable outside, Interpolation interpolation)
     : table_(std::move(table)),
       name_(std::move(name)),
       outside_(outside),
-      interpolant_(std::make_shared<const Interpolant>(Interpolant::build(table_))) {
+      interpolation_(interpolation),
+      interpolant_(std::make_shared<const Interpolant>(Interpolant::build(table_, interpolation_))) {
   if (outside_ == OutsideTable::long_wavelength && (table_.n_omega() < 2 || table_.n_gamma() < 2)) {
     throw std::invalid_argument(name_ + ": the long-wavelength extrapolation needs at least two omega_hat and two "
                                 "gamma_hat in the table");
@@ -99,20 +122,44 @@ std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
   spec.remove_prefix(prefix.size());
   const std::size_t question = spec.find('?');
   OutsideTable outside = OutsideTable::error;
+  Interpolation interpolation = Interpolation::direct;
   if (question != std::string_view::npos) {
-    const std::string_view option = spec.substr(question + 1);
-    if (option == "extrapolate=theory") {
-      outside = OutsideTable::lattice_theory;
-    } else if (option == "extrapolate=long-wavelength") {
-      outside = OutsideTable::long_wavelength;
-    } else if (option != "extrapolate=none") {
-      throw std::invalid_argument("table model option '" + std::string(option) +
-                                  "' not understood (accepted: extrapolate=none, extrapolate=theory, "
-                                  "extrapolate=long-wavelength)");
+    constexpr std::string_view accepted =
+        " (accepted, joined by '&', each at most once: extrapolate=none, extrapolate=theory, "
+        "extrapolate=long-wavelength, interpolate=direct, interpolate=correction)";
+    std::string_view options = spec.substr(question + 1);
+    bool have_extrapolate = false, have_interpolate = false;
+    while (true) {
+      const std::size_t amp = options.find('&');
+      const std::string_view option = options.substr(0, amp);
+      bool* seen = option.starts_with("extrapolate=")   ? &have_extrapolate
+                   : option.starts_with("interpolate=") ? &have_interpolate
+                                                        : nullptr;
+      if (seen != nullptr && *seen) {
+        throw std::invalid_argument("table model option '" + std::string(option.substr(0, option.find('='))) +
+                                    "' given twice in '" + std::string(spec) + "'" + std::string(accepted));
+      }
+      if (option == "extrapolate=none") {
+        outside = OutsideTable::error;
+      } else if (option == "extrapolate=theory") {
+        outside = OutsideTable::lattice_theory;
+      } else if (option == "extrapolate=long-wavelength") {
+        outside = OutsideTable::long_wavelength;
+      } else if (option == "interpolate=direct") {
+        interpolation = Interpolation::direct;
+      } else if (option == "interpolate=correction") {
+        interpolation = Interpolation::correction;
+      } else {
+        throw std::invalid_argument("table model option '" + std::string(option) + "' not understood" +
+                                    std::string(accepted));
+      }
+      *seen = true;
+      if (amp == std::string_view::npos) break;
+      options.remove_prefix(amp + 1);
     }
   }
   if (path.empty()) throw std::invalid_argument("table model needs a file: table:FILE.h5");
-  return std::make_unique<TableModel>(read_table(path), "table:" + path, outside);
+  return std::make_unique<TableModel>(read_table(path), "table:" + path, outside, interpolation);
 }
 
 DispersionPoint TableModel::evaluate(double omega_hat, double gamma_hat) const {
@@ -141,17 +188,58 @@ std::optional<DispersionPoint> TableModel::inside(double omega_hat, double gamma
           (p.reason.empty() ? "" : " (" + p.reason + ")");
     return std::nullopt;
   }
+  return sample(cell, omega_hat, gamma_hat);
+}
+
+DispersionPoint TableModel::sample(const GridCell& cell, double omega_hat, double gamma_hat, bool held_x,
+                                   bool held_y) const {
+  const Interpolant& in = *interpolant_;
   // Interpolated in logs: alpha = exp(L), so d alpha / d omega_hat = alpha dL/d ln(omega_hat) / omega_hat.
-  const SurfaceSample a = in.log_alpha(cell);
-  const SurfaceSample c = in.log_c(cell);
+  // A correction surface C multiplies the theory T: alpha = T exp(C), d alpha = exp(C) dT + alpha dC.
+  SurfaceSample a = in.log_alpha(cell);
+  SurfaceSample c = in.log_c(cell);
+  if (held_x) a.d_x = c.d_x = 0.0;
+  if (held_y) a.d_y = c.d_y = 0.0;
   DispersionPoint p;
   p.alpha_hat = std::exp(a.value);
   p.c_hat = std::exp(c.value);
   p.d_alpha_hat = {p.alpha_hat * a.d_x / omega_hat, p.alpha_hat * a.d_y / gamma_hat};
   p.d_c_hat = {p.c_hat * c.d_x / omega_hat, p.c_hat * c.d_y / gamma_hat};
+  if (interpolation_ == Interpolation::correction) {
+    const DispersionPoint t = LatticeModel().evaluate(omega_hat, gamma_hat);
+    if (!theory_usable(t)) {
+      throw std::domain_error(name_ + ": (omega_hat=" + str(omega_hat) + ", gamma_hat=" + str(gamma_hat) +
+                              ") the lattice theory has no positive, finite value here (alpha_hat=" +
+                              str(t.alpha_hat) + ", c_hat=" + str(t.c_hat) + "), so interpolate=correction cannot "
+                              "add it back");
+    }
+    const double ka = p.alpha_hat, kc = p.c_hat;  // exp(C)
+    p.alpha_hat = t.alpha_hat * ka;
+    p.c_hat = t.c_hat * kc;
+    p.d_alpha_hat = {ka * t.d_alpha_hat.d_omega_hat + p.alpha_hat * a.d_x / omega_hat,
+                     ka * t.d_alpha_hat.d_gamma_hat + p.alpha_hat * a.d_y / gamma_hat};
+    p.d_c_hat = {kc * t.d_c_hat.d_omega_hat + p.c_hat * c.d_x / omega_hat,
+                 kc * t.d_c_hat.d_gamma_hat + p.c_hat * c.d_y / gamma_hat};
+  }
   p.sigma_alpha_hat = p.alpha_hat * bilinear(cell, in.relative_sigma_alpha, in.log_omega.size());
   p.sigma_c_hat = p.c_hat * bilinear(cell, in.relative_sigma_c, in.log_omega.size());
   return p;
+}
+
+std::optional<DispersionPoint> TableModel::held_correction(double omega_hat, double gamma_hat) const {
+  const Interpolant& in = *interpolant_;
+  if (!(omega_hat > 0.0) || !(gamma_hat > 0.0) || !std::isfinite(omega_hat) || !std::isfinite(gamma_hat)) {
+    return std::nullopt;
+  }
+  const double lx = std::log(omega_hat), ly = std::log(gamma_hat);
+  const double cx = std::clamp(lx, in.log_omega.front(), in.log_omega.back());
+  const double cy = std::clamp(ly, in.log_gamma.front(), in.log_gamma.back());
+  const auto x = locate(in.log_omega, cx);
+  const auto y = locate(in.log_gamma, cy);
+  if (!x || !y) return std::nullopt;
+  const GridCell cell{*x, *y};
+  if (in.unusable_corner(cell)) return std::nullopt;
+  return sample(cell, omega_hat, gamma_hat, cx != lx, cy != ly);
 }
 
 std::optional<DispersionPoint> TableModel::long_wavelength(double omega_hat, double gamma_hat, std::string& why) const {
@@ -198,6 +286,9 @@ std::optional<DispersionPoint> TableModel::long_wavelength(double omega_hat, dou
 DispersionPoint TableModel::outside(double omega_hat, double gamma_hat, const std::string& why) const {
   if (outside_ == OutsideTable::lattice_theory) {
     fallbacks_.fetch_add(1, std::memory_order_relaxed);
+    if (interpolation_ == Interpolation::correction) {
+      if (const auto p = held_correction(omega_hat, gamma_hat)) return *p;
+    }
     return LatticeModel().evaluate(omega_hat, gamma_hat);
   }
   const TableGrid& grid = table_.grid();

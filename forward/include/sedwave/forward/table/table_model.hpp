@@ -31,6 +31,17 @@
 //    of it). The value is continuous where the table ends, its gradient is not; where the column
 //    used changes (a ragged edge), the value jumps by about that sigma.
 //
+// Interpolation::correction (spec option interpolate=correction) uses the 1D lattice theory as a
+// surrogate: the same Hermite surface interpolates the correction ln(alpha_table / alpha_lattice),
+// ln(c_table / c_lattice) instead of the logs themselves, and the theory's exact values and
+// derivatives at the query point are added back. A table that follows the theory up to a smooth
+// factor is then interpolated far better than directly (the theory carries the crossover and the
+// band edge), and a table of the theory itself is reproduced to round-off. Every ok point needs a
+// positive, finite lattice value (refused otherwise). Outside the table with extrapolate=theory,
+// a correction model answers the theory times the correction held at the nearest point of the
+// table's range (continuous at the edge; counted by fallback_count()); where that edge point's cell
+// has a non-ok corner, the bare theory as with direct interpolation.
+//
 // Units: dimensionless throughout (dispersion.hpp). Thread-safe: evaluate() only reads.
 #include <atomic>
 #include <cstdint>
@@ -45,6 +56,8 @@
 
 namespace sedwave::forward::table {
 
+struct GridCell;  // a cell of the interpolation grid (private to the implementation)
+
 /// What to do at a point the table does not cover.
 enum class OutsideTable {
   error,           ///< throw std::domain_error
@@ -52,14 +65,23 @@ enum class OutsideTable {
   long_wavelength, ///< below the resolved omega_hat: the table's continuum limit (above); else error
 };
 
+/// What the Hermite surface interpolates.
+enum class Interpolation {
+  direct,      ///< ln alpha_hat, ln c_hat of the table
+  correction,  ///< ln(table / lattice theory) of both; the theory's exact values are added back
+};
+
 class TableModel final : public DispersionModel {
  public:
   /// Throws std::invalid_argument if an ok point has a value that is not positive and finite, or a
   /// sigma that is negative or not finite.
-  TableModel(DispersionTable table, std::string name, OutsideTable outside = OutsideTable::error);
+  /// With Interpolation::correction, also throws std::invalid_argument if the lattice theory has no
+  /// positive, finite alpha_hat or c_hat at an ok point.
+  TableModel(DispersionTable table, std::string name, OutsideTable outside = OutsideTable::error,
+             Interpolation interpolation = Interpolation::direct);
 
-  /// From a command-line specification "table:FILE" or "table:FILE?extrapolate=theory" or
-  /// "table:FILE?extrapolate=long-wavelength".
+  /// From a command-line specification "table:FILE" or "table:FILE?OPTION&OPTION" with options
+  /// extrapolate=none|theory|long-wavelength and interpolate=direct|correction, each at most once.
   [[nodiscard]] static std::unique_ptr<TableModel> from_spec(std::string_view spec);
 
   [[nodiscard]] std::string name() const override { return name_; }
@@ -76,6 +98,7 @@ class TableModel final : public DispersionModel {
   /// How many evaluations used the long-wavelength limit so far.
   [[nodiscard]] std::uint64_t extrapolated_count() const { return extrapolated_.load(std::memory_order_relaxed); }
   [[nodiscard]] const DispersionTable& table() const { return table_; }
+  [[nodiscard]] Interpolation interpolation() const { return interpolation_; }
 
  private:
   struct Interpolant;
@@ -85,10 +108,18 @@ class TableModel final : public DispersionModel {
   /// The long-wavelength limit (above), or nothing and why appended to `why`.
   [[nodiscard]] std::optional<DispersionPoint> long_wavelength(double omega_hat, double gamma_hat, std::string& why) const;
   [[nodiscard]] DispersionPoint outside(double omega_hat, double gamma_hat, const std::string& why) const;
+  /// The surfaces at a cell whose corners are ok, converted to values, derivatives and sigmas; the
+  /// surfaces' derivatives along an axis flagged `held` are left out (the correction held there).
+  [[nodiscard]] DispersionPoint sample(const GridCell& cell, double omega_hat, double gamma_hat, bool held_x = false,
+                                       bool held_y = false) const;
+  /// Correction model outside the table: the theory times the correction at the nearest point of the
+  /// table's range, or nothing if that point's cell has a non-ok corner.
+  [[nodiscard]] std::optional<DispersionPoint> held_correction(double omega_hat, double gamma_hat) const;
 
   DispersionTable table_;
   std::string name_;
   OutsideTable outside_;
+  Interpolation interpolation_;
   std::shared_ptr<const Interpolant> interpolant_;
   mutable std::atomic<std::uint64_t> fallbacks_{0};
   mutable std::atomic<std::uint64_t> extrapolated_{0};
