@@ -247,7 +247,7 @@ void add_model_options(CLI::App& cmd, ModelOptions& o, ModelUse use) {
   std::string models;
   for (const std::string& name : sediment::sediment_model_names()) models += (models.empty() ? "" : " | ") + name;
   cmd.add_option("--model", o.model,
-                 "sediment model: " + models + " (table: FILE.h5[?extrapolate=theory|long-wavelength], docs/tables.md; "
+                 "sediment model: " + models + " (table: FILE.h5[?interpolate=correction][&extrapolate=theory|long-wavelength], docs/tables.md; "
                  "each model's parameters: sedwave models)")
       ->capture_default_str();
   const std::string role = fit ? ": start value, or the value if fixed" : "";
