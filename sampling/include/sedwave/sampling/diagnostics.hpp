@@ -1,0 +1,68 @@
+#pragma once
+// Convergence diagnostics of Markov chains: split-R-hat (Gelman et al., Bayesian Data Analysis, 3rd
+// ed. 2013, "BDA3", section 11.4), its rank-normalised form (Vehtari, Gelman, Simpson, Carpenter &
+// Buerkner 2021, Bayesian Analysis 16, 667, "V21"), the integrated autocorrelation time with Sokal's
+// automatic window (Sokal 1997, in Functional Integration, NATO ASI Series B 361, 131; as emcee's
+// integrated_time), the effective sample size, and a verdict with advice. Manual: docs/sampling.md.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sedwave/sampling/ensemble.hpp"
+
+namespace sedwave::sampling {
+
+/// One parameter's draws from every chain (walker): column `parameter` of each chain matrix.
+[[nodiscard]] std::vector<Eigen::VectorXd> parameter_chains(const std::vector<Eigen::MatrixXd>& chains,
+                                                            int parameter);
+
+/// Split-R-hat of BDA3 eqs. 11.1-11.4: each chain cut into two halves (an odd middle draw dropped),
+/// then sqrt(var+ / W) with W the mean within-half variance and var+ = (n-1)/n W + B/n. 1 when
+/// the halves agree; NaN when every half is constant (nothing to compare).
+[[nodiscard]] double split_rhat(const std::vector<Eigen::VectorXd>& chains);
+
+/// Rank-normalised split-R-hat (V21 section 4.2): the larger of the split-R-hat of the
+/// rank-normalised draws ("bulk") and of the rank-normalised distances from the median ("tail").
+/// Robust to heavy tails and catches chains that agree in location but not in scale.
+[[nodiscard]] double rank_normalized_rhat(const std::vector<Eigen::VectorXd>& chains);
+
+/// Integrated autocorrelation time tau = 1 + 2 sum_{t=1..M} rho(t) [draws], with rho the
+/// autocorrelation function (biased autocovariance, divided by lag 0) averaged over the chains, as
+/// emcee 3 does (not the autocorrelation of the chain-averaged series: for an ensemble that is
+/// noisier and can be biased low, see emcee's "Autocorrelation analysis" tutorial). Sokal's window:
+/// the smallest M >= window_factor * tau(M), window_factor = 5 (Sokal 1997; emcee's c = 5).
+/// The estimate is trustworthy when the chains are longer than about 50 tau (emcee's tol = 50).
+/// NaN when every chain is constant.
+[[nodiscard]] double autocorrelation_time(const std::vector<Eigen::VectorXd>& chains, double window_factor = 5.0);
+
+struct Diagnostics {
+  Eigen::VectorXd rhat;                  ///< rank_normalized_rhat per parameter
+  Eigen::VectorXd autocorrelation_time;  ///< tau per parameter [ensemble updates]
+  Eigen::VectorXd ess;                   ///< effective sample size per parameter: kept_steps * walkers / tau
+  double acceptance = 0.0;               ///< mean accepted fraction of proposals
+  int kept_steps = 0;
+  int walkers = 0;
+};
+
+/// Diagnostics of chains (per walker: steps x dim) with the run's acceptance fraction.
+[[nodiscard]] Diagnostics diagnose(const std::vector<Eigen::MatrixXd>& chains, double acceptance);
+[[nodiscard]] Diagnostics diagnose(const EnsembleRun& run);
+
+/// Thresholds of the verdict (defaults justified in docs/sampling.md):
+struct ConvergenceCriteria {
+  double max_rhat = 1.05;          ///< per-walker R-hat; 1.01 (V21) asks twice emcee's 50 tau, see docs
+  double min_ess = 400.0;          ///< V21 section 4.3: ESS > 400 (MC error of a quantile ~5 % of the posterior sd)
+  double min_steps_per_tau = 50.0; ///< emcee: kept steps > 50 tau, else tau itself is not yet reliable
+  double min_acceptance = 0.2;     ///< FM13 section 4: acceptance fraction 0.2-0.5 (advice only)
+  double max_acceptance = 0.5;
+};
+
+struct Convergence {
+  bool converged = false;  ///< every parameter meets max_rhat, min_ess and min_steps_per_tau
+  std::string advice;      ///< what failed and what to change; or the verdict when converged
+};
+
+[[nodiscard]] Convergence assess_convergence(const Diagnostics& diagnostics, const ConvergenceCriteria& criteria = {});
+
+}  // namespace sedwave::sampling

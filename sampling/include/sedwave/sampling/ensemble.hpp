@@ -1,0 +1,58 @@
+#pragma once
+// The affine-invariant ensemble sampler with the stretch move (Goodman & Weare 2010, Comm. App.
+// Math. Comp. Sci. 5, 65; "GW10"), as implemented in emcee (Foreman-Mackey et al. 2013, PASP 125,
+// 306; "FM13"). An ensemble of walkers moves together: each walker proposes a point on the line
+// through itself and a walker of the other half-ensemble. The moves are unchanged by any affine map
+// of the parameters, so a long, thin, correlated ridge is sampled as easily as a round blob, and the
+// only tuning parameter is the stretch scale a. Manual: docs/sampling.md.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace sedwave::sampling {
+
+/// ln p(x) up to an additive constant; -infinity outside the support. It is never called with a
+/// non-finite coordinate and must return a finite value or -infinity (NaN or +infinity: the sampler
+/// throws std::domain_error).
+using LogDensity = std::function<double(const Eigen::VectorXd&)>;
+
+struct EnsembleOptions {
+  int walkers = 0;        ///< ensemble size, even and >= 2 dim; 0: default_walkers(dim)
+  int steps = 2000;       ///< ensemble updates in all, burn-in included
+  int burn_in = -1;       ///< updates discarded at the start; -1: steps / 2
+  double stretch = 2.0;   ///< a in g(z) ~ 1/sqrt(z) on [1/a, a] (GW10 eq. 9); a = 2 as GW10 and FM13
+  std::uint64_t seed = 1; ///< the same seed gives the same samples
+};
+
+struct EnsembleRun {
+  std::vector<Eigen::MatrixXd> chains;       ///< per walker: kept steps x dim (burn-in dropped)
+  std::vector<Eigen::VectorXd> log_density;  ///< per walker: ln p at each kept step
+  Eigen::VectorXd walker_acceptance;         ///< per walker: accepted fraction of all its proposals
+  double acceptance = 0.0;                   ///< mean of walker_acceptance
+  int evaluations = 0;                       ///< calls of the log density, start walkers included
+};
+
+/// max(4 dim, 16), made even: twice GW10's minimum and enough that the two halves span the space.
+[[nodiscard]] int default_walkers(int dim);
+/// The ensemble size these options give in `dim` dimensions.
+[[nodiscard]] int walker_count(const EnsembleOptions& options, int dim);
+/// The burn-in these options give.
+[[nodiscard]] int burn_in_steps(const EnsembleOptions& options);
+
+/// walker_count(options, dim) start points centre + spread * N(0, I), from options.seed (a
+/// stream separate from the sampler's). Points outside the density's support are the caller's to
+/// avoid (e.g. by a spread well inside the bounds).
+[[nodiscard]] std::vector<Eigen::VectorXd> start_ball(const Eigen::VectorXd& centre, const Eigen::VectorXd& spread,
+                                                      const EnsembleOptions& options);
+
+/// Samples `log_density` from `start_walkers` (walker_count(options, dim) points of one
+/// dimension, each with a finite density, not all in one lower-dimensional plane). Each update
+/// moves the first half-ensemble against the second, then the second against the first (GW10
+/// section 5, FM13 algorithm 3), so each half's density evaluations are independent of one another.
+/// Throws std::invalid_argument for bad options or start walkers, naming what to change.
+[[nodiscard]] EnsembleRun sample(const LogDensity& log_density, const std::vector<Eigen::VectorXd>& start_walkers,
+                                 const EnsembleOptions& options);
+
+}  // namespace sedwave::sampling

@@ -1,0 +1,176 @@
+#include "stretch_move.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include <Eigen/SVD>
+
+namespace sedwave::sampling::detail {
+
+namespace {
+
+constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+
+// Smallest accepted singular value of the start walkers' standardised deviations (scaled so that it
+// is the square root of the smallest eigenvalue of their correlation matrix). Below it the walkers
+// lie, to rounding, in a lower-dimensional plane, which the stretch move can never leave: every
+// proposal is an affine combination of two walkers (GW10 section 3).
+constexpr double kMinSpreadRatio = 1e-6;
+
+void check_spread(const std::vector<Eigen::VectorXd>& walkers) {
+  const auto count = static_cast<Eigen::Index>(walkers.size());
+  const Eigen::Index dim = walkers.front().size();
+  Eigen::MatrixXd deviations(count, dim);
+  for (Eigen::Index k = 0; k < count; ++k) deviations.row(k) = walkers[k].transpose();
+  deviations.rowwise() -= deviations.colwise().mean();
+  for (Eigen::Index i = 0; i < dim; ++i) {
+    const double spread = deviations.col(i).norm();
+    if (!(spread > 0.0)) {
+      throw std::invalid_argument("start walkers all have the same parameter " + std::to_string(i) +
+                                  ": scatter them around the start point (e.g. start_ball with a spread > 0)");
+    }
+    deviations.col(i) /= spread;
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(deviations);
+  const double smallest = svd.singularValues()(dim - 1);
+  if (smallest < kMinSpreadRatio) {
+    std::ostringstream message;
+    message << "start walkers lie (nearly) in a lower-dimensional plane (smallest singular value of their "
+               "standardised deviations "
+            << smallest << " < " << kMinSpreadRatio
+            << "): the stretch move cannot leave it; scatter the walkers independently in every parameter";
+    throw std::invalid_argument(message.str());
+  }
+}
+
+// z ~ g(z) = 1 / sqrt(z) on [1/a, a] (GW10 eq. 9) by inversion of its distribution function:
+// z = ((a - 1) u + 1)^2 / a.
+double draw_stretch(double a, RandomStream& random) {
+  const double root = (a - 1.0) * random.uniform() + 1.0;
+  return root * root / a;
+}
+
+struct Proposal {
+  Eigen::VectorXd position;
+  double stretch = 1.0;
+  double log_uniform = 0.0;
+};
+
+// Proposals for walkers [begin, end) against the complementary half [other, other + size): all draws
+// first, in walker order, so the evaluations that follow may run in any order (or in parallel)
+// without changing the samples.
+std::vector<Proposal> propose_half(const Ensemble& ensemble, int begin, int end, int other, double a,
+                                   RandomStream& random) {
+  std::vector<Proposal> proposals;
+  proposals.reserve(static_cast<std::size_t>(end - begin));
+  for (int k = begin; k < end; ++k) {
+    const Eigen::VectorXd& anchor = ensemble.positions[static_cast<std::size_t>(other + random.index(end - begin))];
+    Proposal proposal;
+    proposal.stretch = draw_stretch(a, random);
+    // GW10 eq. 7 (FM13 eq. 10): Y = X_j + z (X_k - X_j).
+    proposal.position = anchor + proposal.stretch * (ensemble.positions[static_cast<std::size_t>(k)] - anchor);
+    proposal.log_uniform = std::log(random.uniform());
+    proposals.push_back(std::move(proposal));
+  }
+  return proposals;
+}
+
+void update_half(Ensemble& ensemble, int begin, int end, int other, double beta, double a, RandomStream& random,
+                 CountingEvaluator& evaluate) {
+  std::vector<Proposal> proposals = propose_half(ensemble, begin, end, other, a, random);
+  std::vector<LogParts> parts(proposals.size());
+  for (std::size_t i = 0; i < proposals.size(); ++i) parts[i] = evaluate(proposals[i].position);
+  const auto dim = static_cast<double>(ensemble.positions.front().size());
+  for (std::size_t i = 0; i < proposals.size(); ++i) {
+    const auto k = static_cast<std::size_t>(begin) + i;
+    const double proposed = tempered_log_density(parts[i], beta);
+    if (proposed == kMinusInfinity) continue;
+    // Acceptance probability min(1, z^(N-1) p(Y) / p(X_k)) (GW10 eq. 7; FM13 eq. 11).
+    const double log_ratio =
+        (dim - 1.0) * std::log(proposals[i].stretch) + proposed - tempered_log_density(ensemble.parts[k], beta);
+    if (proposals[i].log_uniform < log_ratio) {
+      ensemble.positions[k] = std::move(proposals[i].position);
+      ensemble.parts[k] = parts[i];
+      ++ensemble.accepted[k];
+    }
+  }
+}
+
+}  // namespace
+
+double tempered_log_density(const LogParts& parts, double beta) {
+  if (beta == 0.0 || parts.log_prior == kMinusInfinity) return parts.log_prior;
+  return parts.log_prior + beta * parts.log_likelihood;
+}
+
+LogParts CountingEvaluator::operator()(const Eigen::VectorXd& x) {
+  if (!x.allFinite()) return {kMinusInfinity, kMinusInfinity};
+  ++evaluations_;
+  const LogParts parts = function_(x);
+  for (const double value : {parts.log_prior, parts.log_likelihood}) {
+    if (std::isnan(value) || value == std::numeric_limits<double>::infinity()) {
+      std::ostringstream message;
+      message << "the log density returned " << value << " at (" << x.transpose()
+              << "); it must return a finite value, or -infinity outside the support";
+      throw std::domain_error(message.str());
+    }
+  }
+  return parts;
+}
+
+Ensemble start_ensemble(const std::vector<Eigen::VectorXd>& walkers, int expected_count, double beta,
+                        CountingEvaluator& evaluate) {
+  if (static_cast<int>(walkers.size()) != expected_count) {
+    throw std::invalid_argument("got " + std::to_string(walkers.size()) + " start walkers for an ensemble of " +
+                                std::to_string(expected_count) +
+                                ": give that many (start_ball makes them) or set the walkers option to " +
+                                std::to_string(walkers.size()));
+  }
+  Ensemble ensemble;
+  for (std::size_t k = 0; k < walkers.size(); ++k) {
+    if (walkers[k].size() != walkers.front().size() || !walkers[k].allFinite()) {
+      throw std::invalid_argument("start walker " + std::to_string(k) +
+                                  " has another dimension than walker 0 or a non-finite coordinate");
+    }
+    const LogParts parts = evaluate(walkers[k]);
+    if (tempered_log_density(parts, beta) == kMinusInfinity) {
+      throw std::invalid_argument("start walker " + std::to_string(k) +
+                                  " is outside the support (log density -infinity): start every walker "
+                                  "where the density is positive");
+    }
+    ensemble.positions.push_back(walkers[k]);
+    ensemble.parts.push_back(parts);
+  }
+  ensemble.accepted.assign(walkers.size(), 0);
+  check_spread(walkers);
+  return ensemble;
+}
+
+void stretch_update(Ensemble& ensemble, double beta, double stretch, RandomStream& random,
+                    CountingEvaluator& evaluate) {
+  const int half = static_cast<int>(ensemble.positions.size()) / 2;
+  update_half(ensemble, 0, half, half, beta, stretch, random, evaluate);
+  update_half(ensemble, half, 2 * half, 0, beta, stretch, random, evaluate);
+}
+
+void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch) {
+  if (dim < 1) throw std::invalid_argument("start walkers have no parameters: give at least one");
+  if (walkers < 2 * dim || walkers % 2 != 0) {
+    throw std::invalid_argument("walkers = " + std::to_string(walkers) + " for " + std::to_string(dim) +
+                                " parameters: use an even number >= " + std::to_string(2 * dim) +
+                                " (0 picks max(4 dim, 16))");
+  }
+  if (burn_in < 0 || steps <= burn_in) {
+    throw std::invalid_argument("steps = " + std::to_string(steps) + " with burn_in = " + std::to_string(burn_in) +
+                                ": steps must exceed the burn-in (>= 0; -1 picks steps / 2) so that some are kept");
+  }
+  if (!(stretch > 1.0) || !std::isfinite(stretch)) {
+    throw std::invalid_argument("stretch = " + std::to_string(stretch) +
+                                ": the stretch scale a must be finite and > 1 (GW10 and emcee use 2)");
+  }
+}
+
+}  // namespace sedwave::sampling::detail

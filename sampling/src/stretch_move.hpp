@@ -1,0 +1,57 @@
+#pragma once
+// The stretch move on a half-ensemble (GW10 section 5; FM13 algorithm 3), shared by the plain and
+// the tempered sampler. A target is ln prior(x) + beta ln L(x); the plain sampler uses beta = 1
+// and puts its whole density in the "prior" part.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sedwave/sampling/random_stream.hpp"
+
+namespace sedwave::sampling::detail {
+
+struct LogParts {
+  double log_prior = 0.0;
+  double log_likelihood = 0.0;
+};
+
+/// Evaluates a point; the caller guarantees finite coordinates.
+using PartsFunction = std::function<LogParts(const Eigen::VectorXd&)>;
+
+/// ln prior + beta ln L, with 0 * ln L read as 0 (at beta = 0 the target is the prior).
+[[nodiscard]] double tempered_log_density(const LogParts& parts, double beta);
+
+struct Ensemble {
+  std::vector<Eigen::VectorXd> positions;
+  std::vector<LogParts> parts;
+  std::vector<long> accepted;  ///< accepted proposals per walker
+};
+
+/// Counts the calls of a PartsFunction and guards it: non-finite coordinates are never passed
+/// (the point is outside every support), NaN or +infinity results throw std::domain_error.
+class CountingEvaluator {
+ public:
+  explicit CountingEvaluator(PartsFunction function) : function_(std::move(function)) {}
+  [[nodiscard]] LogParts operator()(const Eigen::VectorXd& x);
+  [[nodiscard]] int evaluations() const { return evaluations_; }
+
+ private:
+  PartsFunction function_;
+  int evaluations_ = 0;
+};
+
+/// Evaluates the start walkers and checks them (count, dimension, finite target at beta, not all in
+/// one lower-dimensional plane); std::invalid_argument names what to change.
+[[nodiscard]] Ensemble start_ensemble(const std::vector<Eigen::VectorXd>& walkers, int expected_count, double beta,
+                                      CountingEvaluator& evaluate);
+
+/// One ensemble update: the first half moved against the second, then the second against the first.
+void stretch_update(Ensemble& ensemble, double beta, double stretch, RandomStream& random,
+                    CountingEvaluator& evaluate);
+
+/// Checks the options shared by both samplers; std::invalid_argument names what to change.
+void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch);
+
+}  // namespace sedwave::sampling::detail
