@@ -54,3 +54,18 @@ sedwave_cli_case(invert.site_temperature_needs_salinity 2 "--water-temperature a
   invert ${OBS} --model edfm --fit permeability --water-temperature 10 ${FAST})
 sedwave_cli_case(invert.site_temperature_outside_mackenzie 1 "temperature T = 35 deg C lies outside the accepted range \\[2, 30\\]"
   invert ${OBS} --model edfm --fit permeability --water-temperature 35 --salinity 35 ${FAST})
+
+# The Bayesian posterior (--method posterior): priors printed with their source, credible intervals,
+# R-hat and ESS; an unseen parameter is said to follow its prior; bad priors are refused.
+sedwave_cli_case(invert.posterior_prior_on_d 3 "^  d +m +0.000297[0-9]* +0.00022[0-9]* \\.\\. 0.00040[0-9]* .*\\(prior: the data did not inform it\\)"
+  invert ${OBS} --method posterior --prior d=log-normal:3e-4,0.3 --steps 4000 --no-plot --out ${CLI_OUT}/posterior)
+sedwave_cli_case(invert.posterior_lists_priors 3 "^    d: log-normal\\(median 0.0003 m, sd of ln 0.3\\) on the bounds .*\\(command line\\)"
+  invert ${OBS} --method posterior --prior d=log-normal:3e-4,0.3 --steps 4000 --no-plot --out ${CLI_OUT}/posterior2)
+sedwave_cli_case(invert.prior_without_posterior 2 "--prior is for --method posterior"
+  invert ${OBS} --prior d=log-normal:3e-4,0.3 ${FAST})
+sedwave_cli_case(invert.prior_unknown_kind 1 "unknown kind 'gauss' \\(accepted: uniform:A,B"
+  invert ${OBS} --method posterior --prior d=gauss:1,2 --no-plot --out ${CLI_OUT}/posterior_never)
+sedwave_cli_case(invert.prior_on_fixed_parameter 1 "rho_s is fixed. name it in --fit to give it a prior"
+  invert ${OBS} --method posterior --prior rho_s=normal:2650,50 --no-plot --out ${CLI_OUT}/posterior_never)
+sedwave_cli_case(invert.posterior_not_converged 3 "NOT CONVERGED: .*run more steps"
+  invert ${OBS} --method posterior --steps 40 --no-plot --out ${CLI_OUT}/posterior_short)
