@@ -27,7 +27,7 @@ void check_spread(const std::vector<Eigen::VectorXd>& walkers) {
   for (Eigen::Index k = 0; k < count; ++k) deviations.row(k) = walkers[k].transpose();
   deviations.rowwise() -= deviations.colwise().mean();
   for (Eigen::Index i = 0; i < dim; ++i) {
-    const double spread = deviations.col(i).norm();
+    const double spread = deviations.col(i).stableNorm();  // no overflow for huge coordinates
     if (!(spread > 0.0)) {
       throw std::invalid_argument("start walkers all have the same parameter " + std::to_string(i) +
                                   ": scatter them around the start point (e.g. start_ball with a spread > 0)");
