@@ -25,14 +25,18 @@ void check_spread(const std::vector<Eigen::VectorXd>& walkers) {
   const Eigen::Index dim = walkers.front().size();
   Eigen::MatrixXd deviations(count, dim);
   for (Eigen::Index k = 0; k < count; ++k) deviations.row(k) = walkers[k].transpose();
-  deviations.rowwise() -= deviations.colwise().mean();
   for (Eigen::Index i = 0; i < dim; ++i) {
-    const double spread = deviations.col(i).norm();
+    // Scaled to at most 1 before centring, so that huge coordinates cannot overflow the mean or norm.
+    auto column = deviations.col(i);
+    const double largest = column.cwiseAbs().maxCoeff();
+    if (largest > 0.0) column /= largest;
+    column.array() -= column.mean();
+    const double spread = column.norm();
     if (!(spread > 0.0)) {
       throw std::invalid_argument("start walkers all have the same parameter " + std::to_string(i) +
                                   ": scatter them around the start point (e.g. start_ball with a spread > 0)");
     }
-    deviations.col(i) /= spread;
+    column /= spread;
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(deviations);
   const double smallest = svd.singularValues()(dim - 1);

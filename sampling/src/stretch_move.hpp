@@ -3,7 +3,7 @@
 // the tempered sampler. A target is ln prior(x) + beta ln L(x); the plain sampler uses beta = 1
 // and puts its whole density in the "prior" part.
 #include <functional>
-#include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>

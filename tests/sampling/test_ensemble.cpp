@@ -194,6 +194,23 @@ TEST(Ensemble, StaysInsideTheSupport) {
   EXPECT_NEAR(covariance(0, 0), 1.0 / 3.0, kStandardErrors * std::sqrt(4.0 / 45.0 / ess));
 }
 
+// Walkers near the largest doubles: some proposals overflow to infinity; they are refused without
+// asking the density, which is never called with a non-finite coordinate.
+TEST(Ensemble, NeverAsksAboutNonFinitePoints) {
+  int non_finite_calls = 0;
+  const LogDensity flat = [&](const Eigen::VectorXd& x) {
+    if (!x.allFinite()) ++non_finite_calls;
+    return 0.0;
+  };
+  EnsembleOptions options;
+  options.steps = 200;
+  const EnsembleRun run = sample(flat, start_ball(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 5e307), options),
+                                 options);
+  EXPECT_EQ(non_finite_calls, 0);
+  EXPECT_LT(run.evaluations, 16 + 16 * 200);  // the overflowing proposals were not evaluated
+  EXPECT_TRUE(pooled_samples(run.chains).allFinite());
+}
+
 TEST(Ensemble, RefusesBadOptionsSayingWhatToChange) {
   const LogDensity density = gaussian_log_density(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
   EnsembleOptions options;
