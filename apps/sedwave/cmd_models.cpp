@@ -23,6 +23,7 @@ Command add_models_command(CLI::App& app) {
                                             sediment::make_sediment_model(*name)};
     for (const auto& m : models) {
       std::printf("\n%s: %s\n", m->name().c_str(), m->summary().c_str());
+      std::printf("  fitted unless --fit says otherwise: %s\n", sediment::typical_free_parameters(*m).c_str());
       std::printf("  %-14s %-8s %12s  %-25s %s\n", "parameter", "unit", "default", "physical range", "meaning");
       for (const sediment::Parameter& p : m->parameters()) {
         char range[64];

@@ -27,5 +27,6 @@ Command add_synthesize_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
 Command add_show_command(CLI::App& app);
 Command add_models_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 }  // namespace sedwave::app

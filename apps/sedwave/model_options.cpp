@@ -195,13 +195,7 @@ inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::
                                          std::vector<std::string>* site_notes) {
   inversion::FitParameters p(model.parameters());
   if (use == ModelUse::Fit) {
-    const std::string fit = !o.fit.empty() ? o.fit : p.starts_with_grain_contact() ? "kappa,d," + p.spec[2].name : "";
-    if (fit.empty()) {
-      std::string names;
-      for (const auto& s : p.spec) names += (names.empty() ? "" : ",") + s.name;
-      throw UsageError("model '" + model.name() + "': give --fit with the parameters to fit, among " + names);
-    }
-    p.set_free_from_list(fit);
+    p.set_free_from_list(!o.fit.empty() ? o.fit : sediment::typical_free_parameters(model));
   }
   const auto named = [&](const char* name, const char* option) -> inversion::ParameterSpec& {
     try {
@@ -253,8 +247,8 @@ void add_model_options(CLI::App& cmd, ModelOptions& o, ModelUse use) {
   const std::string role = fit ? ": start value, or the value if fixed" : "";
   if (fit) {
     cmd.add_option("--fit", o.fit,
-                   "free parameters, comma-separated (others fixed); default kappa,d,gamma for models with grain "
-                   "contacts (gamma|en for the damping)");
+                   "free parameters, comma-separated (others fixed); default: the model's typical set (kappa,d,gamma "
+                   "for grain contacts, gamma|en for the damping; sedwave models)");
   }
   cmd.add_option("--set", o.set_values, "NAME=VALUE: a parameter's value [SI]" + role + " (repeatable)");
   cmd.add_option("--kappa", o.kappa, "contact stiffness [N/m]" + role)->check(finite_positive());

@@ -11,6 +11,7 @@
 #include "sedwave/sampling/diagnostics.hpp"
 #include "sedwave/sampling/ensemble.hpp"
 #include "sedwave/sampling/summary.hpp"
+#include "sedwave/sampling/tempering.hpp"
 
 namespace sedwave::inversion {
 namespace {
@@ -56,6 +57,37 @@ std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best
   return walkers;
 }
 
+/// Q(a, x) = Gamma(a, x) / Gamma(a), the regularised upper incomplete gamma function: a series below
+/// x = a + 1, Legendre's continued fraction (modified Lentz) above (Abramowitz & Stegun 6.5.29,
+/// 6.5.31).
+double upper_incomplete_gamma(double a, double x) {
+  if (x <= 0.0) return 1.0;
+  const double log_prefactor = a * std::log(x) - x - std::lgamma(a);
+  if (x < a + 1.0) {
+    double term = 1.0 / a, sum = term;
+    for (int n = 1; n < 1000 && std::abs(term) > 1e-16 * std::abs(sum); ++n) {
+      term *= x / (a + n);
+      sum += term;
+    }
+    return std::max(0.0, 1.0 - std::exp(log_prefactor) * sum);
+  }
+  const double tiny = 1e-300;
+  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+  for (int i = 1; i < 1000; ++i) {
+    const double an = -i * (i - a);
+    b += 2.0;
+    d = an * d + b;
+    d = std::abs(d) < tiny ? tiny : d;
+    c = b + an / c;
+    c = std::abs(c) < tiny ? tiny : c;
+    d = 1.0 / d;
+    const double step = d * c;
+    h *= step;
+    if (std::abs(step - 1.0) < 1e-15) break;
+  }
+  return std::exp(log_prefactor) * h;
+}
+
 PosteriorQuantity summarize(const std::string& name, const std::string& unit, const Eigen::VectorXd& values,
                             double rhat, double ess) {
   const sampling::ParameterSummary m = sampling::summarize(values)[0];
@@ -63,7 +95,92 @@ PosteriorQuantity summarize(const std::string& name, const std::string& unit, co
           false};
 }
 
+/// The free ln-parameters of x placed into theta.
+Theta with_free(const Setup& s, Theta theta, const Eigen::VectorXd& x) {
+  for (Eigen::Index j = 0; j < x.size(); ++j) theta[s.free[static_cast<std::size_t>(j)]] = x(j);
+  return theta;
+}
+
+void require_prior_covers(const Setup& s, const std::vector<Prior>& priors, const Theta& theta) {
+  for (int i : s.free) {
+    if (!std::isfinite(priors[static_cast<std::size_t>(i)].log_density_theta(theta[i]))) {
+      throw std::invalid_argument("the prior of " + s.parameters.spec[i].name +
+                                  " gives the best fit zero density: widen it, or start the fit inside it");
+    }
+  }
+}
+
 }  // namespace
+
+ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+                             const std::vector<Prior>& priors, const FitOptions& fit_options,
+                             const EvidenceOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
+  const Theta theta = best.fitted.log_values();
+  require_prior_covers(s, priors, theta);
+  const sampling::PriorAndLikelihood density{
+      [&](const Eigen::VectorXd& x) { return log_prior(s.parameters, priors, with_free(s, theta, x)); },
+      [&](const Eigen::VectorXd& x) {
+        const double chi2 = detail::chi2_at(s, with_free(s, theta, x));
+        return std::isfinite(chi2) ? -0.5 * chi2 : -std::numeric_limits<double>::infinity();
+      }};
+  sampling::TemperingOptions tempering;
+  tempering.betas = sampling::geometric_ladder(options.temperatures, options.max_temperature);
+  tempering.ensemble.walkers = options.walkers;
+  tempering.ensemble.steps = options.steps;
+  tempering.ensemble.seed = options.seed;
+  // Hot temperatures roam the prior: start them in the same small ball; the swaps spread them.
+  const sampling::TemperedRun run =
+      sampling::sample_tempered(density, start_walkers(s, best, priors, theta, tempering.ensemble), tempering);
+  const sampling::Evidence evidence = sampling::thermodynamic_evidence(run);
+  const sampling::Convergence convergence = sampling::assess_convergence(sampling::diagnose(run.levels[0]));
+  // Posterior-predictive p of chi^2: replicated data at a draw theta have chi^2 ~ chi^2_n exactly
+  // (Gaussian whitened residuals), so p = mean over draws of Q(n/2, chi^2(theta)/2).
+  const double n = static_cast<double>(s.observations.size());
+  double p_sum = 0.0;
+  int draws = 0;
+  for (const Eigen::VectorXd& walker_log_l : run.log_likelihood[0]) {
+    for (Eigen::Index r = 0; r < walker_log_l.size(); ++r) {
+      p_sum += upper_incomplete_gamma(0.5 * n, -walker_log_l(r));
+      ++draws;
+    }
+  }
+  ModelEvidence e;
+  e.log_evidence = evidence.log_evidence;
+  e.uncertainty = evidence.uncertainty;
+  e.predictive_p = draws > 0 ? p_sum / draws : 0.0;
+  e.acceptance = run.levels[0].acceptance;
+  e.converged = convergence.converged;
+  e.advice = convergence.advice;
+  e.evaluations = run.evaluations;
+  e.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return e;
+}
+
+std::vector<Prior> widened(const std::vector<Prior>& priors, double factor) {
+  std::vector<Prior> out = priors;
+  for (Prior& p : out) {
+    switch (p.kind) {
+      case PriorKind::Normal:
+      case PriorKind::LogNormal: p.b *= factor; break;
+      case PriorKind::Uniform: {
+        const double centre = 0.5 * (p.a + p.b), half = 0.5 * (p.b - p.a) * factor;
+        p.a = std::max(p.lower, centre - half);
+        p.b = std::min(p.upper, centre + half);
+        break;
+      }
+      case PriorKind::LogUniform: {
+        const double centre = 0.5 * (std::log(p.a) + std::log(p.b)), half = 0.5 * std::log(p.b / p.a) * factor;
+        p.a = std::max(p.lower, std::exp(centre - half));
+        p.b = std::min(p.upper, std::exp(centre + half));
+        break;
+      }
+    }
+    p.source += ", widened x" + std::to_string(static_cast<int>(factor));
+  }
+  return out;
+}
 
 PosteriorResult sample_posterior(const ObservationSet& data, const sediment::SedimentModel& model,
                                  const FitResult& best, const std::vector<Prior>& priors,
@@ -72,12 +189,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
   const Theta theta = best.fitted.log_values();
   const auto k = static_cast<Eigen::Index>(s.free.size());
-  for (int i : s.free) {
-    if (!std::isfinite(priors[static_cast<std::size_t>(i)].log_density_theta(theta[i]))) {
-      throw std::invalid_argument("the prior of " + s.parameters.spec[i].name +
-                                  " gives the best fit zero density: widen it, or start the fit inside it");
-    }
-  }
+  require_prior_covers(s, priors, theta);
   // ln posterior in the free ln-parameters: ln prior - chi^2 / 2 (the fit's Gaussian likelihood).
   const sampling::LogDensity log_posterior = [&](const Eigen::VectorXd& x) {
     Theta t = theta;

@@ -63,6 +63,16 @@ std::vector<std::shared_ptr<const SedimentModel>> model_examples() {
           make_sediment_model("edfm"), make_sediment_model("grain-shearing"), make_sediment_model("vgs-lambda")};
 }
 
+std::string typical_free_parameters(const SedimentModel& model) {
+  const std::string name = model.name();
+  if (name == "edfm") return "porosity,permeability";
+  if (name == "biot-stoll") return "porosity,permeability,delta_b";
+  if (name == "grain-shearing") return "porosity,gamma_p,n";
+  if (name == "vgs-lambda") return "porosity,gamma_p,tau_p";
+  // The grain-contact frames, dry or saturated: the contact's three parameters.
+  return "kappa,d," + model.parameters()[GrainContactModel::kDamping].name;
+}
+
 std::optional<std::string> sediment_model_file(const std::string& spec) {
   return forward::dispersion_model_file(spec.starts_with(kSaturated) ? spec.substr(kSaturated.size()) : spec);
 }

@@ -9,7 +9,7 @@ sedwave_cli_case(models.lists_the_saturated_frame 0 "^saturated-lattice: granula
 sedwave_cli_case(models.lists_vgs_parameters 0 "^  tau_p +s +0.00012 +\\[1e-09, 1e\\+03\\]" models)
 sedwave_cli_case(models.one_model 0 "^  permeability +m\\^2 +4e-11 +\\[1e-20, 1e-05\\]" models edfm)
 sedwave_cli_case(models.unknown 1 "unknown model 'bort'.*accepted: continuum, lattice.*vgs-lambda" models bort)
-sedwave_cli_case(invert.model_needs_fit 2 "model 'biot-stoll': give --fit.*porosity,rho_s" invert ${OBS} --model biot-stoll ${FAST})
+sedwave_cli_case(invert.model_typical_fit 0 "^  porosity +\\[1 +\\] 0\\.44[0-9]* \\+- " invert ${OBS} --model biot-stoll ${FAST})
 sedwave_cli_case(invert.model_unknown_parameter 1 "--fit 'kappa': unknown parameter 'kappa'.*accepted: porosity"
   invert ${OBS} --model edfm --fit kappa ${FAST})
 sedwave_cli_case(invert.set_unknown_parameter 2 "--set: unknown parameter 'porosty'.*accepted: porosity"
@@ -69,3 +69,14 @@ sedwave_cli_case(invert.prior_on_fixed_parameter 1 "rho_s is fixed. name it in -
   invert ${OBS} --method posterior --prior rho_s=normal:2650,50 --no-plot --out ${CLI_OUT}/posterior_never)
 sedwave_cli_case(invert.posterior_not_converged 3 "NOT CONVERGED: .*run more steps"
   invert ${OBS} --method posterior --steps 40 --no-plot --out ${CLI_OUT}/posterior_short)
+
+# Model comparison by evidence (sedwave compare).
+set(COMPARE_FAST --steps 1000 --temperatures 12)
+sedwave_cli_case(compare.ranks_two_models 0 "^edfm is preferred over grain-shearing by a factor"
+  compare ${OBS} --models edfm,grain-shearing ${COMPARE_FAST} --out ${CLI_OUT}/compare)
+sedwave_cli_case(compare.unknown_model 1 "unknown model 'bort'.*accepted: continuum"
+  compare ${OBS} --models edfm,bort ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
+sedwave_cli_case(compare.prior_no_model_has 2 "--prior 'kappa=log-normal:1e6,1': none of the models has a parameter 'kappa'"
+  compare ${OBS} --models edfm,grain-shearing --prior kappa=log-normal:1e6,1 ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
+sedwave_cli_case(compare.fit_for_model_not_compared 2 "--fit 'lattice=kappa,d': 'lattice' is not one of --models"
+  compare ${OBS} --models edfm,grain-shearing --fit lattice=kappa,d ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)

@@ -60,6 +60,43 @@ struct PosteriorResult {
                                                const FitResult& best, const std::vector<Prior>& priors,
                                                const FitOptions& fit_options, const PosteriorOptions& options);
 
+/// How the evidence is computed: parallel tempering over a geometric ladder of inverse temperatures
+/// from 1 to 1/max_temperature (sampling/tempering.hpp), then thermodynamic integration.
+struct EvidenceOptions {
+  int temperatures = 32;  ///< 16 leaves a discretisation error of ~5 in ln Z on field data, 32 ~0.3
+  double max_temperature = 1e6;
+  int walkers = 0;     ///< per temperature; 0: max(4 x free parameters, 16)
+  int steps = 1500;    ///< per temperature, the first half burn-in
+  unsigned seed = 20090501;
+};
+
+struct ModelEvidence {
+  /// ln Z = ln of the integral of likelihood x prior over the free ln-parameters, with the
+  /// likelihood exp(-chi^2/2): up to a constant that is the same for every model fitted to the same
+  /// data (the Gaussian normalisation of the data's sigmas), so differences between models are exact.
+  double log_evidence = 0.0;
+  double uncertainty = 0.0;  ///< discretisation and Monte Carlo, in quadrature
+  /// Posterior-predictive p-value of chi^2: the chance that data replicated from the posterior fit
+  /// worse than the observed data (small: the model does not describe the data).
+  double predictive_p = 0.0;
+  double acceptance = 0.0;   ///< of the beta = 1 ensemble
+  bool converged = false;    ///< the beta = 1 ensemble passed the convergence criteria
+  std::string advice;
+  int evaluations = 0;
+  double wall_seconds = 0.0;
+};
+
+/// The evidence of `model` for `data` under `priors` (all proper: every prior is normalised over
+/// the search bounds), started around the best fit.
+[[nodiscard]] ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
+                                           const FitResult& best, const std::vector<Prior>& priors,
+                                           const FitOptions& fit_options, const EvidenceOptions& options);
+
+/// Each prior made `factor` times wider: the sd (normal) or sd of ln (log-normal) times factor; a
+/// flat prior's range times factor about its centre (in ln for log-uniform); all still cut to the
+/// search bounds, so a default prior (already the whole bounds) does not change.
+[[nodiscard]] std::vector<Prior> widened(const std::vector<Prior>& priors, double factor);
+
 /// The posterior as JSON (fit.json's "posterior" entry) and the pooled samples as CSV (one column
 /// per free parameter, SI units in the header).
 [[nodiscard]] nlohmann::json posterior_report(const PosteriorResult& posterior);

@@ -37,6 +37,12 @@ struct ModelChoices {
 /// The file a specification reads (a table), or nothing.
 [[nodiscard]] std::optional<std::string> sediment_model_file(const std::string& spec);
 
+/// The parameters a fit frees when the user does not say (`--fit`): those that sandy-site data over
+/// 50 Hz - 100 kHz can inform and that the model's family is meant to explain. The grain contact's
+/// kappa, d and damping for the dry and the saturated frame; porosity and permeability for EDFM,
+/// with the frame's decrement for Biot-Stoll; porosity and the shearing coefficients for GS and VGS.
+[[nodiscard]] std::string typical_free_parameters(const SedimentModel& model);
+
 /// True for the dry grain-contact frame's specifications (continuum, lattice, table:...).
 [[nodiscard]] bool is_dry_frame(const std::string& spec);
 

@@ -1,0 +1,211 @@
+// `sedwave compare`: several sediment models fitted to the same data and ranked by their evidence
+// (the probability of the data under each model and its priors), beside chi^2, AIC and BIC, with a
+// posterior-predictive check; and the ranking again with every prior widened tenfold, since
+// evidence depends on priors (docs/inversion.md, "Comparing models").
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "model_options.hpp"
+#include "option_checks.hpp"
+#include "output_paths.hpp"
+#include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/observations.hpp"
+#include "sedwave/inversion/posterior.hpp"
+#include "sedwave/io/atomic_file.hpp"
+#include "sedwave/sediment/catalog.hpp"
+
+namespace sedwave::app {
+namespace {
+
+struct CompareOptions {
+  std::vector<std::string> files;
+  std::string models;
+  std::vector<std::string> fits;    ///< MODEL=a,b,c
+  std::vector<std::string> priors;  ///< NAME=KIND:A,B, for every model that has NAME free
+  ModelOptions shared;              ///< --set and site inputs, for every model that has the parameter
+  std::optional<double> water_speed;
+  inversion::EvidenceOptions evidence;
+  std::string out = "sedwave-compare";
+};
+
+struct Row {
+  std::string model;
+  std::string free;
+  inversion::FitResult fit;
+  std::vector<std::string> priors;
+  inversion::ModelEvidence evidence, widened;
+};
+
+std::vector<std::string> split(const std::string& text, char by) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  for (std::string part; std::getline(stream, part, by);) parts.push_back(part);
+  return parts;
+}
+
+std::string name_of(const std::string& item) { return item.substr(0, item.find('=')); }
+
+bool has_parameter(const sediment::SedimentModel& model, const std::string& name) {
+  const auto& ps = model.parameters();
+  return std::any_of(ps.begin(), ps.end(), [&](const sediment::Parameter& p) { return p.name == name; });
+}
+
+/// Every name a shared option uses must belong to at least one of the models (a typo is refused).
+void require_known(const std::vector<std::string>& items, const char* option,
+                   const std::vector<std::shared_ptr<const sediment::SedimentModel>>& models) {
+  for (const std::string& item : items) {
+    const std::string name = name_of(item);
+    const bool known = std::any_of(models.begin(), models.end(), [&](const auto& m) { return has_parameter(*m, name); });
+    if (!known) throw UsageError(std::string(option) + " '" + item + "': none of the models has a parameter '" + name + "'");
+  }
+}
+
+Row compare_one(const std::string& spec, const CompareOptions& o, const inversion::ObservationSet& data) {
+  ModelOptions mo = o.shared;
+  mo.model = spec;
+  for (const std::string& f : o.fits) {
+    if (name_of(f) == spec) mo.fit = f.substr(f.find('=') + 1);
+  }
+  const auto probe = make_model(mo);  // for the names it has
+  mo.set_values.erase(std::remove_if(mo.set_values.begin(), mo.set_values.end(),
+                                     [&](const std::string& item) { return !has_parameter(*probe, name_of(item)); }),
+                      mo.set_values.end());
+  const auto model = make_model(mo);
+  const inversion::FitParameters parameters = make_parameters(mo, *model, ModelUse::Fit);
+  const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
+  Row row{model->name(), "", inversion::fit(data, *model, parameters, fit_options), {}, {}, {}};
+  std::vector<std::string> prior_items;
+  for (const std::string& item : o.priors) {
+    const int i = has_parameter(*model, name_of(item)) ? parameters.index_of(name_of(item)) : -1;
+    if (i >= 0 && parameters.spec[i].free) prior_items.push_back(item);
+  }
+  const std::vector<inversion::Prior> priors = inversion::make_priors(row.fit.fitted, prior_items);
+  for (int i : row.fit.fitted.free_indices()) {
+    const auto& parameter = row.fit.fitted.spec[i];
+    row.free += (row.free.empty() ? "" : ",") + parameter.name;
+    row.priors.push_back(parameter.name + ": " + priors[static_cast<std::size_t>(i)].describe(parameter.unit));
+  }
+  row.evidence = inversion::model_evidence(data, *model, row.fit, priors, fit_options, o.evidence);
+  row.widened = inversion::model_evidence(data, *model, row.fit, inversion::widened(priors, 10.0), fit_options, o.evidence);
+  return row;
+}
+
+std::vector<int> ranking(const std::vector<Row>& rows, bool widened) {
+  std::vector<int> order(rows.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const auto& ea = widened ? rows[a].widened : rows[a].evidence;
+    const auto& eb = widened ? rows[b].widened : rows[b].evidence;
+    return ea.log_evidence > eb.log_evidence;
+  });
+  return order;
+}
+
+void print_table(const std::vector<Row>& rows) {
+  const std::vector<int> order = ranking(rows, false), wide = ranking(rows, true);
+  const double best = rows[order[0]].evidence.log_evidence;
+  std::printf("\n%-4s %-20s %3s %9s %7s %9s %9s %17s %8s %8s %10s %5s\n", "rank", "model", "k", "chi2", "chi2/nu",
+              "AIC", "BIC", "ln Z", "dln Z", "p(pred)", "ln Z x10", "rank");
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const Row& row = rows[order[r]];
+    const auto wide_rank = std::find(wide.begin(), wide.end(), order[r]) - wide.begin() + 1;
+    std::printf("%-4zu %-20s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld%s\n", r + 1,
+                row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
+                row.fit.dof > 0 ? row.fit.chi2 / row.fit.dof : NAN, row.fit.aic, row.fit.bic,
+                row.evidence.log_evidence, row.evidence.uncertainty, row.evidence.log_evidence - best,
+                row.evidence.predictive_p, row.widened.log_evidence, static_cast<long>(wide_rank),
+                row.evidence.converged ? "" : "  (NOT CONVERGED)");
+  }
+  if (rows.size() > 1) {
+    const double gap = rows[order[0]].evidence.log_evidence - rows[order[1]].evidence.log_evidence;
+    const double noise = std::hypot(rows[order[0]].evidence.uncertainty, rows[order[1]].evidence.uncertainty);
+    if (gap < std::max(1.0, 2.0 * noise)) {
+      std::printf("the first two differ by %.2f in ln Z (uncertainty %.2f): these data cannot tell them apart\n", gap,
+                  noise);
+    } else {
+      std::printf("%s is preferred over %s by a factor e^%.1f in evidence\n", rows[order[0]].model.c_str(),
+                  rows[order[1]].model.c_str(), gap);
+    }
+  }
+}
+
+nlohmann::json report(const std::vector<Row>& rows) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const Row& row : rows) {
+    const auto ev = [](const inversion::ModelEvidence& e) {
+      return nlohmann::json{{"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
+                            {"predictive_p", e.predictive_p}, {"converged", e.converged},
+                            {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds}};
+    };
+    j.push_back({{"model", row.model}, {"free", row.free}, {"chi2", row.fit.chi2}, {"dof", row.fit.dof},
+                 {"aic", row.fit.aic}, {"bic", row.fit.bic}, {"priors", row.priors}, {"evidence", ev(row.evidence)},
+                 {"evidence_priors_widened_x10", ev(row.widened)}});
+  }
+  return j;
+}
+
+}  // namespace
+
+Command add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Fit several sediment models to the same observations and rank them by evidence (with chi2, AIC, BIC, "
+                 "a posterior-predictive check, and the ranking under priors widened x10); docs/inversion.md");
+  cmd->add_option("files", o->files, "observation CSV files (docs/file-formats.md)")->required();
+  cmd->add_option("--models", o->models, "comma-separated models (sedwave models)")->required();
+  cmd->add_option("--fit", o->fits, "MODEL=a,b,c: a model's free parameters (default: its typical set; repeatable)");
+  cmd->add_option("--prior", o->priors, "NAME=KIND:A,B, for every model with NAME free (as invert; repeatable)");
+  cmd->add_option("--set", o->shared.set_values, "NAME=VALUE for every model that has NAME (repeatable)");
+  cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
+      ->check(finite_in(100.0, 10000.0));
+  cmd->add_option("--temperatures", o->evidence.temperatures, "tempering ladder length")->capture_default_str()
+      ->check(CLI::Range(4, 64));
+  cmd->add_option("--steps", o->evidence.steps, "ensemble updates per temperature, the first half burn-in")
+      ->capture_default_str()->check(CLI::Range(100, 10000000));
+  cmd->add_option("--seed", o->evidence.seed, "seed of the samplers")->capture_default_str();
+  cmd->add_option("--out", o->out, "output directory (compare.json)")->capture_default_str();
+  return {cmd, [o]() {
+    const std::filesystem::path out(o->out);
+    std::vector<std::filesystem::path> inputs(o->files.begin(), o->files.end());
+    check_outputs({{"--out", out / "compare.json"}}, inputs, "compare");
+    const inversion::ReadOptions read{o->water_speed, std::nullopt};
+    inversion::ObservationSet data;
+    for (const std::string& f : o->files) data.append(inversion::read_observation_csv(f, read));
+    std::vector<std::shared_ptr<const sediment::SedimentModel>> models;
+    for (const std::string& spec : split(o->models, ',')) models.push_back(sediment::make_sediment_model(spec));
+    require_known(o->priors, "--prior", models);
+    require_known(o->shared.set_values, "--set", models);
+    for (const std::string& f : o->fits) {
+      const auto names = split(o->models, ',');
+      if (std::find(names.begin(), names.end(), name_of(f)) == names.end()) {
+        throw UsageError("--fit '" + f + "': '" + name_of(f) + "' is not one of --models");
+      }
+    }
+    std::vector<Row> rows;
+    for (const std::string& spec : split(o->models, ',')) {
+      std::fprintf(stderr, "sedwave compare: %s ...\n", spec.c_str());
+      rows.push_back(compare_one(spec, *o, data));
+    }
+    std::printf("sedwave compare: %zu models, %zu observations; ln Z up to a constant common to all models\n",
+                rows.size(), data.observations.size());
+    for (const Row& row : rows) {
+      std::printf("\n%s (free: %s)\n", row.model.c_str(), row.free.c_str());
+      for (const std::string& p : row.priors) std::printf("  prior %s\n", p.c_str());
+    }
+    print_table(rows);
+    io::write_text_atomically(out / "compare.json", [&](std::ostream& s) { s << report(rows).dump(2) << "\n"; });
+    std::printf("report: %s/compare.json\n", o->out.c_str());
+    const bool all_converged = std::all_of(rows.begin(), rows.end(), [](const Row& r) {
+      return r.evidence.converged && r.widened.converged;
+    });
+    return all_converged ? kExitOk : kExitIncomplete;
+  }};
+}
+
+}  // namespace sedwave::app
