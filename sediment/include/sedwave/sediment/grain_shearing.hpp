@@ -71,11 +71,9 @@ struct MixtureDefaults {
 };
 [[nodiscard]] std::vector<Parameter> mixture_parameters(const MixtureDefaults& defaults, const std::string& source);
 
-/// GS (Buckingham 2000, 2005): parameters porosity, rho_s, rho_w, K_s, K_w, gamma_p, gamma_s, n;
-/// defaults the reference set of Buckingham (2005) (a medium sand at 0.3 m below the seabed).
-class GrainShearingModel final : public JetEvaluated<GrainShearingModel> {
- public:
-  static constexpr int kParameters = 8;
+/// The parameter order GS and VGS(lambda) share (VGS adds tau_p last), and the two quantities both
+/// build on.
+struct GrainShearingParameters {
   enum Index : int {
     kPorosity = 0,
     kGrainDensity = 1,
@@ -85,7 +83,26 @@ class GrainShearingModel final : public JetEvaluated<GrainShearingModel> {
     kGammaP = 5,
     kGammaS = 6,
     kStrainHardening = 7,
+    kViscousTime = 8,  ///< VGS(lambda) only
   };
+
+  /// Wood's suspension of the grains in the pore water.
+  template <typename T>
+  static WoodMixture<T> mixture(const T* v) {
+    return wood_mixture(v[kPorosity], v[kGrainDensity], v[kWaterDensity], v[kGrainBulkModulus], v[kWaterBulkModulus]);
+  }
+  /// chi_p = (gamma_p + 4/3 gamma_s) / (rho_0 c_0^2), with rho_0 c_0^2 = K_0 (Wood's modulus).
+  template <typename T>
+  static T shearing_stiffness(const T* v, const WoodMixture<T>& wood) {
+    return (v[kGammaP] + T(4.0 / 3.0) * v[kGammaS]) / wood.bulk_modulus;
+  }
+};
+
+/// GS (Buckingham 2000, 2005): parameters porosity, rho_s, rho_w, K_s, K_w, gamma_p, gamma_s, n;
+/// defaults the reference set of Buckingham (2005) (a medium sand at 0.3 m below the seabed).
+class GrainShearingModel final : public JetEvaluated<GrainShearingModel>, public GrainShearingParameters {
+ public:
+  static constexpr int kParameters = 8;
 
   GrainShearingModel();
 
@@ -96,10 +113,8 @@ class GrainShearingModel final : public JetEvaluated<GrainShearingModel> {
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
     const double omega = 2.0 * std::numbers::pi * frequency_hz;
-    const WoodMixture<T> wood =
-        wood_mixture(v[kPorosity], v[kGrainDensity], v[kWaterDensity], v[kGrainBulkModulus], v[kWaterBulkModulus]);
-    // rho_0 c_0^2 = K_0.
-    const T chi = (v[kGammaP] + T(4.0 / 3.0) * v[kGammaS]) / wood.bulk_modulus;
+    const WoodMixture<T> wood = mixture(v);
+    const T chi = shearing_stiffness(v, wood);
     const Complex<T> memory = pow_imaginary(omega * kGrainShearingReferenceTime, v[kStrainHardening]);
     return grain_shearing_compressional_wave(wood.speed, Complex<T>(chi) * memory, omega);
   }
@@ -110,20 +125,9 @@ class GrainShearingModel final : public JetEvaluated<GrainShearingModel> {
 
 /// VGS(λ) (Buckingham 2010): the GS parameters plus the compressional viscous time constant
 /// tau_p [s]; defaults the SAX99 sand of Buckingham (2010).
-class ViscousGrainShearingModel final : public JetEvaluated<ViscousGrainShearingModel> {
+class ViscousGrainShearingModel final : public JetEvaluated<ViscousGrainShearingModel>, public GrainShearingParameters {
  public:
-  static constexpr int kParameters = 9;
-  enum Index : int {
-    kPorosity = 0,
-    kGrainDensity = 1,
-    kWaterDensity = 2,
-    kGrainBulkModulus = 3,
-    kWaterBulkModulus = 4,
-    kGammaP = 5,
-    kGammaS = 6,
-    kStrainHardening = 7,
-    kViscousTime = 8,
-  };
+  static constexpr int kParameters = 9;  ///< the GS parameters, then tau_p
 
   ViscousGrainShearingModel();
 
@@ -134,9 +138,8 @@ class ViscousGrainShearingModel final : public JetEvaluated<ViscousGrainShearing
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
     const double omega = 2.0 * std::numbers::pi * frequency_hz;
-    const WoodMixture<T> wood =
-        wood_mixture(v[kPorosity], v[kGrainDensity], v[kWaterDensity], v[kGrainBulkModulus], v[kWaterBulkModulus]);
-    const T chi = (v[kGammaP] + T(4.0 / 3.0) * v[kGammaS]) / wood.bulk_modulus;
+    const WoodMixture<T> wood = mixture(v);
+    const T chi = shearing_stiffness(v, wood);
     const T& n = v[kStrainHardening];
     // 1 + 1/(i omega tau_p) = 1 - i/(omega tau_p). For omega tau_p >> 1 it tends to 1 (GS); for
     // omega tau_p << 1, Psi -> i omega T^n tau_p^(1-n): a viscous (Kelvin-Voigt) response, alpha ~ f^2.
