@@ -77,7 +77,8 @@ Row compare_one(const std::string& spec, const CompareOptions& o, const inversio
                                      [&](const std::string& item) { return !has_parameter(*probe, name_of(item)); }),
                       mo.set_values.end());
   const auto model = make_model(mo);
-  const inversion::FitParameters parameters = make_parameters(mo, *model, ModelUse::Fit);
+  std::vector<std::string> notes, site_priors;
+  const inversion::FitParameters parameters = make_parameters(mo, *model, ModelUse::Fit, &notes, &site_priors);
   const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
   Row row{model->name(), "", inversion::fit(data, *model, parameters, fit_options), {}, {}, {}};
   std::vector<std::string> prior_items;
@@ -85,7 +86,9 @@ Row compare_one(const std::string& spec, const CompareOptions& o, const inversio
     const int i = has_parameter(*model, name_of(item)) ? parameters.index_of(name_of(item)) : -1;
     if (i >= 0 && parameters.spec[i].free) prior_items.push_back(item);
   }
-  const std::vector<inversion::Prior> priors = inversion::make_priors(row.fit.fitted, prior_items);
+  std::vector<inversion::Prior> priors = inversion::default_priors(row.fit.fitted);
+  inversion::apply_priors(row.fit.fitted, site_priors, "site file " + mo.site, priors);
+  inversion::apply_priors(row.fit.fitted, prior_items, "command line", priors);
   for (int i : row.fit.fitted.free_indices()) {
     const auto& parameter = row.fit.fitted.spec[i];
     row.free += (row.free.empty() ? "" : ",") + parameter.name;
@@ -162,6 +165,8 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("--fit", o->fits, "MODEL=a,b,c: a model's free parameters (default: its typical set; repeatable)");
   cmd->add_option("--prior", o->priors, "NAME=KIND:A,B, for every model with NAME free (as invert; repeatable)");
   cmd->add_option("--set", o->shared.set_values, "NAME=VALUE for every model that has NAME (repeatable)");
+  cmd->add_option("--site", o->shared.site, "site file (TOML; docs/inversion.md, \"Site files\"): priors for every model")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));
   cmd->add_option("--temperatures", o->evidence.temperatures, "tempering ladder length")->capture_default_str()
@@ -173,6 +178,7 @@ Command add_compare_command(CLI::App& app) {
   return {cmd, [o]() {
     const std::filesystem::path out(o->out);
     std::vector<std::filesystem::path> inputs(o->files.begin(), o->files.end());
+    if (!o->shared.site.empty()) inputs.emplace_back(o->shared.site);
     check_outputs({{"--out", out / "compare.json"}}, inputs, "compare");
     const inversion::ReadOptions read{o->water_speed, std::nullopt};
     inversion::ObservationSet data;

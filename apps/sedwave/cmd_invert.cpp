@@ -193,6 +193,7 @@ std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
   std::vector<std::filesystem::path> inputs(o.files.begin(), o.files.end());
   inputs.insert(inputs.end(), o.digitized_files.begin(), o.digitized_files.end());
   if (const auto table = sediment::sediment_model_file(o.model.model)) inputs.emplace_back(*table);
+  if (!o.model.site.empty()) inputs.emplace_back(o.model.site);
   return inputs;
 }
 
@@ -253,14 +254,17 @@ Command add_invert_command(CLI::App& app) {
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
             const auto model = make_model(o->model);
-            std::vector<std::string> site_notes;
-            const inversion::FitParameters parameters = make_parameters(o->model, *model, ModelUse::Fit, &site_notes);
+            std::vector<std::string> site_notes, site_priors;
+            const inversion::FitParameters parameters =
+                make_parameters(o->model, *model, ModelUse::Fit, &site_notes, &site_priors);
             for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
             inversion::FitOptions options = o->fit_options;
             const bool posterior = o->method == "posterior";
             options.method = inversion::parse_fit_method(posterior ? "global" : o->method);
             if (!o->priors.empty() && !posterior) throw UsageError("--prior is for --method posterior");
-            const std::vector<inversion::Prior> priors = inversion::make_priors(parameters, o->priors);
+            std::vector<inversion::Prior> priors = inversion::default_priors(parameters);
+            inversion::apply_priors(parameters, site_priors, "site file " + o->model.site, priors);
+            inversion::apply_priors(parameters, o->priors, "command line", priors);
             if (data.observations.size() >= kProgressObservations) {
               const auto started = std::chrono::steady_clock::now();
               options.progress = [started](const std::string& stage) {

@@ -8,6 +8,7 @@
 
 #include "option_checks.hpp"
 #include "output_paths.hpp"
+#include "site_file.hpp"
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/site.hpp"
 
@@ -192,7 +193,7 @@ void apply_site_inputs(const ModelOptions& o, const std::set<std::string>& given
 }  // namespace
 
 inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::SedimentModel& model, ModelUse use,
-                                         std::vector<std::string>* site_notes) {
+                                         std::vector<std::string>* site_notes, std::vector<std::string>* site_priors) {
   inversion::FitParameters p(model.parameters());
   if (use == ModelUse::Fit) {
     p.set_free_from_list(!o.fit.empty() ? o.fit : sediment::typical_free_parameters(model));
@@ -222,6 +223,16 @@ inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::
   }
   std::vector<std::string> notes;
   apply_site_inputs(o, given, p, model.name(), notes);
+  if (!o.site.empty()) {
+    const SiteFile site = read_site_file(o.site);
+    for (const SiteEntry& e : site.entries) {
+      if (given.count(e.parameter)) {
+        throw UsageError("--site " + o.site + " and a direct value both set " + e.parameter + ": give one");
+      }
+    }
+    const std::vector<std::string> priors = apply_site(site, p, notes);
+    if (site_priors) *site_priors = priors;
+  }
   if (site_notes) *site_notes = notes;
   for (const std::string& item : o.set_bounds) {
     const auto [name, text] = name_and_value(item, "--bounds");
@@ -275,6 +286,10 @@ void add_model_options(CLI::App& cmd, ModelOptions& o, ModelUse use) {
                  "site: bottom-water temperature [deg C], with --salinity (sets rho_w, K_w, eta)")
       ->check(finite_in(-2.0, 40.0));
   cmd.add_option("--salinity", o.salinity, "site: salinity [ppt], with --water-temperature")->check(finite_in(0.0, 45.0));
+  cmd.add_option("--site", o.site,
+                 "site file (TOML): grain size, porosity, depth, water, e_n range as priors (--method posterior, "
+                 "compare) or values (fixed parameters); docs/inversion.md, \"Site files\"")
+      ->check(CLI::ExistingFile);
   if (!fit) return;
   cmd.add_option("--bounds", o.set_bounds, "NAME=LO,HI: a parameter's search bounds [SI] (repeatable)");
   cmd.add_option("--kappa-bounds", o.kappa_bounds, "LO,HI [N/m]")->delimiter(',')->expected(2)->check(finite_positive());

@@ -19,8 +19,12 @@ namespace {
 using detail::Setup;
 using detail::Theta;
 
-/// Central 68 % interval of a prior in theta (ln units), by its CDF on a fine grid.
-std::pair<double, double> prior_interval_68(const Prior& p) {
+struct PriorQuantiles {
+  double p16 = 0.0, p50 = 0.0, p84 = 0.0;  ///< in theta (ln units)
+};
+
+/// Quantiles of a prior in theta, by its CDF on a fine grid.
+PriorQuantiles prior_quantiles(const Prior& p) {
   const double lo = std::log(p.lower), hi = std::log(p.upper);
   const int n = 4000;
   const double h = (hi - lo) / n;
@@ -30,7 +34,7 @@ std::pair<double, double> prior_interval_68(const Prior& p) {
     const auto it = std::lower_bound(cdf.begin(), cdf.end(), q * cdf.back());
     return lo + h * static_cast<double>(it - cdf.begin());
   };
-  return {at(0.16), at(0.84)};
+  return {at(0.16), at(0.5), at(0.84)};
 }
 
 /// The walkers' start: a ball around the best fit, per parameter a tenth of its linearised sigma
@@ -42,9 +46,10 @@ std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best
   for (Eigen::Index j = 0; j < k; ++j) {
     const int i = s.free[static_cast<std::size_t>(j)];
     const ParameterResult& r = best.parameters[static_cast<std::size_t>(i)];
-    const auto [p16, p84] = prior_interval_68(priors[static_cast<std::size_t>(i)]);
+    const PriorQuantiles q = prior_quantiles(priors[static_cast<std::size_t>(i)]);
+    const double prior_half_width = 0.5 * (q.p84 - q.p16);
     centre(j) = theta[i];
-    spread(j) = 0.1 * (r.determined && r.log_sigma > 0.0 ? std::min(r.log_sigma, 0.5 * (p84 - p16)) : 0.5 * (p84 - p16));
+    spread(j) = 0.1 * (r.determined && r.log_sigma > 0.0 ? std::min(r.log_sigma, prior_half_width) : prior_half_width);
   }
   std::vector<Eigen::VectorXd> walkers = sampling::start_ball(centre, spread, options);
   for (Eigen::VectorXd& w : walkers) {
@@ -226,8 +231,12 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     result.sample_names.push_back(spec.name);
     result.priors.push_back(spec.name + ": " + prior.describe(spec.unit));
     PosteriorQuantity q = summarize(spec.name, spec.unit, result.samples.col(j), diagnostics.rhat(j), diagnostics.ess(j));
-    const auto [p16, p84] = prior_interval_68(prior);
-    q.prior_dominated = std::log(q.upper_68 / q.lower_68) >= 0.8 * (p84 - p16);
+    // Prior-dominated: the posterior is about as wide as the prior and sits where the prior does
+    // (within a quarter of the prior's half-width): the data moved it neither way.
+    const PriorQuantiles pq = prior_quantiles(prior);
+    const double prior_width = pq.p84 - pq.p16;
+    q.prior_dominated = std::log(q.upper_68 / q.lower_68) >= 0.8 * prior_width &&
+                        std::abs(std::log(q.median) - pq.p50) <= 0.125 * prior_width;
     result.parameters.push_back(q);
   }
 

@@ -102,9 +102,14 @@ Prior parse_prior(const std::string& text, const ParameterSpec& spec) {
   return p;
 }
 
-std::vector<Prior> make_priors(const FitParameters& parameters, const std::vector<std::string>& items) {
+std::vector<Prior> default_priors(const FitParameters& parameters) {
   std::vector<Prior> priors;
   for (const ParameterSpec& s : parameters.spec) priors.push_back(default_prior(s));
+  return priors;
+}
+
+void apply_priors(const FitParameters& parameters, const std::vector<std::string>& items, const std::string& source,
+                  std::vector<Prior>& priors) {
   std::set<std::string> seen;
   for (const std::string& item : items) {
     const auto at = item.find('=');
@@ -115,8 +120,15 @@ std::vector<Prior> make_priors(const FitParameters& parameters, const std::vecto
       throw std::invalid_argument("--prior '" + item + "': " + name + " is fixed; name it in --fit to give it a prior");
     }
     if (!seen.insert(name).second) throw std::invalid_argument("--prior names '" + name + "' twice");
-    priors[i] = parse_prior(item.substr(at + 1), parameters.spec[i]);
+    Prior p = parse_prior(item.substr(at + 1), parameters.spec[i]);
+    p.source = source;
+    priors[i] = p;
   }
+}
+
+std::vector<Prior> make_priors(const FitParameters& parameters, const std::vector<std::string>& items) {
+  std::vector<Prior> priors = default_priors(parameters);
+  apply_priors(parameters, items, "command line", priors);
   return priors;
 }
 

@@ -80,3 +80,17 @@ sedwave_cli_case(compare.prior_no_model_has 2 "--prior 'kappa=log-normal:1e6,1':
   compare ${OBS} --models edfm,grain-shearing --prior kappa=log-normal:1e6,1 ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 sedwave_cli_case(compare.fit_for_model_not_compared 2 "--fit 'lattice=kappa,d': 'lattice' is not one of --models"
   compare ${OBS} --models edfm,grain-shearing --fit lattice=kappa,d ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
+
+# Site files (docs/inversion.md, "Site files"): priors with their source; mistakes named by file,
+# line and key; a site value that clashes with a direct one is refused.
+set(SITE ${PROJECT_SOURCE_DIR}/data/sites/medium_sand.toml)
+sedwave_cli_case(invert.site_file_priors 3 "^    d: log-normal\\(median 0.0002973 m, sd of ln 0.3466\\) .*\\(site file .*medium_sand.toml\\)"
+  invert ${OBS} --method posterior --site ${SITE} --steps 1000 --no-plot --out ${CLI_OUT}/site_posterior)
+sedwave_cli_case(invert.site_file_misspelt_key 1 "misspelt.toml:3: key 'grain_size.phi_sdd': unknown key"
+  invert ${OBS} --site ${CLI_DATA}/site/misspelt.toml ${FAST})
+sedwave_cli_case(invert.site_file_out_of_range 1 "porosity_out_of_range.toml:2: key 'porosity.mean' = 1.4: accepted range \\(0, 1\\)"
+  invert ${OBS} --site ${CLI_DATA}/site/porosity_out_of_range.toml ${FAST})
+sedwave_cli_case(invert.site_file_depth_needs_grain_size 1 "depth_without_grain_size.toml:2: key 'depth.metres': the Hertz stiffness needs the grain size"
+  invert ${OBS} --site ${CLI_DATA}/site/depth_without_grain_size.toml ${FAST})
+sedwave_cli_case(invert.site_file_and_direct_value 2 "--site .*medium_sand.toml and a direct value both set d"
+  invert ${OBS} --site ${SITE} --d 3e-4 ${FAST})

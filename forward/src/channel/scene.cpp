@@ -3,7 +3,7 @@
 #include <cmath>
 #include <toml.hpp>
 
-#include "../io/toml_table.hpp"
+#include "sedwave/io/toml_table.hpp"
 
 #include "sedwave/forward/units.hpp"
 

@@ -34,8 +34,9 @@ struct PosteriorQuantity {
   double lower_95 = 0.0, upper_95 = 0.0;
   double split_rhat = 0.0;
   double effective_samples = 0.0;
-  /// The 68 % interval spans at least 80 % (in ln) of the prior's own 68 % interval: the data did
-  /// not inform this quantity, its posterior is (close to) its prior.
+  /// The 68 % interval spans at least 80 % (in ln) of the prior's own 68 % interval and the median
+  /// lies within a quarter of the prior's half-width of the prior's median: the data did not
+  /// inform this quantity, its posterior is (close to) its prior.
   bool prior_dominated = false;
 };
 

@@ -43,9 +43,15 @@ struct Prior {
 /// meet the search bounds, a non-positive sd, or A >= B for the flat kinds.
 [[nodiscard]] Prior parse_prior(const std::string& text, const ParameterSpec& spec);
 
-/// One prior per parameter of `parameters` (fixed ones included, unused): "NAME=KIND:A,B" items
-/// override the defaults. Throws std::invalid_argument for an unknown name, a repeated one, or a
-/// prior on a fixed parameter.
+/// One default prior per parameter of `parameters` (fixed ones included, unused).
+[[nodiscard]] std::vector<Prior> default_priors(const FitParameters& parameters);
+
+/// "NAME=KIND:A,B" items replace the priors of their parameters, recorded with `source`. Throws
+/// std::invalid_argument for an unknown name, one named twice, or a prior on a fixed parameter.
+void apply_priors(const FitParameters& parameters, const std::vector<std::string>& items, const std::string& source,
+                  std::vector<Prior>& priors);
+
+/// default_priors, then the command line's items.
 [[nodiscard]] std::vector<Prior> make_priors(const FitParameters& parameters, const std::vector<std::string>& items);
 
 /// Sum of the free parameters' ln p(theta_i) (independent priors).

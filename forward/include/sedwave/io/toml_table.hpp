@@ -1,5 +1,5 @@
 #pragma once
-// A strict reader for one TOML table, shared by the scene and grid-file parsers (private header).
+// A strict reader for one TOML table, shared by the scene, grid-file and site-file parsers.
 // Typed reads with defaults; every mistake is an `Error` (the caller's exception type) reading
 // "FILE:LINE: key 'a.b': why" (toml11 records where each value was read); keys nobody asked for
 // are errors too, so a misspelt key never silently falls back to a default.
