@@ -200,7 +200,8 @@ std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
 std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   std::vector<OutputPath> outputs;
   for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg",
-                           "posterior_samples.csv"}) {
+                           "posterior_samples.csv", "posterior_corner.gp", "posterior_corner.png",
+                           "posterior_corner.svg"}) {
     outputs.push_back({"--out", out / name});
   }
   return outputs;
@@ -313,7 +314,13 @@ Command add_invert_command(CLI::App& app) {
                                               data.water_sound_speed.has_value(), result);
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
-            if (sampled) print_posterior(*sampled, o->out);
+            if (sampled) {
+              print_posterior(*sampled, o->out);
+              if (o->plot) {
+                std::printf("  %s\n",
+                            inversion::draw_corner_plot(out, sampled->sample_names, sampled->sample_units).message.c_str());
+              }
+            }
             const bool sampled_ok = !sampled || sampled->converged;
             return result.converged && sampled_ok && result.flags.empty() ? kExitOk : kExitIncomplete;
           }};

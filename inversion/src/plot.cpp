@@ -282,37 +282,85 @@ std::string plot_body(const std::string& title, bool ratio_axis, const FitResult
 
 }  // namespace
 
-PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
-                          const FitResult& result) {
-  const std::string body = plot_body(title, ratio_axis, result);
-  // The figure files are drawn under temporary names and renamed into place, like every output:
-  // a gnuplot killed half-way never leaves a truncated fit.png. Re-running `gnuplot fit.gp` by hand
-  // writes fit.png and fit.svg directly.
+namespace {
+
+/// Writes DIR/STEM.gp (the body drawn once to a PNG, once to an SVG of `size`) and runs gnuplot on
+/// it. The figure files are drawn under temporary names and renamed into place, like every output:
+/// a gnuplot killed half-way never leaves a truncated STEM.png. Re-running `gnuplot STEM.gp` by
+/// hand writes STEM.png and STEM.svg directly.
+PlotOutcome run_gnuplot(const std::filesystem::path& dir, const std::string& stem, const std::string& size,
+                        const std::string& body) {
+  const std::string script_name = stem + ".gp";
   try {
-    io::write_text_atomically(dir / "fit.gp", [&](std::ostream& script) {
-      script << "# gnuplot script written by sedwave; re-run with: gnuplot fit.gp\n"
-             << "if (!exists('png_file')) png_file = 'fit.png'\nif (!exists('svg_file')) svg_file = 'fit.svg'\n"
-             << "set terminal pngcairo size 1150,1250 enhanced font 'Sans,11'\nset output png_file\n"
-             << body << "set terminal svg size 1150,1250 enhanced font 'Sans,11'\nset output svg_file\n" << body;
+    io::write_text_atomically(dir / script_name, [&](std::ostream& script) {
+      script << "# gnuplot script written by sedwave; re-run with: gnuplot " << script_name << "\n"
+             << "if (!exists('png_file')) png_file = '" << stem << ".png'\nif (!exists('svg_file')) svg_file = '" << stem
+             << ".svg'\n"
+             << "set terminal pngcairo size " << size << " enhanced font 'Sans,11'\nset output png_file\n"
+             << body << "set terminal svg size " << size << " enhanced font 'Sans,11'\nset output svg_file\n" << body;
     });
   } catch (const std::exception& e) {
     return {false, std::string("plot skipped: ") + e.what()};
   }
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
     return {false, "plot skipped: gnuplot not found (apt-get install gnuplot-nox); script left in " +
-                       (dir / "fit.gp").string()};
+                       (dir / script_name).string()};
   }
-  io::AtomicFile png(dir / "fit.png"), svg(dir / "fit.svg");
+  io::AtomicFile png(dir / (stem + ".png")), svg(dir / (stem + ".svg"));
   const std::string command = "cd " + shell_quote(dir.string()) + " && gnuplot -e " +
                               shell_quote("png_file='" + png.temporary().filename().string() + "'; svg_file='" +
                                           svg.temporary().filename().string() + "'") +
-                              " fit.gp > gnuplot.log 2>&1";
+                              " " + shell_quote(script_name) + " > gnuplot.log 2>&1";
   if (std::system(command.c_str()) != 0) {
     return {false, "plot skipped: gnuplot failed, see " + (dir / "gnuplot.log").string()};
   }
   png.commit();
   svg.commit();
-  return {true, "plot written to " + (dir / "fit.png").string() + " and fit.svg"};
+  return {true, "plot written to " + (dir / (stem + ".png")).string() + " and " + stem + ".svg"};
+}
+
+/// The corner plot: the marginal of each parameter on the diagonal (histogram of ln value), each
+/// pair's joint draws below it, all read from posterior_samples.csv.
+std::string corner_body(const std::vector<std::string>& names, const std::vector<std::string>& units) {
+  const int k = static_cast<int>(names.size());
+  std::ostringstream g;
+  g << "set encoding utf8\nset datafile separator ','\nset key off\nset tics font ',8'\n"
+    << "set multiplot layout " << k << "," << k << " title 'posterior: marginals (diagonal) and pairs, ln of SI values'"
+    << " font ',12'\n";
+  for (int row = 0; row < k; ++row) {
+    for (int col = 0; col < k; ++col) {
+      const std::string x = "(log(column(" + std::to_string(col + 1) + ")))";
+      const std::string y = "(log(column(" + std::to_string(row + 1) + ")))";
+      g << "unset label\nset xlabel " << (row == k - 1 ? gnuplot_string("ln " + names[col] + " [" + units[col] + "]") : "''")
+        << " font ',9'\nset ylabel "
+        << (col == 0 && row > 0 ? gnuplot_string("ln " + names[row] + " [" + units[row] + "]") : "''") << " font ',9'\n";
+      if (col > row) {
+        g << "set multiplot next\n";
+      } else if (col == row) {
+        g << "binwidth = 0\nstats 'posterior_samples.csv' skip 2 using " << x << " nooutput\n"
+          << "binwidth = (STATS_max - STATS_min) / 30\n"
+          << "plot 'posterior_samples.csv' skip 2 using (binwidth * floor(" << x << " / binwidth)):(1.0) "
+          << "smooth frequency with boxes fs solid 0.5 lc rgb '" << kDataColour << "'\n";
+      } else {
+        g << "plot 'posterior_samples.csv' skip 2 every 4 using " << x << ":" << y << " with dots lc rgb '"
+          << kDataColour << "'\n";
+      }
+    }
+  }
+  g << "unset multiplot\n";
+  return g.str();
+}
+
+}  // namespace
+
+PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
+                          const FitResult& result) {
+  return run_gnuplot(dir, "fit", "1150,1250", plot_body(title, ratio_axis, result));
+}
+
+PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
+                             const std::vector<std::string>& units) {
+  return run_gnuplot(dir, "posterior_corner", "1000,1000", corner_body(names, units));
 }
 
 }  // namespace sedwave::inversion

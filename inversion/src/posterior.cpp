@@ -229,6 +229,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     const ParameterSpec& spec = s.parameters.spec[i];
     const Prior& prior = priors[static_cast<std::size_t>(i)];
     result.sample_names.push_back(spec.name);
+    result.sample_units.push_back(spec.unit);
     result.priors.push_back(spec.name + ": " + prior.describe(spec.unit));
     PosteriorQuantity q = summarize(spec.name, spec.unit, result.samples.col(j), diagnostics.rhat(j), diagnostics.ess(j));
     // Prior-dominated: the posterior is about as wide as the prior and sits where the prior does

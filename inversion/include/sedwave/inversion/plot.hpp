@@ -6,6 +6,7 @@
 // driven through a script written next to the output so the user can restyle and re-run it.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sedwave/inversion/fit.hpp"
 
@@ -21,5 +22,11 @@ struct PlotOutcome {
 /// outcome says the plot was skipped.
 PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
                           const FitResult& result);
+
+/// The posterior's corner plot from DIR/posterior_samples.csv (posterior.hpp; columns `names` with
+/// `units`): each parameter's marginal on the diagonal, each pair's draws below; writes
+/// DIR/posterior_corner.gp, .png and .svg. Never throws for a missing or failing gnuplot.
+PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
+                             const std::vector<std::string>& units);
 
 }  // namespace sedwave::inversion

@@ -46,6 +46,7 @@ struct PosteriorResult {
   std::vector<std::string> priors;              ///< one line per free parameter (Prior::describe)
   Eigen::MatrixXd samples;                      ///< pooled kept draws x free parameters, values [unit]
   std::vector<std::string> sample_names;
+  std::vector<std::string> sample_units;
   Eigen::MatrixXd correlation;                  ///< of the free ln-parameters
   double acceptance = 0.0;
   bool converged = false;
