@@ -3,6 +3,7 @@
 // model misses by more than 3 sigma, and writes the fitted values and chi^2/dof on the figure.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/report.hpp"
@@ -121,6 +124,31 @@ TEST_F(FitPlotTest, ScriptDrawsResidualPanelsMarksMissesAndStatesTheFit) {
   } else {
     EXPECT_NE(outcome.message.find("gnuplot not found"), std::string::npos) << outcome.message;
   }
+}
+
+// The corner plot of k parameters: k histograms on the diagonal, k(k-1)/2 pair panels below, every
+// column of the samples file used; with gnuplot installed the figure is drawn.
+TEST(CornerPlot, DrawsEveryMarginalAndEveryPair) {
+  const fs::path dir = fs::temp_directory_path() / ("sedwave_corner_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    std::ofstream samples(dir / "posterior_samples.csv");
+    samples << "# test samples\nkappa,d,gamma\n";
+    std::mt19937_64 rng(1);
+    std::normal_distribution<double> n(0.0, 0.3);
+    for (int i = 0; i < 400; ++i) samples << 1e6 * std::exp(n(rng)) << ',' << 3e-4 * std::exp(n(rng)) << ',' << 5.0 * std::exp(n(rng)) << '\n';
+  }
+  const PlotOutcome outcome = draw_corner_plot(dir, {"kappa", "d", "gamma"}, {"N/m", "m", "kg/s"});
+  const std::string script = read_text(dir / "posterior_corner.gp");
+  EXPECT_NE(script.find("layout 3,3"), std::string::npos);
+  EXPECT_EQ(count(script, "smooth frequency with boxes"), 2u * 3u);  // PNG and SVG
+  EXPECT_EQ(count(script, "with dots"), 2u * 3u);
+  for (const char* column : {"column(1)", "column(2)", "column(3)"}) EXPECT_NE(script.find(column), std::string::npos);
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    EXPECT_TRUE(outcome.drawn) << outcome.message;
+    EXPECT_GT(fs::file_size(dir / "posterior_corner.png"), 1000u);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
