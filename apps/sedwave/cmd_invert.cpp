@@ -182,7 +182,8 @@ void print_posterior(const inversion::PosteriorResult& p, const std::string& out
   } else {
     std::printf("  NOT CONVERGED: %s\n", p.advice.c_str());
   }
-  std::printf("  samples: %s/posterior_samples.csv\n", out.c_str());
+  std::printf("  samples: %s/posterior_samples.csv, marginal densities: %s/posterior_marginals.csv\n", out.c_str(),
+              out.c_str());
 }
 
 /// From this many observations on, a fit takes seconds to minutes: it reports its stages on stderr.
@@ -200,7 +201,7 @@ std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
 std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   std::vector<OutputPath> outputs;
   for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg",
-                           "posterior_samples.csv", "posterior_corner.gp", "posterior_corner.png",
+                           "posterior_samples.csv", "posterior_marginals.csv", "posterior_corner.gp", "posterior_corner.png",
                            "posterior_corner.svg"}) {
     outputs.push_back({"--out", out / name});
   }
@@ -281,6 +282,7 @@ Command add_invert_command(CLI::App& app) {
               sampled = inversion::sample_posterior(data, *model, result, priors, options, o->posterior);
               report["posterior"] = inversion::posterior_report(*sampled);
               inversion::write_posterior_samples_csv(out / "posterior_samples.csv", *sampled);
+              inversion::write_posterior_marginals_csv(out / "posterior_marginals.csv", *sampled);
             }
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength

@@ -313,4 +313,20 @@ void write_posterior_samples_csv(const std::filesystem::path& path, const Poster
   });
 }
 
+void write_posterior_marginals_csv(const std::filesystem::path& path, const PosteriorResult& p) {
+  io::write_text_atomically(path, [&](std::ostream& out) {
+    out << "# sedwave posterior marginals: 40-bin histograms of the pooled draws; edges in the parameter's unit, "
+           "density in 1/unit (integrates to 1)\n"
+        << "parameter,unit,lower,upper,density\n";
+    out.precision(9);
+    for (Eigen::Index c = 0; c < p.samples.cols(); ++c) {
+      const sampling::Histogram h = sampling::marginal_histogram(p.samples.col(c), 40);
+      for (Eigen::Index b = 0; b < h.density.size(); ++b) {
+        out << p.sample_names[static_cast<std::size_t>(c)] << ',' << p.sample_units[static_cast<std::size_t>(c)] << ','
+            << h.edges(b) << ',' << h.edges(b + 1) << ',' << h.density(b) << '\n';
+      }
+    }
+  });
+}
+
 }  // namespace sedwave::inversion

@@ -103,5 +103,8 @@ struct ModelEvidence {
 /// per free parameter, SI units in the header).
 [[nodiscard]] nlohmann::json posterior_report(const PosteriorResult& posterior);
 void write_posterior_samples_csv(const std::filesystem::path& path, const PosteriorResult& posterior);
+/// Each free parameter's marginal density as a 40-bin histogram of its draws: parameter, unit, bin
+/// edges [unit] and density [1/unit].
+void write_posterior_marginals_csv(const std::filesystem::path& path, const PosteriorResult& posterior);
 
 }  // namespace sedwave::inversion
