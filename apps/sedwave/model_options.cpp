@@ -109,11 +109,6 @@ namespace {
 constexpr double kSitePorosity = 0.4;
 constexpr double kSiteGrainDensity = 2650.0;
 constexpr double kSiteWaterDensity = 1025.0;
-/// Lateral earth pressure at rest of a normally consolidated sand (Jaky 1944: 1 - sin 30 deg).
-constexpr double kSiteK0 = 0.5;
-/// Coordination number of a dense random sphere pack (Mavko et al. 2009, section 5.4: Z ~ 9 at
-/// porosity 0.36).
-constexpr double kSiteCoordination = 9.0;
 
 std::string shown(double x) {
   char text[32];
@@ -177,12 +172,11 @@ void apply_site_inputs(const ModelOptions& o, const std::set<std::string>& given
     const double porosity = value_or(p, "porosity", kSitePorosity);
     const double rho_s = value_or(p, "rho_s", kSiteGrainDensity), rho_w = value_or(p, "rho_w", kSiteWaterDensity);
     const double pressure =
-        o.depth ? sediment::mean_effective_stress(
-                      sediment::effective_vertical_stress(*o.depth, porosity, rho_s, rho_w), kSiteK0)
-                : *o.effective_pressure;
+        o.depth ? sediment::sand_pressure_at_depth(*o.depth, porosity, rho_s, rho_w) : *o.effective_pressure;
     inversion::ParameterSpec& kappa = target("kappa", option);
     const double d = value_or(p, "d", 0.0);
-    kappa.value = sediment::hertz_kappa_at_pressure(sediment::kQuartz, d, pressure, porosity, kSiteCoordination);
+    kappa.value =
+        sediment::hertz_kappa_at_pressure(sediment::kQuartz, d, pressure, porosity, sediment::kDensePackCoordination);
     notes.push_back("kappa = " + shown(kappa.value) + " N/m: Hertz, quartz grains of d = " + shown(d) + " m at " +
                     shown(pressure) + " Pa mean effective pressure" +
                     (o.depth ? " (" + shown(*o.depth) + " m below the seafloor, K0 0.5)" : std::string()) +

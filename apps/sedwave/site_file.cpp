@@ -17,8 +17,6 @@ using Table = forward::toml_io::Table<Error>;
 
 constexpr double kQuartzDensity = 2650.0;  // for the depth's effective stress when the model has none
 constexpr double kSeaWaterDensity = 1025.0;
-constexpr double kK0 = 0.5;                // Jaky (1944) for a normally consolidated sand
-constexpr double kCoordination = 9.0;      // dense random pack (Mavko et al. 2009, section 5.4)
 
 std::string number(double x) {
   char text[40];
@@ -61,9 +59,9 @@ SiteFile read_site_file(const std::filesystem::path& path) {
       throw Error(forward::toml_io::where(metres, origin) +
                   ": key 'depth.metres': the Hertz stiffness needs the grain size: give [grain_size] too");
     }
-    const double pressure = sediment::mean_effective_stress(
-        sediment::effective_vertical_stress(z, porosity, kQuartzDensity, kSeaWaterDensity), kK0);
-    const double kappa = sediment::hertz_kappa_at_pressure(sediment::kQuartz, *diameter, pressure, porosity, kCoordination);
+    const double pressure = sediment::sand_pressure_at_depth(z, porosity, kQuartzDensity, kSeaWaterDensity);
+    const double kappa = sediment::hertz_kappa_at_pressure(sediment::kQuartz, *diameter, pressure, porosity,
+                                                           sediment::kDensePackCoordination);
     site.entries.push_back({"kappa", "log-normal:" + number(kappa) + "," + number(sd), kappa});
   }
   if (top.has("water")) {

@@ -136,6 +136,10 @@ double mean_effective_stress(double vertical_stress, double k0) {
   return vertical_stress * (1.0 + 2.0 * k0) / 3.0;
 }
 
+double sand_pressure_at_depth(double depth, double porosity, double grain_density, double water_density) {
+  return mean_effective_stress(effective_vertical_stress(depth, porosity, grain_density, water_density), kSandK0);
+}
+
 // ---- Hertz contact stiffness at pressure --------------------------------------------------------
 
 double contact_force_from_pressure(double pressure, double diameter, double porosity, double coordination) {

@@ -60,6 +60,16 @@ inline constexpr double kStandardGravity = 9.80665;
 /// K0 = 1 - sin(phi') for normally consolidated sand (about 0.4-0.5). Accepted: K0 in (0, 3].
 [[nodiscard]] double mean_effective_stress(double vertical_stress, double k0);
 
+/// K0 of a normally consolidated sand: Jaky (1944), 1 - sin(30 deg).
+inline constexpr double kSandK0 = 0.5;
+/// Coordination number of a dense random sphere pack (Mavko et al. 2009, section 5.4: Z ~ 9 at
+/// porosity 0.36).
+inline constexpr double kDensePackCoordination = 9.0;
+
+/// Mean effective stress [Pa] at depth [m] below the seafloor in a normally consolidated sand:
+/// mean_effective_stress(effective_vertical_stress(depth, ...), kSandK0).
+[[nodiscard]] double sand_pressure_at_depth(double depth, double porosity, double grain_density, double water_density);
+
 // ---- Hertz contact stiffness at pressure --------------------------------------------------------
 /// An isotropic grain material.
 struct GrainMaterial {
