@@ -3,6 +3,7 @@
 // posterior-predictive check; and the ranking again with every prior widened tenfold, since
 // evidence depends on priors (docs/inversion.md, "Comparing models").
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -16,7 +17,10 @@
 #include "output_paths.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
+#include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/posterior.hpp"
+#include "sedwave/inversion/predictive.hpp"
+#include "sedwave/inversion/report.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/sediment/catalog.hpp"
 
@@ -31,6 +35,8 @@ struct CompareOptions {
   ModelOptions shared;              ///< --set and site inputs, for every model that has the parameter
   std::optional<double> water_speed;
   inversion::EvidenceOptions evidence;
+  int threads = 1;
+  bool plot = true;
   std::string out = "sedwave-compare";
 };
 
@@ -40,6 +46,7 @@ struct Row {
   inversion::FitResult fit;
   std::vector<std::string> priors;
   inversion::ModelEvidence evidence, widened;
+  inversion::PredictiveBand band;
 };
 
 std::vector<std::string> split(const std::string& text, char by) {
@@ -80,7 +87,7 @@ Row compare_one(const std::string& spec, const CompareOptions& o, const inversio
   std::vector<std::string> notes, site_priors;
   const inversion::FitParameters parameters = make_parameters(mo, *model, ModelUse::Fit, &notes, &site_priors);
   const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
-  Row row{model->name(), "", inversion::fit(data, *model, parameters, fit_options), {}, {}, {}};
+  Row row{model->name(), "", inversion::fit(data, *model, parameters, fit_options), {}, {}, {}, {}};
   std::vector<std::string> prior_items;
   for (const std::string& item : o.priors) {
     const int i = has_parameter(*model, name_of(item)) ? parameters.index_of(name_of(item)) : -1;
@@ -94,8 +101,12 @@ Row compare_one(const std::string& spec, const CompareOptions& o, const inversio
     row.free += (row.free.empty() ? "" : ",") + parameter.name;
     row.priors.push_back(parameter.name + ": " + priors[static_cast<std::size_t>(i)].describe(parameter.unit));
   }
-  row.evidence = inversion::model_evidence(data, *model, row.fit, priors, fit_options, o.evidence);
-  row.widened = inversion::model_evidence(data, *model, row.fit, inversion::widened(priors, 10.0), fit_options, o.evidence);
+  inversion::EvidenceOptions evidence = o.evidence;
+  evidence.threads = threads_to_use(o.threads);
+  row.evidence = inversion::model_evidence(data, *model, row.fit, priors, fit_options, evidence);
+  row.widened = inversion::model_evidence(data, *model, row.fit, inversion::widened(priors, 10.0), fit_options, evidence);
+  row.band = inversion::predictive_band(row.model, *model, row.fit, row.evidence.samples,
+                                        inversion::curve_frequencies(data));
   return row;
 }
 
@@ -153,6 +164,44 @@ nlohmann::json report(const std::vector<Row>& rows) {
   return j;
 }
 
+/// Each model's band file: predictive_<position>_<spec>.csv (the position keeps two specs of one
+/// model apart; any character of the spec outside [A-Za-z0-9.-] is made '_').
+std::string band_file(std::size_t position, const std::string& model) {
+  std::string name = "predictive_" + std::to_string(position + 1) + "_";
+  for (char c : model) name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+  return name + ".csv";
+}
+
+std::vector<OutputPath> output_files(const std::filesystem::path& out, const std::vector<std::string>& models) {
+  std::vector<OutputPath> outputs;
+  for (const char* name : {"compare.json", "predictive_residuals.csv", "predictive.gp", "predictive.png",
+                           "predictive.svg"}) {
+    outputs.push_back({"--out", out / name});
+  }
+  for (std::size_t i = 0; i < models.size(); ++i) outputs.push_back({"--out", out / band_file(i, models[i])});
+  return outputs;
+}
+
+/// Every model's posterior band over the data, as files and one plot.
+void write_bands(const std::filesystem::path& out, const std::vector<std::string>& specs, const std::vector<Row>& rows,
+                 const inversion::ObservationSet& data, bool plot) {
+  std::vector<inversion::PredictiveBand> bands;
+  std::vector<inversion::BandFile> files;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    files.push_back({rows[i].model, band_file(i, specs[i])});
+    inversion::write_predictive_csv(out / files.back().file, rows[i].band, data.water_sound_speed);
+    bands.push_back(rows[i].band);
+  }
+  inversion::write_predictive_residuals_csv(out / "predictive_residuals.csv", rows.front().fit, bands,
+                                            data.water_sound_speed);
+  std::printf("posterior bands: %s/predictive_*.csv\n", out.c_str());
+  if (!plot) return;
+  std::printf("%s\n", inversion::draw_predictive_plot(out, "predictive", "sedwave compare: posterior bands",
+                                                      data.water_sound_speed.has_value(), rows.front().fit, files,
+                                                      "predictive_residuals.csv")
+                          .message.c_str());
+}
+
 }  // namespace
 
 Command add_compare_command(CLI::App& app) {
@@ -174,12 +223,16 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("--steps", o->evidence.steps, "ensemble updates per temperature, the first half burn-in")
       ->capture_default_str()->check(CLI::Range(100, 10000000));
   cmd->add_option("--seed", o->evidence.seed, "seed of the samplers")->capture_default_str();
-  cmd->add_option("--out", o->out, "output directory (compare.json)")->capture_default_str();
+  add_threads_option(*cmd, o->threads);
+  cmd->add_option("--out", o->out, "output directory (compare.json, each model's posterior band, the band plot)")
+      ->capture_default_str();
+  cmd->add_flag("!--no-plot", o->plot, "skip the gnuplot figure");
   return {cmd, [o]() {
     const std::filesystem::path out(o->out);
     std::vector<std::filesystem::path> inputs(o->files.begin(), o->files.end());
     if (!o->shared.site.empty()) inputs.emplace_back(o->shared.site);
-    check_outputs({{"--out", out / "compare.json"}}, inputs, "compare");
+    const std::vector<std::string> model_names = split(o->models, ',');
+    check_outputs(output_files(out, model_names), inputs, "compare");
     const inversion::ReadOptions read{o->water_speed, std::nullopt};
     inversion::ObservationSet data;
     for (const std::string& f : o->files) data.append(inversion::read_observation_csv(f, read));
@@ -207,6 +260,7 @@ Command add_compare_command(CLI::App& app) {
     print_table(rows);
     io::write_text_atomically(out / "compare.json", [&](std::ostream& s) { s << report(rows).dump(2) << "\n"; });
     std::printf("report: %s/compare.json\n", o->out.c_str());
+    write_bands(out, model_names, rows, data, o->plot);
     const bool all_converged = std::all_of(rows.begin(), rows.end(), [](const Row& r) {
       return r.evidence.converged && r.widened.converged;
     });

@@ -22,6 +22,7 @@
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/posterior.hpp"
+#include "sedwave/inversion/predictive.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
@@ -40,6 +41,7 @@ struct InvertOptions {
   inversion::FitOptions fit_options;
   std::vector<std::string> priors;  ///< NAME=KIND:A,B
   inversion::PosteriorOptions posterior;
+  int threads = 1;
   bool plot = true;
 };
 
@@ -182,7 +184,9 @@ void print_posterior(const inversion::PosteriorResult& p, const std::string& out
   } else {
     std::printf("  NOT CONVERGED: %s\n", p.advice.c_str());
   }
-  std::printf("  samples: %s/posterior_samples.csv, marginal densities: %s/posterior_marginals.csv\n", out.c_str(),
+  std::printf("  samples: %s/posterior_samples.csv and .h5, band over the data: %s/posterior_predictive.csv, "
+              "marginal densities: %s/posterior_marginals.csv\n",
+              out.c_str(), out.c_str(),
               out.c_str());
 }
 
@@ -201,8 +205,10 @@ std::vector<std::filesystem::path> input_files(const InvertOptions& o) {
 std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   std::vector<OutputPath> outputs;
   for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg",
-                           "posterior_samples.csv", "posterior_marginals.csv", "posterior_corner.gp", "posterior_corner.png",
-                           "posterior_corner.svg"}) {
+                           "posterior_samples.csv", "posterior_samples.h5", "posterior_marginals.csv",
+                           "posterior_corner.gp", "posterior_corner.png", "posterior_corner.svg",
+                           "posterior_predictive.csv", "posterior_residuals.csv", "posterior_predictive.gp",
+                           "posterior_predictive.png", "posterior_predictive.svg"}) {
     outputs.push_back({"--out", out / name});
   }
   return outputs;
@@ -231,6 +237,7 @@ Command add_invert_command(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(0, 100000));
   cmd->add_option("--steps", o->posterior.steps, "posterior: ensemble updates, the first half discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
+  add_threads_option(*cmd, o->threads);
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));
@@ -279,10 +286,18 @@ Command add_invert_command(CLI::App& app) {
             nlohmann::json report = inversion::fit_report(result, data);
             std::optional<inversion::PosteriorResult> sampled;
             if (posterior) {
-              sampled = inversion::sample_posterior(data, *model, result, priors, options, o->posterior);
+              inversion::PosteriorOptions posterior_options = o->posterior;
+              posterior_options.threads = threads_to_use(o->threads);
+              sampled = inversion::sample_posterior(data, *model, result, priors, options, posterior_options);
               report["posterior"] = inversion::posterior_report(*sampled);
               inversion::write_posterior_samples_csv(out / "posterior_samples.csv", *sampled);
+              inversion::write_posterior_samples_hdf5(out / "posterior_samples.h5", *sampled);
               inversion::write_posterior_marginals_csv(out / "posterior_marginals.csv", *sampled);
+              const inversion::PredictiveBand band = inversion::predictive_band(
+                  result.model, *model, result, sampled->samples, inversion::curve_frequencies(data));
+              inversion::write_predictive_csv(out / "posterior_predictive.csv", band, data.water_sound_speed);
+              inversion::write_predictive_residuals_csv(out / "posterior_residuals.csv", result, {band},
+                                                        data.water_sound_speed);
             }
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
@@ -321,6 +336,11 @@ Command add_invert_command(CLI::App& app) {
               if (o->plot) {
                 std::printf("  %s\n",
                             inversion::draw_corner_plot(out, sampled->sample_names, sampled->sample_units).message.c_str());
+                std::printf("  %s\n", inversion::draw_predictive_plot(
+                                           out, "posterior_predictive", "sedwave posterior band: " + result.model,
+                                           data.water_sound_speed.has_value(), result,
+                                           {{result.model, "posterior_predictive.csv"}}, "posterior_residuals.csv")
+                                           .message.c_str());
               }
             }
             const bool sampled_ok = !sampled || sampled->converged;

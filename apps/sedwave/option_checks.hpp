@@ -3,9 +3,11 @@
 // with everything, so "nan" passes a plain `x <= 0` test.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <thread>
 
 namespace sedwave::app {
 
@@ -35,6 +37,19 @@ inline CLI::Validator finite_in(double lower, double upper = std::numeric_limits
 /// A finite number > 0.
 inline CLI::Validator finite_positive() {
   return finite_in(std::numeric_limits<double>::denorm_min());
+}
+
+/// The samplers' --threads: 0 means every core this machine has. The samples do not depend on it.
+/// One by default: on a machine that runs other work the threads wait for each other at every
+/// half-ensemble step, and a loaded machine makes two threads slower than one.
+inline void add_threads_option(CLI::App& cmd, int& threads) {
+  cmd.add_option("--threads", threads, "threads that share the model evaluations (0: every core); the samples "
+                                       "do not depend on it")
+      ->capture_default_str()->check(CLI::Range(0, 1024));
+}
+
+inline int threads_to_use(int requested) {
+  return requested > 0 ? requested : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
 }  // namespace sedwave::app

@@ -2,12 +2,13 @@
 
 #include <array>
 
-#include "sedwave/forward/units.hpp"
+#include "sedwave/sediment/site.hpp"
 
 namespace sedwave::inversion {
 
 double quartz_hertz_kappa(double diameter, double pressure) {
-  return forward::hertz_kappa_from_pressure(kQuartzYoungModulus, kQuartzPoissonRatio, diameter, pressure);
+  return sediment::hertz_kappa_at_pressure(sediment::kQuartz, diameter, pressure, kReferencePorosity,
+                                           sediment::kDensePackCoordination);
 }
 
 const PlausibleRange* plausible_range(const std::string& quantity) {

@@ -187,17 +187,15 @@ std::string band_edges(int value, bool attenuation) {
   return edges.str();
 }
 
-/// Data, model curve and its band for one quantity. Drawing order is back to front: band, curve,
-/// error bars, then the misfits on top, so nothing hides the error bars.
-void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box) {
-  const bool attenuation = panel.quantity == Quantity::Attenuation;
-  const int value = attenuation ? 8 : ratio_axis ? 12 : 10;
+/// The frame of a quantity's value panel: its place, the band outside the data greyed, the key on
+/// the right, and the value axis (attenuation on a log axis spanning the data).
+void value_axis(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box) {
   place(g, box);
   shade_outside_band(g, panel);
   g << "set format x ''\nunset xlabel\nset offsets 0, 0, graph 0.06, graph 0.06\nset autoscale yfix\n"
     << "set key at screen " << kPanelRight + 0.015 << ", screen " << box.top
     << " left top Left reverse samplen 2 spacing 1.3 box lc rgb '#bbbbbb'\n";
-  if (attenuation) {
+  if (panel.quantity == Quantity::Attenuation) {
     // The axis spans the data, not the curve's extrapolation: over the data's own decades the error
     // bars stay visible on a log axis.
     g << "set logscale y\nset format y '10^{%L}'\nset ylabel 'attenuation (dB/m)'\nset yrange ["
@@ -207,6 +205,14 @@ void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_ax
     g << "unset logscale y\nset format y '%g'\nset ylabel "
       << gnuplot_string(ratio_axis ? "sound speed / water sound speed" : "sound speed (m/s)") << "\n";
   }
+}
+
+/// Data, model curve and its band for one quantity. Drawing order is back to front: band, curve,
+/// error bars, then the misfits on top, so nothing hides the error bars.
+void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box) {
+  const bool attenuation = panel.quantity == Quantity::Attenuation;
+  const int value = attenuation ? 8 : ratio_axis ? 12 : 10;
+  value_axis(g, panel, ratio_axis, box);
   g << "plot 'curves.csv' skip " << kCurvesHeaderLines << " using 1:" << band_edges(value, attenuation)
     << " with filledcurves fc rgb '" << kBandColour << "' title 'model ±1σ (covariance)', \\\n"
     << "  '' skip " << kCurvesHeaderLines << " using 1:" << value << " with lines lw 1.5 lc rgb '" << kCurveColour
@@ -229,55 +235,160 @@ int residual_tic_step(double half_range) {
   return 10;
 }
 
-/// Normalised residuals (observed - model)/sigma with guide lines at 0, ±1 and ±2.
-void residual_panel(std::ostringstream& g, const QuantityPanel& panel, PanelBox box) {
+/// The frame of a residual panel, symmetric about zero and at least ±2.5 so the ±2 guides always
+/// show, and the start of its plot command: the guide lines at 0, ±1 and ±2.
+void residual_axis(std::ostringstream& g, const QuantityPanel& panel, PanelBox box, double largest_residual) {
   place(g, box);
   shade_outside_band(g, panel);
-  // Symmetric about zero and at least ±2.5, so the ±2 guides always show.
-  const double half_range = 1.25 * std::max(2.5, panel.largest_residual);
+  const double half_range = 1.25 * std::max(2.5, largest_residual);
   g << "unset logscale y\nset format x '10^{%L}'\nset format y '%g'\nset xlabel 'frequency (Hz)'\n"
     << "set offsets 0, 0, 0, 0\nset ytics " << residual_tic_step(half_range) << "\n"
     << "set ylabel '(obs − model)/σ'\nset yrange [" << -half_range << ":" << half_range << "]\nunset key\n"
     << "plot 0 with lines lw 1 lc rgb '#555555', \\\n"
     << "  1 with lines dt 2 lc rgb '#777777', -1 with lines dt 2 lc rgb '#777777', \\\n"
-    << "  2 with lines dt 3 lc rgb '#777777', -2 with lines dt 3 lc rgb '#777777', \\\n"
-    << "  'observations.csv' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
+    << "  2 with lines dt 3 lc rgb '#777777', -2 with lines dt 3 lc rgb '#777777'";
+}
+
+void end_residual_panel(std::ostringstream& g) {
+  g << "\nset yrange [*:*]\nset ytics autofreq\nunset object 1\nunset object 2\n";
+}
+
+/// Normalised residuals (observed - model)/sigma with guide lines at 0, ±1 and ±2.
+void residual_panel(std::ostringstream& g, const QuantityPanel& panel, PanelBox box) {
+  residual_axis(g, panel, box, panel.largest_residual);
+  g << ", \\\n  'observations.csv' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
     << observed(panel, kObservedResidual, false) << " with points " << kDataStyle;
   if (panel.misfits > 0) {
     g << ", \\\n  '' skip " << kObservationsHeaderLines << " using " << kObservedFrequency << ":"
       << observed(panel, kObservedResidual, true) << " with points " << kMisfitStyle;
   }
-  g << "\nset yrange [*:*]\nset ytics autofreq\nunset object 1\nunset object 2\n";
+  end_residual_panel(g);
 }
 
-/// Title and fit summary on top, then for each quantity a data panel above its residual panel,
-/// all on one frequency axis: the data's band widened by kBandMargin.
-std::string plot_body(const std::string& title, bool ratio_axis, const FitResult& result) {
-  const std::vector<QuantityPanel> panels = panels_with_data(result);
+/// Where each quantity's panels go: an equal slice of the page below the summary lines, 7/10 for the
+/// values and the rest for the residuals, with room under the residuals for the frequency axis.
+struct PanelPair {
+  PanelBox values, residuals;
+};
+
+std::vector<PanelPair> layout(std::size_t quantities, double top) {
+  const double bottom = 0.0, axis_room = 0.07;
+  const double slice = (top - bottom) / static_cast<double>(std::max<size_t>(quantities, 1));
+  std::vector<PanelPair> pairs;
+  for (size_t i = 0; i < quantities; ++i) {
+    const double slice_top = top - slice * static_cast<double>(i);
+    const double split = slice_top - 0.7 * (slice - axis_room);
+    pairs.push_back({{slice_top, split}, {split, slice_top - slice + axis_room}});
+  }
+  return pairs;
+}
+
+/// The common head of a multiplot over frequency: the data's band widened by kBandMargin.
+void frequency_multiplot(std::ostringstream& g, const std::string& title, const std::vector<QuantityPanel>& panels) {
   double lowest = std::numeric_limits<double>::infinity(), highest = 0.0;
   for (const QuantityPanel& p : panels) {
     lowest = std::min(lowest, p.lowest_hz);
     highest = std::max(highest, p.highest_hz);
   }
-  std::ostringstream g;
   g << "set encoding utf8\nset multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
-    << "set label 1 " << gnuplot_string(parameter_line(result)) << " at screen 0.5, screen 0.945 center\n"
-    << "set label 2 " << gnuplot_string(determined_line(result)) << " at screen 0.5, screen 0.92 center\n"
     << "set datafile separator ','\nset grid lc rgb '#dddddd'\nset logscale x\nset mxtics 10\n"
     << "set xrange [" << lowest / kBandMargin << ":" << highest * kBandMargin << "]\n";
-  // Each quantity gets an equal slice of the page below the summary: 3/4 data, 1/4 residuals,
-  // and room under the residuals for the frequency axis.
-  const double top = 0.9, bottom = 0.0, axis_room = 0.07;
-  const double slice = (top - bottom) / static_cast<double>(std::max<size_t>(panels.size(), 1));
+}
+
+/// Title and fit summary on top, then for each quantity a data panel above its residual panel,
+/// all on one frequency axis.
+std::string plot_body(const std::string& title, bool ratio_axis, const FitResult& result) {
+  const std::vector<QuantityPanel> panels = panels_with_data(result);
+  std::ostringstream g;
+  frequency_multiplot(g, title, panels);
+  g << "set label 1 " << gnuplot_string(parameter_line(result)) << " at screen 0.5, screen 0.945 center\n"
+    << "set label 2 " << gnuplot_string(determined_line(result)) << " at screen 0.5, screen 0.92 center\n";
+  const std::vector<PanelPair> boxes = layout(panels.size(), 0.9);
   for (size_t i = 0; i < panels.size(); ++i) {
-    const double slice_top = top - slice * static_cast<double>(i);
-    const double split = slice_top - 0.7 * (slice - axis_room);
-    main_panel(g, panels[i], ratio_axis, {slice_top, split});
+    main_panel(g, panels[i], ratio_axis, boxes[i].values);
     if (i == 0) g << "unset label 1\nunset label 2\n";
-    residual_panel(g, panels[i], {split, slice_top - slice + axis_room});
+    residual_panel(g, panels[i], boxes[i].residuals);
   }
   g << "unset multiplot\n";
   return g.str();
+}
+
+const char* const kModelColours[] = {"#08519c", "#d94801", "#238b45", "#6a51a3", "#a50f15", "#525252"};
+
+std::string model_colour(std::size_t i) { return kModelColours[i % std::size(kModelColours)]; }
+
+/// Header lines of the band and residual files (predictive.cpp writes them).
+constexpr int kBandHeaderLines = 2;
+/// The band file's first quantile column of a quantity: attenuation 2-6, speed 7-11, ratio 12-16.
+int first_quantile_column(const QuantityPanel& panel, bool ratio_axis) {
+  return panel.quantity == Quantity::Attenuation ? 2 : ratio_axis ? 12 : 7;
+}
+
+/// Each model's 95 % and 68 % bands and median, then the observations on top.
+void band_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box,
+                const std::vector<BandFile>& bands, const std::string& residuals_file) {
+  value_axis(g, panel, ratio_axis, box);
+  const int q = first_quantile_column(panel, ratio_axis);
+  g << "plot ";
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    const std::string file = gnuplot_string(bands[i].file), colour = model_colour(i);
+    const std::string label = bands.size() == 1 ? "posterior" : bands[i].label;
+    g << file << " skip " << kBandHeaderLines << " using 1:" << q << ":" << q + 4 << " with filledcurves fc rgb '"
+      << colour << "' fs transparent solid 0.15 noborder title " << gnuplot_string(label + " 95 %") << ", \\\n  "
+      << file << " skip " << kBandHeaderLines << " using 1:" << q + 1 << ":" << q + 3 << " with filledcurves fc rgb '"
+      << colour << "' fs transparent solid 0.35 noborder title " << gnuplot_string(label + " 68 %") << ", \\\n  "
+      << file << " skip " << kBandHeaderLines << " using 1:" << q + 2 << " with lines lw 1.5 lc rgb '" << colour
+      << "' title " << gnuplot_string(label + " median") << ", \\\n  ";
+  }
+  g << gnuplot_string(residuals_file) << " skip " << kBandHeaderLines << " using 2:($1 == " << panel.code
+    << " ? $3 : NaN):4 with yerrorbars " << kDataStyle << " title 'observations ±1σ', \\\n"
+    << "  NaN with boxes fs solid 1.0 fc rgb '" << kOutsideColour << "' title 'no data here'\n";
+}
+
+/// Each model's residuals from its band's median, in its colour.
+void band_residual_panel(std::ostringstream& g, const QuantityPanel& panel, PanelBox box,
+                         const std::vector<BandFile>& bands, const std::string& residuals_file, double largest) {
+  residual_axis(g, panel, box, largest);
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    g << ", \\\n  " << gnuplot_string(residuals_file) << " skip " << kBandHeaderLines << " using 2:($1 == "
+      << panel.code << " ? column(" << 5 + i << ") : NaN) with points pt 6 ps 0.7 lw 1.2 lc rgb '" << model_colour(i)
+      << "'";
+  }
+  end_residual_panel(g);
+}
+
+std::string predictive_body(const std::string& title, bool ratio_axis, const FitResult& any_fit,
+                            const std::vector<BandFile>& bands, const std::string& residuals_file,
+                            double largest_residual) {
+  const std::vector<QuantityPanel> panels = panels_with_data(any_fit);
+  std::ostringstream g;
+  frequency_multiplot(g, title, panels);
+  const std::vector<PanelPair> boxes = layout(panels.size(), 0.94);
+  for (size_t i = 0; i < panels.size(); ++i) {
+    band_panel(g, panels[i], ratio_axis, boxes[i].values, bands, residuals_file);
+    band_residual_panel(g, panels[i], boxes[i].residuals, bands, residuals_file, largest_residual);
+  }
+  g << "unset multiplot\n";
+  return g.str();
+}
+
+/// The largest |residual| in a residuals file (columns 5 on), for the residual axis's range.
+double largest_residual_in(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  double largest = 0.0;
+  for (int skipped = 0; skipped < kBandHeaderLines && std::getline(in, line); ++skipped) {
+  }
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::string field;
+    for (int column = 1; std::getline(fields, field, ','); ++column) {
+      if (column < 5) continue;
+      const double r = std::strtod(field.c_str(), nullptr);
+      if (std::isfinite(r)) largest = std::max(largest, std::abs(r));
+    }
+  }
+  return largest;
 }
 
 }  // namespace
@@ -361,6 +472,14 @@ PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& t
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
                              const std::vector<std::string>& units) {
   return run_gnuplot(dir, "posterior_corner", "1000,1000", corner_body(names, units));
+}
+
+PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
+                                 bool ratio_axis, const FitResult& any_fit, const std::vector<BandFile>& bands,
+                                 const std::string& residuals_file) {
+  const double largest = largest_residual_in(dir / residuals_file);
+  return run_gnuplot(dir, stem, "1150,1250",
+                     predictive_body(title, ratio_axis, any_fit, bands, residuals_file, largest));
 }
 
 }  // namespace sedwave::inversion

@@ -8,6 +8,7 @@
 
 #include "fit_problem.hpp"
 #include "sedwave/io/atomic_file.hpp"
+#include "sedwave/io/column_file.hpp"
 #include "sedwave/sampling/diagnostics.hpp"
 #include "sedwave/sampling/ensemble.hpp"
 #include "sedwave/sampling/summary.hpp"
@@ -135,6 +136,7 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   tempering.ensemble.walkers = options.walkers;
   tempering.ensemble.steps = options.steps;
   tempering.ensemble.seed = options.seed;
+  tempering.ensemble.threads = options.threads;
   // Hot temperatures roam the prior: start them in the same small ball; the swaps spread them.
   const sampling::TemperedRun run =
       sampling::sample_tempered(density, start_walkers(s, best, priors, theta, tempering.ensemble), tempering);
@@ -159,6 +161,7 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   e.converged = convergence.converged;
   e.advice = convergence.advice;
   e.evaluations = run.evaluations;
+  e.samples = sampling::pooled_samples(run.levels[0].chains).array().exp().matrix();
   e.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return e;
 }
@@ -209,6 +212,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   ensemble.steps = options.steps;
   ensemble.burn_in = options.burn_in;
   ensemble.seed = options.seed;
+  ensemble.threads = options.threads;
   const sampling::EnsembleRun run =
       sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble), ensemble);
   const sampling::Diagnostics diagnostics = sampling::diagnose(run);
@@ -311,6 +315,27 @@ void write_posterior_samples_csv(const std::filesystem::path& path, const Poster
       out << '\n';
     }
   });
+}
+
+void write_posterior_samples_hdf5(const std::filesystem::path& path, const PosteriorResult& p) {
+  std::vector<io::NamedColumn> columns;
+  for (std::size_t j = 0; j < p.sample_names.size(); ++j) {
+    const Eigen::VectorXd column = p.samples.col(static_cast<Eigen::Index>(j));
+    columns.push_back({p.sample_names[j], p.sample_units[j], "posterior draws of " + p.sample_names[j],
+                       std::vector<double>(column.data(), column.data() + column.size())});
+  }
+  std::string priors;
+  for (const std::string& line : p.priors) priors += line + "\n";
+  io::write_columns_hdf5(
+      path,
+      {{"title", "sedwave posterior samples"},
+       {"layout", "one dataset per free parameter, shape {walkers, kept steps}: walker w's chain in row w, burn-in "
+                  "dropped; values in the dataset's unit (SI)"},
+       {"sampler", "affine-invariant ensemble, stretch move (Goodman & Weare 2010); " + std::to_string(p.walkers) +
+                       " walkers x " + std::to_string(p.steps) + " steps, first half burn-in"},
+       {"priors", priors},
+       {"converged", p.converged ? "yes" : "no: " + p.advice}},
+      columns, static_cast<std::size_t>(p.walkers));
 }
 
 void write_posterior_marginals_csv(const std::filesystem::path& path, const PosteriorResult& p) {

@@ -64,11 +64,10 @@ EnsembleRun sample(const LogDensity& log_density, const std::vector<Eigen::Vecto
   const int dim = static_cast<int>(start_walkers.front().size());
   const int walkers = walker_count(options, dim);
   const int burn_in = burn_in_steps(options);
-  detail::check_run_options(walkers, dim, options.steps, burn_in, options.stretch);
+  detail::check_run_options(walkers, dim, options.steps, burn_in, options.stretch, options.threads);
 
-  detail::CountingEvaluator evaluate([&log_density](const Eigen::VectorXd& x) {
-    return detail::LogParts{log_density(x), 0.0};
-  });
+  detail::CountingEvaluator evaluate(
+      [&log_density](const Eigen::VectorXd& x) { return detail::LogParts{log_density(x), 0.0}; }, options.threads);
   detail::Ensemble ensemble = detail::start_ensemble(start_walkers, walkers, 1.0, evaluate);
   RandomStream random(options.seed);
   KeptSamples kept = allocate_kept(walkers, options.steps - burn_in, dim);

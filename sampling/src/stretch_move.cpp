@@ -1,6 +1,7 @@
 #include "stretch_move.hpp"
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -57,49 +58,74 @@ double draw_stretch(double a, RandomStream& random) {
   return root * root / a;
 }
 
-struct Proposal {
-  Eigen::VectorXd position;
-  double stretch = 1.0;
+// The random numbers of one walker's move: drawn for a whole half before any position is formed,
+// in walker order, so the evaluations that follow may run in any order (or in parallel) without
+// changing the samples.
+struct MoveDraw {
+  int anchor = 0;          ///< index into the complementary half
+  double stretch = 1.0;    ///< z
   double log_uniform = 0.0;
 };
 
-// Proposals for walkers [begin, end) against the complementary half [other, other + size): all draws
-// first, in walker order, so the evaluations that follow may run in any order (or in parallel)
-// without changing the samples.
-std::vector<Proposal> propose_half(const Ensemble& ensemble, int begin, int end, int other, double a,
-                                   RandomStream& random) {
-  std::vector<Proposal> proposals;
-  proposals.reserve(static_cast<std::size_t>(end - begin));
-  for (int k = begin; k < end; ++k) {
-    const Eigen::VectorXd& anchor = ensemble.positions[static_cast<std::size_t>(other + random.index(end - begin))];
-    Proposal proposal;
-    proposal.stretch = draw_stretch(a, random);
-    // GW10 eq. 7 (FM13 eq. 10): Y = X_j + z (X_k - X_j).
-    proposal.position = anchor + proposal.stretch * (ensemble.positions[static_cast<std::size_t>(k)] - anchor);
-    proposal.log_uniform = std::log(random.uniform());
-    proposals.push_back(std::move(proposal));
+std::vector<MoveDraw> draw_half(int count, double a, RandomStream& random) {
+  std::vector<MoveDraw> draws(static_cast<std::size_t>(count));
+  for (MoveDraw& draw : draws) {
+    draw.anchor = random.index(count);
+    draw.stretch = draw_stretch(a, random);
+    draw.log_uniform = std::log(random.uniform());
   }
-  return proposals;
+  return draws;
 }
 
-void update_half(Ensemble& ensemble, int begin, int end, int other, double beta, double a, RandomStream& random,
-                 CountingEvaluator& evaluate) {
-  std::vector<Proposal> proposals = propose_half(ensemble, begin, end, other, a, random);
-  std::vector<LogParts> parts(proposals.size());
-  for (std::size_t i = 0; i < proposals.size(); ++i) parts[i] = evaluate(proposals[i].position);
+// The two halves of every ensemble's update, with their draws.
+struct HalfMove {
+  Ensemble* ensemble = nullptr;
+  double beta = 1.0;
+  std::vector<MoveDraw> draws;
+};
+
+// GW10 eq. 7 (FM13 eq. 10): Y = X_j + z (X_k - X_j), X_j the anchor from the other half.
+void append_proposals(const HalfMove& move, int begin, int other, std::vector<Eigen::VectorXd>& proposals) {
+  const std::vector<Eigen::VectorXd>& positions = move.ensemble->positions;
+  for (std::size_t i = 0; i < move.draws.size(); ++i) {
+    const Eigen::VectorXd& anchor = positions[static_cast<std::size_t>(other + move.draws[i].anchor)];
+    proposals.push_back(anchor + move.draws[i].stretch * (positions[static_cast<std::size_t>(begin) + i] - anchor));
+  }
+}
+
+void accept_or_reject(const HalfMove& move, int begin, std::vector<Eigen::VectorXd>& proposals,
+                      const std::vector<LogParts>& parts, std::size_t first) {
+  Ensemble& ensemble = *move.ensemble;
   const auto dim = static_cast<double>(ensemble.positions.front().size());
-  for (std::size_t i = 0; i < proposals.size(); ++i) {
+  for (std::size_t i = 0; i < move.draws.size(); ++i) {
     const auto k = static_cast<std::size_t>(begin) + i;
-    const double proposed = tempered_log_density(parts[i], beta);
+    const double proposed = tempered_log_density(parts[first + i], move.beta);
     if (proposed == kMinusInfinity) continue;
     // Acceptance probability min(1, z^(N-1) p(Y) / p(X_k)) (GW10 eq. 7; FM13 eq. 11).
-    const double log_ratio =
-        (dim - 1.0) * std::log(proposals[i].stretch) + proposed - tempered_log_density(ensemble.parts[k], beta);
-    if (proposals[i].log_uniform < log_ratio) {
-      ensemble.positions[k] = std::move(proposals[i].position);
-      ensemble.parts[k] = parts[i];
+    const double log_ratio = (dim - 1.0) * std::log(move.draws[i].stretch) + proposed -
+                             tempered_log_density(ensemble.parts[k], move.beta);
+    if (move.draws[i].log_uniform < log_ratio) {
+      ensemble.positions[k] = std::move(proposals[first + i]);
+      ensemble.parts[k] = parts[first + i];
       ++ensemble.accepted[k];
     }
+  }
+}
+
+// Moves half `which` (0: walkers [0, half) against [half, 2 half); 1: the reverse) of every ensemble,
+// all proposals evaluated as one batch.
+void update_halves(const std::vector<HalfMove>& moves, int which, CountingEvaluator& evaluate) {
+  std::vector<Eigen::VectorXd> proposals;
+  for (const HalfMove& move : moves) {
+    const int half = static_cast<int>(move.ensemble->positions.size()) / 2;
+    append_proposals(move, which * half, (1 - which) * half, proposals);
+  }
+  const std::vector<LogParts> parts = evaluate.evaluate_all(proposals);
+  std::size_t first = 0;
+  for (const HalfMove& move : moves) {
+    const int half = static_cast<int>(move.ensemble->positions.size()) / 2;
+    accept_or_reject(move, which * half, proposals, parts, first);
+    first += move.draws.size();
   }
 }
 
@@ -111,8 +137,32 @@ double tempered_log_density(const LogParts& parts, double beta) {
 }
 
 LogParts CountingEvaluator::operator()(const Eigen::VectorXd& x) {
+  if (x.allFinite()) ++evaluations_;
+  return checked(x);
+}
+
+std::vector<LogParts> CountingEvaluator::evaluate_all(const std::vector<Eigen::VectorXd>& points) {
+  const auto count = static_cast<long>(points.size());
+  std::vector<LogParts> parts(points.size());
+  std::vector<std::exception_ptr> errors(points.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads_) if (threads_ > 1)
+  for (long i = 0; i < count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    try {
+      parts[k] = checked(points[k]);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  for (const Eigen::VectorXd& x : points) evaluations_ += x.allFinite() ? 1 : 0;
+  return parts;
+}
+
+LogParts CountingEvaluator::checked(const Eigen::VectorXd& x) const {
   if (!x.allFinite()) return {kMinusInfinity, kMinusInfinity};
-  ++evaluations_;
   const LogParts parts = function_(x);
   for (const double value : {parts.log_prior, parts.log_likelihood}) {
     if (std::isnan(value) || value == std::numeric_limits<double>::infinity()) {
@@ -155,12 +205,27 @@ Ensemble start_ensemble(const std::vector<Eigen::VectorXd>& walkers, int expecte
 
 void stretch_update(Ensemble& ensemble, double beta, double stretch, RandomStream& random,
                     CountingEvaluator& evaluate) {
-  const int half = static_cast<int>(ensemble.positions.size()) / 2;
-  update_half(ensemble, 0, half, half, beta, stretch, random, evaluate);
-  update_half(ensemble, half, 2 * half, 0, beta, stretch, random, evaluate);
+  stretch_update_all({&ensemble}, {beta}, stretch, random, evaluate);
 }
 
-void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch) {
+void stretch_update_all(const std::vector<Ensemble*>& ensembles, const std::vector<double>& betas, double stretch,
+                        RandomStream& random, CountingEvaluator& evaluate) {
+  std::vector<HalfMove> first_halves, second_halves;
+  for (std::size_t t = 0; t < ensembles.size(); ++t) {
+    const int half = static_cast<int>(ensembles[t]->positions.size()) / 2;
+    // The draws of the first half, then the second, ensemble after ensemble: the order in which
+    // stretch_update on each ensemble alone would draw them.
+    first_halves.push_back({ensembles[t], betas[t], draw_half(half, stretch, random)});
+    second_halves.push_back({ensembles[t], betas[t], draw_half(half, stretch, random)});
+  }
+  update_halves(first_halves, 0, evaluate);
+  update_halves(second_halves, 1, evaluate);
+}
+
+void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch, int threads) {
+  if (threads < 1) {
+    throw std::invalid_argument("threads = " + std::to_string(threads) + ": use at least 1 thread");
+  }
   if (dim < 1) throw std::invalid_argument("start walkers have no parameters: give at least one");
   if (walkers < 2 * dim || walkers % 2 != 0) {
     throw std::invalid_argument("walkers = " + std::to_string(walkers) + " for " + std::to_string(dim) +

@@ -31,14 +31,23 @@ struct Ensemble {
 
 /// Counts the calls of a PartsFunction and guards it: non-finite coordinates are never passed
 /// (the point is outside every support), NaN or +infinity results throw std::domain_error.
+/// evaluate_all() spreads a batch over `threads` threads (OpenMP); the function must then be safe to
+/// call concurrently. Results and the error thrown do not depend on the thread count.
 class CountingEvaluator {
  public:
-  explicit CountingEvaluator(PartsFunction function) : function_(std::move(function)) {}
+  explicit CountingEvaluator(PartsFunction function, int threads = 1)
+      : function_(std::move(function)), threads_(threads) {}
   [[nodiscard]] LogParts operator()(const Eigen::VectorXd& x);
+  /// Every point of the batch, in parallel where threads > 1; the first point's error (in batch
+  /// order) is rethrown.
+  [[nodiscard]] std::vector<LogParts> evaluate_all(const std::vector<Eigen::VectorXd>& points);
   [[nodiscard]] int evaluations() const { return evaluations_; }
 
  private:
+  [[nodiscard]] LogParts checked(const Eigen::VectorXd& x) const;
+
   PartsFunction function_;
+  int threads_ = 1;
   int evaluations_ = 0;
 };
 
@@ -51,7 +60,14 @@ class CountingEvaluator {
 void stretch_update(Ensemble& ensemble, double beta, double stretch, RandomStream& random,
                     CountingEvaluator& evaluate);
 
+/// One update of every ensemble (ensembles[t] at betas[t]), drawing the random numbers in the same
+/// order as stretch_update on each ensemble in turn, so the samples are the same; but the first
+/// halves of all ensembles are evaluated as one batch, then the second halves, which gives the
+/// evaluator batches large enough to share among threads.
+void stretch_update_all(const std::vector<Ensemble*>& ensembles, const std::vector<double>& betas, double stretch,
+                        RandomStream& random, CountingEvaluator& evaluate);
+
 /// Checks the options shared by both samplers; std::invalid_argument names what to change.
-void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch);
+void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch, int threads);
 
 }  // namespace sedwave::sampling::detail

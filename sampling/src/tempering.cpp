@@ -149,14 +149,15 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density, const std::vector
   const auto dim = static_cast<int>(start_walkers.front().size());
   const int walkers = walker_count(ensemble_options, dim);
   const int burn_in = burn_in_steps(ensemble_options);
-  detail::check_run_options(walkers, dim, ensemble_options.steps, burn_in, ensemble_options.stretch);
+  detail::check_run_options(walkers, dim, ensemble_options.steps, burn_in, ensemble_options.stretch,
+                            ensemble_options.threads);
 
   detail::CountingEvaluator evaluate([&density](const Eigen::VectorXd& x) {
     const double log_prior = density.log_prior(x);
     // Outside the prior's support the likelihood is not asked (it may be undefined there).
     if (std::isinf(log_prior) && log_prior < 0.0) return detail::LogParts{log_prior, log_prior};
     return detail::LogParts{log_prior, density.log_likelihood(x)};
-  });
+  }, ensemble_options.threads);
   const int kept = ensemble_options.steps - burn_in;
   std::vector<Level> levels;
   for (const double beta : betas) {
@@ -170,10 +171,10 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density, const std::vector
 
   RandomStream random(ensemble_options.seed);
   std::vector<long> swaps_accepted(betas.size() - 1, 0);
+  std::vector<detail::Ensemble*> ensembles;
+  for (Level& level : levels) ensembles.push_back(&level.ensemble);
   for (int step = 0; step < ensemble_options.steps; ++step) {
-    for (std::size_t t = 0; t < levels.size(); ++t) {
-      detail::stretch_update(levels[t].ensemble, betas[t], ensemble_options.stretch, random, evaluate);
-    }
+    detail::stretch_update_all(ensembles, betas, ensemble_options.stretch, random, evaluate);
     propose_swaps(levels, betas, random, swaps_accepted);
     if (step < burn_in) continue;
     for (std::size_t t = 0; t < levels.size(); ++t) record(levels[t], betas[t], step - burn_in);

@@ -71,7 +71,7 @@ sedwave_cli_case(invert.posterior_not_converged 3 "NOT CONVERGED: .*run more ste
   invert ${OBS} --method posterior --steps 40 --no-plot --out ${CLI_OUT}/posterior_short)
 
 # Model comparison by evidence (sedwave compare).
-set(COMPARE_FAST --steps 1000 --temperatures 12)
+set(COMPARE_FAST --steps 400 --temperatures 16)
 sedwave_cli_case(compare.ranks_two_models 0 "^edfm is preferred over grain-shearing by a factor"
   compare ${OBS} --models edfm,grain-shearing ${COMPARE_FAST} --out ${CLI_OUT}/compare)
 sedwave_cli_case(compare.unknown_model 1 "unknown model 'bort'.*accepted: continuum"
@@ -94,3 +94,11 @@ sedwave_cli_case(invert.site_file_depth_needs_grain_size 1 "depth_without_grain_
   invert ${OBS} --site ${CLI_DATA}/site/depth_without_grain_size.toml ${FAST})
 sedwave_cli_case(invert.site_file_and_direct_value 2 "--site .*medium_sand.toml and a direct value both set d"
   invert ${OBS} --site ${SITE} --d 3e-4 ${FAST})
+
+# The posterior's band over the data and its samples as HDF5; compare's bands of every model.
+sedwave_cli_case(invert.posterior_writes_band_and_hdf5 3 "samples: .*posterior_samples.csv and .h5, band over the data: .*posterior_predictive.csv"
+  invert ${OBS} --method posterior --steps 200 --threads 2 --no-plot --out ${CLI_OUT}/posterior_band)
+sedwave_cli_case(compare.writes_each_models_band 0 "^posterior bands: .*/predictive_\\*.csv"
+  compare ${OBS} --models edfm,grain-shearing ${COMPARE_FAST} --no-plot --out ${CLI_OUT}/compare_bands)
+sedwave_cli_case(compare.threads_must_be_a_count 2 "--threads: Value -1 not in range"
+  compare ${OBS} --models edfm --threads -1 --out ${CLI_OUT}/compare_never)

@@ -83,6 +83,22 @@ TEST(SyntheticInversion, LatticeRecoversDeterminedCombinations) {
   EXPECT_LE(claimed_diameter, 1);
 }
 
+// kappa_over_hertz compares kappa with the Hertz stiffness the site inputs use for their kappa prior:
+// kappa_H = (6 E*^2 R F)^(1/3), E* = E / (2 (1 - nu^2)), R = d/4 (Johnson 1985, ch. 4), at the mean
+// contact force F = pi d^2 P / (Z (1 - beta)) of a dense random quartz pack (Digby 1981; Z = 9,
+// beta = 0.38) at P = 10 kPa. One relation for both, so a kappa at its site prior reads as 1.
+TEST(SyntheticInversion, KappaOverHertzIsTheSitePriorsHertzRelation) {
+  const forward::LatticeModel lattice;
+  const FitResult r = fit(synthetic_data(lattice, true_parameters(), 1), lattice, true_parameters(),
+                          FitOptions{.method = FitMethod::Ceres, .profile_likelihood = false});
+  const double d = r.parameters[kDiameter].value;
+  const double young = 9.45e10, poisson = 0.074;  // quartz (Mavko et al. 2009, table 7.1)
+  const double e_star = young / (2.0 * (1.0 - poisson * poisson));
+  const double force = std::numbers::pi * d * d * 1.0e4 / (9.0 * (1.0 - 0.38));
+  const double hertz = std::cbrt(6.0 * e_star * e_star * (d / 4.0) * force);
+  EXPECT_NEAR(combination(r, "kappa_over_hertz").value / (r.parameters[kKappa].value / hertz), 1.0, 1e-9);
+}
+
 TEST(SyntheticInversion, LatticeDeterminesDiameterWhenKdReachesOne) {
   // A weakly damped contact (gamma_hat = 0.05) keeps c ~ c0, so 1 MHz reaches kd ~ 1 and the
   // lattice's dispersion reveals d itself.

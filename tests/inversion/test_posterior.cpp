@@ -3,11 +3,17 @@
 // unseen, that parameter's marginal is its prior and the report says so.
 #include <gtest/gtest.h>
 
+#include <hdf5.h>
+
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <random>
 
 #include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/posterior.hpp"
+#include "sedwave/inversion/predictive.hpp"
 #include "sedwave/inversion/synthetic.hpp"
 #include "sedwave/sediment/catalog.hpp"
 
@@ -72,6 +78,87 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
       EXPECT_LT(std::log(c.upper_68 / c.lower_68), 0.2) << c.name;
     }
   }
+}
+
+// A quantile commutes with a monotone map: where the model's speed and attenuation move one way with
+// the one free parameter, the band's median is the model at the parameter's median. The continuum
+// chain's speed c0 = d sqrt(kappa / m) rises with kappa, and below the crossover its attenuation
+// (~ omega^2 gamma d / (2 m c0^3)) falls with it.
+TEST(PredictiveBand, QuantilesAreTheModelAtTheParameterQuantilesForAMonotoneModel) {
+  const forward::ContinuumModel continuum;
+  const auto frame = grain_contact_model(continuum, DampingForm::Gamma);
+  FitParameters truth;
+  truth.spec[kKappa].value = 2e6;
+  truth.spec[kDiameter].value = 3e-4;
+  truth.spec[kDamping].value = 10.0;
+  truth.set_free_from_list("kappa");
+  const ObservationSet data = synthetic_observations(*frame, truth, {100.0, 3e4, 8, 0.05, 0.005, 5});
+  const FitResult best = fit(data, *frame, truth, {.method = FitMethod::Ceres, .profile_likelihood = false});
+  // 401 log-normal draws of kappa: the median is one of them exactly.
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> normal(0.0, 0.2);
+  Eigen::MatrixXd draws(401, 1);
+  for (Eigen::Index i = 0; i < draws.rows(); ++i) draws(i, 0) = 2e6 * std::exp(normal(random));
+  const std::vector<double> frequencies{200.0, 2000.0};
+  const PredictiveBand band = predictive_band("continuum", *frame, best, draws, frequencies, 1000);
+  ASSERT_EQ(band.frequency_hz.size(), 2u);
+  EXPECT_EQ(band.draws, 401);
+  std::vector<double> kappas(draws.data(), draws.data() + draws.size());
+  std::sort(kappas.begin(), kappas.end());
+  std::vector<double> values = best.fitted.values();
+  values[kKappa] = kappas[200];
+  for (std::size_t i = 0; i < frequencies.size(); ++i) {
+    const sediment::Wave at_median = frame->evaluate(values, frequencies[i], false);
+    EXPECT_NEAR(band.speed[i][2] / at_median.speed, 1.0, 1e-12);
+    EXPECT_NEAR(band.attenuation[i][2] / at_median.attenuation, 1.0, 1e-12);
+    // Ordered quantiles, and a band as wide as the draws make it (c0 ~ sqrt(kappa): ~0.1 in ln at 68 %).
+    for (std::size_t q = 1; q < kBandQuantiles.size(); ++q) EXPECT_LT(band.speed[i][q - 1], band.speed[i][q]);
+    EXPECT_NEAR(std::log(band.speed[i][3] / band.speed[i][1]), 0.2, 0.04);
+  }
+  ASSERT_EQ(band.residual.size(), best.residuals.size());
+  for (std::size_t r = 0; r < band.residual.size(); ++r) {
+    const PointResidual& p = best.residuals[r];
+    const sediment::Wave w = frame->evaluate(values, p.observation.frequency_hz, false);
+    const double median = p.observation.quantity == Quantity::Attenuation ? w.attenuation : w.speed;
+    EXPECT_NEAR(band.residual[r], (p.observation.value - median) / p.sigma, 1e-9);
+  }
+}
+
+// The samples' HDF5 file: one dataset per free parameter of shape {walkers, kept steps}, walker w's
+// chain in row w, with its unit.
+TEST(PosteriorSamplesFile, HoldsEachWalkersChainWithItsUnit) {
+  PosteriorResult p;
+  p.walkers = 4;
+  p.steps = 6;
+  p.sample_names = {"kappa", "d"};
+  p.sample_units = {"N/m", "m"};
+  p.samples.resize(12, 2);  // 4 walkers x 3 kept steps, walker-major as pooled_samples makes it
+  for (Eigen::Index r = 0; r < 12; ++r) p.samples.row(r) << 1e6 + static_cast<double>(r), 1e-4 * static_cast<double>(r + 1);
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "sedwave_test_samples.h5";
+  write_posterior_samples_hdf5(path, p);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t set = H5Dopen2(file, "kappa", H5P_DEFAULT);
+  const hid_t space = H5Dget_space(set);
+  hsize_t dims[2] = {0, 0};
+  ASSERT_EQ(H5Sget_simple_extent_ndims(space), 2);
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  EXPECT_EQ(dims[0], 4u);
+  EXPECT_EQ(dims[1], 3u);
+  std::vector<double> values(12);
+  H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  EXPECT_EQ(values[3 * 2 + 1], p.samples(7, 0));  // walker 2, kept step 1
+  const hid_t attribute = H5Aopen(set, "unit", H5P_DEFAULT);
+  const hid_t type = H5Aget_type(attribute);
+  std::string unit(H5Tget_size(type), '\0');
+  H5Aread(attribute, type, unit.data());
+  EXPECT_EQ(unit.substr(0, 3), "N/m");
+  H5Tclose(type);
+  H5Aclose(attribute);
+  H5Sclose(space);
+  H5Dclose(set);
+  H5Fclose(file);
+  std::filesystem::remove(path);
 }
 
 }  // namespace

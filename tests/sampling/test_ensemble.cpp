@@ -161,6 +161,22 @@ TEST(Ensemble, SameSeedSameSamples) {
   EXPECT_NE(sample(density, start, options).chains.front(), first.chains.front());
 }
 
+// Threads share the evaluations of each half-ensemble; the draws are made before, so the samples
+// must be the same bit for bit whatever the thread count.
+TEST(Ensemble, ThreadsDoNotChangeTheSamples) {
+  EnsembleOptions options;
+  options.steps = 200;
+  const LogDensity density = gaussian_log_density(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
+  const auto start = start_ball(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), options);
+  const EnsembleRun serial = sample(density, start, options);
+  options.threads = 3;
+  const EnsembleRun threaded = sample(density, start, options);
+  for (std::size_t k = 0; k < serial.chains.size(); ++k) EXPECT_EQ(serial.chains[k], threaded.chains[k]);
+  EXPECT_EQ(serial.evaluations, threaded.evaluations);
+  options.threads = 0;
+  expect_refusal<std::invalid_argument>([&] { (void)sample(density, start, options); }, {"threads = 0"});
+}
+
 TEST(Ensemble, RecordsWhatItKeeps) {
   EnsembleOptions options;
   options.steps = 100;

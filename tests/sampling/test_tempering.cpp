@@ -105,6 +105,26 @@ TEST(Tempering, HotLevelsCarryWalkersBetweenModes) {
   EXPECT_NEAR(left_fraction, 0.5, 0.1);
 }
 
+// The ensembles of all temperatures are evaluated half by half in one batch, shared among threads;
+// the draws come first, so the run must be the same bit for bit whatever the thread count.
+TEST(Tempering, ThreadsDoNotChangeTheRun) {
+  const GaussianProblem problem;
+  TemperingOptions options;
+  options.betas = geometric_ladder(6, 1e3);
+  options.ensemble.steps = 150;
+  const auto start = start_ball(problem.data, Eigen::Vector2d(0.1, 0.1), options.ensemble);
+  const TemperedRun serial = sample_tempered(problem.density(), start, options);
+  options.ensemble.threads = 2;
+  const TemperedRun threaded = sample_tempered(problem.density(), start, options);
+  for (std::size_t t = 0; t < serial.levels.size(); ++t) {
+    for (std::size_t k = 0; k < serial.levels[t].chains.size(); ++k) {
+      EXPECT_EQ(serial.levels[t].chains[k], threaded.levels[t].chains[k]);
+    }
+  }
+  EXPECT_EQ(serial.swap_acceptance, threaded.swap_acceptance);
+  EXPECT_EQ(thermodynamic_evidence(serial).log_evidence, thermodynamic_evidence(threaded).log_evidence);
+}
+
 TEST(Tempering, RefusesABadLadder) {
   const GaussianProblem problem;
   TemperingOptions options;

@@ -25,15 +25,16 @@
 
 namespace sedwave::inversion {
 
-/// Quartz (Mavko, Mukerji & Dvorkin, The Rock Physics Handbook, 2009, table 7.1: K = 37 GPa,
-/// G = 44 GPa), the reference grain material for the Hertz comparison.
-inline constexpr double kQuartzYoungModulus = 9.45e10;  ///< E = 9KG/(3K+G) [Pa]
-inline constexpr double kQuartzPoissonRatio = 0.074;    ///< (3K-2G)/(2(3K+G)) [-]
 /// Effective pressure at which kappa is compared with Hertz: about 1 m below the seafloor in sand
 /// ((rho_bulk - rho_water) g z = (2000 - 1025) 9.81 1 = 9.6 kPa).
 inline constexpr double kReferencePressure = 1.0e4;  ///< [Pa]
+/// Porosity of the reference pack: a medium sand (Hamilton 1980: sands 0.37-0.47).
+inline constexpr double kReferencePorosity = 0.38;
 
-/// Hertz contact stiffness [N/m] of two equal quartz grains of diameter d [m] at pressure P [Pa].
+/// Hertz contact stiffness [N/m] of the quartz grains (sediment::kQuartz) of diameter d [m] of a
+/// dense random pack (porosity kReferencePorosity, coordination sediment::kDensePackCoordination)
+/// at effective pressure P [Pa]: the same relation as the site inputs' kappa prior
+/// (sediment::hertz_kappa_at_pressure), so kappa_over_hertz and a site's kappa prior agree.
 [[nodiscard]] double quartz_hertz_kappa(double diameter, double pressure = kReferencePressure);
 
 /// A reported quantity's accepted range.

@@ -29,4 +29,19 @@ PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& t
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
                              const std::vector<std::string>& units);
 
+/// One model's posterior band file (predictive.hpp, write_predictive_csv) and its label.
+struct BandFile {
+  std::string label;
+  std::string file;  ///< name inside the plot's directory
+};
+
+/// The posterior band plot: for each quantity with data, each model's 95 % and 68 % bands and
+/// median over the data with error bars, above a panel of each model's residuals from its median
+/// (from `residuals_file`, write_predictive_residuals_csv). `any_fit` gives the observations' bands
+/// of frequency and range. Writes DIR/STEM.gp, .png and .svg; never throws for a missing or failing
+/// gnuplot.
+PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
+                                 bool ratio_axis, const FitResult& any_fit, const std::vector<BandFile>& bands,
+                                 const std::string& residuals_file);
+
 }  // namespace sedwave::inversion

@@ -24,6 +24,9 @@ struct EnsembleOptions {
   int burn_in = -1;       ///< updates discarded at the start; -1: steps / 2
   double stretch = 2.0;   ///< a in g(z) ~ 1/sqrt(z) on [1/a, a] (GW10 eq. 9); a = 2 as GW10 and FM13
   std::uint64_t seed = 1; ///< the same seed gives the same samples
+  /// Threads that share each half-ensemble's density evaluations (OpenMP). The samples do not
+  /// depend on it; the density must then be safe to call concurrently.
+  int threads = 1;
 };
 
 struct EnsembleRun {

@@ -1,0 +1,45 @@
+#include "sedwave/io/column_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "hdf5.hpp"
+
+namespace sedwave::io {
+namespace {
+
+void require_dataset_name(const std::string& name) {
+  const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || c == '_';
+  });
+  if (!plain) throw std::invalid_argument("column name '" + name + "': use letters, digits and '_' only");
+}
+
+}  // namespace
+
+void write_columns_hdf5(const std::filesystem::path& path,
+                        const std::vector<std::pair<std::string, std::string>>& attributes,
+                        const std::vector<NamedColumn>& columns, std::size_t blocks) {
+  for (const NamedColumn& column : columns) {
+    require_dataset_name(column.name);
+    if (blocks == 0 || column.values.size() % blocks != 0) {
+      throw std::invalid_argument("column " + column.name + ": " + std::to_string(column.values.size()) +
+                                  " values do not split into " + std::to_string(blocks) + " equal blocks");
+    }
+  }
+  namespace h5 = forward::h5;
+  h5::write_file_atomically(path, [&](hid_t file) {
+    for (const auto& [name, text] : attributes) h5::write_string_attribute(file, name, text);
+    for (const NamedColumn& column : columns) {
+      const std::size_t rows = blocks == 1 ? column.values.size() : blocks;
+      const std::size_t inner = blocks == 1 ? 0 : column.values.size() / blocks;
+      h5::write(file, column.name, column.values.data(), rows, inner);
+      h5::Handle set(H5Dopen2(file, column.name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + column.name);
+      h5::write_string_attribute(set, "unit", column.unit);
+      h5::write_string_attribute(set, "meaning", column.meaning);
+    }
+  });
+}
+
+}  // namespace sedwave::io
