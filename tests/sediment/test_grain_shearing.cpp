@@ -162,9 +162,10 @@ TEST(GrainShearingModel, GradientMatchesFiniteDifferences) {
 
 // The reference sediment of Buckingham (J. Acoust. Soc. Am. 117, 137, 2005): porosity 0.377, grains
 // 2730 kg/m^3 and 3.6e10 Pa, water 1005 kg/m^3 and 2.374e9 Pa, gamma_p0 = 3.888e8 Pa,
-// gamma_s0 = 4.588e7 Pa, n0 = 0.0851 (mean grain size 1 mm, 0.3 m below the seabed), the set also
-// quoted by an open implementation of the 2005 model (C. W. Holland's GS_Mod.m). Exact: the
-// defaults are the printed digits.
+// gamma_s0 = 4.588e7 Pa, n0 = 0.0851 (mean grain size 1 mm, 0.3 m below the seabed), as quoted by
+// two open implementations of the 2005 model (C. W. Holland's GS_Mod.m, a modified form, and an
+// acoustic-impedance script that scales the same reference set with depth); the paper's table
+// itself could not be consulted. Exact: the defaults carry the quoted digits.
 TEST(GrainShearingModel, DefaultsAreBuckinghams2005ReferenceSediment) {
   const std::vector<double> expected{0.377, 2730.0, 1005.0, 3.6e10, 2.374e9, 3.888e8, 4.588e7, 0.0851};
   EXPECT_EQ(GrainShearingModel().default_values(), expected);
@@ -278,7 +279,8 @@ TEST(ViscousGrainShearingModel, GradientMatchesFiniteDifferences) {
 // The SAX99 set of Buckingham (J. Acoust. Soc. Am. 127, 2099, 2010), its Fig. 1: porosity 0.385,
 // grains 2690 kg/m^3 and 3.2e10 Pa, water 1023 kg/m^3 and 2.395e9 Pa, gamma_p = 3.796e8 Pa,
 // gamma_s = 1.711e7 Pa, n = 0.0617, tau_p = 1.2e-4 s, as an open implementation quotes it for
-// reproducing that figure (C. W. Holland's VGSlambda_no_tau_s.m). Exact: the printed digits.
+// reproducing that figure (C. W. Holland's VGSlambda_no_tau_s.m); the paper itself could not be
+// consulted. Exact: the defaults carry the quoted digits.
 TEST(ViscousGrainShearingModel, DefaultsAreBuckinghams2010Sax99Set) {
   const std::vector<double> expected{0.385, 2690.0, 1023.0, 3.2e10, 2.395e9, 3.796e8, 1.711e7, 0.0617, 1.2e-4};
   EXPECT_EQ(ViscousGrainShearingModel().default_values(), expected);
