@@ -225,4 +225,33 @@ double kozeny_carman_permeability(double diameter, double porosity) {
   return kozeny_carman_formula(diameter, porosity);
 }
 
+// ---- Empirical reference curves (Hamilton) ----------------------------------------------------------
+
+namespace {
+
+void require_hamilton_bachman_range(double mz) {
+  require("mean grain size Mz", mz, 1.0, 9.0, "phi",
+          "the limits of Hamilton & Bachman's (1982) continental-terrace regressions");
+}
+
+}  // namespace
+
+double hamilton_bachman_sound_speed(double mz) {
+  require_hamilton_bachman_range(mz);
+  return 1952.5 - 86.26 * mz + 4.14 * mz * mz;
+}
+
+double hamilton_bachman_density(double mz) {
+  require_hamilton_bachman_range(mz);
+  return 1000.0 * (2.374 - 0.175 * mz + 0.008 * mz * mz);  // the paper's g/cm^3 to kg/m^3
+}
+
+double hamilton_attenuation_factor(double mz) {
+  require("mean grain size Mz", mz, 0.0, 9.5, "phi", "the limits of Hamilton's (1972) k_p regressions");
+  if (mz < 2.6) return 0.4556 + 0.0245 * mz;
+  if (mz < 4.5) return 0.1978 + 0.1245 * mz;
+  if (mz < 6.0) return 8.0399 - 2.5228 * mz + 0.20098 * mz * mz;
+  return 0.9431 - 0.2041 * mz + 0.0117 * mz * mz;
+}
+
 }  // namespace sedwave::sediment

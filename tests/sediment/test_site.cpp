@@ -221,6 +221,65 @@ TEST(Site, KozenyCarmanPermeability) {
   expect_refusal([] { (void)kozeny_carman_permeability(2.0e-4, 0.0); }, {"porosity = 0", "(0, 1)"});
 }
 
+// ---- Empirical reference curves (Hamilton) ----------------------------------------------------------
+
+// Hamilton & Bachman (1982), Table II, continental terrace: the class means the (T) regressions were
+// fitted to, {mean grain size Mz [phi] (their Table I), bulk density [g/cm^3], sound-speed ratio to
+// the sample's pore water}, for the eight classes inside the regressions' 1-9 phi (coarse sand, at
+// 0.92 phi, lies outside; clayey silt carries the median the table's footnote recommends), as
+// transcribed by the open uacpy implementation (uacpy/core/grain_size.py). Each class mean must lie
+// within the printed standard error of estimate of the regression: 0.11 g/cm^3 for density, 29 m/s
+// for speed. The ratios are to each site's own pore water (1524.9-1532.3 m/s); 1528 m/s, the
+// divisor the APL-UW TR 9407 handbook (1994, p. IV-8) states for these regressions, turns them into
+// speeds to within 0.3 %, 5 m/s, inside the 29 m/s.
+TEST(Site, HamiltonBachmanRegressionsReproduceTheirClassMeans) {
+  struct ClassMean {
+    double mz, density, speed_ratio;
+  };
+  constexpr ClassMean kTableII[] = {{2.61, 1.962, 1.152}, {3.34, 1.878, 1.120}, {4.24, 1.783, 1.086},
+                                    {4.88, 1.769, 1.076}, {5.40, 1.740, 1.057}, {5.82, 1.575, 1.036},
+                                    {7.13, 1.484, 1.006}, {8.80, 1.480, 0.990}};
+  for (const ClassMean& c : kTableII) {
+    EXPECT_NEAR(hamilton_bachman_density(c.mz), 1000.0 * c.density, kHamiltonBachmanDensityError) << c.mz;
+    EXPECT_NEAR(hamilton_bachman_sound_speed(c.mz), 1528.0 * c.speed_ratio, kHamiltonBachmanSoundSpeedError)
+        << c.mz;
+  }
+  // The regressions themselves, by hand at Mz = 2: 1952.5 - 172.52 + 16.56 = 1796.54 m/s and
+  // 2.374 - 0.35 + 0.032 = 2.056 g/cm^3.
+  EXPECT_NEAR(hamilton_bachman_sound_speed(2.0), 1796.54, 1e-9);
+  EXPECT_NEAR(hamilton_bachman_density(2.0), 2056.0, 1e-9);
+  expect_refusal([] { (void)hamilton_bachman_sound_speed(0.5); }, {"mean grain size Mz = 0.5 phi", "[1, 9] phi"});
+  expect_refusal([] { (void)hamilton_bachman_density(9.5); }, {"mean grain size Mz = 9.5 phi", "[1, 9] phi"});
+}
+
+// APL-UW TR 9407 (High-Frequency Ocean Environmental Acoustic Models Handbook, 1994), Table 2
+// (p. IV-6), prints for each sediment class its Mz, sound-speed ratio nu and loss parameter delta;
+// delta is Hamilton's k_p converted with the class's nu and c_1 = 1.528 m/ms (p. IV-9, eq. 4):
+// delta = k_p nu c_1 ln(10) / (40 pi). Rows {Mz, nu, delta} as printed (as transcribed in
+// UnderwaterAcoustics.jl, src/uw_basic.jl); the join rows 4.5 (coarse silt) and 6.0 (sandy mud)
+// take the branch above the join. Tolerance: half a unit of delta's last printed digit, 5e-6, plus
+// the effect of rounding nu to four decimals, below 1e-6.
+TEST(Site, HamiltonAttenuationFactorGivesTheAplUwLossParameters) {
+  struct Row {
+    double mz, nu, delta;
+  };
+  constexpr Row kTable2[] = {{0.5, 1.2503, 0.01638}, {1.5, 1.1782, 0.01624}, {2.5, 1.1073, 0.01602},
+                             {3.5, 1.0568, 0.01875}, {4.0, 1.0364, 0.02019}, {4.5, 1.0179, 0.02158},
+                             {5.0, 0.9999, 0.01261}, {6.0, 0.9873, 0.00386}, {6.5, 0.9861, 0.00306},
+                             {7.0, 0.9849, 0.00242}, {8.0, 0.9824, 0.00163}};
+  for (const Row& r : kTable2) {
+    const double delta = hamilton_attenuation_factor(r.mz) * r.nu * 1.528 * std::log(10.0) / (40.0 * std::numbers::pi);
+    EXPECT_NEAR(delta, r.delta, 6e-6) << "Mz = " << r.mz;
+  }
+  // Branch values by hand: k_p(1) = 0.4801, k_p(3) = 0.5713, k_p(5) = 8.0399 - 12.614 + 5.0245 = 0.4504,
+  // k_p(9) = 0.9431 - 1.8369 + 0.9477 = 0.0539.
+  EXPECT_NEAR(hamilton_attenuation_factor(1.0), 0.4801, 1e-12);
+  EXPECT_NEAR(hamilton_attenuation_factor(3.0), 0.5713, 1e-12);
+  EXPECT_NEAR(hamilton_attenuation_factor(5.0), 0.4504, 1e-12);
+  EXPECT_NEAR(hamilton_attenuation_factor(9.0), 0.0539, 1e-12);
+  expect_refusal([] { (void)hamilton_attenuation_factor(-1.0); }, {"mean grain size Mz = -1 phi", "[0, 9.5] phi"});
+}
+
 // ---- The manual's worked example (docs/models/site-inputs.md) -------------------------------------
 // Medium sand phi = 1.5, porosity 0.38, quartz grains (2650 kg/m^3), sea water 15 deg C, 35 ppt, 1 m
 // below the seafloor, K0 = 0.5, Z = 9. The expected numbers are the closed forms above evaluated by

@@ -12,6 +12,12 @@
 //     for reflection at the sea floor.
 //   F. Gassmann, Vierteljahrsschr. Naturforsch. Ges. Zuerich 96, 1-23 (1951); A. B. Wood, A
 //     Textbook of Sound (Bell, 1930).
+//   M. Abramowitz and I. A. Stegun, Handbook of Mathematical Functions (1964), 9.6.10, 9.7.1,
+//     9.9.1: the Kelvin functions.
+// Equation numbers are quoted where the source could be checked (Abramowitz & Stegun). The texts
+// of Biot, Stoll, Stoll & Kan and Gassmann were not at hand: their formulas are cited by paper and
+// chapter and identified by content, and tests/sediment/independent_reference.py solves Stoll's
+// equations of motion in Stoll's own convention as an independent check (docs/models/poroelastic.md).
 //
 // Sign convention: fields vary as exp(i(k x - omega t)); a wave that decays along +x has
 // Im k > 0, and attenuation = Im k [Np/m], phase speed = omega / Re k. In this convention a lossy
@@ -52,7 +58,8 @@ double magnitude(const Complex<T>& z) {
 
 // ---- Mixtures: Wood and Gassmann ------------------------------------------------------------------
 
-/// Density [kg/m^3] of the saturated sediment: rho = beta rho_f + (1 - beta) rho_s.
+/// Density [kg/m^3] of the saturated sediment, the mass balance of grains and pore fluid
+/// (Stoll 1989, ch. 2): rho = beta rho_f + (1 - beta) rho_s.
 template <typename T>
 T mixture_density(const T& porosity, const T& grain_density, const T& fluid_density) {
   return porosity * fluid_density + (1.0 - porosity) * grain_density;
@@ -232,7 +239,8 @@ struct BiotMedium {
   T pore_size;             ///< a [m], the pore-size parameter of F(kappa)
 };
 
-/// The fluid's effective density [kg/m^3] in relative motion:
+/// The fluid's effective density [kg/m^3] in relative motion (Stoll 1989, ch. 2: Stoll's mass
+/// coefficient m = alpha_inf rho_f / beta and viscous term eta F / k; Biot 1956b: F and kappa):
 ///   m~ = alpha_inf rho_f / beta + i eta F*(kappa) / (k omega),  kappa = a sqrt(omega rho_f / eta).
 /// F* because F is published for exp(+i omega t) (Biot 1956b).
 template <typename T>
@@ -305,7 +313,9 @@ AttenuationSpeed<T> attenuation_and_speed(const Complex<T>& k, double omega) {
   return {k.im, T(omega) / k.re};
 }
 
-/// Frame moduli from a P-wave modulus M_b = K_b + 4/3 mu and the frame's Poisson ratio nu:
+/// Frame moduli from a P-wave modulus M_b = K_b + 4/3 mu and the frame's Poisson ratio nu, the
+/// relations among the isotropic elastic constants (e.g. Mavko, Mukerji & Dvorkin, The Rock Physics
+/// Handbook, its table of isotropic elastic constants):
 ///   K_b = M_b (1 + nu) / (3 (1 - nu)),  mu = M_b (1 - 2 nu) / (2 (1 - nu)).
 template <typename T>
 struct FrameModuli {

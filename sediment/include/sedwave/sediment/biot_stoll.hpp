@@ -5,7 +5,9 @@
 //   K_b (1 + i delta_b / pi),  mu (1 + i delta_s / pi)   in Stoll's exp(+i omega t) convention,
 // i.e. K_b (1 - i delta_b / pi), mu (1 - i delta_s / pi) in this library's exp(-i omega t).
 // The frame loss is frequency independent (a constant Q = pi / delta), the pore-fluid loss is
-// Biot's viscous flow with the correction F(kappa).
+// Biot's viscous flow with the correction F(kappa). Equation numbers of Stoll's texts are not quoted
+// (they were not at hand); tests/sediment/independent_reference.py solves Stoll's equations of
+// motion in his exp(+i omega t) convention and the SAX99 test compares (docs/models/poroelastic.md).
 #include <numbers>
 #include <string>
 #include <vector>

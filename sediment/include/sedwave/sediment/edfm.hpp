@@ -9,6 +9,9 @@
 // (Williams 2001, section II; biot.hpp for m~ and F). Low frequency: rho_eff -> rho, the speed is
 // Wood's and attenuation grows as f^2; high frequency: rho_eff -> the tortuosity-coupled inertia
 // (rho alpha_inf rho_f/beta - rho_f^2) / (alpha_inf rho_f/beta + rho - 2 rho_f), attenuation ~ f^(1/2).
+// The paper's equation numbers are not quoted (its text was not at hand); the forms are identified
+// by content and checked against Stoll's equations with K_b = mu = 0 solved independently
+// (tests/sediment/independent_reference.py; docs/models/poroelastic.md).
 #include <numbers>
 #include <string>
 #include <vector>

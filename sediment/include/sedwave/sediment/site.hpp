@@ -142,4 +142,38 @@ T kozeny_carman_formula(const T& diameter, const T& porosity) {
   return diameter * diameter * porosity * porosity * porosity / (180.0 * solid * solid);
 }
 
+// ---- Empirical reference curves (Hamilton) ----------------------------------------------------------
+// Regressions of measured sediment properties on mean grain size Mz [phi], to compare a model's
+// prediction with what sediments of that grain size typically show. They are reference curves, not
+// models to fit: their scatter (the standard errors below) is the spread of real sediments.
+
+/// Compressional sound speed [m/s] of continental-terrace (shelf and slope) sediments of mean grain
+/// size Mz [phi], E. L. Hamilton and R. T. Bachman, J. Acoust. Soc. Am. 72, 1891-1904 (1982),
+/// Appendix (p. 1902), environment (T): V_p = 1952.5 - 86.26 Mz + 4.14 Mz^2, standard error of
+/// estimate 29 m/s. Laboratory values at 23 deg C and 1 atm. Accepted: Mz in [1, 9] (the paper's
+/// limits for (T)).
+[[nodiscard]] double hamilton_bachman_sound_speed(double mean_grain_size_phi);
+
+/// Saturated bulk density [kg/m^3] of continental-terrace sediments of mean grain size Mz [phi],
+/// Hamilton & Bachman (1982), Appendix (p. 1902), environment (T):
+/// rho = 2.374 - 0.175 Mz + 0.008 Mz^2 [g/cm^3], standard error of estimate 0.11 g/cm^3.
+/// Accepted: Mz in [1, 9].
+[[nodiscard]] double hamilton_bachman_density(double mean_grain_size_phi);
+
+/// Standard errors of estimate printed with the two regressions above.
+inline constexpr double kHamiltonBachmanSoundSpeedError = 29.0;  ///< [m/s]
+inline constexpr double kHamiltonBachmanDensityError = 110.0;    ///< [kg/m^3]
+
+/// Hamilton's attenuation factor k_p [dB m^-1 kHz^-1] (alpha [dB/m] = k_p f [kHz]) of a sediment of
+/// mean grain size Mz [phi], E. L. Hamilton, Geophysics 37, 620-646 (1972), the four regressions of
+/// its Fig. 3 (p. 636):
+///   0 <= Mz < 2.6:    k_p = 0.4556 + 0.0245 Mz
+///   2.6 <= Mz < 4.5:  k_p = 0.1978 + 0.1245 Mz
+///   4.5 <= Mz < 6.0:  k_p = 8.0399 - 2.5228 Mz + 0.20098 Mz^2
+///   6.0 <= Mz <= 9.5: k_p = 0.9431 - 0.2041 Mz + 0.0117 Mz^2
+/// The paper shares each join between two branches (they differ there by < 0.003); a join belongs
+/// here to the branch above it, as in the APL-UW TR 9407 handbook (1994), which reproduces these
+/// regressions. Accepted: Mz in [0, 9.5] (the paper's limits).
+[[nodiscard]] double hamilton_attenuation_factor(double mean_grain_size_phi);
+
 }  // namespace sedwave::sediment
