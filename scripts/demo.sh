@@ -18,7 +18,7 @@ if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then exit "$status"; fi
 
 compare_status=0
 "$BUILD_DIR/bin/sedwave" compare "$SEDWAVE_ROOT/data/field/zhou2009_regression.csv" \
-  --models lattice,edfm,biot-stoll --site "$SEDWAVE_ROOT/data/sites/medium_sand.toml" --steps 1000 \
+  --models lattice,edfm,biot-stoll --site "$SEDWAVE_ROOT/data/sites/medium_sand.toml" \
   --out "$OUT/compare" || compare_status=$?
 if [ "$compare_status" -eq 3 ]; then
   echo "demo: the comparison finished, but a sampler did not converge (see NOT CONVERGED above)"

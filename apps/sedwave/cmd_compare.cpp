@@ -164,21 +164,24 @@ nlohmann::json report(const std::vector<Row>& rows) {
   return j;
 }
 
-/// Each model's band file: predictive_<position>_<spec>.csv (the position keeps two specs of one
+/// Each model's file of one kind: STEM_<position>_<spec>.csv (the position keeps two specs of one
 /// model apart; any character of the spec outside [A-Za-z0-9.-] is made '_').
-std::string band_file(std::size_t position, const std::string& model) {
-  std::string name = "predictive_" + std::to_string(position + 1) + "_";
-  for (char c : model) name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+std::string model_file(const std::string& stem, std::size_t position, const std::string& spec) {
+  std::string name = stem + "_" + std::to_string(position + 1) + "_";
+  for (char c : spec) name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
   return name + ".csv";
 }
 
 std::vector<OutputPath> output_files(const std::filesystem::path& out, const std::vector<std::string>& models) {
   std::vector<OutputPath> outputs;
   for (const char* name : {"compare.json", "predictive_residuals.csv", "predictive.gp", "predictive.png",
-                           "predictive.svg"}) {
+                           "predictive.svg", "corner_best.gp", "corner_best.png", "corner_best.svg"}) {
     outputs.push_back({"--out", out / name});
   }
-  for (std::size_t i = 0; i < models.size(); ++i) outputs.push_back({"--out", out / band_file(i, models[i])});
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    outputs.push_back({"--out", out / model_file("predictive", i, models[i])});
+    outputs.push_back({"--out", out / model_file("samples", i, models[i])});
+  }
   return outputs;
 }
 
@@ -188,18 +191,44 @@ void write_bands(const std::filesystem::path& out, const std::vector<std::string
   std::vector<inversion::PredictiveBand> bands;
   std::vector<inversion::BandFile> files;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    files.push_back({rows[i].model, band_file(i, specs[i])});
+    files.push_back({rows[i].model, model_file("predictive", i, specs[i])});
     inversion::write_predictive_csv(out / files.back().file, rows[i].band, data.water_sound_speed);
     bands.push_back(rows[i].band);
   }
   inversion::write_predictive_residuals_csv(out / "predictive_residuals.csv", rows.front().fit, bands,
                                             data.water_sound_speed);
-  std::printf("posterior bands: %s/predictive_*.csv\n", out.c_str());
+  std::printf("posterior bands: %s/predictive_*.csv, samples: %s/samples_*.csv\n", out.c_str(), out.c_str());
   if (!plot) return;
   std::printf("%s\n", inversion::draw_predictive_plot(out, "predictive", "sedwave compare: posterior bands",
                                                       data.water_sound_speed.has_value(), rows.front().fit, files,
                                                       "predictive_residuals.csv")
                           .message.c_str());
+}
+
+/// The free parameters' names and units of a row, in the order of its samples' columns.
+std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(const Row& row) {
+  std::vector<std::string> names, units;
+  for (int i : row.fit.fitted.free_indices()) {
+    names.push_back(row.fit.fitted.spec[i].name);
+    units.push_back(row.fit.fitted.spec[i].unit);
+  }
+  return {names, units};
+}
+
+/// Each model's posterior draws (the evidence run's beta = 1 ensemble), and the corner plot of the
+/// model ranked first.
+void write_samples(const std::filesystem::path& out, const std::vector<std::string>& specs,
+                   const std::vector<Row>& rows, bool plot) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto [names, units] = sample_columns(rows[i]);
+    inversion::write_samples_csv(out / model_file("samples", i, specs[i]), rows[i].evidence.samples, names, units);
+  }
+  if (!plot) return;
+  const auto best = static_cast<std::size_t>(ranking(rows, false).front());
+  const auto [names, units] = sample_columns(rows[best]);
+  const inversion::CornerFiles files{model_file("samples", best, specs[best]), "corner_best",
+                                     "posterior of " + rows[best].model + " (ranked first)"};
+  std::printf("%s\n", inversion::draw_corner_plot(out, names, units, files).message.c_str());
 }
 
 }  // namespace
@@ -261,6 +290,7 @@ Command add_compare_command(CLI::App& app) {
     io::write_text_atomically(out / "compare.json", [&](std::ostream& s) { s << report(rows).dump(2) << "\n"; });
     std::printf("report: %s/compare.json\n", o->out.c_str());
     write_bands(out, model_names, rows, data, o->plot);
+    write_samples(out, model_names, rows, o->plot);
     const bool all_converged = std::all_of(rows.begin(), rows.end(), [](const Row& r) {
       return r.evidence.converged && r.widened.converged;
     });

@@ -431,13 +431,15 @@ PlotOutcome run_gnuplot(const std::filesystem::path& dir, const std::string& ste
 }
 
 /// The corner plot: the marginal of each parameter on the diagonal (histogram of ln value), each
-/// pair's joint draws below it, all read from posterior_samples.csv.
-std::string corner_body(const std::vector<std::string>& names, const std::vector<std::string>& units) {
+/// pair's joint draws below it, all read from `samples_file` (two header lines, a column per name).
+std::string corner_body(const std::string& title, const std::string& samples_file, const std::vector<std::string>& names,
+                        const std::vector<std::string>& units) {
+  const std::string file = gnuplot_string(samples_file);
   const int k = static_cast<int>(names.size());
   std::ostringstream g;
   g << "set encoding utf8\nset datafile separator ','\nset key off\nset tics font ',8'\n"
-    << "set multiplot layout " << k << "," << k << " title 'posterior: marginals (diagonal) and pairs, ln of SI values'"
-    << " font ',12'\n";
+    << "set multiplot layout " << k << "," << k << " title "
+    << gnuplot_string(title + ": marginals (diagonal) and pairs, ln of SI values") << " font ',12' noenhanced\n";
   for (int row = 0; row < k; ++row) {
     for (int col = 0; col < k; ++col) {
       const std::string x = "(log(column(" + std::to_string(col + 1) + ")))";
@@ -448,12 +450,12 @@ std::string corner_body(const std::vector<std::string>& names, const std::vector
       if (col > row) {
         g << "set multiplot next\n";
       } else if (col == row) {
-        g << "binwidth = 0\nstats 'posterior_samples.csv' skip 2 using " << x << " nooutput\n"
+        g << "binwidth = 0\nstats " << file << " skip 2 using " << x << " nooutput\n"
           << "binwidth = (STATS_max - STATS_min) / 30\n"
-          << "plot 'posterior_samples.csv' skip 2 using (binwidth * floor(" << x << " / binwidth)):(1.0) "
+          << "plot " << file << " skip 2 using (binwidth * floor(" << x << " / binwidth)):(1.0) "
           << "smooth frequency with boxes fs solid 0.5 lc rgb '" << kDataColour << "'\n";
       } else {
-        g << "plot 'posterior_samples.csv' skip 2 every 4 using " << x << ":" << y << " with dots lc rgb '"
+        g << "plot " << file << " skip 2 every 4 using " << x << ":" << y << " with dots lc rgb '"
           << kDataColour << "'\n";
       }
     }
@@ -470,8 +472,8 @@ PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& t
 }
 
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
-                             const std::vector<std::string>& units) {
-  return run_gnuplot(dir, "posterior_corner", "1000,1000", corner_body(names, units));
+                             const std::vector<std::string>& units, const CornerFiles& files) {
+  return run_gnuplot(dir, files.stem, "1000,1000", corner_body(files.title, files.samples, names, units));
 }
 
 PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,

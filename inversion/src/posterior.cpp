@@ -304,17 +304,24 @@ nlohmann::json posterior_report(const PosteriorResult& p) {
   return j;
 }
 
-void write_posterior_samples_csv(const std::filesystem::path& path, const PosteriorResult& p) {
+void write_samples_csv(const std::filesystem::path& path, const Eigen::MatrixXd& samples,
+                       const std::vector<std::string>& names, const std::vector<std::string>& units) {
   io::write_text_atomically(path, [&](std::ostream& out) {
-    out << "# sedwave posterior samples: pooled kept draws of every walker (burn-in dropped), SI units\n";
-    for (std::size_t j = 0; j < p.sample_names.size(); ++j) out << (j ? "," : "") << p.sample_names[j];
+    out << "# sedwave posterior samples: pooled kept draws of every walker (burn-in dropped), SI units:";
+    for (std::size_t j = 0; j < names.size(); ++j) out << ' ' << names[j] << " [" << units[j] << "]";
+    out << '\n';
+    for (std::size_t j = 0; j < names.size(); ++j) out << (j ? "," : "") << names[j];
     out << '\n';
     out.precision(9);
-    for (Eigen::Index r = 0; r < p.samples.rows(); ++r) {
-      for (Eigen::Index c = 0; c < p.samples.cols(); ++c) out << (c ? "," : "") << p.samples(r, c);
+    for (Eigen::Index r = 0; r < samples.rows(); ++r) {
+      for (Eigen::Index c = 0; c < samples.cols(); ++c) out << (c ? "," : "") << samples(r, c);
       out << '\n';
     }
   });
+}
+
+void write_posterior_samples_csv(const std::filesystem::path& path, const PosteriorResult& p) {
+  write_samples_csv(path, p.samples, p.sample_names, p.sample_units);
 }
 
 void write_posterior_samples_hdf5(const std::filesystem::path& path, const PosteriorResult& p) {

@@ -23,11 +23,19 @@ struct PlotOutcome {
 PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
                           const FitResult& result);
 
-/// The posterior's corner plot from DIR/posterior_samples.csv (posterior.hpp; columns `names` with
-/// `units`): each parameter's marginal on the diagonal, each pair's draws below; writes
-/// DIR/posterior_corner.gp, .png and .svg. Never throws for a missing or failing gnuplot.
+/// Where a corner plot reads its draws and what it writes: DIR/SAMPLES (write_samples_csv) and
+/// DIR/STEM.gp, .png, .svg.
+struct CornerFiles {
+  std::string samples = "posterior_samples.csv";
+  std::string stem = "posterior_corner";
+  std::string title = "posterior";
+};
+
+/// The posterior's corner plot (columns `names` with `units` of the samples file): each
+/// parameter's marginal on the diagonal, each pair's draws below. Never throws for a missing or
+/// failing gnuplot.
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
-                             const std::vector<std::string>& units);
+                             const std::vector<std::string>& units, const CornerFiles& files = {});
 
 /// One model's posterior band file (predictive.hpp, write_predictive_csv) and its label.
 struct BandFile {

@@ -111,6 +111,9 @@ struct ModelEvidence {
 /// per free parameter, SI units in the header).
 [[nodiscard]] nlohmann::json posterior_report(const PosteriorResult& posterior);
 void write_posterior_samples_csv(const std::filesystem::path& path, const PosteriorResult& posterior);
+/// The same for any draws x parameters matrix with its column names and units.
+void write_samples_csv(const std::filesystem::path& path, const Eigen::MatrixXd& samples,
+                       const std::vector<std::string>& names, const std::vector<std::string>& units);
 /// The same samples as HDF5: per free parameter a dataset of shape {walkers, kept steps} with its
 /// unit, and root attributes that say what the file holds (sampler, priors, convergence).
 void write_posterior_samples_hdf5(const std::filesystem::path& path, const PosteriorResult& posterior);
