@@ -45,16 +45,22 @@ TEST(Posterior, MatchesTheLinearisedGaussianWhereTheDataDetermineTheParameters) 
   }
 }
 
+/// A sand's contact: kappa 2e6 N/m, d 0.3 mm, gamma 10 kg/s (f* ~ 32 kHz).
+FitParameters sand_contact() {
+  FitParameters p;
+  p.spec[kKappa].value = 2e6;
+  p.spec[kDiameter].value = 3e-4;
+  p.spec[kDamping].value = 10.0;
+  return p;
+}
+
 // The continuum chain at frequencies far below the crossover sees kappa*d^-1 ... only through c0 and
 // tau: d is not informed (its direction kappa*d*gamma is unseen). With a log-normal prior on d, the
 // posterior of d is that prior, and the report says so.
 TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
   const forward::ContinuumModel continuum;
   const auto frame = grain_contact_model(continuum, DampingForm::Gamma);
-  FitParameters truth;
-  truth.spec[kKappa].value = 2e6;
-  truth.spec[kDiameter].value = 3e-4;
-  truth.spec[kDamping].value = 10.0;
+  FitParameters truth = sand_contact();
   const ObservationSet data = synthetic_observations(*frame, truth, {100.0, 3e4, 15, 0.05, 0.005, 5});
   FitParameters start = truth;
   start.spec[kKappa].lower = 1e4;
@@ -87,10 +93,7 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
 TEST(PredictiveBand, QuantilesAreTheModelAtTheParameterQuantilesForAMonotoneModel) {
   const forward::ContinuumModel continuum;
   const auto frame = grain_contact_model(continuum, DampingForm::Gamma);
-  FitParameters truth;
-  truth.spec[kKappa].value = 2e6;
-  truth.spec[kDiameter].value = 3e-4;
-  truth.spec[kDamping].value = 10.0;
+  FitParameters truth = sand_contact();
   truth.set_free_from_list("kappa");
   const ObservationSet data = synthetic_observations(*frame, truth, {100.0, 3e4, 8, 0.05, 0.005, 5});
   const FitResult best = fit(data, *frame, truth, {.method = FitMethod::Ceres, .profile_likelihood = false});
