@@ -27,9 +27,12 @@ result porosity_median  "$(json posterior/fit.json "$P['parameters']['porosity']
 result permeability_median_m2 "$(json posterior/fit.json "$P['parameters']['permeability']['median']")"
 result chi2_per_dof     "$(json posterior/fit.json "['reduced_chi2']")"
 check "the sampler converged (R-hat, effective samples)" "$(json posterior/fit.json "$P['converged']") == True"
-# The data pull the porosity above the prior's 0.40 (the sound speed asks for a lighter mixture),
-# and they say nothing about delta_b: its posterior is its prior, and the report says so.
-check "delta_b is prior-dominated" "$(json posterior/fit.json "$P['parameters']['delta_b']['prior_dominated']") == True"
+# The data pull the porosity above the prior's 0.40 (the sound speed asks for a lighter mixture).
+# The frame's loss delta_b is bounded only from above: its 95 % interval spans decades, down to
+# where the prior ends, and the profile of the fit above calls it NOT DETERMINED.
+DB="$P['parameters']['delta_b']['credible_95']"
+check "delta_b: 95 % interval below 0.5 and spanning more than 3 decades" \
+      "$(json posterior/fit.json "$DB[1]") < 0.5 and $(json posterior/fit.json "$DB[0]") < 1e-3 * $(json posterior/fit.json "$DB[1]")"
 check "porosity is informed by the data" "$(json posterior/fit.json "$P['parameters']['porosity']['prior_dominated']") == False"
 head -3 posterior/posterior_samples.csv
 
