@@ -11,8 +11,8 @@
 #   examples/02-plan-a-measurement/run.sh [SEDWAVE [OUT]]
 source "$(dirname "$0")/../common.sh"
 
-# The truth: kappa = 9e5 N/m, d = 0.3 mm, gamma = 5 kg/s (quartz grains, rho_s = 2650 kg/m^3).
-KAPPA=9e5 D=3e-4 GAMMA=5
+# The truth: kappa = 7e5 N/m, d = 0.3 mm, gamma = 5 kg/s (quartz grains, rho_s = 2650 kg/m^3).
+KAPPA=7e5 D=3e-4 GAMMA=5
 
 step "Synthesize the planned data: 15 frequencies, 10 % attenuation and 1 % speed errors"
 # --alpha-noise / --speed-noise: relative 1-sigma noise, also written as each point's sigma.
