@@ -41,7 +41,7 @@ step "Rank three models by their evidence"
 # estimate ln Z, the log evidence; the differences rank the models. The table also gives chi2/nu,
 # AIC, BIC, a posterior-predictive p-value and the ranking with every prior widened 10 x.
 run 0 "$SEDWAVE" compare "$FIELD" --models biot-stoll,edfm,lattice --site "$SITE" \
-    --temperatures 16 --steps 400 --out compare
+    --temperatures 16 --steps 400 --no-plot --out compare
 # compare.json holds one entry per model: chi2, AIC, BIC, and the evidence with its uncertainty.
 python3 - <<'PY' | tee -a "$OUT/results.txt"
 import json
