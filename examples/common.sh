@@ -4,7 +4,7 @@
 #   run.sh [SEDWAVE [OUT]]     or the environment variables SEDWAVE and OUT
 #
 # SEDWAVE: the sedwave binary (default: build/bin/sedwave of this checkout)
-# OUT:     a directory for everything the example writes (default: ./example-out/NN-name);
+# OUT:     a directory for everything the example writes (default: $TMPDIR/sedwave-examples/NN-name);
 #          it is emptied first, and nothing is written anywhere else.
 set -euo pipefail
 
@@ -14,10 +14,10 @@ ROOT=$(cd "$EXAMPLE_DIR/../.." && pwd)                     # the repository: dat
 DATA=$ROOT/data
 
 SEDWAVE=${1:-${SEDWAVE:-$ROOT/build/bin/sedwave}}
-OUT=${2:-${OUT:-$PWD/example-out/$EXAMPLE}}
+OUT=${2:-${OUT:-${TMPDIR:-/tmp}/sedwave-examples/$EXAMPLE}}
 [ -x "$SEDWAVE" ] || { echo "$EXAMPLE: no sedwave binary at $SEDWAVE (pass it as the first argument)" >&2; exit 2; }
 SEDWAVE=$(cd "$(dirname "$SEDWAVE")" && pwd)/$(basename "$SEDWAVE")
-case "$OUT" in "$ROOT"/examples/*|"$ROOT"/data/*) echo "$EXAMPLE: refusing to write into the source tree: $OUT" >&2; exit 2;; esac
+case "$(realpath -m "$OUT")/" in "$ROOT"/examples/*|"$ROOT"/data/*|"$ROOT"/docs/*) echo "$EXAMPLE: refusing to write into the source tree: $OUT" >&2; exit 2;; esac
 rm -rf "$OUT" && mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 cd "$OUT"
