@@ -222,7 +222,12 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
 }
 
 Theta with_values(FitParameters& parameters, const Theta& theta) {
-  for (int i = 0; i < parameters.size(); ++i) parameters.spec[i].value = std::exp(theta[i]);
+  for (int i = 0; i < parameters.size(); ++i) {
+    ParameterSpec& spec = parameters.spec[i];
+    // exp(ln(bound)) may round to just outside the bound; a solution on a bound stays on it, so
+    // that the fitted parameters are valid where a posterior or a profile starts from them.
+    spec.value = std::clamp(std::exp(theta[i]), spec.lower, spec.upper);
+  }
   return theta;
 }
 

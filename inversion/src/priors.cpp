@@ -35,7 +35,9 @@ double Prior::log_density_theta(double theta) const {
   const double value = std::exp(theta);
   const double lo = std::max(lower, kind == PriorKind::Uniform || kind == PriorKind::LogUniform ? a : lower);
   const double hi = std::min(upper, kind == PriorKind::Uniform || kind == PriorKind::LogUniform ? b : upper);
-  if (!(value >= lo && value <= hi)) return kMinusInfinity;
+  // The support is tested in theta, where the fit's values live: exp(ln(bound)) may round to just
+  // outside the bound, and a best fit on its bound must stay inside the prior.
+  if (!(theta >= std::log(lo) && theta <= std::log(hi))) return kMinusInfinity;
   switch (kind) {
     case PriorKind::Uniform: return theta - std::log(hi - lo);  // p(v) = 1/(hi-lo), times v
     case PriorKind::LogUniform: return -std::log(std::log(hi / lo));

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "sedwave/forward/theory/continuum.hpp"
+#include "sedwave/forward/theory/lattice.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/predictive.hpp"
@@ -84,6 +85,28 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
       EXPECT_LT(std::log(c.upper_68 / c.lower_68), 0.2) << c.name;
     }
   }
+}
+
+// A fit that ends on a search bound (here d, which these data do not see) is a valid start for the
+// posterior: the value on the bound lies inside the bounds and inside the default prior.
+TEST(Posterior, StartsFromAFitOnASearchBound) {
+  const forward::LatticeModel lattice;
+  const auto frame = grain_contact_model(lattice, DampingForm::Gamma);
+  FitParameters truth = sand_contact();
+  truth.spec[kKappa].value = 9e5;
+  truth.spec[kDamping].value = 5.0;
+  const ObservationSet data = synthetic_observations(*frame, truth, {1e4, 1e6, 15, 0.1, 0.01, 2});
+  FitParameters start = truth;
+  start.spec[kKappa].value = 1e6;
+  start.spec[kDamping].value = 1.0;
+  start.spec[kDiameter].lower = 1e-5;
+  start.spec[kDiameter].upper = 1e-2;
+  const FitOptions options{.method = FitMethod::Global, .profile_likelihood = false};
+  const FitResult best = fit(data, *frame, start, options);
+  ASSERT_TRUE(best.parameters[kDiameter].at_bound) << "the premise: d ends on a bound";
+  PosteriorResult p;
+  EXPECT_NO_THROW(p = sample_posterior(data, *frame, best, make_priors(best.fitted, {}), options, {.steps = 200}));
+  EXPECT_GT(p.samples.rows(), 0);
 }
 
 // A quantile commutes with a monotone map: where the model's speed and attenuation move one way with
