@@ -174,11 +174,16 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
 
   for (const detail::Combination& info : combinations) {
     const Differentiated log_q = info.log_value(s, theta);
-    const Determination d =
-        determine(detail::free_part(log_q.v, s.free), analysis, result.covariance, options.determined_log_sigma);
+    const Eigen::VectorXd free_gradient = detail::free_part(log_q.v, s.free);
+    const Determination d = determine(free_gradient, analysis, result.covariance, options.determined_log_sigma);
     const double value = std::exp(log_q.a);
     CombinationResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
-    if (options.profile_likelihood && info.name == "f_star") {
+    if (free_gradient.isZero(0.0)) {
+      // Made of fixed parameters only: known exactly, and checked for plausibility like a fitted value.
+      c.determined = true;
+      c.log_sigma = c.sigma = 0.0;
+      c.profile_lower = c.profile_upper = value;
+    } else if (options.profile_likelihood && info.name == "f_star") {
       // f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just before).
       const CombinationResult& tau = result.combinations.back();
       const double k = 1.0 / (2.0 * std::numbers::pi);

@@ -102,3 +102,9 @@ sedwave_cli_case(compare.writes_each_models_band 0 "^posterior bands: .*/predict
   compare ${OBS} --models edfm,grain-shearing ${COMPARE_FAST} --no-plot --out ${CLI_OUT}/compare_bands)
 sedwave_cli_case(compare.threads_must_be_a_count 2 "--threads: Value -1 not in range"
   compare ${OBS} --models edfm --threads -1 --out ${CLI_OUT}/compare_never)
+# A combination made of fixed parameters only (c0 with d from --phi and kappa from --depth) is known
+# exactly, and checked for plausibility like a fitted value.
+sedwave_cli_case(invert.fixed_combination_is_checked 3 "! c0 = 409.3 is below the physical range"
+  invert --digitized-file ${PROJECT_SOURCE_DIR}/data/digitized/example_webplotdigitizer.csv
+  --digitized attenuation:kHz:dB/m:0.1 --water-speed 1500 --phi 2.3 --depth 1 --fit gamma --no-plot
+  --out ${CLI_OUT}/fixed_combination)
