@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -38,10 +39,14 @@ PriorQuantiles prior_quantiles(const Prior& p) {
   return {at(0.16), at(0.5), at(0.84)};
 }
 
+/// Halvings of a start walker's distance to the best fit before it is given up.
+constexpr int kStartHalvings = 40;
+
 /// The walkers' start: a ball around the best fit, per parameter a tenth of its linearised sigma
 /// where the fit determined it, else a tenth of the prior's 68 % width, kept inside the bounds.
 std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best, const std::vector<Prior>& priors,
-                                           const Theta& theta, const sampling::EnsembleOptions& options) {
+                                           const Theta& theta, const sampling::EnsembleOptions& options,
+                                           const std::function<bool(const Eigen::VectorXd&)>& inside) {
   const auto k = static_cast<Eigen::Index>(s.free.size());
   Eigen::VectorXd centre(k), spread(k);
   for (Eigen::Index j = 0; j < k; ++j) {
@@ -58,6 +63,13 @@ std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best
       const int i = s.free[static_cast<std::size_t>(j)];
       const double margin = 1e-9 * (detail::log_upper(s, i) - detail::log_lower(s, i));
       w(j) = std::clamp(w(j), detail::log_lower(s, i) + margin, detail::log_upper(s, i) - margin);
+    }
+    // Where the model has no value (a table's edge) or the prior none, pull the walker towards the
+    // best fit, which has both, until it has them too.
+    for (int halvings = 0; !inside(w) && halvings < kStartHalvings; ++halvings) w = centre + 0.5 * (w - centre);
+    if (!inside(w)) {
+      throw std::invalid_argument("the posterior has no density around the best fit (the model does not answer "
+                                  "there, or the prior is zero): fix or bound the parameters that leave its range");
     }
   }
   return walkers;
@@ -139,7 +151,9 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   tempering.ensemble.threads = options.threads;
   // Hot temperatures roam the prior: start them in the same small ball; the swaps spread them.
   const sampling::TemperedRun run =
-      sampling::sample_tempered(density, start_walkers(s, best, priors, theta, tempering.ensemble), tempering);
+      sampling::sample_tempered(density, start_walkers(s, best, priors, theta, tempering.ensemble, [&](const Eigen::VectorXd& x) {
+        return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
+      }), tempering);
   const sampling::Evidence evidence = sampling::thermodynamic_evidence(run);
   const sampling::Convergence convergence = sampling::assess_convergence(sampling::diagnose(run.levels[0]));
   // Posterior-predictive p of chi^2: replicated data at a draw theta have chi^2 ~ chi^2_n exactly
@@ -214,7 +228,9 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   ensemble.seed = options.seed;
   ensemble.threads = options.threads;
   const sampling::EnsembleRun run =
-      sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble), ensemble);
+      sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble, [&](const Eigen::VectorXd& x) {
+        return std::isfinite(log_posterior(x));
+      }), ensemble);
   const sampling::Diagnostics diagnostics = sampling::diagnose(run);
   const sampling::Convergence convergence = sampling::assess_convergence(diagnostics);
 

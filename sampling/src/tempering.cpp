@@ -1,5 +1,6 @@
 #include "sedwave/sampling/tempering.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -96,13 +97,18 @@ struct LadderPoint {
 // Trapezoid rule with the Euler-Maclaurin end correction built from the exact derivatives
 // (Friel, Hurn & Wyse 2014, Stat. Comput. 24, 709, eq. 9): per segment
 // (b_i - b_j) (f_i + f_j) / 2 - (b_i - b_j)^2 (f'_i - f'_j) / 12, error O(h^4) instead of O(h^2).
-// Points in descending beta, ending at beta = 0.
+// Points in descending beta, ending at beta = 0. <ln L>_beta never decreases with beta (its
+// derivative is a variance), so a segment's integral lies between its width times the two end
+// values; the correction is held inside those limits, which it leaves only where the variances are
+// poorly sampled (an unconverged hot ensemble) and would otherwise dominate the sum.
 double corrected_trapezoid(const std::vector<LadderPoint>& points) {
   double integral = 0.0;
   for (std::size_t i = 1; i < points.size(); ++i) {
     const double width = points[i - 1].beta - points[i].beta;
-    integral += 0.5 * width * (points[i - 1].mean + points[i].mean) -
-                width * width / 12.0 * (points[i - 1].variance - points[i].variance);
+    const double segment = 0.5 * width * (points[i - 1].mean + points[i].mean) -
+                           width * width / 12.0 * (points[i - 1].variance - points[i].variance);
+    const auto [low, high] = std::minmax(points[i].mean, points[i - 1].mean);
+    integral += std::clamp(segment, width * low, width * high);
   }
   return integral;
 }

@@ -125,6 +125,24 @@ TEST(Tempering, ThreadsDoNotChangeTheRun) {
   EXPECT_EQ(thermodynamic_evidence(serial).log_evidence, thermodynamic_evidence(threaded).log_evidence);
 }
 
+// <ln L>_beta never decreases with beta, so ln Z = integral_0^1 <ln L>_beta d beta can never exceed
+// <ln L> at beta = 1. A hot level whose ln L scatters wildly (an ensemble far from converged) must
+// not let the end correction of the trapezoid rule (its variance term) push ln Z above that.
+TEST(Tempering, EvidenceStaysBelowTheColdMeanWhateverTheHotVariances) {
+  TemperedRun run;
+  run.betas = {1.0, 0.1};
+  run.log_likelihood.resize(2);
+  for (int walker = 0; walker < 8; ++walker) {
+    run.log_likelihood[0].push_back(Eigen::VectorXd::Constant(100, -1.0));
+    Eigen::VectorXd scattered(100);
+    for (Eigen::Index k = 0; k < scattered.size(); ++k) scattered(k) = (k + walker) % 2 == 0 ? -1001.0 : 999.0;
+    run.log_likelihood[1].push_back(scattered);
+  }
+  const Evidence evidence = thermodynamic_evidence(run);
+  EXPECT_LE(evidence.log_evidence, -1.0 + 1e-12);
+  EXPECT_GE(evidence.log_evidence, -1.0 - 1e-12);  // both levels have mean -1: so has every beta
+}
+
 TEST(Tempering, RefusesABadLadder) {
   const GaussianProblem problem;
   TemperingOptions options;
