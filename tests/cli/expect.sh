@@ -17,7 +17,9 @@ code=$?
 printf '%s\n' "$output" | tail -n 30
 if [ "$code" -eq 124 ]; then echo "expect.sh: FAILED: the command hung (killed after 120 s)"; exit 1; fi
 if [ "$code" -ne "$want_exit" ]; then echo "expect.sh: FAILED: exit code $code, expected $want_exit"; exit 1; fi
-if ! printf '%s\n' "$output" | grep -Eiq -- "$regex"; then
+# A here-string, not a pipe: grep -q stops reading at the first match, and under pipefail the writer
+# of a pipe killed by SIGPIPE would turn a match into a failure.
+if ! grep -Eiq -- "$regex" <<< "$output"; then
   echo "expect.sh: FAILED: output does not match /$regex/"; exit 1
 fi
 echo "expect.sh: ok (exit $code, message matches)"
