@@ -117,7 +117,8 @@ Command add_table_command(CLI::App& app) {
     const table::TableGridFile grid = table::read_grid_file(o->grid_file);
     experiment::ChannelScene scene = experiment::read_scene(grid.scene_path);
     if (!o->engine.empty()) experiment::use_table_engine(scene, table_engine(o->engine));
-    const experiment::TableEngine engine = o->engine.empty() ? experiment::table_engine_of(scene) : table_engine(o->engine);
+    const experiment::TableEngine engine =
+        o->engine.empty() ? experiment::table_engine_of(scene) : table_engine(o->engine);
     check_table_options(*o, grid, scene, engine, mpi);
     check_table_paths(*o, grid, scene);
     const bool talk = mpi.rank() == 0 && !o->quiet;

@@ -36,7 +36,9 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   if (contact.normal != dem::NormalLawKind::hooke) {
     double network[2] = {0.0, 0.0};  // mean stiffness, mean dashpot (from the rank holding the grains)
     int holds = packing.grains.empty() ? 0 : 1;
-    if (parallel::sum(comm, holds) != 1) throw std::invalid_argument("packing units of Hertz contacts: the grains must be on one rank");
+    if (parallel::sum(comm, holds) != 1) {
+      throw std::invalid_argument("packing units of Hertz contacts: the grains must be on one rank");
+    }
     if (!packing.grains.empty()) {
       const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
       network[0] = n.mean_stiffness;

@@ -170,8 +170,9 @@ std::vector<ModelDiagnostic> TableModel::diagnostics() const {
   const std::uint64_t fallbacks = fallback_count(), extrapolated = extrapolated_count();
   return {
       {"table_fallback_evaluations", fallbacks,
-       fallbacks > 0 ? std::to_string(fallbacks) + " model evaluations fell outside the table and used the 1D lattice theory"
-                     : std::string()},
+       fallbacks > 0
+           ? std::to_string(fallbacks) + " model evaluations fell outside the table and used the 1D lattice theory"
+           : std::string()},
       {"table_long_wavelength_evaluations", extrapolated,
        extrapolated > 0 ? std::to_string(extrapolated) + " model evaluations lay below the table's resolved omega_hat "
                                                          "and used its long-wavelength limit (docs/tables.md)"

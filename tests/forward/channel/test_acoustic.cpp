@@ -36,7 +36,8 @@ class SmallChannel : public ::testing::Test {
     g.seed = 7;
     PreparationSettings p;
     p.pressure = 10.0;
-    packing_ = std::make_unique<PreparedChannel>(prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke(726.0), g.width, p, forward::linear::newton_stage()));
+    packing_ = std::make_unique<PreparedChannel>(prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke(726.0), g.width, p,
+        forward::linear::newton_stage()));
   }
   static void TearDownTestSuite() { packing_.reset(); }
   static std::unique_ptr<PreparedChannel> packing_;

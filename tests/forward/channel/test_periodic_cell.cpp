@@ -43,7 +43,8 @@ PreparationSettings cell_preparation() {
 const PreparedChannel& prepared_cell() {
   static const PreparedChannel cell = [] {
     const ChannelGeometry g = cell_geometry(300);
-    return prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, cell_preparation(), forward::linear::newton_stage());
+    return prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, cell_preparation(),
+        forward::linear::newton_stage());
   }();
   return cell;
 }
@@ -151,7 +152,8 @@ TEST(PeriodicCell, HasNoWallToLower) {
   const ChannelGeometry g = cell_geometry(100);
   PreparationSettings p = cell_preparation();
   p.compression = Compression::wall;
-  EXPECT_THROW((void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, p, forward::linear::newton_stage()),
+  EXPECT_THROW((void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, p,
+      forward::linear::newton_stage()),
                std::invalid_argument);
 }
 

@@ -57,7 +57,8 @@ TEST(Preparation, ReachesMechanicalEquilibriumAtThePrescribedPressure) {
   PreparationSettings p;
   p.pressure = 10.0;
   p.log = &std::cout;
-  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p, forward::linear::newton_stage());
+  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p,
+      forward::linear::newton_stage());
   std::cout << describe(c.report) << "\n";
   EXPECT_TRUE(c.report.converged);
   EXPECT_LT(c.report.residual_ratio, 1e-9);
@@ -84,7 +85,8 @@ TEST(Preparation, AffineCompressionTakesStepsIndependentOfTheColumnLength) {
   std::vector<PreparedChannel> columns;
   for (const int n : {150, 600}) {
     g.n_grains = n;
-    columns.push_back(prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p, forward::linear::newton_stage()));
+    columns.push_back(prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p,
+        forward::linear::newton_stage()));
     const PreparationReport& r = columns.back().report;
     std::cout << n << " grains:\n" << describe(r) << "\n";
     EXPECT_TRUE(r.converged);
@@ -114,7 +116,8 @@ TEST(Preparation, WallIsCorrectedAgainWhenNewtonMovesThePressure) {
   p.newton_start_tolerance = 0.1;  // FIRE hands over far from equilibrium: Newton has more to move
   std::ostringstream log;
   p.log = &log;
-  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p, forward::linear::newton_stage());
+  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p,
+      forward::linear::newton_stage());
   std::cout << log.str() << describe(c.report) << "\n";
   EXPECT_TRUE(c.report.converged);
   EXPECT_LT(c.report.residual_ratio, 1e-9);
@@ -147,7 +150,8 @@ TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
   }
   for (const Compression protocol : {Compression::pressure, Compression::affine}) {
     p.compression = protocol;
-    const PreparedChannel c2 = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p, forward::linear::newton_stage());
+    const PreparedChannel c2 = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p,
+        forward::linear::newton_stage());
     std::cout << describe(c2.report) << "\n";
     EXPECT_TRUE(c2.report.converged);
     EXPECT_NEAR(c2.report.pressure / 10.0, 1.0, 1e-2);

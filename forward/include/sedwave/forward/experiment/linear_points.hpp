@@ -38,7 +38,8 @@ namespace sedwave::forward::experiment {
 /// Point function of member k alone: ok with the member's own fit wherever it is finite (no
 /// significance test: that is the merged ensemble's), unresolved with the reason where the member
 /// cannot measure the point.
-[[nodiscard]] table::PointFunction member_point_function(const linear::LinearChannel& member, const channel::DriveSettings& drive);
+[[nodiscard]] table::PointFunction member_point_function(const linear::LinearChannel& member,
+                                                         const channel::DriveSettings& drive);
 
 /// Merges member tables (member_engine_tag) of one scene and grid into the ensemble's table:
 /// per point the mean over the members and its standard error (a single member keeps its own

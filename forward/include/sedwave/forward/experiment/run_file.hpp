@@ -12,7 +12,8 @@
 namespace sedwave::forward::experiment {
 
 /// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1).
-void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing, const std::string& scene_text);
+void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing,
+                   const std::string& scene_text);
 /// Writes the packing as a LAMMPS data file (atom_style sphere): type 1 flow grains, 2 the lower
 /// (driven) wall, 3 the upper wall.
 void write_packing_lammps_data(const std::filesystem::path& path, const channel::PreparedChannel& packing);
