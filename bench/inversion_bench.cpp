@@ -24,7 +24,7 @@
 #include <string>
 
 #include "sedwave/forward/dispersion.hpp"
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/parameters.hpp"

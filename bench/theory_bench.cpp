@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "sedwave/forward/dispersion.hpp"
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 

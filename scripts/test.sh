@@ -13,12 +13,12 @@ if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
   # engine, and every command-line case (tests/cli: bad input of every kind, restarts, outputs)
   # through a sanitized `sedwave`. Open MPI's own allocations are not ours to fix: no leak check.
   SAN_DIR="${BUILD_DIR}-sanitize"
-  SAN_TARGETS=(test_theory test_sediment test_inversion test_channel_table test_dem sedwave)
+  SAN_TARGETS=(test_theory test_io test_sediment test_inversion test_channel_table test_dem sedwave)
   cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEDWAVE_SANITIZE=ON \
     -DSEDWAVE_WERROR=ON -DSEDWAVE_BUILD_BENCH=OFF $(sedwave_compiler_cache) >/dev/null
   cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
   export ASAN_OPTIONS=detect_leaks=0
-  for t in tests/test_theory tests/test_sediment tests/test_inversion tests/test_channel_table tests/forward/dem/test_dem; do
+  for t in tests/test_theory tests/test_io tests/test_sediment tests/test_inversion tests/test_channel_table tests/forward/dem/test_dem; do
     echo "== $t under AddressSanitizer + UBSan"
     "$SAN_DIR/$t" --gtest_brief=1
   done

@@ -14,13 +14,15 @@
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "output_paths.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
-#include "sedwave/forward/channel/scene.hpp"
-#include "sedwave/forward/linear/run_file.hpp"
-#include "scene_packings.hpp"
+#include "sedwave/forward/experiment/linear_run_file.hpp"
+#include "sedwave/forward/experiment/packings.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
 
 namespace sedwave::app {
 namespace {
+
+namespace experiment = forward::experiment;
 
 struct ForwardOptions {
   std::string scene;
@@ -34,26 +36,22 @@ struct ForwardOptions {
 
 /// The linear engine: one packing per ensemble member (prepared, or read with --packing), solved on
 /// rank 0 (the solve is serial and takes seconds; preparation uses every rank).
-int run_linear(const ForwardOptions& o, const forward::channel::ChannelScene& scene, const MpiSession& mpi, bool talk) {
-  using namespace forward::channel;
+int run_linear(const ForwardOptions& o, const experiment::ChannelScene& scene, const MpiSession& mpi, bool talk) {
   std::vector<forward::linear::LinearChannel> members;
-  std::vector<PreparationReport> reports;
+  std::vector<forward::channel::PreparationReport> reports;
   for (int k = 0; k < scene.linear.ensemble; ++k) {
-    PreparedChannel packing;
-    if (!o.packing_in.empty()) {
-      if (mpi.rank() == 0) packing = read_packing(member_path(o.packing_in, k));
-    } else {
-      packing = prepare_member(scene, k, mpi.rank(), talk ? &std::cout : nullptr);
-      if (talk) std::cout << "member " << k << ":\n" << describe(packing.report) << "\n";
-      if (mpi.rank() == 0 && !o.packing_out.empty()) write_packing(member_path(o.packing_out, k), packing, scene.text);
+    const experiment::ScenePacking packing =
+        experiment::scene_packing(scene, k, {o.packing_in, o.packing_out}, talk ? &std::cout : nullptr);
+    if (talk && packing.prepared) {
+      std::cout << "member " << k << ":\n" << forward::channel::describe(packing.channel.report) << "\n";
     }
     if (mpi.rank() != 0) continue;
-    reports.push_back(packing.report);
-    members.emplace_back(packing, scene.contact, scene.linear);
+    reports.push_back(packing.channel.report);
+    members.emplace_back(packing.channel, scene.contact, scene.linear);
   }
   if (mpi.rank() != 0) return 0;
   const forward::linear::EnsembleResult e = forward::linear::respond(members, scene.drive);
-  forward::linear::write_linear_run_file(o.out, scene, reports, e);
+  experiment::write_linear_run_file(o.out, scene, reports, e);
   if (talk) {
     std::printf("linear engine, %zu packing(s): omega_hat %.6g  gamma_hat %.6g\n", members.size(),
                 scene.drive.omega_hat, scene.drive.gamma_hat);
@@ -132,15 +130,15 @@ void print_single_grains(const forward::channel::SingleGrainProbes& p, bool sinu
 }
 
 /// Every file the run writes and reads (ensembles: one packing per member), checked before any work.
-void check_forward_paths(const ForwardOptions& o, const forward::channel::ChannelScene& scene) {
-  const int members = scene.engine == forward::channel::EngineKind::linear ? scene.linear.ensemble : 1;
+void check_forward_paths(const ForwardOptions& o, const experiment::ChannelScene& scene) {
+  const int members = scene.engine == experiment::EngineKind::linear ? scene.linear.ensemble : 1;
   std::vector<OutputPath> outputs{{"--out", o.out}};
   std::vector<std::filesystem::path> inputs{o.scene};
   if (scene.import_lammps_data) inputs.push_back(*scene.import_lammps_data);
   for (int k = 0; k < members; ++k) {
-    if (!o.packing_in.empty()) inputs.emplace_back(member_path(o.packing_in, k));
+    if (!o.packing_in.empty()) inputs.emplace_back(experiment::member_path(o.packing_in, k));
     if (o.packing_out.empty()) continue;
-    std::filesystem::path packing = member_path(o.packing_out, k);
+    std::filesystem::path packing = experiment::member_path(o.packing_out, k);
     outputs.push_back({"--packing-out", packing});
     outputs.push_back({"--packing-out", packing.replace_extension(".data")});  // its LAMMPS twin
   }
@@ -150,7 +148,7 @@ void check_forward_paths(const ForwardOptions& o, const forward::channel::Channe
 int run_forward(const ForwardOptions& o) {
   using namespace forward::channel;
   const MpiSession mpi;
-  ChannelScene scene = read_scene(o.scene);
+  experiment::ChannelScene scene = experiment::read_scene(o.scene);
   check_forward_paths(o, scene);
   if (o.omega_hat && scene.drive.pulse) {
     throw std::invalid_argument(o.scene + ": --omega-hat sets a sinusoid's frequency; this scene drives a pulse "
@@ -160,22 +158,17 @@ int run_forward(const ForwardOptions& o) {
   if (o.gamma_hat) scene.drive.gamma_hat = *o.gamma_hat;
   const bool talk = mpi.rank() == 0 && !o.quiet;
   scene.preparation.log = talk ? &std::cout : nullptr;
-  if (scene.engine == EngineKind::linear) return run_linear(o, scene, mpi, talk);
+  if (scene.engine == experiment::EngineKind::linear) return run_linear(o, scene, mpi, talk);
 
-  PreparedChannel packing;
-  if (!o.packing_in.empty()) {
-    if (mpi.rank() == 0) packing = read_packing(o.packing_in);
-  } else {
-    packing = prepare_member(scene, 0, mpi.rank(), scene.preparation.log);
-    if (talk) std::cout << describe(packing.report) << "\n";
-    if (mpi.rank() == 0 && !o.packing_out.empty()) {
-      write_packing(o.packing_out, packing, scene.text);
-      if (talk) std::cout << "packing written to " << o.packing_out << " (and .data for LAMMPS)\n";
-    }
+  const experiment::ScenePacking packing =
+      experiment::scene_packing(scene, 0, {o.packing_in, o.packing_out}, scene.preparation.log);
+  if (talk && packing.prepared) {
+    std::cout << describe(packing.channel.report) << "\n";
+    if (!o.packing_out.empty()) std::cout << "packing written to " << o.packing_out << " (and .data for LAMMPS)\n";
   }
-  const AcousticResult r = run_acoustic(MPI_COMM_WORLD, packing, scene.contact, scene.drive);
+  const AcousticResult r = run_acoustic(MPI_COMM_WORLD, packing.channel, scene.contact, scene.drive);
   if (mpi.rank() == 0) {
-    write_run_file(o.out, scene, packing.report, r);
+    experiment::write_run_file(o.out, scene, packing.channel.report, r);
     if (talk) {
       std::printf("omega_hat %.6g  gamma_hat %.6g\n", r.omega_hat, r.gamma_hat);
       if (!r.spectrum.empty()) print_spectrum(r);

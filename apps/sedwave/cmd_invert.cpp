@@ -16,8 +16,7 @@
 #include "option_checks.hpp"
 #include "output_paths.hpp"
 #include "sedwave/io/atomic_file.hpp"
-#include "sedwave/forward/models.hpp"
-#include "sedwave/forward/table/table_model.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
@@ -302,17 +301,10 @@ Command add_invert_command(CLI::App& app) {
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
             // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
-            if (const auto* table = dynamic_cast<const forward::table::TableModel*>(dimensionless_of(*model))) {
-              report["table_fallback_evaluations"] = table->fallback_count();
-              report["table_long_wavelength_evaluations"] = table->extrapolated_count();
-              if (table->fallback_count() > 0) {
-                std::printf("note: %llu model evaluations fell outside the table and used the 1D lattice theory\n",
-                            static_cast<unsigned long long>(table->fallback_count()));
-              }
-              if (table->extrapolated_count() > 0) {
-                std::printf("note: %llu model evaluations lay below the table's resolved omega_hat and used its "
-                            "long-wavelength limit (docs/tables.md)\n",
-                            static_cast<unsigned long long>(table->extrapolated_count()));
+            if (const forward::DispersionModel* engine = dimensionless_of(*model)) {
+              for (const forward::ModelDiagnostic& d : engine->diagnostics()) {
+                report[d.key] = d.count;
+                if (!d.note.empty()) std::printf("note: %s\n", d.note.c_str());
               }
             }
             io::write_text_atomically(out / "fit.json", [&](std::ostream& s) { s << report.dump(2) << "\n"; });

@@ -1,7 +1,7 @@
 // `sedwave merge`: combines the member tables of one ensemble (`sedwave table --member K`, one
 // packing per run, for packings too large to hold several in one process) into the ensemble's
 // table: per point the mean over the members and its standard error, with the significance rule
-// of a table made in one run (linear/ensemble.hpp). Serial; the tables are small.
+// of a table made in one run (experiment/linear_points.hpp). Serial; the tables are small.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "output_paths.hpp"
-#include "sedwave/forward/linear/ensemble.hpp"
+#include "sedwave/forward/experiment/linear_points.hpp"
 #include "sedwave/forward/table/table_file.hpp"
 
 namespace sedwave::app {
@@ -35,7 +35,7 @@ Command add_merge_command(CLI::App& app) {
     check_outputs({{"--out", o->out}, {"--out", forward::table::TableFile::journal_path(o->out)}}, inputs, "merge");
     std::vector<forward::table::DispersionTable> tables;
     for (const std::string& path : o->members) tables.push_back(forward::table::read_table(path));
-    const forward::table::DispersionTable merged = forward::linear::merge_member_tables(tables, o->members);
+    const forward::table::DispersionTable merged = forward::experiment::merge_member_tables(tables, o->members);
     forward::table::write_table(o->out, merged);
     std::size_t ok = 0;
     for (std::size_t g = 0; g < merged.n_gamma(); ++g)

@@ -4,32 +4,24 @@
 // point and member, linear/long_wavelength.hpp), shared among MPI ranks by a task farm. One
 // prepared packing serves every point. A killed run, restarted with the same command, continues
 // where it stopped (docs/tables.md).
-#include <mpi.h>
-
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "output_paths.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
-#include "sedwave/forward/channel/scene.hpp"
+#include "sedwave/forward/experiment/packings.hpp"
+#include "sedwave/forward/experiment/table_run.hpp"
 #include "sedwave/forward/table/grid_file.hpp"
-#include "sedwave/forward/linear/ensemble.hpp"
-#include "sedwave/forward/linear/long_wavelength.hpp"
 #include "sedwave/forward/table/table_file.hpp"
-#include "sedwave/forward/table/task_farm.hpp"
-#include "scene_packings.hpp"
-#include "sedwave/io/fingerprint.hpp"
 
 namespace sedwave::app {
 namespace {
 
-namespace channel = forward::channel;
+namespace experiment = forward::experiment;
 namespace table = forward::table;
 
 struct TableOptions {
@@ -43,61 +35,19 @@ struct TableOptions {
   bool allow_changed_inputs = false;
 };
 
-/// The one packing every grid point starts from: read from --packing if that file exists, otherwise
-/// prepared (collectively) and, with --packing, saved there so a restart skips the preparation.
-channel::PreparedChannel packing_for_table(const channel::ChannelScene& scene, const TableOptions& o,
-                                           const MpiSession& mpi, int member, std::string& provenance) {
-  const std::string path = o.packing.empty() ? std::string{} : member_path(o.packing, member);
-  if (!path.empty() && std::filesystem::exists(path)) {
-    provenance = "packing read from " + path;
-    if (mpi.rank() == 0) return channel::read_packing(path);
-    return channel::PreparedChannel{};  // run_acoustic needs the grains on rank 0 only
-  }
-  if (scene.import_lammps_data) {
-    throw std::invalid_argument(scene.path.string() + ": scenes with import_lammps_data are not prepared by "
-                                "`sedwave table`; prepare the packing first and pass it with --packing");
-  }
-  channel::PreparedChannel packing =
-      prepare_member(scene, member, mpi.rank(), (mpi.rank() == 0 && !o.quiet) ? &std::cout : nullptr);
-  provenance = "packing prepared from the scene (seed + " + std::to_string(member) + ") on " +
-               std::to_string(mpi.size()) + " rank(s)";
-  if (!packing.report.converged) provenance += " (preparation did NOT converge: see the log)";
-  if (mpi.rank() == 0) {
-    if (!packing.report.converged) std::cerr << "sedwave table: warning: the preparation did not converge\n";
-    if (!path.empty()) {
-      channel::write_packing(path, packing, scene.text);
-      provenance += ", saved to " + path;
-    }
-  }
-  return packing;
-}
-
-table::TableMetadata table_metadata(const table::TableGridFile& grid, const channel::ChannelScene& scene,
-                                    const std::string& packing_provenance, std::string packing_hash,
-                                    bool long_wavelength, int member, int packings) {
-  table::TableMetadata m;
-  m.packing_hash = std::move(packing_hash);
-  m.packings = packings;
-  m.scene_toml = scene.text;
-  m.engine = long_wavelength ? "sedwave-long-wavelength"
-                             : (scene.engine == channel::EngineKind::linear ? "sedwave-linear" : "sedwave-dem");
-  if (member >= 0) m.engine = forward::linear::member_engine_tag(member, scene.linear.ensemble);
-  std::ostringstream definitions;
-  definitions << table::standard_definitions() << "; " << grid.describe_axes() << "; " << packing_provenance
-              << ".\nGrid file " << grid.path.string() << " (verbatim):\n"
-              << grid.text;
-  m.definitions = definitions.str();
-  return m;
+experiment::TableEngine table_engine(const std::string& name) {
+  if (name == "time_domain") return experiment::TableEngine::time_domain;
+  return name == "linear" ? experiment::TableEngine::linear : experiment::TableEngine::long_wavelength;
 }
 
 /// The table, its journal and packings that do not exist yet are written; the grid, the scene and
 /// existing packings are read. All checked before any work.
-void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, const channel::ChannelScene& scene) {
+void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, const experiment::ChannelScene& scene) {
   std::vector<OutputPath> outputs{{"--out", o.out}, {"--out", table::TableFile::journal_path(o.out)}};
   std::vector<std::filesystem::path> inputs{grid.path, grid.scene_path};
   if (scene.import_lammps_data) inputs.push_back(*scene.import_lammps_data);
   for (int k = 0; !o.packing.empty() && k < scene.linear.ensemble; ++k) {
-    std::filesystem::path packing = member_path(o.packing, k);
+    std::filesystem::path packing = experiment::member_path(o.packing, k);
     if (std::filesystem::exists(packing)) {
       inputs.push_back(packing);
     } else {
@@ -106,6 +56,33 @@ void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, 
     }
   }
   check_outputs(outputs, inputs, "table");
+}
+
+/// The options a run of this scene can honour; throws std::invalid_argument for the others.
+void check_table_options(const TableOptions& o, const table::TableGridFile& grid, const experiment::ChannelScene& scene,
+                         experiment::TableEngine engine, const MpiSession& mpi) {
+  if (mpi.size() % grid.ranks_per_point != 0) {
+    throw std::invalid_argument(o.grid_file + ": ranks_per_point = " + std::to_string(grid.ranks_per_point) +
+                                " does not divide the " + std::to_string(mpi.size()) + " MPI ranks");
+  }
+  if (o.member >= 0 && engine != experiment::TableEngine::linear) {
+    throw std::invalid_argument("--member is for the driven linear engine (--engine linear, or engine = \"linear\" "
+                                "in the scene)");
+  }
+  if (o.member >= scene.linear.ensemble) {
+    throw std::invalid_argument(grid.scene_path.string() + ": --member " + std::to_string(o.member) +
+                                " is outside the scene's ensemble of " + std::to_string(scene.linear.ensemble));
+  }
+}
+
+void print_report(const table::FarmReport& report, const std::string& out, int ranks, int ranks_per_point) {
+  const double busy = report.wall_seconds > 0.0 ? report.point_seconds / (report.wall_seconds * ranks) : 0.0;
+  std::cout << "table " << out << ": " << report.points << " points, " << report.already_finished
+            << " already finished, " << report.computed << " computed (" << report.ok << " ok, "
+            << report.unresolved << " unresolved, " << report.failed << " failed) in " << report.wall_seconds
+            << " s on " << ranks << " rank(s); points took " << report.point_seconds
+            << " s in all (ranks busy " << static_cast<int>(100.0 * busy * ranks_per_point + 0.5)
+            << " % of the time)\n";
 }
 
 }  // namespace
@@ -138,84 +115,18 @@ Command add_table_command(CLI::App& app) {
     MpiSession mpi;
     // Every rank reads both files: they are small, and errors then stop all ranks alike.
     const table::TableGridFile grid = table::read_grid_file(o->grid_file);
-    channel::ChannelScene scene = channel::read_scene(grid.scene_path);
-    const bool long_wavelength = o->engine == "long_wavelength";
-    if (!o->engine.empty()) {
-      scene.engine = o->engine == "time_domain" ? channel::EngineKind::time_domain : channel::EngineKind::linear;
-      // The long-wavelength engine solves a quasi-static problem: it reads neither the drive's
-      // signal nor its far end, so only the driven linear engine checks them.
-      if (o->engine == "linear" && scene.drive.pulse) {
-        throw std::invalid_argument(grid.scene_path.string() +
-                                    ": --engine linear solves each frequency directly; the scene's pulse drive "
-                                    "is for the time-domain engine (use signal = \"sinusoid\")");
-      }
-      if (o->engine == "linear" && scene.drive.far_end != channel::FarEnd::absorbing) {
-        throw std::invalid_argument(grid.scene_path.string() +
-                                    ": --engine linear needs [drive] far_end = \"absorbing\" (a steady state "
-                                    "with a frozen end is a standing wave)");
-      }
-    }
-    if (mpi.size() % grid.ranks_per_point != 0) {
-      throw std::invalid_argument(o->grid_file + ": ranks_per_point = " + std::to_string(grid.ranks_per_point) +
-                                  " does not divide the " + std::to_string(mpi.size()) + " MPI ranks");
-    }
-    if (o->member >= 0 && (scene.engine != channel::EngineKind::linear || long_wavelength)) {
-      throw std::invalid_argument("--member is for the driven linear engine (--engine linear, or engine = \"linear\" "
-                                  "in the scene)");
-    }
-    if (o->member >= scene.linear.ensemble) {
-      throw std::invalid_argument(grid.scene_path.string() + ": --member " + std::to_string(o->member) +
-                                  " is outside the scene's ensemble of " + std::to_string(scene.linear.ensemble));
-    }
+    experiment::ChannelScene scene = experiment::read_scene(grid.scene_path);
+    if (!o->engine.empty()) experiment::use_table_engine(scene, table_engine(o->engine));
+    const experiment::TableEngine engine =
+        o->engine.empty() ? experiment::table_engine_of(scene) : table_engine(o->engine);
+    check_table_options(*o, grid, scene, engine, mpi);
     check_table_paths(*o, grid, scene);
-    const int ranks_per_point = scene.engine == channel::EngineKind::linear ? 1 : grid.ranks_per_point;
-    const table::FarmSettings settings{ranks_per_point, (mpi.rank() == 0 && !o->quiet) ? &std::cout : nullptr,
-                                       o->retry_failed, o->allow_changed_inputs};
-    table::FarmReport report;
-    if (scene.engine == channel::EngineKind::linear) {
-      // Every rank solves whole points serially and needs every member's packing.
-      std::string provenance;
-      std::vector<std::string> packing_hashes;  // member k's at k - first
-      std::vector<forward::linear::LinearChannel> members;
-      const int first = o->member >= 0 ? o->member : 0;
-      const int last = o->member >= 0 ? o->member : scene.linear.ensemble - 1;
-      for (int k = first; k <= last; ++k) {
-        std::string member_provenance;
-        channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, k, member_provenance);
-        table::share_packing_with_groups(MPI_COMM_WORLD, packing, 1);
-        packing_hashes.push_back(channel::packing_fingerprint(packing));
-        members.emplace_back(packing, scene.contact, scene.linear);
-        provenance += (k > first ? "; " : "") + member_provenance;
-      }
-      const table::PointFunction point =
-          long_wavelength  ? forward::linear::long_wavelength_point_function(members, scene.drive.axis)
-          : o->member >= 0 ? forward::linear::member_point_function(members.front(), scene.drive)
-                           : forward::linear::linear_point_function(members, scene.drive);
-      // A member table records its one packing; merging member tables combines them as here.
-      const std::string packing_hash =
-          o->member >= 0 ? packing_hashes.front() : io::combined_fingerprint(packing_hashes);
-      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid,
-                                    table_metadata(grid, scene, provenance, packing_hash, long_wavelength, o->member,
-                                                   static_cast<int>(members.size())),
-                                    point, settings);
-    } else {
-      std::string provenance;
-      channel::PreparedChannel packing = packing_for_table(scene, *o, mpi, 0, provenance);
-      table::share_packing_with_groups(MPI_COMM_WORLD, packing, grid.ranks_per_point);
-      const table::TableMetadata metadata =
-          table_metadata(grid, scene, provenance, channel::packing_fingerprint(packing), false, -1, 1);
-      report = table::run_task_farm(MPI_COMM_WORLD, o->out, grid.grid, metadata,
-                                    table::dem_point_function(packing, scene.contact, scene.drive, grid.grid), settings);
-    }
-    if (mpi.rank() == 0) {
-      const double busy = report.wall_seconds > 0.0 ? report.point_seconds / (report.wall_seconds * mpi.size()) : 0.0;
-      std::cout << "table " << o->out << ": " << report.points << " points, " << report.already_finished
-                << " already finished, " << report.computed << " computed (" << report.ok << " ok, "
-                << report.unresolved << " unresolved, " << report.failed << " failed) in " << report.wall_seconds
-                << " s on " << mpi.size() << " rank(s); points took " << report.point_seconds
-                << " s in all (ranks busy " << static_cast<int>(100.0 * busy * ranks_per_point + 0.5)
-                << " % of the time)\n";
-    }
+    const bool talk = mpi.rank() == 0 && !o->quiet;
+    const experiment::TableRun run{o->out, o->packing, engine, o->member, talk ? &std::cout : nullptr,
+                                   mpi.rank() == 0 ? &std::cerr : nullptr};
+    const table::FarmReport report = experiment::fill_table(
+        grid, scene, run, {1, talk ? &std::cout : nullptr, o->retry_failed, o->allow_changed_inputs});
+    if (mpi.rank() == 0) print_report(report, o->out, mpi.size(), experiment::ranks_per_point(grid, engine));
     return report.failed == 0 ? kExitOk : kExitIncomplete;
   }};
 }

@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "option_checks.hpp"
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 
 namespace sedwave::app {
 namespace {

@@ -30,7 +30,7 @@
 
 #include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/channel/geometry.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
 #include "../linear/bench_contact.hpp"
 
 namespace {
@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
     const dem::ContactSpec contact = sedwave::bench::bench_contact(o.kn, 0.0);
-    const channel::PreparedChannel packing = channel::read_packing(o.packing);
+    const channel::PreparedChannel packing = experiment::read_packing(o.packing);
     const channel::PackingUnits u = channel::packing_units(MPI_COMM_WORLD, packing, contact);
     if (o.mode == "script") {
       const channel::AcousticResult r = channel::run_acoustic(MPI_COMM_WORLD, packing, contact, o.drive);
@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
       p.time_step = r.time_step * u.time();
       p.steps = r.steps;
       p.steps_per_sample = std::llround(r.sample_dt / r.time_step);
-      channel::write_packing_lammps_data(o.dir + "/packing.data", packing);
+      experiment::write_packing_lammps_data(o.dir + "/packing.data", packing);
       write_lammps_input(o.dir + "/in.acoustic", o, u, p);
       write_protocol(o.dir + "/protocol.txt", p);
       write_records(o.dir + "/sedwave_layers.txt", r.displacement);

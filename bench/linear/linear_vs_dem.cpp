@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "bench_contact.hpp"
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   }
   const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, youngs_modulus);
   std::vector<channel::PreparedChannel> packings;
-  for (const std::string& f : files) packings.push_back(channel::read_packing(f));
+  for (const std::string& f : files) packings.push_back(experiment::read_packing(f));
 
   std::printf("gamma_hat %g, amplitude %g d, %zu packings\n", drive.gamma_hat, drive.amplitude, packings.size());
   std::printf("%-9s %-7s %10s %9s %10s %9s %10s %9s %10s %9s %8s %8s   %s\n", "omega_hat", "packing", "lin_alpha", "+-",

@@ -14,8 +14,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "sedwave/forward/channel/run_file.hpp"
-#include "sedwave/forward/channel/scene.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
 #include "sedwave/forward/linear/static_equilibrium.hpp"
 
 int main(int argc, char** argv) {
@@ -26,8 +26,8 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return 2;
   }
-  const channel::ChannelScene scene = channel::read_scene(argv[1]);
-  channel::PreparedChannel packing = channel::read_packing(argv[2]);
+  const experiment::ChannelScene scene = experiment::read_scene(argv[1]);
+  channel::PreparedChannel packing = experiment::read_packing(argv[2]);
   linear::StaticEquilibriumSettings settings;
   settings.max_iterations = argc > 3 ? std::stoi(argv[3]) : 100;
   const auto start = std::chrono::steady_clock::now();

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/linear/ordered_chain.hpp"
 #include "sedwave/forward/theory/continuum.hpp"
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
   // differ by a few grains (each cell's walls take what lies within their thickness).
   std::map<std::size_t, std::vector<channel::PreparedChannel>> packings;
   for (const std::string& f : files) {
-    channel::PreparedChannel p = channel::read_packing(f);
+    channel::PreparedChannel p = experiment::read_packing(f);
     std::size_t flow = 0;
     for (const dem::Grain& g : p.grains) flow += g.group == channel::kFlowGroup ? 1 : 0;
     std::size_t unit = 1;

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "bench_contact.hpp"
 
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     else file = a;
   }
   const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, youngs_modulus);
-  const channel::PreparedChannel packing = channel::read_packing(file);
+  const channel::PreparedChannel packing = experiment::read_packing(file);
   const linear::LinearChannel engine(packing, contact);
   std::printf("omega_hat %g, gamma_hat %g, %g periods; layer displacement / A, linear (integrated) vs DEM\n",
               drive.omega_hat, drive.gamma_hat, drive.periods);

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/sediment/biot_stoll.hpp"
 #include "sedwave/sediment/edfm.hpp"
 #include "sedwave/sediment/grain_shearing.hpp"

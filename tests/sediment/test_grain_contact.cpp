@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/sediment/grain_contact.hpp"
 
 namespace sedwave::sediment {

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <vector>
 
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
 
 namespace sedwave::sediment {

@@ -13,7 +13,8 @@
 #include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/channel/packing_units.hpp"
 #include "sedwave/forward/dem/engine.hpp"
-#include "sedwave/forward/table/table.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
+#include "sedwave/forward/spacing.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 #include "sedwave/forward/units.hpp"
 
@@ -55,6 +56,12 @@ double loaded_wall_mass(const DriveSettings& d, const PackingUnits& u, std::span
 
 namespace {
 
+/// The first `count` entries of a per-layer vector, as the collectives take them.
+template <typename T>
+std::span<T> first(std::vector<T>& values, int count) {
+  return std::span(values).first(static_cast<std::size_t>(count));
+}
+
 /// Fixed layer membership and reference coordinate of each local flow grain, by id. The drive is
 /// far too small to move grains between ranks (load balancing is off), so this stays valid.
 struct Layers {
@@ -78,7 +85,7 @@ Layers assign_layers(const dem::Engine& e, const PackingUnits& u, double thickne
     l.member[g.id[i]] = {layer, g.position[i][axis]};
     ++l.grains_per_layer[static_cast<std::size_t>(layer)];
   }
-  MPI_Allreduce(MPI_IN_PLACE, l.grains_per_layer.data(), l.count, MPI_INT, MPI_SUM, e.domain().comm());
+  parallel::sum(e.domain().comm(), first(l.grains_per_layer, l.count));
   return l;
 }
 
@@ -100,13 +107,13 @@ Layers single_grain_layers(const dem::Engine& e, const PackingUnits& u, const La
   };
   std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
   each_grain([&](std::size_t, std::size_t k, double distance) { nearest[k] = std::min(nearest[k], distance); });
-  MPI_Allreduce(MPI_IN_PLACE, nearest.data(), layers.count, MPI_DOUBLE, MPI_MIN, comm);
+  parallel::min(comm, first(nearest, layers.count));
   constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
   ids.assign(count, kNone);
   each_grain([&](std::size_t i, std::size_t k, double distance) {
     if (distance == nearest[k]) ids[k] = std::min(ids[k], g.id[i]);
   });
-  MPI_Allreduce(MPI_IN_PLACE, ids.data(), layers.count, MPI_INT64_T, MPI_MIN, comm);
+  parallel::min(comm, first(ids, layers.count));
 
   Layers probes;
   probes.count = layers.count;
@@ -119,8 +126,8 @@ Layers single_grain_layers(const dem::Engine& e, const PackingUnits& u, const La
     probes.centres[k] = (g.position[i].z - u.wall_surface) / u.diameter;
     probes.grains_per_layer[k] = 1;
   });
-  MPI_Allreduce(MPI_IN_PLACE, probes.centres.data(), layers.count, MPI_DOUBLE, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, probes.grains_per_layer.data(), layers.count, MPI_INT, MPI_SUM, comm);
+  parallel::sum(comm, first(probes.centres, layers.count));
+  parallel::sum(comm, first(probes.grains_per_layer, layers.count));
   for (std::size_t k = 0; k < count; ++k) {
     if (ids[k] != kNone) continue;
     ids[k] = -1;
@@ -142,7 +149,7 @@ std::vector<double> layer_displacements(const dem::Engine& e, const Layers& l, i
     }
     sum[static_cast<std::size_t>(it->second.first)] += g.position[i][axis] - it->second.second;
   }
-  MPI_Allreduce(MPI_IN_PLACE, sum.data(), l.count, MPI_DOUBLE, MPI_SUM, e.domain().comm());
+  parallel::sum(e.domain().comm(), first(sum, l.count));
   for (int k = 0; k < l.count; ++k) {
     const int n = l.grains_per_layer[static_cast<std::size_t>(k)];
     sum[static_cast<std::size_t>(k)] = n > 0 ? sum[static_cast<std::size_t>(k)] / n : 0.0;
@@ -276,15 +283,13 @@ dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int a
 dem::BodyMotion far_wall_motion(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
                                 const DriveSettings& d, const PackingUnits& u) {
   if (d.far_wall == FarWall::frozen) return dem::Frozen{};
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
   double load[2] = {0.0, 0.0};  // the grains' static force along z, the wall's mass (rank 0 holds the grains)
-  if (rank == 0) {
+  if (parallel::rank(comm) == 0) {
     const ContactNetwork network = find_contacts(packing.grains, packing.box, contact);
     load[0] = static_body_force(packing.grains, network, kUpperWallBody).z;
     load[1] = loaded_wall_mass(d, u, packing.grains);
   }
-  MPI_Bcast(load, 2, MPI_DOUBLE, 0, comm);
+  parallel::broadcast(comm, std::span(load));
   return dem::ConstantForce{{0.0, 0.0, -load[0]}, load[1], {false, false, true}};
 }
 
@@ -424,7 +429,7 @@ RunLength run_length(const DriveSettings& d, const PackingUnits& u) {
 std::vector<double> PulseBand::omega_hats() const {
   if (!measured.empty()) return measured;
   if (frequencies == 1) return {std::sqrt(omega_hat_min * omega_hat_max)};
-  return table::log_spaced(omega_hat_min, omega_hat_max, static_cast<std::size_t>(frequencies));
+  return log_spaced(omega_hat_min, omega_hat_max, static_cast<std::size_t>(frequencies));
 }
 
 /// The fit again over the first and over the last half of every window (layers with at least 4

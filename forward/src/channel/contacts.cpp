@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "sedwave/forward/channel/geometry.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -109,10 +110,10 @@ PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, doub
         sum[kHighN] += 1.0;
     }
   }
-  MPI_Allreduce(MPI_IN_PLACE, sum.data(), kSums, MPI_DOUBLE, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, maxima.data(), 2, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(MPI_IN_PLACE, overlaps.data(), kDecades, MPI_INT64_T, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, gaps.data(), kDecades, MPI_INT64_T, MPI_SUM, comm);
+  parallel::sum(comm, std::span(sum));
+  parallel::max(comm, std::span(maxima));
+  parallel::sum(comm, std::span(overlaps));
+  parallel::sum(comm, std::span(gaps));
 
   PackingStats s;
   s.flow_grains = static_cast<std::int64_t>(sum[kFlow]);

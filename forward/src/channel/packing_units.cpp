@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "sedwave/forward/channel/contact_network.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
@@ -25,7 +26,7 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
       s[6] += 1.0;
     }
   }
-  MPI_Allreduce(MPI_IN_PLACE, s, 7, MPI_DOUBLE, MPI_SUM, comm);
+  parallel::sum(comm, std::span(s));
   if (s[0] < 1 || s[4] < 1 || s[6] < 1) throw std::invalid_argument("packing has no flow grains or lacks a wall");
   PackingUnits u;
   u.diameter = s[1] / s[0];
@@ -35,14 +36,15 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   if (contact.normal != dem::NormalLawKind::hooke) {
     double network[2] = {0.0, 0.0};  // mean stiffness, mean dashpot (from the rank holding the grains)
     int holds = packing.grains.empty() ? 0 : 1;
-    MPI_Allreduce(MPI_IN_PLACE, &holds, 1, MPI_INT, MPI_SUM, comm);
-    if (holds != 1) throw std::invalid_argument("packing units of Hertz contacts: the grains must be on one rank");
+    if (parallel::sum(comm, holds) != 1) {
+      throw std::invalid_argument("packing units of Hertz contacts: the grains must be on one rank");
+    }
     if (!packing.grains.empty()) {
       const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
       network[0] = n.mean_stiffness;
       network[1] = n.mean_dashpot;
     }
-    MPI_Allreduce(MPI_IN_PLACE, network, 2, MPI_DOUBLE, MPI_SUM, comm);
+    parallel::sum(comm, std::span(network));
     if (!(network[0] > 0.0)) throw std::invalid_argument("packing units: the packing has no contacts");
     u.kappa = network[0];
     dashpot = network[1];

@@ -8,6 +8,7 @@
 #include "sedwave/forward/channel/contacts.hpp"
 #include "sedwave/forward/channel/geometry.hpp"
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -57,7 +58,7 @@ PreparedChannel tile_periodic_cell(MPI_Comm comm, const PreparedChannel& cell, c
     facts[2] += 2.0 * g.radius;
     facts[3] += 1.0;
   }
-  MPI_Bcast(facts, 4, MPI_DOUBLE, 0, comm);
+  parallel::broadcast(comm, std::span(facts));
   if (facts[0] == 0.0 || facts[3] == 0.0) {
     throw std::invalid_argument("tiling: the cell must be periodic along z and hold flow grains only");
   }
@@ -74,9 +75,7 @@ PreparedChannel tile_periodic_cell(MPI_Comm comm, const PreparedChannel& cell, c
   out.box.periodic[2] = false;
   out.box.lo.z = lo - 1.0;  // an open axis only describes where the grains are
   out.box.hi.z = lo + copies * length + 1.0;
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  if (rank == 0) out.grains = stacked_grains(cell, copies, wall_thickness);
+  if (parallel::rank(comm) == 0) out.grains = stacked_grains(cell, copies, wall_thickness);
 
   // Measure the channel as the DEM sees it: its forces, contacts and the load on the upper wall.
   dem::EngineSettings settings;

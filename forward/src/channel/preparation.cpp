@@ -12,7 +12,7 @@
 
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
-#include "sedwave/forward/linear/static_equilibrium.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -27,12 +27,6 @@ struct Scene {
   /// A z-periodic cell without walls: its length, not a wall, holds the pressure.
   [[nodiscard]] bool periodic_cell() const { return box.periodic[2]; }
 };
-
-int rank_of(MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  return rank;
-}
 
 std::unique_ptr<dem::Engine> make_engine(const Scene& s, std::span<const dem::Grain> grains, dem::BodyMotion upper,
                                          double step_fraction, double viscous_damping) {
@@ -138,7 +132,7 @@ double lower_wall_height(std::span<const dem::Grain> grains, MPI_Comm comm) {
       sums[1] += 1.0;
     }
   }
-  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
+  parallel::sum(comm, std::span(sums));
   return sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
 }
 
@@ -212,7 +206,7 @@ class Fire {
       sums[1] += dem::norm2(g.velocity[i]);
       sums[2] += dem::norm2(g.force[i]);
     }
-    MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, engine.domain().comm());
+    parallel::sum(engine.domain().comm(), std::span(sums));
     if (sums[0] > 0.0) {
       // v <- (1 - alpha) v + alpha |v| F/|F|: turn the motion towards the force.
       const double steer = sums[2] > 0.0 ? state.alpha * std::sqrt(sums[1] / sums[2]) : 0.0;
@@ -247,7 +241,7 @@ void stretch_column(dem::Engine& e, double dz) {
       sums[w + 1] += 1.0;
     }
   }
-  MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, e.domain().comm());
+  parallel::sum(e.domain().comm(), std::span(sums));
   const double floor = sums[0] / sums[1], strain = dz / (sums[2] / sums[3] - floor);
   std::unordered_map<std::int64_t, dem::Vec3> moved;  // this rank's grains: set_positions moves local ones
   for (std::size_t i = 0; i < e.n_local(); ++i) {
@@ -274,7 +268,7 @@ void lengthen(const Scene& s, dem::Engine& e, double dz) {
 }
 
 void log_line(const PreparationSettings& p, MPI_Comm comm, const std::string& line) {
-  if (p.log && rank_of(comm) == 0) *p.log << "prepare: " << line << std::endl;
+  if (p.log && parallel::rank(comm) == 0) *p.log << "prepare: " << line << std::endl;
 }
 
 /// FIRE at a frozen wall to the residual tolerance, then secant corrections of the wall height until
@@ -314,26 +308,24 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
   }
 }
 
-/// Newton relaxation of the gathered packing on rank 0 (linear/static_equilibrium.hpp), at most
+/// Newton relaxation of the gathered packing on rank 0 (`newton`, the linear engine's), at most
 /// `iterations` trial steps; every rank learns how many were taken, and all throw together if rank 0
 /// failed.
-void newton_relaxation(const Scene& scene, const dem::Box& box, const PreparationSettings& p, int iterations,
-                       std::vector<dem::Grain>& grains, PreparationReport& report) {
+void newton_relaxation(const Scene& scene, const dem::Box& box, const PreparationSettings& p,
+                       const NewtonRelaxation& newton, int iterations, std::vector<dem::Grain>& grains,
+                       PreparationReport& report) {
   int status[2] = {1, 0};  // no error, iterations
   std::string failure;
-  if (rank_of(scene.comm) == 0) {
+  if (parallel::rank(scene.comm) == 0) {
     try {
-      linear::StaticEquilibriumSettings settings;
-      settings.residual_force_tolerance = p.residual_force_tolerance;
-      settings.max_iterations = iterations;
       const int walls = scene.periodic_cell() ? 0 : 2;
-      status[1] = linear::relax_to_equilibrium(grains, box, scene.contact, walls, nullptr, settings).iterations;
+      status[1] = newton(grains, box, scene.contact, walls, p.residual_force_tolerance, iterations);
     } catch (const std::exception& e) {
       status[0] = 0;
       failure = e.what();
     }
   }
-  MPI_Bcast(status, 2, MPI_INT, 0, scene.comm);
+  parallel::broadcast(scene.comm, std::span(status));
   report.newton_iterations += status[1];
   if (status[0] == 0) {
     throw std::runtime_error("preparation: the Newton relaxation failed (" +
@@ -352,8 +344,8 @@ void newton_relaxation(const Scene& scene, const dem::Box& box, const Preparatio
 /// but crawls while a soft spot is still collapsing (an unstable transverse mode of a few hundred
 /// grains in a long W = 3 column); FIRE follows such a rearrangement dynamically. Replaces
 /// `relaxer` by an engine on the relaxed grains and sets the report's residual and wall force.
-void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::unique_ptr<dem::Engine>& relaxer,
-                       PreparationReport& report) {
+void relax_with_newton(const Scene& scene, const PreparationSettings& p, const NewtonRelaxation& newton,
+                       std::unique_ptr<dem::Engine>& relaxer, PreparationReport& report) {
   constexpr int kRounds = 20, kNewtonPerRound = 30;
   constexpr std::int64_t kFireBurst = 2000;
   for (int round = 0; round < kRounds; ++round) {
@@ -361,7 +353,7 @@ void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::un
     // A periodic cell's box has been strained since `scene` was made: the relaxer's is the one.
     const Scene now{scene.comm, relaxer->settings().box, scene.contact, scene.width, scene.mean_mass,
                     scene.mean_diameter};
-    newton_relaxation(now, now.box, p, kNewtonPerRound, grains, report);
+    newton_relaxation(now, now.box, p, newton, kNewtonPerRound, grains, report);
     relaxer = make_engine(now, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);
     relaxer->compute_forces();
     report.residual_ratio = residual_ratio(packing_stats(*relaxer, scene.mean_diameter, scene.width));
@@ -381,7 +373,7 @@ void relax_with_newton(const Scene& scene, const PreparationSettings& p, std::un
 }  // namespace
 
 PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start, const dem::ContactSpec& contact,
-                                double width, const PreparationSettings& p) {
+                                double width, const PreparationSettings& p, const NewtonRelaxation& newton_solver) {
   if (!(p.pressure > 0.0)) throw std::invalid_argument("preparation: pressure must be positive");
   double flow_mass = 0.0, flow_diameter = 0.0;
   std::int64_t n_flow = 0;
@@ -393,7 +385,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
     }
   }
   double counts[3] = {flow_mass, flow_diameter, static_cast<double>(n_flow)};
-  MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPI_DOUBLE, MPI_SUM, comm);
+  parallel::sum(comm, std::span(counts));
   Scene scene{comm, broadcast_box(comm, start.box), contact, width, counts[0] / counts[2], counts[1] / counts[2]};
   if (scene.periodic_cell() && p.compression != Compression::affine) {
     throw std::invalid_argument("preparation: a periodic cell has no wall to lower; use compression = \"affine\"");
@@ -457,7 +449,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
 
   std::vector<dem::Grain> grains = gathered_at_rest(*compressor);
   compressor.reset();
-  const bool newton = p.newton_relaxation && contact.tangential == dem::TangentialLawKind::none &&
+  const bool newton = p.newton_relaxation && newton_solver && contact.tangential == dem::TangentialLawKind::none &&
                       contact.rolling == dem::RollingLawKind::none;
   // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height until the pressure is
   // within its tolerance; with Newton to follow, to a loose residual only.
@@ -470,7 +462,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
   for (int settle = 0;; ++settle) {
     fire_with_wall_corrections(scene, rough, target, *relaxer, out.report);
     if (!newton) break;
-    relax_with_newton(scene, p, relaxer, out.report);
+    relax_with_newton(scene, p, newton_solver, relaxer, out.report);
     const double error = out.report.wall_force / target - 1.0;
     if (std::abs(error) < p.pressure_tolerance || out.report.residual_ratio >= p.residual_force_tolerance ||
         settle + 1 >= kSettles) {
@@ -490,7 +482,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
 dem::Box broadcast_box(MPI_Comm comm, dem::Box box) {
   double values[9] = {box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z,
                       box.periodic[0] ? 1.0 : 0.0, box.periodic[1] ? 1.0 : 0.0, box.periodic[2] ? 1.0 : 0.0};
-  MPI_Bcast(values, 9, MPI_DOUBLE, 0, comm);
+  parallel::broadcast(comm, std::span(values));
   box.lo = {values[0], values[1], values[2]};
   box.hi = {values[3], values[4], values[5]};
   box.periodic = {values[6] != 0.0, values[7] != 0.0, values[8] != 0.0};

@@ -17,10 +17,6 @@ constexpr const char* kParticles = "particles/all";
 constexpr std::array<const char*, 7> kElements = {"position", "velocity", "id",  "species",
                                                   "radius",   "box/edges", "box/offset"};
 
-h5::Handle open_group(hid_t parent, const std::string& name) {
-  return {H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + name};
-}
-
 /// A fixed-length string array attribute (H5MD's box boundary).
 void write_strings_attribute(hid_t parent, const std::string& name, const std::array<std::string, 3>& values) {
   constexpr std::size_t kWidth = 9;  // "periodic" and its terminating zero
@@ -145,7 +141,7 @@ void H5mdWriter::write(const Engine& engine) {
     try {
       if (domain.rank() == 0 && !started_) create_layout(path_, engine);
       h5::Handle file = h5::open_file(path_, true);
-      h5::Handle all = open_group(file, kParticles);
+      h5::Handle all = h5::open_group(file, kParticles);
       if (domain.rank() == 0) begin_frame(all, engine);
       write_rows(all, engine, static_cast<hsize_t>(first_row));
     } catch (const std::exception& e) {
@@ -162,7 +158,7 @@ void H5mdWriter::write(const Engine& engine) {
 
 std::size_t truncate_h5md(const std::string& path, std::int64_t last_step) {
   h5::Handle file = h5::open_file(path, true);
-  h5::Handle all = open_group(file, kParticles);
+  h5::Handle all = h5::open_group(file, kParticles);
   const hsize_t frames = h5::extent(all, "position/step")[0];
   const auto steps = h5::read_block<std::int64_t>(all, "position/step", {0}, {frames});
   std::size_t kept = 0;
@@ -173,7 +169,7 @@ std::size_t truncate_h5md(const std::string& path, std::int64_t last_step) {
 
 DumpFrame read_h5md_frame(const std::string& path, std::optional<std::int64_t> step) {
   h5::Handle file = h5::open_file(path);
-  h5::Handle all = open_group(file, kParticles);
+  h5::Handle all = h5::open_group(file, kParticles);
   const hsize_t frames = h5::extent(all, "position/step")[0];
   const auto steps = h5::read_block<std::int64_t>(all, "position/step", {0}, {frames});
   hsize_t frame = frames;
@@ -184,7 +180,7 @@ DumpFrame read_h5md_frame(const std::string& path, std::optional<std::int64_t> s
   const hsize_t n = h5::extent(all, "position/value")[1];
   DumpFrame f;
   f.step = steps[frame];
-  h5::Handle box = open_group(all, "box");
+  h5::Handle box = h5::open_group(all, "box");
   f.box.periodic = read_boundary(box);
   const auto edges = h5::read_block<double>(all, "box/edges/value", {frame, 0}, {1, 3});
   const auto offset = h5::read_block<double>(all, "box/offset/value", {frame, 0}, {1, 3});

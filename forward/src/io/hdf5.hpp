@@ -67,6 +67,23 @@ inline Handle open_file(const std::string& path, bool writable = false) {
   return {H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
           "open " + path};
 }
+inline void flush(hid_t file, const std::string& what) { check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + what); }
+
+/// Turns HDF5's automatic error-stack printing off while alive (for probing files that may be damaged).
+class QuietErrors {
+ public:
+  QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+
+ private:
+  H5E_auto2_t function_ = nullptr;
+  void* data_ = nullptr;
+};
 
 /// Writes a whole file: `fill(file)` builds it in memory (HDF5's core driver), and its bytes are
 /// then written to a temporary sibling, fsynced and renamed over `path` (io::write_text_atomically).
@@ -96,6 +113,12 @@ inline Handle create_group(hid_t parent, const std::string& name) {
   return {H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
           "create group " + name};
 }
+inline Handle open_group(hid_t parent, const std::string& name) {
+  return {H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + name};
+}
+inline Handle open_dataset(hid_t parent, const std::string& name) {
+  return {H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name};
+}
 inline bool exists(hid_t parent, const std::string& name) {
   return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0;
 }
@@ -119,6 +142,16 @@ inline std::size_t rows(hid_t parent, const std::string& name) {
   return static_cast<std::size_t>(dims[0]);
 }
 
+/// A dataset's extent along each axis.
+inline std::vector<hsize_t> shape(hid_t dataset) {
+  Handle space(H5Dget_space(dataset), H5Sclose, "get a dataspace");
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank < 0) throw std::runtime_error("HDF5: cannot read a dataset's rank");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return dims;
+}
+
 /// Reads rows [first, first + count) of a 1D or 2D dataset (columns: the second extent, 0 for 1D).
 template <typename T>
 std::vector<T> read_rows(hid_t parent, const std::string& name, std::size_t first, std::size_t count,
@@ -136,6 +169,15 @@ std::vector<T> read_rows(hid_t parent, const std::string& name, std::size_t firs
   return out;
 }
 
+/// The whole of a one-dimensional dataset (a file from elsewhere may hold another shape: an error).
+template <typename T>
+std::vector<T> read_vector(hid_t parent, const std::string& name) {
+  const Handle set = open_dataset(parent, name);
+  const std::vector<hsize_t> dims = shape(set);
+  if (dims.size() != 1) throw std::runtime_error("HDF5: dataset " + name + " is not one-dimensional");
+  return read_rows<T>(parent, name, 0, static_cast<std::size_t>(dims[0]));
+}
+
 template <typename T>
 void write_attribute(hid_t parent, const std::string& name, T value) {
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
@@ -151,22 +193,78 @@ T read_attribute(hid_t parent, const std::string& name) {
   return value;
 }
 
-inline void write_string_attribute(hid_t parent, const std::string& name, const std::string& value) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
-  check(H5Tset_size(type, std::max<std::size_t>(value.size(), 1)), "string size");
+inline bool has_attribute(hid_t object, const std::string& name) {
+  const htri_t exists = H5Aexists(object, name.c_str());
+  if (exists < 0) throw std::runtime_error("HDF5: cannot look for attribute " + name);
+  return exists > 0;
+}
+
+// ---- fixed-length strings ------------------------------------------------------------------------
+
+/// How many bytes a fixed-length string takes on disk. Packing, run, checkpoint and trajectory files
+/// store exactly the string's bytes (at least one); table files add a terminating NUL. Each file type
+/// keeps its own, so that its files stay byte for byte what they were; read_string_attribute and
+/// read_string_dataset read both, since they stop at the first NUL or at the stored size.
+enum class StringBytes { exact, nul_terminated };
+
+/// Fixed-length, NUL-padded string type of `bytes` bytes.
+inline Handle string_type(std::size_t bytes) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy the string type");
+  check(H5Tset_size(type, bytes), "size a string type");
+  check(H5Tset_strpad(type, H5T_STR_NULLTERM), "pad a string type");
+  return type;
+}
+inline std::size_t stored_bytes(const std::string& value, StringBytes bytes) {
+  return bytes == StringBytes::exact ? std::max<std::size_t>(value.size(), 1) : value.size() + 1;
+}
+/// The text of a fixed-length string buffer: up to its first NUL, or all `bytes` of it.
+inline std::string trimmed(const char* data, std::size_t bytes) {
+  std::size_t length = 0;
+  while (length < bytes && data[length] != '\0') ++length;
+  return {data, length};
+}
+/// Throws unless `stored` (an attribute's or dataset's type) is a fixed-length string.
+inline void check_fixed_string(hid_t stored, const std::string& what) {
+  if (H5Tget_class(stored) != H5T_STRING || H5Tis_variable_str(stored) > 0) {
+    throw std::runtime_error("HDF5: " + what + " is not a fixed-length string");
+  }
+}
+
+inline void write_string_attribute(hid_t parent, const std::string& name, const std::string& value,
+                                   StringBytes bytes = StringBytes::exact) {
+  const Handle type = string_type(stored_bytes(value, bytes));
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
   Handle attr(H5Acreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
               "create attribute " + name);
-  std::string padded = value.empty() ? std::string(1, '\0') : value;
-  check(H5Awrite(attr, type, padded.data()), "write attribute " + name);
+  check(H5Awrite(attr, type, value.c_str()), "write attribute " + name);
 }
 inline std::string read_string_attribute(hid_t parent, const std::string& name) {
   Handle attr(H5Aopen(parent, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + name);
-  Handle type(H5Aget_type(attr), H5Tclose, "attribute type");
-  std::string value(H5Tget_size(type), '\0');
-  check(H5Aread(attr, type, value.data()), "read attribute " + name);
-  while (!value.empty() && value.back() == '\0') value.pop_back();
-  return value;
+  Handle stored(H5Aget_type(attr), H5Tclose, "get the type of attribute " + name);
+  check_fixed_string(stored, "attribute " + name);
+  const std::size_t bytes = H5Tget_size(stored);
+  std::vector<char> buffer(bytes + 1, '\0');
+  check(H5Aread(attr, string_type(bytes), buffer.data()), "read attribute " + name);
+  return trimmed(buffer.data(), bytes);
+}
+
+/// A scalar dataset holding one string (any length, including empty).
+inline void write_string_dataset(hid_t parent, const std::string& name, const std::string& value,
+                                 StringBytes bytes = StringBytes::exact) {
+  const Handle type = string_type(stored_bytes(value, bytes));
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle set(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+             "create dataset " + name);
+  check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()), "write dataset " + name);
+}
+inline std::string read_string_dataset(hid_t parent, const std::string& name) {
+  const Handle set = open_dataset(parent, name);
+  Handle stored(H5Dget_type(set), H5Tclose, "get the type of dataset " + name);
+  check_fixed_string(stored, "dataset " + name);
+  const std::size_t bytes = H5Tget_size(stored);
+  std::vector<char> buffer(bytes + 1, '\0');
+  check(H5Dread(set, string_type(bytes), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()), "read dataset " + name);
+  return trimmed(buffer.data(), bytes);
 }
 
 // ---- extensible (time-series) datasets -----------------------------------------------------------

@@ -3,12 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <memory>
 #include <stdexcept>
 #include <string>
-
-#include "sedwave/forward/linear/ensemble.hpp"
 
 namespace sedwave::forward::linear {
 namespace {
@@ -96,31 +92,6 @@ LongWavelengthLimit long_wavelength_limit(const LinearChannel& c, double x, chan
   r.non_affinity = std::sqrt(residual / static_cast<double>(z.size())) / std::abs(slope * (hi - lo));
   r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
-}
-
-table::PointFunction long_wavelength_point_function(const std::vector<LinearChannel>& members,
-                                                    channel::DriveAxis axis) {
-  // Every point on a diagonal of a log grid with equal steps on both axes has the same x: solve each
-  // x once (keyed to 1e-9 in ln x, far below any grid's spacing).
-  auto solved = std::make_shared<std::map<long long, std::vector<LongWavelengthLimit>>>();
-  return [&members, axis, solved](MPI_Comm, double omega_hat, double gamma_hat) {
-    const double x = omega_hat * gamma_hat;
-    const long long key = x > 0.0 ? std::llround(std::log(x) * 1e9) : std::numeric_limits<long long>::min();
-    auto [entry, fresh] = solved->try_emplace(key);
-    if (fresh) {
-      for (const LinearChannel& member : members) entry->second.push_back(long_wavelength_limit(member, x, axis));
-    }
-    std::vector<double> alpha, c;
-    double seconds = 0.0;
-    for (const LongWavelengthLimit& l : entry->second) {
-      alpha.push_back(omega_hat * l.alpha_over_omega);
-      c.push_back(l.c_hat);
-      if (fresh) seconds += l.solve_seconds;
-    }
-    const MeanAndError a = mean_and_standard_error(alpha), v = mean_and_standard_error(c);
-    return table::point_from_measurement(members.empty() ? "empty ensemble" : "", a.mean, a.standard_error, v.mean,
-                                         v.standard_error, seconds);
-  };
 }
 
 }  // namespace sedwave::forward::linear

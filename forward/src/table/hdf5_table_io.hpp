@@ -1,57 +1,35 @@
 #pragma once
-// Private: the few HDF5 C API operations the table file needs, each behind a function that owns its
-// handles (RAII) and throws std::runtime_error naming what failed.
+// Private: the table file's own HDF5 datasets (the [gamma][omega] result matrices, written cell by
+// cell), on top of the shared HDF5 layer (../io/hdf5.hpp), whose names this namespace also offers so
+// that the table code reads as one vocabulary.
 #include <hdf5.h>
 
 #include "../io/hdf5.hpp"
 
 #include <cstdint>
-#include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace sedwave::forward::table::h5 {
 
-using forward::h5::check;
+using forward::h5::create_group;
+using forward::h5::flush;
 using forward::h5::Handle;
-
-/// Turns HDF5's automatic error-stack printing off while alive (for probing files that may be damaged).
-class QuietErrors {
- public:
-  QuietErrors() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
-
-Handle open_file(const std::string& path, bool writable);
-void flush(const Handle& file);
-Handle create_group(const Handle& parent, const std::string& name);
-Handle open_group(const Handle& parent, const std::string& name);
-Handle open_dataset(const Handle& parent, const std::string& name);
-
-void write_string_attribute(const Handle& object, const std::string& name, const std::string& value);
-[[nodiscard]] bool has_attribute(const Handle& object, const std::string& name);
-/// A dataset's extent along each axis.
-std::vector<hsize_t> dataset_shape(const Handle& dataset);
-std::string read_string_attribute(const Handle& object, const std::string& name);
-void write_int_attribute(const Handle& object, const std::string& name, int value);
-[[nodiscard]] int read_int_attribute(const Handle& object, const std::string& name);
-
-/// Scalar dataset holding one string (any length, including empty).
-void write_string_dataset(const Handle& parent, const std::string& name, const std::string& value);
-[[nodiscard]] std::string read_string_dataset(const Handle& parent, const std::string& name);
-
-void write_vector(const Handle& parent, const std::string& name, const std::vector<double>& values);
-[[nodiscard]] std::vector<double> read_vector(const Handle& parent, const std::string& name);
+using forward::h5::has_attribute;
+using forward::h5::open_dataset;
+using forward::h5::open_file;
+using forward::h5::open_group;
+using forward::h5::QuietErrors;
+using forward::h5::read_attribute;
+using forward::h5::read_string_attribute;
+using forward::h5::read_string_dataset;
+using forward::h5::read_vector;
+using forward::h5::shape;
+using forward::h5::StringBytes;
+using forward::h5::write;
+using forward::h5::write_attribute;
+using forward::h5::write_string_attribute;
+using forward::h5::write_string_dataset;
 
 /// The kinds of 2D [rows][columns] dataset a table holds.
 enum class CellType { float64, status, text };

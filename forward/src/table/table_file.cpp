@@ -14,6 +14,9 @@
 namespace sedwave::forward::table {
 namespace {
 
+/// Table files store their strings NUL-terminated (the HDF5 layer's other layout is exact).
+constexpr h5::StringBytes kStrings = h5::StringBytes::nul_terminated;
+
 constexpr const char* kFormatName = "sedwave dispersion table";
 constexpr int kFormatVersion = 1;
 
@@ -42,16 +45,16 @@ struct ResultDatasets {
 };
 
 void describe(const h5::Handle& object, const std::string& units, const std::string& description) {
-  h5::write_string_attribute(object, "units", units);
-  h5::write_string_attribute(object, "description", description);
+  h5::write_string_attribute(object, "units", units, kStrings);
+  h5::write_string_attribute(object, "description", description, kStrings);
 }
 
 // ---- Writing --------------------------------------------------------------------------------------
 
 void write_grid(const h5::Handle& file, const TableGrid& grid) {
   const h5::Handle group = h5::create_group(file, "grid");
-  h5::write_vector(group, "omega_hat", grid.omega_hat);
-  h5::write_vector(group, "gamma_hat", grid.gamma_hat);
+  h5::write(group, "omega_hat", grid.omega_hat.data(), grid.omega_hat.size());
+  h5::write(group, "gamma_hat", grid.gamma_hat.data(), grid.gamma_hat.size());
   const h5::Handle omega = h5::open_dataset(group, "omega_hat");
   describe(omega, "1", "omega sqrt(m/kappa), strictly ascending; interpolation uses its log");
   const h5::Handle gamma = h5::open_dataset(group, "gamma_hat");
@@ -74,15 +77,15 @@ void create_results(const h5::Handle& file, const TableGrid& grid) {
 
 void write_layout(const h5::Handle& file, const DispersionTable& table) {
   const TableMetadata& m = table.metadata();
-  h5::write_string_attribute(file, "format", kFormatName);
-  h5::write_int_attribute(file, "format_version", kFormatVersion);
-  h5::write_string_attribute(file, "sedwave_version", m.code_version);
-  h5::write_string_attribute(file, "engine", m.engine);
-  h5::write_string_attribute(file, "definitions", m.definitions);
-  h5::write_string_attribute(file, "packing_hash", m.packing_hash);
-  h5::write_int_attribute(file, "packings", m.packings);
-  h5::write_string_attribute(file, "sigma_includes", sigma_meaning(m));
-  h5::write_string_dataset(file, "scene", m.scene_toml);
+  h5::write_string_attribute(file, "format", kFormatName, kStrings);
+  h5::write_attribute<int>(file, "format_version", kFormatVersion);
+  h5::write_string_attribute(file, "sedwave_version", m.code_version, kStrings);
+  h5::write_string_attribute(file, "engine", m.engine, kStrings);
+  h5::write_string_attribute(file, "definitions", m.definitions, kStrings);
+  h5::write_string_attribute(file, "packing_hash", m.packing_hash, kStrings);
+  h5::write_attribute<int>(file, "packings", m.packings);
+  h5::write_string_attribute(file, "sigma_includes", sigma_meaning(m), kStrings);
+  h5::write_string_dataset(file, "scene", m.scene_toml, kStrings);
   write_grid(file, table.grid());
   create_results(file, table.grid());
 }
@@ -139,7 +142,7 @@ TableMetadata read_metadata(const h5::Handle& file) {
   m.code_version = h5::read_string_attribute(file, "sedwave_version");
   m.definitions = h5::read_string_attribute(file, "definitions");
   if (h5::has_attribute(file, "packing_hash")) m.packing_hash = h5::read_string_attribute(file, "packing_hash");
-  if (h5::has_attribute(file, "packings")) m.packings = h5::read_int_attribute(file, "packings");
+  if (h5::has_attribute(file, "packings")) m.packings = h5::read_attribute<int>(file, "packings");
   return m;
 }
 
@@ -159,7 +162,7 @@ std::string shape_text(const std::vector<hsize_t>& shape) {
 /// Throws naming the file, the dataset and both shapes unless /results/NAME has `expected` shape.
 void require_shape(const h5::Handle& dataset, const std::string& name, const std::vector<hsize_t>& expected,
                    const std::filesystem::path& path) {
-  const std::vector<hsize_t> found = h5::dataset_shape(dataset);
+  const std::vector<hsize_t> found = h5::shape(dataset);
   if (found != expected) {
     throw std::runtime_error(path.string() + ": dataset /results/" + name + " has shape " + shape_text(found) +
                              ", expected " + shape_text(expected) + " (gamma_hat x omega_hat of /grid)");
@@ -176,13 +179,13 @@ DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& p
   if (format != kFormatName) {
     throw std::runtime_error(path.string() + ": not a sedwave dispersion table (format '" + format + "')");
   }
-  const int version = h5::read_int_attribute(file, "format_version");
+  const int version = h5::read_attribute<int>(file, "format_version");
   if (version != kFormatVersion) {
     throw std::runtime_error(path.string() + ": format_version " + std::to_string(version) + ", expected " +
                              std::to_string(kFormatVersion) + " (a table of another sedwave version)");
   }
   const h5::Handle grid_group = h5::open_group(file, "grid");
-  TableGrid grid{h5::read_vector(grid_group, "omega_hat"), h5::read_vector(grid_group, "gamma_hat")};
+  TableGrid grid{h5::read_vector<double>(grid_group, "omega_hat"), h5::read_vector<double>(grid_group, "gamma_hat")};
   DispersionTable table(std::move(grid), read_metadata(file));
 
   const ResultDatasets sets = open_results(file);
@@ -299,9 +302,9 @@ struct TableFile::State {
 
   void store(GridIndex index, const PointResult& result) {
     write_point_cells(sets, index, result);
-    h5::flush(file);
+    h5::flush(file, "the table file");
     write_point_status(sets, index, result.status);
-    h5::flush(file);
+    h5::flush(file, "the table file");
     table.set(index.i_gamma, index.i_omega, result);
   }
 

@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "hermite_surface.hpp"
-#include "sedwave/forward/models.hpp"
 #include "sedwave/forward/table/table_file.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 
@@ -115,10 +114,15 @@ TableModel::TableModel(DispersionTable table, std::string name, OutsideTable out
   }
 }
 
-std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
+std::string TableModel::file_of(std::string_view spec) {
   constexpr std::string_view prefix = "table:";
   if (!spec.starts_with(prefix)) throw std::invalid_argument("not a table model specification: '" + std::string(spec) + "'");
-  const std::string path = *dispersion_model_file(std::string(spec));
+  return std::string(spec.substr(prefix.size(), spec.find('?') - prefix.size()));
+}
+
+std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
+  constexpr std::string_view prefix = "table:";
+  const std::string path = file_of(spec);
   spec.remove_prefix(prefix.size());
   const std::size_t question = spec.find('?');
   OutsideTable outside = OutsideTable::error;
@@ -160,6 +164,20 @@ std::unique_ptr<TableModel> TableModel::from_spec(std::string_view spec) {
   }
   if (path.empty()) throw std::invalid_argument("table model needs a file: table:FILE.h5");
   return std::make_unique<TableModel>(read_table(path), "table:" + path, outside, interpolation);
+}
+
+std::vector<ModelDiagnostic> TableModel::diagnostics() const {
+  const std::uint64_t fallbacks = fallback_count(), extrapolated = extrapolated_count();
+  return {
+      {"table_fallback_evaluations", fallbacks,
+       fallbacks > 0
+           ? std::to_string(fallbacks) + " model evaluations fell outside the table and used the 1D lattice theory"
+           : std::string()},
+      {"table_long_wavelength_evaluations", extrapolated,
+       extrapolated > 0 ? std::to_string(extrapolated) + " model evaluations lay below the table's resolved omega_hat "
+                                                         "and used its long-wavelength limit (docs/tables.md)"
+                        : std::string()},
+  };
 }
 
 DispersionPoint TableModel::evaluate(double omega_hat, double gamma_hat) const {

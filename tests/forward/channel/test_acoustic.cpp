@@ -12,9 +12,10 @@
 #include <vector>
 
 #include "sedwave/forward/channel/acoustic.hpp"
-#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "sedwave/forward/units.hpp"
+#include "sedwave/forward/linear/newton_stage.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -35,7 +36,8 @@ class SmallChannel : public ::testing::Test {
     g.seed = 7;
     PreparationSettings p;
     p.pressure = 10.0;
-    packing_ = std::make_unique<PreparedChannel>(prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke(726.0), g.width, p));
+    packing_ = std::make_unique<PreparedChannel>(prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke(726.0), g.width, p,
+        forward::linear::newton_stage()));
   }
   static void TearDownTestSuite() { packing_.reset(); }
   static std::unique_ptr<PreparedChannel> packing_;
@@ -143,7 +145,7 @@ TEST_F(SmallChannel, SingleGrainProbesMeasureTheSameWaveLessPrecisely) {
 // linear engine solves for directly on the same packing (the shipped small table's, where this
 // point rings; not every packing does).
 TEST(ContinuedRun, ARunNotSteadyIsContinuedUntilItIs) {
-  const PreparedChannel packing = read_packing(SEDWAVE_SOURCE_DIR "/data/tables/thesis_w3_small.packing.h5");
+  const PreparedChannel packing = experiment::read_packing(SEDWAVE_SOURCE_DIR "/data/tables/thesis_w3_small.packing.h5");
   DriveSettings d;
   d.gamma_hat = 0.01;
   d.omega_hat = 1.0;

@@ -12,6 +12,7 @@
 #include "sedwave/forward/channel/periodic_cell.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/units.hpp"
+#include "sedwave/forward/linear/newton_stage.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -42,7 +43,8 @@ PreparationSettings cell_preparation() {
 const PreparedChannel& prepared_cell() {
   static const PreparedChannel cell = [] {
     const ChannelGeometry g = cell_geometry(300);
-    return prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, cell_preparation());
+    return prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, cell_preparation(),
+        forward::linear::newton_stage());
   }();
   return cell;
 }
@@ -150,7 +152,8 @@ TEST(PeriodicCell, HasNoWallToLower) {
   const ChannelGeometry g = cell_geometry(100);
   PreparationSettings p = cell_preparation();
   p.compression = Compression::wall;
-  EXPECT_THROW((void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, p),
+  EXPECT_THROW((void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), hooke_contact(), g.width, p,
+      forward::linear::newton_stage()),
                std::invalid_argument);
 }
 

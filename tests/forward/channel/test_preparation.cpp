@@ -10,6 +10,7 @@
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/units.hpp"
+#include "sedwave/forward/linear/newton_stage.hpp"
 
 namespace sedwave::forward::channel {
 namespace {
@@ -56,7 +57,8 @@ TEST(Preparation, ReachesMechanicalEquilibriumAtThePrescribedPressure) {
   PreparationSettings p;
   p.pressure = 10.0;
   p.log = &std::cout;
-  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p);
+  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p,
+      forward::linear::newton_stage());
   std::cout << describe(c.report) << "\n";
   EXPECT_TRUE(c.report.converged);
   EXPECT_LT(c.report.residual_ratio, 1e-9);
@@ -83,7 +85,8 @@ TEST(Preparation, AffineCompressionTakesStepsIndependentOfTheColumnLength) {
   std::vector<PreparedChannel> columns;
   for (const int n : {150, 600}) {
     g.n_grains = n;
-    columns.push_back(prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p));
+    columns.push_back(prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p,
+        forward::linear::newton_stage()));
     const PreparationReport& r = columns.back().report;
     std::cout << n << " grains:\n" << describe(r) << "\n";
     EXPECT_TRUE(r.converged);
@@ -113,7 +116,8 @@ TEST(Preparation, WallIsCorrectedAgainWhenNewtonMovesThePressure) {
   p.newton_start_tolerance = 0.1;  // FIRE hands over far from equilibrium: Newton has more to move
   std::ostringstream log;
   p.log = &log;
-  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p);
+  const PreparedChannel c = prepare_channel(MPI_COMM_WORLD, generate_channel(g), thesis_contact(0.9), g.width, p,
+      forward::linear::newton_stage());
   std::cout << log.str() << describe(c.report) << "\n";
   EXPECT_TRUE(c.report.converged);
   EXPECT_LT(c.report.residual_ratio, 1e-9);
@@ -139,14 +143,15 @@ TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
   PreparationSettings fast = p;
   fast.compression_speed = 0.3;
   try {
-    (void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, fast);
+    (void)prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, fast, forward::linear::newton_stage());
     FAIL() << "the wall protocol was expected to over-compress this column";
   } catch (const dem::GuardError& e) {
     EXPECT_NE(std::string(e.what()).find("compression = \"pressure\""), std::string::npos) << e.what();
   }
   for (const Compression protocol : {Compression::pressure, Compression::affine}) {
     p.compression = protocol;
-    const PreparedChannel c2 = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p);
+    const PreparedChannel c2 = prepare_channel(MPI_COMM_WORLD, generate_channel(g), c, g.width, p,
+        forward::linear::newton_stage());
     std::cout << describe(c2.report) << "\n";
     EXPECT_TRUE(c2.report.converged);
     EXPECT_NEAR(c2.report.pressure / 10.0, 1.0, 1e-2);

@@ -28,6 +28,7 @@
 #include "sedwave/forward/linear/ordered_chain.hpp"
 #include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
+#include "sedwave/forward/linear/newton_stage.hpp"
 
 namespace sedwave::forward::linear {
 namespace {
@@ -208,7 +209,8 @@ class Packing : public ::testing::Test {
     channel::PreparationSettings p;
     p.pressure = 10.0;
     packing_ = std::make_unique<channel::PreparedChannel>(
-        channel::prepare_channel(MPI_COMM_SELF, channel::generate_channel(g), hooke(kKn), g.width, p));
+        channel::prepare_channel(MPI_COMM_SELF, channel::generate_channel(g), hooke(kKn), g.width, p,
+            forward::linear::newton_stage()));
   }
   static void TearDownTestSuite() { packing_.reset(); }
   static constexpr double kKn = 726.0;
@@ -334,7 +336,8 @@ class HertzPacking : public ::testing::Test {
     g.n_grains = 150;
     for (g.seed = 8; g.seed < 16; ++g.seed) {
       packing_ = std::make_unique<channel::PreparedChannel>(channel::prepare_channel(
-          MPI_COMM_SELF, channel::generate_channel(g), hertz(), g.width, channel::PreparationSettings{}));
+          MPI_COMM_SELF, channel::generate_channel(g), hertz(), g.width, channel::PreparationSettings{},
+              forward::linear::newton_stage()));
       if (smallest_overlap(*packing_) > kSmallestOverlap && !claps_under_tiny_drive(*packing_)) return;
     }
   }

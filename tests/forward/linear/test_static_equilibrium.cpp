@@ -17,6 +17,7 @@
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/linear/ordered_chain.hpp"
 #include "sedwave/forward/linear/static_equilibrium.hpp"
+#include "sedwave/forward/linear/newton_stage.hpp"
 
 namespace sedwave::forward::linear {
 namespace {
@@ -62,7 +63,7 @@ TEST(StaticEquilibrium, ShakenPackingRelaxesToWhatTheDemEngineCallsStatic) {
   p.residual_force_tolerance = 1e-4;  // FIRE only roughly; the Newton relaxation does the rest
   const dem::ContactSpec contact = frictionless(726.0);
   channel::PreparedChannel packing = channel::prepare_channel(MPI_COMM_SELF, channel::generate_channel(g), contact,
-                                                              g.width, p);
+                                                              g.width, p, forward::linear::newton_stage());
   std::mt19937 rng(11);
   std::normal_distribution<double> shake(0.0, 2e-3);
   for (dem::Grain& grain : packing.grains) {

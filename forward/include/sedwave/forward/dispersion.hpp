@@ -7,7 +7,9 @@
 //
 // Closed-form theories, tables and simulations all implement DispersionModel, so the inversion
 // never depends on which one it is fitting with.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace sedwave::forward {
 
@@ -27,6 +29,14 @@ struct DispersionPoint {
   double sigma_c_hat = 0.0;      ///< 1-sigma model uncertainty (0 for closed forms)
 };
 
+/// A count a model keeps while it answers (how often a table fell back to a theory, say), which a
+/// fit made with the model must report, or a theory's answers would pass for the model's own.
+struct ModelDiagnostic {
+  std::string key;          ///< its name in a fit report, e.g. "table_fallback_evaluations"
+  std::uint64_t count = 0;
+  std::string note;         ///< one sentence for the reader when there is something to say, else empty
+};
+
 /// Interface of all forward models. Implementations must be thread-safe for concurrent evaluate().
 class DispersionModel {
  public:
@@ -42,6 +52,9 @@ class DispersionModel {
   /// What the model's own sigmas are known to leave out, in words (an inversion flags it); empty
   /// when nothing is known to be missing (closed forms are exact).
   [[nodiscard]] virtual std::string uncertainty_caveat() const { return {}; }
+  /// How the model's answers so far came about, where that is more than the model itself (none for
+  /// closed forms).
+  [[nodiscard]] virtual std::vector<ModelDiagnostic> diagnostics() const { return {}; }
 };
 
 }  // namespace sedwave::forward

@@ -25,6 +25,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -96,10 +97,20 @@ struct PreparedChannel {
   PreparationReport report;
 };
 
+/// Newton's method for the last stage of a frictionless preparation: moves the free grains of
+/// `grains` (a box with `rigid_bodies` frozen walls) to the nearest static equilibrium in at most
+/// `max_iterations` trial steps, to max |F| / mean contact force below `residual_force_tolerance`,
+/// and returns the steps taken; throws when it cannot. The solver is the linear engine's
+/// (linear/newton_stage.hpp), which builds on the channel, so the caller hands it in.
+using NewtonRelaxation = std::function<int(std::vector<dem::Grain>& grains, const dem::Box& box,
+                                           const dem::ContactSpec& contact, int rigid_bodies,
+                                           double residual_force_tolerance, int max_iterations)>;
+
 /// Compresses and relaxes `start` (whose grains may be given on any rank). Collective over comm.
+/// Without `newton` (an empty function) FIRE relaxes alone, as with newton_relaxation = false.
 [[nodiscard]] PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start,
                                               const dem::ContactSpec& contact, double width,
-                                              const PreparationSettings& settings);
+                                              const PreparationSettings& settings, const NewtonRelaxation& newton);
 
 /// The box as rank 0 knows it, on every rank: scenes hold their grains (and so their box) on rank 0
 /// only, and every rank must construct its engine with the same box (collective).

@@ -23,7 +23,6 @@
 #include <vector>
 
 #include "sedwave/forward/linear/linear_channel.hpp"
-#include "sedwave/forward/table/task_farm.hpp"
 
 namespace sedwave::forward::linear {
 
@@ -43,12 +42,5 @@ struct LongWavelengthLimit {
 /// transverse: S waves). Throws std::invalid_argument for x < 0 or a column too short to fit.
 [[nodiscard]] LongWavelengthLimit long_wavelength_limit(const LinearChannel& channel, double x,
                                                         channel::DriveAxis axis);
-
-/// Table point function: at (omega_hat, gamma_hat) every member's limit at x = omega_hat gamma_hat,
-/// alpha_hat = omega_hat * alpha_over_omega; ensemble mean and standard error of the mean (one
-/// member: sigma 0, the limit is a solve, not a fit). Serial per point. The references must outlive
-/// the farm.
-[[nodiscard]] table::PointFunction long_wavelength_point_function(const std::vector<LinearChannel>& members,
-                                                                  channel::DriveAxis axis);
 
 }  // namespace sedwave::forward::linear

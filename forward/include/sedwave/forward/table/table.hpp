@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "sedwave/forward/spacing.hpp"
+
 namespace sedwave::forward::table {
 
 /// The grid: strictly ascending, positive, finite values (interpolation works in their logs).
@@ -26,8 +28,7 @@ struct TableGrid {
   friend bool operator==(const TableGrid&, const TableGrid&) = default;
 };
 
-/// n values from first to last, equally spaced in log (n >= 2), last exactly `last`.
-[[nodiscard]] std::vector<double> log_spaced(double first, double last, std::size_t n);
+using forward::log_spaced;  // a grid's axes are log-spaced (spacing.hpp)
 
 /// Where a table point stands. The numeric codes are part of the file format.
 enum class PointStatus : std::int8_t {

@@ -83,6 +83,8 @@ class TableModel final : public DispersionModel {
   /// From a command-line specification "table:FILE" or "table:FILE?OPTION&OPTION" with options
   /// extrapolate=none|theory|long-wavelength and interpolate=direct|correction, each at most once.
   [[nodiscard]] static std::unique_ptr<TableModel> from_spec(std::string_view spec);
+  /// The file such a specification names ("table:FILE.h5?..." gives FILE.h5).
+  [[nodiscard]] static std::string file_of(std::string_view spec);
 
   [[nodiscard]] std::string name() const override { return name_; }
   [[nodiscard]] DispersionPoint evaluate(double omega_hat, double gamma_hat) const override;
@@ -92,6 +94,8 @@ class TableModel final : public DispersionModel {
   /// Non-empty for a table of one packing (its sigma leaves out packing-to-packing variation) and
   /// for an engine-made table that does not record how many packings its sigma spans.
   [[nodiscard]] std::string uncertainty_caveat() const override;
+  /// fallback_count() and extrapolated_count(), each with a note when it is not zero.
+  [[nodiscard]] std::vector<ModelDiagnostic> diagnostics() const override;
 
   /// How many evaluations fell back to the lattice theory so far.
   [[nodiscard]] std::uint64_t fallback_count() const { return fallbacks_.load(std::memory_order_relaxed); }

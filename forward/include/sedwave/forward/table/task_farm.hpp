@@ -10,8 +10,9 @@
 // A killed run restarted with the same arguments resumes the file (TableFile::resume_or_create) and
 // hands out only the points that are not finished.
 //
-// The point function is injectable: the DEM channel for real tables (dem_point_function), a theory
-// for fast tests of the farm itself.
+// The farm knows no engine: the point function is injected, an engine's for real tables
+// (experiment/time_domain_points.hpp, experiment/linear_points.hpp), a theory for fast tests of the
+// farm itself.
 //
 // Units: dimensionless (table.hpp); wall times in seconds.
 #include <mpi.h>
@@ -23,7 +24,6 @@
 #include <string>
 #include <vector>
 
-#include "sedwave/forward/channel/acoustic.hpp"
 #include "sedwave/forward/table/table.hpp"
 
 namespace sedwave::forward::table {
@@ -63,31 +63,5 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
 /// attenuation, and storing the noise would mislead the interpolation); ok otherwise.
 [[nodiscard]] PointResult point_from_measurement(const std::string& problem, double alpha, double sigma_alpha,
                                                  double c, double sigma_c, double wall_seconds);
-
-/// What a driven run measured, as a table point (point_from_measurement); unresolved, with the
-/// warning as its reason, when its windows were still not steady after every extension.
-[[nodiscard]] PointResult point_from_acoustic(const channel::AcousticResult& result);
-
-/// Copies the prepared packing from rank 0 of `world` (where prepare_channel leaves it) to the rank 0
-/// of every group of ranks_per_point ranks, which run_acoustic needs. Collective over `world`.
-void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point);
-
-/// A pulse covers a band well up to this ratio of its highest to its lowest frequency.
-inline constexpr double kPulseBandRatio = 8.0;
-
-/// The grid's omega_hat values (ascending) cut into consecutive bands, each spanning at most
-/// kPulseBandRatio.
-[[nodiscard]] std::vector<std::vector<double>> pulse_bands(const std::vector<double>& omega_hats);
-
-/// The DEM point function: every point drives the same prepared packing (which must be on rank 0 of
-/// each group; other ranks may hold an empty one) with `drive`, its omega_hat and gamma_hat replaced
-/// by the grid point's. With a pulse drive (`drive.pulse` set; its own band is ignored), the first
-/// point of a (gamma_hat, band of pulse_bands(grid.omega_hat)) that a group meets runs one pulse
-/// measuring every grid frequency of that band, and the group's next points of the same band are
-/// read from it: the farm hands out points gamma_hat-major, so with G groups a table row costs at
-/// most G pulse runs per band instead of one run per point. The references must outlive the farm.
-[[nodiscard]] PointFunction dem_point_function(const channel::PreparedChannel& packing,
-                                               const dem::ContactSpec& contact, const channel::DriveSettings& drive,
-                                               const TableGrid& grid);
 
 }  // namespace sedwave::forward::table

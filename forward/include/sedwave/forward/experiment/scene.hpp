@@ -16,9 +16,10 @@
 #include "sedwave/forward/channel/periodic_cell.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/experiment/engine.hpp"
 #include "sedwave/forward/linear/settings.hpp"
 
-namespace sedwave::forward::channel {
+namespace sedwave::forward::experiment {
 
 /// Error in a scene file: "FILE:LINE: key 'a.b': why" (toml11's own message for syntax errors).
 class SceneError : public std::runtime_error {
@@ -26,25 +27,21 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Which engine drives the packing: the time-domain DEM (any amplitude) or the linear-response
-/// engine (small amplitudes, steady state, orders of magnitude faster; docs/linear.md).
-enum class EngineKind { time_domain, linear };
-
 struct ChannelScene {
   std::filesystem::path path;   ///< where it was read from (relative paths inside resolve from here)
   std::string text;             ///< the file verbatim, stored in every output for provenance
-  ChannelGeometry geometry;
+  channel::ChannelGeometry geometry;
   /// A LAMMPS data file (atom_style sphere) to use instead of generating the column; types
   /// 1 = flow grains, 2 = lower wall, 3 = upper wall (the thesis's convention).
   std::optional<std::filesystem::path> import_lammps_data;
   /// Build the channel from a periodic cell of tiling->cell_grains grains ([geometry.periodic_cell],
   /// periodic_cell.hpp): geometry.n_grains / cell_grains copies, the ends frozen into the walls.
-  std::optional<CellTiling> tiling;
+  std::optional<channel::CellTiling> tiling;
   /// Contact law; its damping (restitution or gamma) is the one used while preparing. Driven runs
   /// replace it by DriveSettings::gamma_hat.
   dem::ContactSpec contact;
-  PreparationSettings preparation;
-  DriveSettings drive;
+  channel::PreparationSettings preparation;
+  channel::DriveSettings drive;
   EngineKind engine = EngineKind::time_domain;
   linear::LinearSettings linear;  ///< used when engine == linear
 };
@@ -55,4 +52,4 @@ struct ChannelScene {
 /// Parses scene text (for tests and for tables that store their scene); `origin` names it in errors.
 [[nodiscard]] ChannelScene parse_scene(const std::string& text, const std::string& origin);
 
-}  // namespace sedwave::forward::channel
+}  // namespace sedwave::forward::experiment

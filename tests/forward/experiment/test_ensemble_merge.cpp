@@ -1,4 +1,4 @@
-// Member tables of one ensemble merged into the ensemble's table (linear/ensemble.hpp): the mean
+// Member tables of one ensemble merged into the ensemble's table (experiment/linear_points.hpp): the mean
 // and standard error of the members, the table's significance rule applied to the mean, and clear
 // refusals of tables that do not belong together. (That a merge reproduces a one-run ensemble
 // table value for value is checked end to end in tests/forward/linear/cli_linear.sh.)
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "sedwave/forward/linear/ensemble.hpp"
+#include "sedwave/forward/experiment/linear_points.hpp"
 
-namespace sedwave::forward::linear {
+namespace sedwave::forward::experiment {
 namespace {
 
 using table::DispersionTable;
@@ -96,4 +96,4 @@ TEST(MergeMemberTables, RefusesTablesThatDoNotBelongTogether) {
 }
 
 }  // namespace
-}  // namespace sedwave::forward::linear
+}  // namespace sedwave::forward::experiment

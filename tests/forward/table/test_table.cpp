@@ -17,8 +17,8 @@
 #include <random>
 #include <string>
 
-#include "derivative_check.hpp"
-#include "sedwave/forward/models.hpp"
+#include "../derivative_check.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/forward/table/table_file.hpp"
 #include "sedwave/forward/table/table_model.hpp"
 #include "sedwave/forward/theory/lattice.hpp"

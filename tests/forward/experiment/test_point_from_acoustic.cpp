@@ -5,10 +5,14 @@
 #include <cmath>
 #include <vector>
 
-#include "sedwave/forward/table/task_farm.hpp"
+#include "sedwave/forward/experiment/time_domain_points.hpp"
 
-namespace sedwave::forward::table {
+namespace sedwave::forward::experiment {
 namespace {
+
+using table::log_spaced;
+using table::PointResult;
+using table::PointStatus;
 
 channel::AcousticResult measured(double alpha, double sigma_alpha, double c, double sigma_c) {
   channel::AcousticResult r;
@@ -82,4 +86,4 @@ TEST(PulseBands, CutTheGridIntoBandsOneGaussianPulseCovers) {
 }
 
 }  // namespace
-}  // namespace sedwave::forward::table
+}  // namespace sedwave::forward::experiment

@@ -6,7 +6,7 @@
 #include <complex>
 #include <numbers>
 
-#include "derivative_check.hpp"
+#include "../derivative_check.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 
 namespace sedwave::forward {

@@ -7,23 +7,24 @@
 #include <filesystem>
 
 #include "sedwave/forward/channel/acoustic.hpp"
-#include "sedwave/forward/channel/scene.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
 
-namespace sedwave::forward::channel {
+namespace sedwave::forward::experiment {
 
 /// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1).
-void write_packing(const std::filesystem::path& path, const PreparedChannel& packing, const std::string& scene_text);
+void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing,
+                   const std::string& scene_text);
 /// Writes the packing as a LAMMPS data file (atom_style sphere): type 1 flow grains, 2 the lower
 /// (driven) wall, 3 the upper wall.
-void write_packing_lammps_data(const std::filesystem::path& path, const PreparedChannel& packing);
+void write_packing_lammps_data(const std::filesystem::path& path, const channel::PreparedChannel& packing);
 /// Reads a packing written by write_packing (grains, box, report statistics).
-[[nodiscard]] PreparedChannel read_packing(const std::filesystem::path& path);
+[[nodiscard]] channel::PreparedChannel read_packing(const std::filesystem::path& path);
 /// A hash (io::Fingerprint, 16 hex digits) of a packing's grains and box, bit for bit: the same for
 /// a packing as prepared and as read back from its file, different for any other packing.
-[[nodiscard]] std::string packing_fingerprint(const PreparedChannel& packing);
+[[nodiscard]] std::string packing_fingerprint(const channel::PreparedChannel& packing);
 
 /// Writes the run file, atomically (temporary file + rename).
-void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
-                    const AcousticResult& result);
+void write_run_file(const std::filesystem::path& path, const ChannelScene& scene,
+                    const channel::PreparationReport& preparation, const channel::AcousticResult& result);
 
-}  // namespace sedwave::forward::channel
+}  // namespace sedwave::forward::experiment

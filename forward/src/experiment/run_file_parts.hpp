@@ -1,5 +1,5 @@
 #pragma once
-// Pieces shared by the packing and run files of both engines (private to forward/): atomic
+// Pieces shared by the packing and run files of both engines (private to experiment/): atomic
 // writing, the run files' root attributes, a number with its unit, a propagation fit, and the
 // packing statistics of a preparation report.
 #include <filesystem>
@@ -10,7 +10,11 @@
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/version.hpp"
 
-namespace sedwave::forward::channel {
+namespace sedwave::forward::experiment {
+
+using channel::PackingStats;
+using channel::PreparationReport;
+using channel::PropagationFit;
 
 /// Root attributes of a run file (either engine): code version, scene text, units.
 inline void write_run_header(hid_t file, const std::string& scene_text) {
@@ -58,4 +62,4 @@ inline void write_stats(hid_t parent, const PreparationReport& r) {
                              "bin k counts separations |s|/d in [1e-(k+1), 1e-k); the last bin also holds smaller");
 }
 
-}  // namespace sedwave::forward::channel
+}  // namespace sedwave::forward::experiment

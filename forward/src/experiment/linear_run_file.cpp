@@ -1,16 +1,16 @@
-#include "sedwave/forward/linear/run_file.hpp"
+#include "sedwave/forward/experiment/linear_run_file.hpp"
 
-#include "../channel/run_file_parts.hpp"
 #include "../io/hdf5.hpp"
+#include "run_file_parts.hpp"
 
-namespace sedwave::forward::linear {
+namespace sedwave::forward::experiment {
 
-using channel::number;
+using namespace linear;  // the file holds the linear engine's results
 
-void write_linear_run_file(const std::filesystem::path& path, const channel::ChannelScene& scene,
+void write_linear_run_file(const std::filesystem::path& path, const ChannelScene& scene,
                            const std::vector<channel::PreparationReport>& preparations, const EnsembleResult& e) {
   h5::write_file_atomically(path, [&](hid_t file) {
-    channel::write_run_header(file, scene.text);
+    write_run_header(file, scene.text);
     h5::write_string_attribute(file, "engine", "linear");
     for (std::size_t k = 0; k < e.members.size(); ++k) {
       const LinearResult& r = e.members[k];
@@ -18,7 +18,7 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
       h5::write_attribute(member, "seed", static_cast<std::int64_t>(scene.geometry.seed + k));
       if (k < preparations.size()) {
         h5::Handle packing = h5::create_group(member, "packing");
-        channel::write_stats(packing, preparations[k]);
+        write_stats(packing, preparations[k]);
       }
       h5::write(member, "layer_z", r.layer_z.data(), r.layer_z.size());
       h5::write_string_attribute(member, "layer_z_unit", "d, from the driven wall's mean surface");
@@ -32,7 +32,7 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
       h5::write(member, "layer_field_imag", im.data(), im.size());
       h5::write_string_attribute(member, "layer_field_unit",
                                  "wall amplitude A; mean displacement along the drive axis is Re(U exp(i omega t))");
-      channel::write_fit(member, r.fit);
+      write_fit(member, r.fit);
       number(member, "two_wave_alpha_hat", r.waves.alpha, "Np per d");
       number(member, "two_wave_k_hat", r.waves.k, "rad per d");
       number(member, "reflection", r.waves.reflection, "1 (at the absorbing layer's start; indicative only: in a disordered channel with alpha L >> 1 scattering noise dominates it)");
@@ -75,4 +75,4 @@ void write_linear_run_file(const std::filesystem::path& path, const channel::Cha
   });
 }
 
-}  // namespace sedwave::forward::linear
+}  // namespace sedwave::forward::experiment

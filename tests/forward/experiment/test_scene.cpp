@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "sedwave/forward/channel/scene.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
 
-namespace sedwave::forward::channel {
+namespace sedwave::forward::experiment {
 namespace {
+
+using namespace channel;  // a scene holds the channel's settings
 
 TEST(Scene, ShippedExampleParses) {
   const ChannelScene s = read_scene(std::string(SEDWAVE_SOURCE_DIR) + "/data/scenes/thesis_w3.toml");
@@ -162,4 +164,4 @@ TEST(Scene, PulseDriveReadsItsBand) {
 }
 
 }  // namespace
-}  // namespace sedwave::forward::channel
+}  // namespace sedwave::forward::experiment

@@ -1,4 +1,4 @@
-#include "sedwave/forward/channel/run_file.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -11,7 +11,9 @@
 #include "sedwave/io/fingerprint.hpp"
 #include "sedwave/version.hpp"
 
-namespace sedwave::forward::channel {
+namespace sedwave::forward::experiment {
+
+using namespace channel;  // the files hold the channel's packings and measurements
 
 void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
   h5::write_file_atomically(path, [&](hid_t file) {
@@ -69,7 +71,7 @@ std::string packing_fingerprint(const PreparedChannel& packing) {
 
 PreparedChannel read_packing(const std::filesystem::path& path) {
   h5::Handle file = h5::open_file(path.string());
-  h5::Handle grains(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open group grains");
+  h5::Handle grains = h5::open_group(file, "grains");
   const std::size_t n = h5::rows(grains, "id");
   const auto id = h5::read_rows<std::int64_t>(grains, "id", 0, n);
   const auto group = h5::read_rows<std::int32_t>(grains, "group", 0, n);
@@ -88,13 +90,13 @@ PreparedChannel read_packing(const std::filesystem::path& path) {
     g.position = {position[3 * i], position[3 * i + 1], position[3 * i + 2]};
     p.grains.push_back(g);
   }
-  h5::Handle box(H5Gopen2(file, "box", H5P_DEFAULT), H5Gclose, "open group box");
+  h5::Handle box = h5::open_group(file, "box");
   const auto bounds = h5::read_rows<double>(box, "bounds", 0, 2, 3);
   const auto periodic = h5::read_rows<std::int32_t>(box, "periodic", 0, 3);
   p.box.lo = {bounds[0], bounds[1], bounds[2]};
   p.box.hi = {bounds[3], bounds[4], bounds[5]};
   p.box.periodic = {periodic[0] != 0, periodic[1] != 0, periodic[2] != 0};
-  h5::Handle stats(H5Gopen2(file, "preparation", H5P_DEFAULT), H5Gclose, "open group preparation");
+  h5::Handle stats = h5::open_group(file, "preparation");
   p.report.pressure = h5::read_attribute<double>(stats, "pressure");
   p.report.converged = h5::read_attribute<std::int32_t>(stats, "converged") != 0;
   p.report.residual_ratio = h5::read_attribute<double>(stats, "residual_ratio");
@@ -214,4 +216,4 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
   });
 }
 
-}  // namespace sedwave::forward::channel
+}  // namespace sedwave::forward::experiment

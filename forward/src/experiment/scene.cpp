@@ -1,4 +1,4 @@
-#include "sedwave/forward/channel/scene.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
 
 #include <cmath>
 #include <toml.hpp>
@@ -7,8 +7,10 @@
 
 #include "sedwave/forward/units.hpp"
 
-namespace sedwave::forward::channel {
+namespace sedwave::forward::experiment {
 namespace {
+
+using namespace channel;  // a scene file is mostly the channel's settings
 
 using Section = toml_io::Table<SceneError>;
 using Range = toml_io::Range;
@@ -199,17 +201,12 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   }
   read_drive(top.sub("drive"), scene.drive);
   read_linear(top.sub("linear"), scene.linear);
-  if (scene.drive.pulse && scene.engine == EngineKind::linear) {
-    top.sub("drive").fail_table("signal: the linear engine solves each frequency directly; a pulse is for the "
-                                "time-domain engine");
+  if (const std::string refusal = engine_refusal(scene.engine, scene.drive); !refusal.empty()) {
+    top.sub("drive").fail_table(refusal);
   }
   if (scene.drive.pulse && scene.drive.far_end != FarEnd::absorbing) {
     top.sub("drive").fail_table("far_end: a pulse needs far_end = \"absorbing\" (a frozen end sends the whole pulse "
                                 "back through the layers being measured)");
-  }
-  if (scene.engine == EngineKind::linear && scene.drive.far_end != FarEnd::absorbing) {
-    top.sub("drive").fail_table("far_end: the linear engine computes the steady state, in which a frozen end "
-                                         "reflects the whole wave: use far_end = \"absorbing\"");
   }
   top.finish();
   if (!scene.contact.restitution) scene.contact.restitution = 0.9;  // preparation damping (thesis)
@@ -230,4 +227,4 @@ ChannelScene read_scene(const std::filesystem::path& path) {
   return parse_scene(toml_io::read_text<SceneError>(path, "scene file"), path.string());
 }
 
-}  // namespace sedwave::forward::channel
+}  // namespace sedwave::forward::experiment

@@ -1,4 +1,4 @@
-#include "sedwave/forward/models.hpp"
+#include "sedwave/forward/catalog/models.hpp"
 
 #include <stdexcept>
 #include <string_view>
@@ -19,9 +19,8 @@ std::unique_ptr<DispersionModel> make_dispersion_model(const std::string& spec) 
 }
 
 std::optional<std::string> dispersion_model_file(const std::string& spec) {
-  constexpr std::string_view prefix = "table:";
-  if (!spec.starts_with(prefix)) return std::nullopt;
-  return spec.substr(prefix.size(), spec.find('?') - prefix.size());
+  if (!spec.starts_with("table:")) return std::nullopt;
+  return table::TableModel::file_of(spec);
 }
 
 std::vector<std::string> dispersion_model_names() { return {"continuum", "lattice", "table:FILE.h5"}; }

@@ -5,12 +5,13 @@
 #include <filesystem>
 #include <vector>
 
-#include "sedwave/forward/channel/scene.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
 #include "sedwave/forward/linear/ensemble.hpp"
 
-namespace sedwave::forward::linear {
+namespace sedwave::forward::experiment {
 
-void write_linear_run_file(const std::filesystem::path& path, const channel::ChannelScene& scene,
-                           const std::vector<channel::PreparationReport>& preparations, const EnsembleResult& result);
+void write_linear_run_file(const std::filesystem::path& path, const ChannelScene& scene,
+                           const std::vector<channel::PreparationReport>& preparations,
+                           const linear::EnsembleResult& result);
 
-}  // namespace sedwave::forward::linear
+}  // namespace sedwave::forward::experiment

@@ -1,0 +1,52 @@
+#pragma once
+// The packings a scene's runs start from, for every command that runs a scene (`sedwave forward`,
+// `sedwave table`): the loose column (generated from the scene, or imported from LAMMPS),
+// compressed and relaxed, or a packing file written earlier; for the linear engine's ensembles,
+// member k uses the scene's seed + k and its own file (member_path).
+#include <mpi.h>
+
+#include <iosfwd>
+#include <string>
+
+#include "sedwave/forward/channel/preparation.hpp"
+#include "sedwave/forward/experiment/scene.hpp"
+
+namespace sedwave::forward::experiment {
+
+/// Ensemble member k's packing file: `path` itself for k = 0, else `path` with ".member<k>" inserted
+/// before the extension (packing.h5 -> packing.member1.h5).
+[[nodiscard]] std::string member_path(const std::string& path, int k);
+
+/// Prepares member k (collective over MPI_COMM_WORLD; the result is on rank 0): the linear
+/// engine's Newton relaxation finishes frictionless packings. Imported LAMMPS packings have no
+/// seed: only member 0 exists for them.
+[[nodiscard]] channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int rank, std::ostream* log);
+
+/// Where a member's packing comes from, and where a prepared one goes. Paths name member 0's file
+/// (member_path gives member k's); empty: none.
+struct PackingFiles {
+  std::string read;  ///< read the member from here instead of preparing it
+  std::string save;  ///< save a prepared member here (HDF5, and its LAMMPS twin .data)
+  /// A resumable run's files: member k is read from `path` where its file exists, else prepared and
+  /// saved there, so that a restart skips the preparation.
+  [[nodiscard]] static PackingFiles reuse(const std::string& path, int k);
+};
+
+/// A member's packing and where it came from.
+struct ScenePacking {
+  channel::PreparedChannel channel;  ///< the grains on rank 0 only
+  bool prepared = false;             ///< prepared now (else read from a file)
+  std::string provenance;            ///< in words, for a table's definitions
+};
+
+/// Member k's packing, read (on rank 0) or prepared (collectively over MPI_COMM_WORLD, logging to
+/// `log`) and saved as `files` say.
+[[nodiscard]] ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles& files,
+                                         std::ostream* log);
+
+/// Copies the packing from rank 0 of `world` to the rank 0 of every group of ranks_per_point ranks,
+/// which the engines need (the time-domain engine: grains on its group's rank 0; the linear
+/// engine: ranks_per_point = 1, on every rank). Collective over `world`.
+void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point);
+
+}  // namespace sedwave::forward::experiment

@@ -1,0 +1,114 @@
+#include "sedwave/forward/experiment/packings.hpp"
+
+#include <filesystem>
+#include <ostream>
+#include <stdexcept>
+#include <type_traits>
+
+#include "sedwave/forward/channel/periodic_cell.hpp"
+#include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
+#include "sedwave/forward/linear/newton_stage.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
+
+namespace sedwave::forward::experiment {
+namespace {
+
+/// The loose column from the scene (generated, or a LAMMPS data file), on rank 0 only.
+channel::ChannelConfiguration initial_column(const ChannelScene& scene, int k, int rank) {
+  using namespace channel;
+  if (rank != 0) return {};
+  if (!scene.import_lammps_data) {
+    ChannelGeometry geometry = scene.geometry;
+    geometry.seed += static_cast<std::uint64_t>(k);
+    if (scene.tiling) {
+      geometry.n_grains = scene.tiling->cell_grains;
+      geometry.periodic = true;
+    }
+    return generate_channel(geometry);
+  }
+  if (k > 0) throw std::invalid_argument(scene.path.string() + ": an imported packing cannot form an ensemble");
+  const dem::LammpsData data = dem::read_lammps_data(scene.import_lammps_data->string());
+  ChannelConfiguration c;
+  c.box = data.box;
+  c.box.periodic = {true, true, false};
+  for (dem::Grain g : data.grains) {
+    // Thesis convention: type 1 flow grains, 2 lower wall, 3 upper wall.
+    g.group -= 1;
+    if (g.group < kFlowGroup || g.group > kUpperWallGroup) {
+      throw std::runtime_error(scene.import_lammps_data->string() + ": atom " + std::to_string(g.id) +
+                               " has a type other than 1 (flow), 2 (lower wall) or 3 (upper wall)");
+    }
+    g.body = g.group == kLowerWallGroup ? kLowerWallBody : g.group == kUpperWallGroup ? kUpperWallBody : 0;
+    c.grains.push_back(g);
+  }
+  return c;
+}
+
+}  // namespace
+
+std::string member_path(const std::string& path, int k) {
+  if (k == 0) return path;
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + ".member" + std::to_string(k) + p.extension().string())).string();
+}
+
+channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int rank, std::ostream* log) {
+  channel::PreparationSettings settings = scene.preparation;
+  settings.log = log;
+  channel::PreparedChannel packing = channel::prepare_channel(
+      MPI_COMM_WORLD, initial_column(scene, k, rank), scene.contact, scene.geometry.width, settings,
+      linear::newton_stage());
+  if (!scene.tiling) return packing;
+  if (log) *log << "periodic cell:\n" << channel::describe(packing.report) << "\n";
+  const int copies = scene.geometry.n_grains / scene.tiling->cell_grains;
+  channel::PreparedChannel tiled = channel::tile_periodic_cell(
+      MPI_COMM_WORLD, packing, scene.contact, copies, scene.tiling->wall_thickness);
+  if (log) *log << "tiled " << copies << " copies of the cell into a channel of " << scene.geometry.n_grains << " grains\n";
+  return tiled;
+}
+
+PackingFiles PackingFiles::reuse(const std::string& path, int k) {
+  if (path.empty()) return {};
+  if (std::filesystem::exists(member_path(path, k))) return {path, {}};
+  return {{}, path};
+}
+
+ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles& files, std::ostream* log) {
+  const int rank = parallel::rank(MPI_COMM_WORLD);
+  ScenePacking out;
+  if (!files.read.empty()) {
+    const std::string path = member_path(files.read, k);
+    out.provenance = "packing read from " + path;
+    if (rank == 0) out.channel = read_packing(path);  // the engines take the grains from rank 0
+    return out;
+  }
+  out.channel = prepare_member(scene, k, rank, log);
+  out.prepared = true;
+  out.provenance = "packing prepared from the scene (seed + " + std::to_string(k) + ") on " +
+                   std::to_string(parallel::size(MPI_COMM_WORLD)) + " rank(s)";
+  if (!out.channel.report.converged) out.provenance += " (preparation did NOT converge: see the log)";
+  if (!files.save.empty()) {
+    const std::string path = member_path(files.save, k);
+    if (rank == 0) write_packing(path, out.channel, scene.text);
+    out.provenance += ", saved to " + path;
+  }
+  return out;
+}
+
+void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point) {
+  static_assert(std::is_trivially_copyable_v<dem::Grain> && std::is_trivially_copyable_v<dem::Box>);
+  const bool leader = parallel::rank(world) % ranks_per_point == 0;
+  std::uint64_t count = packing.grains.size();
+  parallel::broadcast(world, std::span(&count, 1));
+  parallel::broadcast(world, std::as_writable_bytes(std::span(&packing.box, 1)));
+  // Every rank takes part in the broadcast (simplest collective); non-leaders drop the copy again.
+  packing.grains.resize(count);
+  parallel::broadcast(world, std::as_writable_bytes(std::span(packing.grains)));
+  if (!leader) {
+    packing.grains.clear();
+    packing.grains.shrink_to_fit();
+  }
+}
+
+}  // namespace sedwave::forward::experiment

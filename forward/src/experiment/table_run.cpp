@@ -1,0 +1,120 @@
+#include "sedwave/forward/experiment/table_run.hpp"
+
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "sedwave/forward/experiment/linear_points.hpp"
+#include "sedwave/forward/experiment/packings.hpp"
+#include "sedwave/forward/experiment/run_file.hpp"
+#include "sedwave/forward/experiment/time_domain_points.hpp"
+#include "sedwave/io/fingerprint.hpp"
+
+namespace sedwave::forward::experiment {
+namespace {
+
+/// The engine a table file names.
+std::string engine_tag(const ChannelScene& scene, const TableRun& run) {
+  if (run.member >= 0) return member_engine_tag(run.member, scene.linear.ensemble);
+  switch (run.engine) {
+    case TableEngine::time_domain: return "sedwave-dem";
+    case TableEngine::linear: return "sedwave-linear";
+    case TableEngine::long_wavelength: return "sedwave-long-wavelength";
+  }
+  throw std::logic_error("unknown table engine");
+}
+
+table::TableMetadata table_metadata(const table::TableGridFile& grid, const ChannelScene& scene, const TableRun& run,
+                                    const std::string& packing_provenance, std::string packing_hash, int packings) {
+  table::TableMetadata m;
+  m.packing_hash = std::move(packing_hash);
+  m.packings = packings;
+  m.scene_toml = scene.text;
+  m.engine = engine_tag(scene, run);
+  std::ostringstream definitions;
+  definitions << table::standard_definitions() << "; " << grid.describe_axes() << "; " << packing_provenance
+              << ".\nGrid file " << grid.path.string() << " (verbatim):\n"
+              << grid.text;
+  m.definitions = definitions.str();
+  return m;
+}
+
+/// Member k's packing for the table: reused from run.packing, or prepared (and saved there).
+ScenePacking table_packing(const ChannelScene& scene, const TableRun& run, int k) {
+  const PackingFiles files = PackingFiles::reuse(run.packing, k);
+  if (files.read.empty() && scene.import_lammps_data) {
+    throw std::invalid_argument(scene.path.string() + ": scenes with import_lammps_data are not prepared by "
+                                "`sedwave table`; prepare the packing first and pass it with --packing");
+  }
+  ScenePacking packing = scene_packing(scene, k, files, run.log);
+  if (packing.prepared && !packing.channel.report.converged && run.warnings) {
+    *run.warnings << "sedwave table: warning: the preparation did not converge\n";
+  }
+  return packing;
+}
+
+/// The time-domain engine: every point drives the one packing, on each group's rank 0.
+table::FarmReport fill_time_domain(const table::TableGridFile& grid, const ChannelScene& scene, const TableRun& run,
+                                   const table::FarmSettings& farm) {
+  ScenePacking packing = table_packing(scene, run, 0);
+  share_packing_with_groups(MPI_COMM_WORLD, packing.channel, farm.ranks_per_point);
+  const table::TableMetadata metadata =
+      table_metadata(grid, scene, run, packing.provenance, packing_fingerprint(packing.channel), 1);
+  return table::run_task_farm(MPI_COMM_WORLD, run.table, grid.grid, metadata,
+                              dem_point_function(packing.channel, scene.contact, scene.drive, grid.grid), farm);
+}
+
+/// The linear engines: every rank solves whole points serially and needs every member's packing.
+table::FarmReport fill_linear(const table::TableGridFile& grid, const ChannelScene& scene, const TableRun& run,
+                              const table::FarmSettings& farm) {
+  std::string provenance;
+  std::vector<std::string> packing_hashes;  // member k's at k - first
+  std::vector<linear::LinearChannel> members;
+  const int first = run.member >= 0 ? run.member : 0;
+  const int last = run.member >= 0 ? run.member : scene.linear.ensemble - 1;
+  for (int k = first; k <= last; ++k) {
+    ScenePacking packing = table_packing(scene, run, k);
+    share_packing_with_groups(MPI_COMM_WORLD, packing.channel, 1);
+    packing_hashes.push_back(packing_fingerprint(packing.channel));
+    members.emplace_back(packing.channel, scene.contact, scene.linear);
+    provenance += (k > first ? "; " : "") + packing.provenance;
+  }
+  const table::PointFunction point =
+      run.engine == TableEngine::long_wavelength ? long_wavelength_point_function(members, scene.drive.axis)
+      : run.member >= 0                          ? member_point_function(members.front(), scene.drive)
+                                                 : linear_point_function(members, scene.drive);
+  // A member table records its one packing; merging member tables combines them as here.
+  const std::string packing_hash = run.member >= 0 ? packing_hashes.front() : io::combined_fingerprint(packing_hashes);
+  return table::run_task_farm(
+      MPI_COMM_WORLD, run.table, grid.grid,
+      table_metadata(grid, scene, run, provenance, packing_hash, static_cast<int>(members.size())), point, farm);
+}
+
+}  // namespace
+
+TableEngine table_engine_of(const ChannelScene& scene) {
+  return scene.engine == EngineKind::linear ? TableEngine::linear : TableEngine::time_domain;
+}
+
+void use_table_engine(ChannelScene& scene, TableEngine engine) {
+  scene.engine = engine == TableEngine::time_domain ? EngineKind::time_domain : EngineKind::linear;
+  if (engine != TableEngine::linear) return;
+  if (const std::string refusal = engine_refusal(scene.engine, scene.drive); !refusal.empty()) {
+    throw std::invalid_argument(scene.path.string() + ": the linear engine cannot run this scene: [drive] " + refusal);
+  }
+}
+
+int ranks_per_point(const table::TableGridFile& grid, TableEngine engine) {
+  return engine == TableEngine::time_domain ? grid.ranks_per_point : 1;
+}
+
+table::FarmReport fill_table(const table::TableGridFile& grid, const ChannelScene& scene, const TableRun& run,
+                             table::FarmSettings farm) {
+  farm.ranks_per_point = ranks_per_point(grid, run.engine);
+  if (run.engine == TableEngine::time_domain) return fill_time_domain(grid, scene, run, farm);
+  return fill_linear(grid, scene, run, farm);
+}
+
+}  // namespace sedwave::forward::experiment

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Fails when the folders of forward/ include each other in a loop.
+
+Each folder of forward/ (dem, channel, linear, table, ...) is one layer: a layer may include the
+layers below it, never one above. Every source and header under forward/src/<folder>/ and
+forward/include/sedwave/forward/<folder>/ belongs to <folder>; files directly under forward/src/ and
+forward/include/sedwave/forward/ belong to the layer "forward"; forward/include/sedwave/io/ and
+forward/src/io/ to "io". An include names its folder by its path ("sedwave/forward/linear/x.hpp")
+or, for private headers, relative to the including file ("../io/hdf5.hpp").
+
+Prints the folder graph (with the files behind each edge on request) and every loop found; the exit
+status is 1 when there is a loop.
+"""
+import argparse
+import pathlib
+import re
+import sys
+
+INCLUDE = re.compile(r'^\s*#\s*include\s+[<"]([^>"]+)[>"]', re.MULTILINE)
+ROOT_LAYER = "forward"
+
+
+def layer_of(path, forward):
+    """The layer of a file under forward/, or None for files outside the layers (CMake lists)."""
+    parts = path.relative_to(forward).parts
+    if parts[:3] == ("include", "sedwave", "forward"):
+        rest = parts[3:]
+    elif parts[:3] == ("include", "sedwave", "io"):
+        return "io"
+    elif parts[0] == "src":
+        rest = parts[1:]
+    else:
+        return None
+    return rest[0] if len(rest) > 1 else ROOT_LAYER
+
+
+def included_layer(name, including, forward):
+    """The layer an include refers to, or None for system and third-party headers."""
+    if name.startswith("sedwave/forward/"):
+        rest = name.split("/")[2:]
+        return rest[0] if len(rest) > 1 else ROOT_LAYER
+    if name.startswith("sedwave/io/"):
+        return "io"
+    local = (including.parent / name).resolve()
+    if local.is_file() and forward.resolve() in local.parents:
+        return layer_of(local, forward.resolve())
+    return None
+
+
+def include_graph(forward):
+    """{layer: {included layer: [including files]}} over every C++ file of forward/."""
+    graph = {}
+    for path in sorted(forward.rglob("*")):
+        if path.suffix not in {".hpp", ".cpp", ".h"}:
+            continue
+        source = layer_of(path, forward)
+        if source is None:
+            continue
+        graph.setdefault(source, {})
+        for name in INCLUDE.findall(path.read_text(encoding="utf-8")):
+            target = included_layer(name, path, forward)
+            if target is not None and target != source:
+                graph[source].setdefault(target, []).append(str(path.relative_to(forward.parent)))
+    return graph
+
+
+def loops(graph):
+    """Every elementary loop, each once, as a list of layers starting from its smallest name."""
+    found = set()
+
+    def walk(start, node, trail):
+        for nxt in graph.get(node, {}):
+            if nxt == start:
+                found.add(tuple(trail))
+            elif nxt > start and nxt not in trail:
+                walk(start, nxt, trail + [nxt])
+
+    for start in sorted(graph):
+        walk(start, start, [start])
+    return sorted(found, key=lambda loop: (len(loop), loop))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("forward", nargs="?", default=pathlib.Path(__file__).resolve().parent.parent / "forward",
+                        type=pathlib.Path, help="the forward/ folder (default: this checkout's)")
+    parser.add_argument("--files", action="store_true", help="name the files behind every edge")
+    args = parser.parse_args()
+    graph = include_graph(args.forward)
+    for layer in sorted(graph):
+        print(f"{layer} -> {', '.join(sorted(graph[layer])) or '(nothing)'}")
+        if args.files:
+            for target, files in sorted(graph[layer].items()):
+                for name in sorted(set(files)):
+                    print(f"    {target}: {name}")
+    found = loops(graph)
+    for loop in found:
+        print("include loop: " + " -> ".join(loop + (loop[0],)))
+        for a, b in zip(loop, loop[1:] + (loop[0],)):
+            print(f"    {a} -> {b}: {', '.join(sorted(set(graph[a][b])))}")
+    if found:
+        print(f"{len(found)} include loop(s) between the folders of {args.forward}")
+        return 1
+    print("no include loops between the folders of forward/")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
