@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,7 @@ TEST(Scene, ShippedExampleParses) {
   EXPECT_DOUBLE_EQ(s.geometry.width, 3.0);
   EXPECT_DOUBLE_EQ(s.geometry.sizes.min, 0.8);
   // kn from E = 1000, nu = 2/7 by LAMMPS's formula 4G / (3 (1 - nu)), G = E / (2 (1 + nu)).
-  EXPECT_NEAR(s.contact.kn, 4.0 * (1000.0 / (2.0 * (1.0 + 2.0 / 7.0))) / (3.0 * (1.0 - 2.0 / 7.0)), 1e-9);
+  EXPECT_NEAR(std::get<dem::ContactModel<dem::HookeNormal>>(dem::make_contact_model(s.contact)).normal.kn, 4.0 * (1000.0 / (2.0 * (1.0 + 2.0 / 7.0))) / (3.0 * (1.0 - 2.0 / 7.0)), 1e-9);
   EXPECT_DOUBLE_EQ(s.preparation.pressure, 10.0);
   EXPECT_EQ(s.drive.far_end, FarEnd::absorbing);
   EXPECT_DOUBLE_EQ(s.drive.layer_thickness, 1.0);
