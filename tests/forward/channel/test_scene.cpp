@@ -34,6 +34,15 @@ TEST(Scene, ShippedLinearExampleParses) {
             EngineKind::time_domain);
 }
 
+TEST(Scene, ContactSelectsEveryKindOfPart) {
+  const ChannelScene s = parse_scene("[contact]\nlaw = \"hertz\"\nyoungs_modulus = 1000\ntangential = \"coulomb_tanh\"\n"
+                                     "friction = 0.3\ntanh_velocity_scale = 10\nrolling = \"constant_torque\"\n"
+                                     "rolling_friction = 0.05\n",
+                                     "x.toml");
+  EXPECT_EQ(dem::describe(s.contact), "hertz+coulomb_tanh+rolling");
+  EXPECT_EQ(s.contact.find("rolling_friction"), 0.05);
+}
+
 TEST(Scene, RestitutionInDriveMapsToGammaHat) {
   const ChannelScene s = parse_scene("[contact]\nkn = 726\n[drive]\nrestitution = 0.5\n", "x.toml");
   EXPECT_NEAR(s.drive.gamma_hat, 0.3046976322369708, 1e-12);
@@ -85,6 +94,8 @@ INSTANTIATE_TEST_SUITE_P(
                                "bad.toml:7: key 'geometry.periodic_cell.wall_thickness': walls thinner than the largest grain"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\n[preparation]\ncompression = \"wall\"\n",
                                "bad.toml:8: key 'preparation.compression': a periodic cell ([geometry.periodic_cell]) is compressed affinely"},
+                      BadScene{"[contact]\nkn = 726\ntanh_velocity_scale = 10\n", "bad.toml:3: key 'contact.tanh_velocity_scale': unknown key"},
+                      BadScene{"[contact]\nkn = 726\ntangential = \"sticky\"\n", "bad.toml:3: key 'contact.tangential': must be one of coulomb_tanh, mindlin, none, spring_history"},
                       BadScene{"[contact]\nkn = 726\nfriction = -0.5\n", "bad.toml:3: key 'contact.friction' = -0.5: accepted range [0, inf)"},
                       BadScene{"[contact]\nyoungs_modulus = 1000\npoisson_ratio = 1\n", "bad.toml:3: key 'contact.poisson_ratio' = 1: accepted range (-1, 0.5]"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 4294967496\n", "bad.toml:4: key 'geometry.grains' = 4294967496: accepted range [1, 100000000] grains"},
