@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -21,11 +22,11 @@
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "output_paths.hpp"
+#include "sedwave/forward/dem/contact/read_contact.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/dem/h5md.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
-#include "sedwave/forward/units.hpp"
 #include "sedwave/io/fingerprint.hpp"
 #include "sedwave/version.hpp"
 
@@ -38,10 +39,9 @@ struct DemOptions {
   std::string data;
   std::int64_t steps = 0;
   std::string boundary = "ppf";
-  std::optional<double> kn, young, poisson;
-  std::optional<double> restitution, gamma_n, gamma;
-  std::optional<double> friction, kt;
-  double gamma_t = 0.0;
+  /// Contact laws by name and their keys' values, by key (docs/dem.md lists them).
+  std::optional<std::string> law, tangential, rolling;
+  std::map<std::string, std::optional<double>, std::less<>> contact;
   std::vector<double> gravity;
   std::optional<double> dt, skin;
   std::string newton = "on";
@@ -68,48 +68,59 @@ std::array<bool, 3> parse_boundary(std::string text) {
   return {text[0] == 'p', text[1] == 'p', text[2] == 'p'};
 }
 
-/// Accepts numbers in (low, high], or (low, inf) (CLI11's Range includes both ends).
-CLI::Validator half_open_range(double low, double high) {
-  std::ostringstream name;
-  name << "(" << low << ", " << high << (std::isinf(high) ? ")" : "]");
+/// Accepts the numbers within `bounds` (CLI11's Range includes both ends).
+CLI::Validator within(const dem::KeyBounds& bounds) {
+  const std::string range = bounds.describe();
   return CLI::Validator(
-      [low, high, range = name.str()](const std::string& text) -> std::string {
+      [bounds, range](const std::string& text) -> std::string {
         double x = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), x);
-        const bool ok = error == std::errc{} && end == text.data() + text.size() && x > low && x <= high;
+        const bool ok = error == std::errc{} && end == text.data() + text.size() && bounds.contains(x);
         return ok ? std::string{} : "value " + text + " not in the accepted range " + range;
       },
-      name.str());
+      range);
 }
 
-/// Hooke contact (LAMMPS pair gran/hooke[/history]) from kn, or from E and nu with the LAMMPS
-/// example-script formulas; friction adds the tangential spring with history.
+/// (low, high], or (low, inf).
+CLI::Validator half_open_range(double low, double high) { return within({low, high, true, std::isinf(high)}); }
+
+/// The value of a contact option, by key (none when not given).
+std::optional<double> given(const DemOptions& o, std::string_view key) {
+  const auto it = o.contact.find(key);
+  return it == o.contact.end() ? std::nullopt : it->second;
+}
+
+/// The contact options as a source for dem::read_contact, which reads a scene's [contact] the same
+/// way. An option the chosen laws do not read is refused (e.g. --kt without a tangential law).
+class OptionContactKeys final : public dem::ContactKeySource {
+ public:
+  explicit OptionContactKeys(const DemOptions& o) : o_(o) {}
+  std::optional<std::string> choice(std::string_view selector, const std::vector<std::string>& /*names*/) override {
+    if (selector == "law") return o_.law;
+    return selector == "tangential" ? o_.tangential : o_.rolling;  // CLI11 checked the names
+  }
+  std::optional<double> number(const dem::ContactKey& k) override {
+    asked_.insert(std::string(k.key));
+    return given(o_, k.key);  // CLI11 checked the bounds
+  }
+  [[noreturn]] void fail(const std::string& why) override { throw std::invalid_argument("contact options: " + why); }
+  /// Refuses options that no chosen law read.
+  void require_all_read(const dem::ContactSpec& spec) const {
+    for (const dem::ContactKey* k : dem::all_contact_keys())
+      if (given(o_, k->key) && !asked_.count(std::string(k->key)))
+        throw std::invalid_argument("--" + std::string(k->option) + " does not apply to " + dem::describe(spec));
+  }
+
+ private:
+  const DemOptions& o_;
+  std::set<std::string> asked_;
+};
+
 dem::ContactSpec contact_spec(const DemOptions& o) {
-  dem::ContactSpec c;
-  c.normal = dem::NormalLawKind::hooke;
-  double kt_default = 0.0;
-  if (o.kn) {
-    if (o.young || o.poisson) throw std::invalid_argument("give either --kn or --young with --poisson");
-    c.kn = *o.kn;
-    kt_default = 2.0 / 7.0 * c.kn;  // LAMMPS's default for kt NULL
-  } else {
-    if (!o.young || !o.poisson) throw std::invalid_argument("give --kn, or --young with --poisson");
-    const forward::LammpsHooke h = forward::lammps_hooke_from_material(*o.young, *o.poisson, 1.0, 1.0);
-    c.kn = h.kn;
-    kt_default = h.kt;
-  }
-  c.restitution = o.restitution;
-  c.lammps_gamma_n = o.gamma_n;
-  c.gamma = o.gamma;
-  if (o.friction) {
-    c.tangential = dem::TangentialLawKind::spring_history;
-    c.friction = *o.friction;
-    c.kt = o.kt.value_or(kt_default);
-    c.gamma_t = o.gamma_t;
-  } else if (o.kt) {
-    throw std::invalid_argument("--kt needs --friction");
-  }
-  return c;
+  OptionContactKeys keys(o);
+  const dem::ContactSpec spec = dem::read_contact(keys);
+  keys.require_all_read(spec);
+  return spec;
 }
 
 /// Walls from atom types: --frozen TYPE and --wiggle TYPE:AXIS:AMPLITUDE:PERIOD, one rigid body each.
@@ -190,20 +201,22 @@ std::map<std::string, std::string> run_inputs(const DemOptions& o) {
   return {{"sedwave version", kVersion},
           {"data file", "hash " + io::file_fingerprint(o.data)},
           {"--boundary", o.boundary},
-          {"--kn", option_text(o.kn)},
-          {"--young", option_text(o.young)},
-          {"--poisson", option_text(o.poisson)},
-          {"--restitution", option_text(o.restitution)},
-          {"--gamma-n", option_text(o.gamma_n)},
-          {"--gamma", option_text(o.gamma)},
-          {"--friction", option_text(o.friction)},
-          {"--kt", option_text(o.kt)},
-          {"--gamma-t", option_text(o.friction ? std::optional(o.gamma_t) : std::nullopt)},
           {"--gravity", list_text(o.gravity)},
           {"--dt", option_text(o.dt)},
           {"--newton", o.newton},
           {"--frozen", list_text(o.frozen_types)},
           {"--wiggle", list_text(o.wiggles)}};
+}
+
+/// run_inputs and every contact option.
+std::map<std::string, std::string> checkpoint_inputs(const DemOptions& o) {
+  std::map<std::string, std::string> inputs = run_inputs(o);
+  inputs["--law"] = o.law.value_or("(none)");
+  inputs["--tangential"] = o.tangential.value_or("(none)");
+  inputs["--rolling"] = o.rolling.value_or("(none)");
+  for (const dem::ContactKey* k : dem::all_contact_keys())
+    inputs["--" + std::string(k->option)] = option_text(given(o, k->key));
+  return inputs;
 }
 
 /// Every file the run writes, checked against the data file and for a writable directory before
@@ -240,7 +253,7 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
   s.newton = o.newton == "on";
   s.checkpoint.path = o.checkpoint;
   s.checkpoint.every = o.checkpoint_every;
-  s.checkpoint.inputs = run_inputs(o);
+  s.checkpoint.inputs = checkpoint_inputs(o);
   s.checkpoint.allow_changed_inputs = o.allow_changed_inputs;
   s.progress = {!o.quiet, o.progress_seconds, &out};
 
@@ -285,13 +298,33 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
   return 0;
 }
 
+/// --law, --tangential, --rolling and one option per key of the contact laws (dem::read_contact).
+void add_contact_options(CLI::App& cmd, DemOptions& o) {
+  const auto names = [](const std::vector<std::string>& list) {
+    std::string text;
+    for (const std::string& n : list) text += (text.empty() ? "" : ", ") + n;
+    return text;
+  };
+  cmd.add_option("--law", o.law, "normal contact law: " + names(dem::normal_law_names()) + " (default hooke)")
+      ->check(CLI::IsMember(dem::normal_law_names()));
+  cmd.add_option("--tangential", o.tangential,
+                 "tangential law: " + names(dem::tangential_law_names()) +
+                     " (default spring_history with --friction, else none)")
+      ->check(CLI::IsMember(dem::tangential_law_names()));
+  cmd.add_option("--rolling", o.rolling, "rolling law: " + names(dem::rolling_law_names()) + " (default none)")
+      ->check(CLI::IsMember(dem::rolling_law_names()));
+  for (const dem::ContactKey* k : dem::all_contact_keys())
+    cmd.add_option("--" + std::string(k->option), o.contact[std::string(k->key)], std::string(k->help))
+        ->check(within(k->bounds));
+}
+
 }  // namespace
 
 Command add_dem_command(CLI::App& app) {
   auto o = std::make_shared<DemOptions>();
   CLI::App* cmd = app.add_subcommand(
       "dem", "Run a grain packing from a LAMMPS data file (atom_style sphere) with the DEM engine "
-             "(Hooke contacts as LAMMPS pair gran/hooke[/history]; run under mpirun for several ranks)");
+             "(contact laws chosen by --law, --tangential and --rolling; run under mpirun for several ranks)");
   cmd->add_option("data", o->data, "LAMMPS data file: id type diameter density x y z [+ Velocities]")
       ->required()
       ->check(CLI::ExistingFile);
@@ -300,33 +333,7 @@ Command add_dem_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--boundary", o->boundary, "periodicity along x y z, p or f each (LAMMPS boundary)")
       ->capture_default_str();
-  auto* kn = cmd->add_option("--kn", o->kn, "normal stiffness kn [force/length]")->check(half_open_range(0.0, INFINITY));
-  auto* young = cmd->add_option("--young", o->young,
-                                "Young's modulus E: kn = 4G/(3(1-nu)), kt = 4G/(2-nu), G = E/(2(1+nu)) "
-                                "(LAMMPS example scripts)")
-                    ->check(half_open_range(0.0, INFINITY));
-  auto* poisson = cmd->add_option("--poisson", o->poisson, "Poisson's ratio nu in (-1, 0.5] (with --young)")
-                      ->check(half_open_range(-1.0, 0.5));
-  young->needs(poisson);
-  poisson->needs(young);
-  kn->excludes(young);
-  auto* e_n = cmd->add_option("--restitution", o->restitution,
-                              "normal restitution e_n in (0, 1], exact for every pair");
-  e_n->check(half_open_range(0.0, 1.0));
-  auto* gamma_n = cmd->add_option("--gamma-n", o->gamma_n, "LAMMPS gamma_n: dashpot per unit reduced mass [1/time]")
-                      ->check(CLI::NonNegativeNumber);
-  auto* gamma = cmd->add_option("--gamma", o->gamma, "constant dashpot [force time/length]")->check(CLI::NonNegativeNumber);
-  e_n->excludes(gamma_n)->excludes(gamma);
-  gamma_n->excludes(gamma);
-  auto* friction = cmd->add_option("--friction", o->friction,
-                                   "Coulomb friction mu: adds the tangential spring with history")
-                       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--kt", o->kt, "tangential stiffness (default 2/7 kn, or 4G/(2-nu) with --young)")
-      ->check(half_open_range(0.0, INFINITY))
-      ->needs(friction);
-  cmd->add_option("--gamma-t", o->gamma_t, "LAMMPS gamma_t: tangential dashpot per unit reduced mass")
-      ->check(CLI::NonNegativeNumber)
-      ->needs(friction);
+  add_contact_options(*cmd, *o);
   cmd->add_option("--gravity", o->gravity, "gravity gx,gy,gz")->delimiter(',')->expected(3);
   cmd->add_option("--dt", o->dt, "time step (default 0.01 binary collision time; refused above the "
                                  "stability limit)")

@@ -51,8 +51,8 @@ dem::EngineSettings settings(const dem::Box& box, bool prepare) {
   dem::EngineSettings s;
   s.box = box;
   s.box.periodic = {true, true, true};
-  s.contact.kn = p.kn;
-  s.contact.lammps_gamma_n = p.gamma_n;
+  s.contact["kn"] = p.kn;
+  s.contact["lammps_gamma_n"] = p.gamma_n;
   s.time_step = p.dt;
   s.skin = kSkin;
   // DEM_BENCH_NEWTON=off computes pairs across boundaries on both sides (LAMMPS newton off).

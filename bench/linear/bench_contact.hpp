@@ -10,11 +10,11 @@ namespace sedwave::bench {
 /// Hertz when youngs_modulus > 0, else Hooke with stiffness kn.
 inline forward::dem::ContactSpec bench_contact(double kn, double youngs_modulus) {
   forward::dem::ContactSpec contact;
-  contact.kn = kn;
-  contact.restitution = 0.9;
+  contact["kn"] = kn;
+  contact["restitution"] = 0.9;
   if (youngs_modulus > 0.0) {
-    contact.normal = forward::dem::NormalLawKind::hertz;
-    contact.effective_modulus =
+    contact.normal = "hertz";
+    contact["effective_modulus"] =
         forward::hertz_effective_modulus(youngs_modulus, 2.0 / 7.0, youngs_modulus, 2.0 / 7.0);
   }
   return contact;

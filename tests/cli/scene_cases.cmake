@@ -76,6 +76,18 @@ sedwave_cli_case(scene.dem_options.restitution_above_one 2 [=[--restitution: val
 sedwave_cli_case(scene.dem_options.negative_time_step 2 [=[--dt: value -0\.001 not in the accepted range \(0, inf\)]=]
   dem ${SCENE_DATA}/dem_two_grains.data --steps 0 --kn 1000 --dt -0.001 --quiet)
 
+# ---- sedwave dem contact laws: every part selectable; options of parts not chosen refused ---------
+sedwave_cli_case(scene.dem_contact.hertz_mindlin_rolling 0 [=[dem: 2 grains, hertz\+mindlin\+rolling, time step]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 10 --law hertz --young 1000 --restitution 0.9 --tangential mindlin
+  --friction 0.5 --rolling constant_torque --rolling-friction 0.05)
+sedwave_cli_case(scene.dem_contact.hooke_coulomb_tanh 0 [=[dem: 2 grains, hooke\+coulomb_tanh, time step]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 10 --kn 1000 --tangential coulomb_tanh --friction 0.5
+  --tanh-velocity-scale 100)
+sedwave_cli_case(scene.dem_contact.kt_without_tangential_law 1 [=[--kt does not apply to hooke]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 0 --kn 1000 --kt 100 --quiet)
+sedwave_cli_case(scene.dem_contact.unknown_law 2 [=[--tangential: .*mindlin]=]
+  dem ${SCENE_DATA}/dem_two_grains.data --steps 0 --kn 1000 --tangential sticky --quiet)
+
 # ---- DEM restarts refuse changed inputs ------------------------------------------------------------
 # The setup writes a checkpoint at step 100 (a wiggled floor); each case restarts from it. Refused
 # restarts write nothing, and the allowed one is already at its last step, so the cases may run in

@@ -609,9 +609,8 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   const PackingUnits u = packing_units(comm, packing, contact);
   const double t0 = u.time();
   const double omega = centre_omega_hat(d) / t0;  // sets the absorbing layer's drag
-  contact.restitution.reset();
-  contact.lammps_gamma_n.reset();
-  contact.gamma = d.gamma_hat * u.damping_scale;  // Hooke: gamma; Hertz: the Tsuji alpha
+  contact = dem::without_dashpot(contact);
+  contact[std::string(dem::keys::gamma.key)] = d.gamma_hat * u.damping_scale;  // Hooke: gamma; Hertz: the Tsuji alpha
 
   const int axis = d.axis == DriveAxis::longitudinal ? 2 : 0;
   dem::EngineSettings settings;

@@ -20,10 +20,8 @@ double effective_mass(const dem::Grain& a, const dem::Grain& b) {
 ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
                              const dem::ContactSpec& contact, double gap_search) {
   // Unit damping coefficient: a constant dashpot of 1 (Hooke) or alpha = 1 (Hertz-Tsuji).
-  dem::ContactSpec unit = contact;
-  unit.restitution.reset();
-  unit.lammps_gamma_n.reset();
-  unit.gamma = 1.0;
+  dem::ContactSpec unit = dem::without_dashpot(contact);
+  unit[std::string(dem::keys::gamma.key)] = 1.0;
   const dem::AnyContactModel model = dem::make_contact_model(unit);
   double max_radius = 0.0;
   for (const dem::Grain& g : grains) max_radius = std::max(max_radius, g.radius);

@@ -31,9 +31,10 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   PackingUnits u;
   u.diameter = s[1] / s[0];
   u.mass = grain_mass(s[2] / s[0], u.diameter);
-  u.kappa = contact.kn;
+  // A linear normal law has one stiffness; any other is measured over the packing's contacts.
+  u.kappa = dem::stiffness_at_contact(dem::undamped_contact_model(contact));
   double dashpot = 1.0;  // mean dashpot per unit coefficient
-  if (contact.normal != dem::NormalLawKind::hooke) {
+  if (!(u.kappa > 0.0)) {
     double network[2] = {0.0, 0.0};  // mean stiffness, mean dashpot (from the rank holding the grains)
     int holds = packing.grains.empty() ? 0 : 1;
     if (parallel::sum(comm, holds) != 1) {

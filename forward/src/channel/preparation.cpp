@@ -449,8 +449,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
 
   std::vector<dem::Grain> grains = gathered_at_rest(*compressor);
   compressor.reset();
-  const bool newton = p.newton_relaxation && newton_solver && contact.tangential == dem::TangentialLawKind::none &&
-                      contact.rolling == dem::RollingLawKind::none;
+  const bool newton = p.newton_relaxation && newton_solver && !dem::rotates(dem::undamped_contact_model(contact));
   // Stage 2: FIRE at a frozen wall, with secant corrections of the wall height until the pressure is
   // within its tolerance; with Newton to follow, to a loose residual only.
   auto relaxer = make_engine(scene, grains, dem::Frozen{}, p.relaxation_step_fraction, 0.0);

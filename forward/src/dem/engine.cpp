@@ -428,10 +428,9 @@ double Engine::elastic_energy() const {
             if (overlap <= 0.0) continue;
             // Under newton off a pair with a ghost is also counted by the ghost's owner (or image).
             const double share = k < list_.ghost_begin(i) || list_.newton() ? 1.0 : 0.5;
-            double pair = model.normal.energy(overlap, g.radius[i], g.radius[j]);
-            if constexpr (std::is_same_v<typename Model::TangentialLaw, TangentialSpringHistory>)
-              pair += 0.5 * model.tangential.kt * norm2(history_[k]);
-            e += share * pair;
+            Vec3 shear;
+            if constexpr (Model::needs_history) shear = history_[k];
+            e += share * model.energy(overlap, g.radius[i], g.radius[j], shear);
           }
       },
       model_);

@@ -1,9 +1,12 @@
 #include "sedwave/forward/experiment/scene.hpp"
 
 #include <cmath>
+#include <set>
 #include <toml.hpp>
 
 #include "sedwave/io/toml_table.hpp"
+
+#include "sedwave/forward/dem/contact/read_contact.hpp"
 
 #include "sedwave/forward/units.hpp"
 
@@ -70,27 +73,29 @@ void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& 
   s.finish();
 }
 
-void read_contact(Section s, dem::ContactSpec& c, double density) {
-  const std::string law = s.choice("law", "hooke", {"hooke", "hertz"});
-  c.normal = law == "hooke" ? dem::NormalLawKind::hooke : dem::NormalLawKind::hertz;
-  const std::optional<double> E = s.optional_number("youngs_modulus", Range::positive());
-  // Stable isotropic materials have -1 < nu <= 0.5; the stiffness formulas divide by 1 - nu and 1 + nu.
-  const double nu = s.number("poisson_ratio", 2.0 / 7.0, Range::above(-1.0, 0.5));
-  c.restitution = s.optional_number("restitution", Range::above(0.0, 1.0));
-  if (c.normal == dem::NormalLawKind::hooke) {
-    // kn directly, or from E and nu with LAMMPS's example-script formula (units.hpp).
-    if (s.has("kn") == E.has_value()) s.fail_table("give exactly one of 'kn' or 'youngs_modulus'");
-    c.kn = E ? lammps_hooke_from_material(*E, nu, 0.5, grain_mass(density, 0.8)).kn : s.positive("kn", 0.0);
-  } else {
-    if (!E) s.fail_table("the Hertz law needs 'youngs_modulus' (and 'poisson_ratio')");
-    c.effective_modulus = hertz_effective_modulus(*E, nu, *E, nu);
+/// The [contact] table as a source for dem::read_contact, which asks for the keys of the laws the
+/// table selects (docs/scenes.md lists them).
+class SceneContactKeys final : public dem::ContactKeySource {
+ public:
+  explicit SceneContactKeys(Section& s) : s_(s) {}
+  std::optional<std::string> choice(std::string_view selector, const std::vector<std::string>& names) override {
+    const std::string key(selector);
+    if (!s_.has(key)) return std::nullopt;
+    return s_.choice(key, "", std::set<std::string>(names.begin(), names.end()));
   }
-  const double mu = s.number("friction", 0.0, Range::non_negative("(Coulomb coefficient)"));
-  if (mu > 0.0) {
-    c.tangential = dem::TangentialLawKind::spring_history;
-    c.friction = mu;
-    c.kt = s.positive("kt", 2.0 / 7.0 * (c.kn > 0.0 ? c.kn : 1.0));
+  std::optional<double> number(const dem::ContactKey& k) override {
+    const dem::KeyBounds& b = k.bounds;
+    return s_.optional_number(std::string(k.key), Range{b.low, b.high, b.low_open, b.high_open, std::string(k.unit)});
   }
+  [[noreturn]] void fail(const std::string& why) override { s_.fail_table(why); }
+
+ private:
+  Section& s_;
+};
+
+void read_contact(Section s, dem::ContactSpec& c) {
+  SceneContactKeys keys(s);
+  c = dem::read_contact(keys);
   s.finish();
 }
 
@@ -189,7 +194,7 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   scene.engine = top.choice("engine", "time_domain", {"time_domain", "linear"}) == "linear" ? EngineKind::linear
                                                                                            : EngineKind::time_domain;
   read_geometry(top.sub("geometry"), scene, base);
-  read_contact(top.sub("contact"), scene.contact, scene.geometry.density);
+  read_contact(top.sub("contact"), scene.contact);
   read_preparation(top.sub("preparation"), scene.preparation);
   if (scene.tiling && scene.preparation.compression != Compression::affine) {
     // A periodic cell has no wall to lower: its box is strained instead.
@@ -209,7 +214,10 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
                                 "back through the layers being measured)");
   }
   top.finish();
-  if (!scene.contact.restitution) scene.contact.restitution = 0.9;  // preparation damping (thesis)
+  // Preparation damping (the thesis's), unless the scene chose a dashpot.
+  const bool damped = scene.contact.has(dem::keys::restitution.key) || scene.contact.has(dem::keys::gamma.key) ||
+                      scene.contact.has(dem::HookeNormal::gamma_n_key.key);
+  if (!damped) scene.contact[std::string(dem::keys::restitution.key)] = 0.9;
   return scene;
 }
 

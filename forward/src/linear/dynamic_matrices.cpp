@@ -177,11 +177,12 @@ Eigen::SparseMatrix<double> from_triplets(const Triplets& t, Eigen::Index rows, 
 
 DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network, int n_bodies,
                          const dem::ContactSpec& contact, const PairLinearisation* pairs) {
-  if (contact.rolling != dem::RollingLawKind::none || contact.tangential == dem::TangentialLawKind::coulomb_tanh) {
+  const dem::AnyContactModel model = dem::undamped_contact_model(contact);
+  if (!dem::linearised(model)) {
     throw std::invalid_argument("linear engine: rolling resistance and the Coulomb-tanh law are not linearised; "
                                 "use the time-domain engine");
   }
-  const bool friction = contact.tangential == dem::TangentialLawKind::spring_history;
+  const bool friction = dem::has_tangential(model);
   DynamicMatrices m;
   m.dofs_per_node = friction ? 6 : 3;
   const int dofs = m.dofs_per_node;
@@ -243,8 +244,10 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     if (!friction || !touching) continue;
     // Sticking tangential spring and dashpot on the contact point's tangential displacement.
     const SlipOperators slip = slip_operators(p);
-    add_pair(k, pattern, pair, contact.kt * Eigen::Matrix3d::Identity(), slip.i, slip.j, dofs);
-    add_pair(ct, pattern, pair, contact.gamma_t * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i, slip.j,
+    const dem::TangentialBlock t = *dem::tangential_block(model, p.overlap, grains[static_cast<std::size_t>(p.i)].radius,
+                                                          grains[static_cast<std::size_t>(p.j)].radius);
+    add_pair(k, pattern, pair, t.stiffness * Eigen::Matrix3d::Identity(), slip.i, slip.j, dofs);
+    add_pair(ct, pattern, pair, t.damping_per_mass * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i, slip.j,
              dofs);
   }
   m.stiffness = pattern.matrix(k.matrix);

@@ -144,7 +144,8 @@ std::complex<double> LinearChannel::normal_motion(const Eigen::VectorXcd& u, con
 
 double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
                                     const StaticPair& p) const {
-  if (contact_.tangential != dem::TangentialLawKind::spring_history) return std::numeric_limits<double>::infinity();
+  const std::optional<dem::TangentialBlock> sticking = tangential_block(p);
+  if (!sticking) return std::numeric_limits<double>::infinity();
   const double omega = d.omega_hat / units_.time();
   const double gamma = d.gamma_hat * units_.damping_scale;
   // Per unit wall amplitude: the tangential force and the normal force, spring and dashpot (the
@@ -154,7 +155,7 @@ double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::Dr
   // At phase theta the contact sticks while A |Re(F_t e^{i theta})| <= mu (F_0 + A Re(F_n e^{i theta})),
   // linear in A at each phase: the onset is mu F_0 / max over theta of (|Re F_t e^{i theta}| - mu Re F_n e^{i theta}),
   // taken over 256 phases (the maximum of a smooth periodic function: error ~ (2 pi / 256)^2 / 8).
-  const double mu = contact_.friction;
+  const double mu = sticking->friction;
   double worst = 0.0;
   constexpr int kPhases = 256;
   for (int k = 0; k < kPhases; ++k) {
@@ -164,13 +165,19 @@ double LinearChannel::sliding_onset(const Eigen::VectorXcd& u, const channel::Dr
   return worst > 0.0 ? mu * p.force / worst : std::numeric_limits<double>::infinity();
 }
 
+std::optional<dem::TangentialBlock> LinearChannel::tangential_block(const StaticPair& p) const {
+  return dem::tangential_block(model_, p.overlap, grains_[static_cast<std::size_t>(p.i)].radius,
+                               grains_[static_cast<std::size_t>(p.j)].radius);
+}
+
 Eigen::Vector3cd LinearChannel::tangential_force(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
                                                 const StaticPair& p) const {
   const double omega = d.omega_hat / units_.time();
   const SlipOperators t = slip_operators(p);
   const Eigen::Vector3cd slip =
       t.i.cast<Complex>() * grain_motion(u, d, p.i) + t.j.cast<Complex>() * grain_motion(u, d, p.j);
-  return -(contact_.kt + Complex(0.0, omega * contact_.gamma_t * p.effective_mass)) * slip;
+  const dem::TangentialBlock sticking = *tangential_block(p);
+  return -(sticking.stiffness + Complex(0.0, omega * sticking.damping_per_mass * p.effective_mass)) * slip;
 }
 
 Eigen::Vector3cd LinearChannel::contact_force(const Eigen::VectorXcd& u, const channel::DriveSettings& d,
@@ -336,7 +343,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
   }
   const double changed = r.state_changes.fraction();
   const std::string sliding =
-      contact_.tangential == dem::TangentialLawKind::spring_history
+      dem::has_tangential(model_)
           ? ", " + std::to_string(r.state_changes.sliding) + " slide"
           : std::string();
   const std::string changes = std::to_string(r.state_changes.opening) + " of " +

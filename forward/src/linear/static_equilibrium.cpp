@@ -97,7 +97,7 @@ ActiveSet contacts_only(const State& s, const dem::ContactSpec& contact) {
   for (std::size_t q = 0; q < n_contacts; ++q) a.stiffness[q] = s.network.contacts[q].stiffness;
   // A Hooke spring keeps its stiffness down to zero overlap; a Hertz contact has none there, so its
   // gaps never enter the model (nor need to: its energy has no kink at contact).
-  const double at_contact = contact.normal == dem::NormalLawKind::hooke ? contact.kn : 0.0;
+  const double at_contact = dem::stiffness_at_contact(dem::undamped_contact_model(contact));
   std::fill(a.stiffness.begin() + static_cast<std::ptrdiff_t>(n_contacts), a.stiffness.end(), at_contact);
   a.force = s.force;
   a.wall_force = s.wall_force;
@@ -236,8 +236,9 @@ class Relaxation {
     }
     mean_mass_ = n_free > 0 ? free_mass / static_cast<double>(n_free) : 1.0;
     longest_step_ = kLongestStep * (n_free > 0 ? free_radius / static_cast<double>(n_free) : 0.5);
-    // Only Hooke gaps enter the step's model (contacts_only); Hertz ones need not be searched.
-    gap_search_ = contact.normal == dem::NormalLawKind::hooke ? longest_step_ : 0.0;
+    // Only gaps of a law stiff at zero overlap (Hooke) enter the step's model (contacts_only); Hertz
+    // ones need not be searched.
+    gap_search_ = dem::stiffness_at_contact(dem::undamped_contact_model(contact)) > 0.0 ? longest_step_ : 0.0;
     current_ = evaluate(grains_, box_, contact_, gap_search_, wall_, lift_);
     start_energy_ = current_.energy;
   }
@@ -398,7 +399,7 @@ class Relaxation {
 StaticEquilibriumReport relax_to_equilibrium(std::vector<dem::Grain>& grains, const dem::Box& box,
                                              const dem::ContactSpec& contact, int n_bodies, const LoadedWall* wall,
                                              const StaticEquilibriumSettings& settings) {
-  if (contact.tangential != dem::TangentialLawKind::none || contact.rolling != dem::RollingLawKind::none) {
+  if (dem::rotates(dem::undamped_contact_model(contact))) {
     throw std::invalid_argument("static equilibrium: only frictionless packings (normal laws alone) are relaxed");
   }
   if (wall && (wall->body < 1 || wall->body > n_bodies || !(wall->force > 0.0))) {

@@ -22,9 +22,9 @@ namespace {
 
 dem::ContactSpec hooke(double kn) {
   dem::ContactSpec c;
-  c.normal = dem::NormalLawKind::hooke;
-  c.kn = kn;
-  c.restitution = 0.9;
+  c.normal = "hooke";
+  c["kn"] = kn;
+  c["restitution"] = 0.9;
   return c;
 }
 

@@ -19,9 +19,9 @@ namespace {
 
 dem::ContactSpec hooke_contact() {
   dem::ContactSpec c;
-  c.normal = dem::NormalLawKind::hooke;
-  c.kn = 726.0;
-  c.restitution = 0.9;
+  c.normal = "hooke";
+  c["kn"] = 726.0;
+  c["restitution"] = 0.9;
   return c;
 }
 

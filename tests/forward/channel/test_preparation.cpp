@@ -20,9 +20,9 @@ dem::ContactSpec thesis_contact(double e_n) {
   const double m_min = sphere_mass(1.0, 0.8);
   const LammpsHooke h = lammps_hooke_from_material(1000.0, 2.0 / 7.0, e_n, 0.5 * m_min);
   dem::ContactSpec c;
-  c.normal = dem::NormalLawKind::hooke;
-  c.kn = h.kn;
-  c.restitution = e_n;
+  c.normal = "hooke";
+  c["kn"] = h.kn;
+  c["restitution"] = e_n;
   return c;
 }
 
@@ -133,8 +133,8 @@ TEST(Preparation, ShortColumnOverCompressedByTheWallNamesTheRemedy) {
   g.n_grains = 150;
   g.seed = 11;
   dem::ContactSpec c;
-  c.kn = 726.0;
-  c.restitution = 0.9;
+  c["kn"] = 726.0;
+  c["restitution"] = 0.9;
   PreparationSettings p;
   p.pressure = 10.0;
   // A wall ten times faster than the default descends 2.3 d between force checks: more than this

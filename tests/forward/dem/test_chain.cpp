@@ -43,8 +43,8 @@ TEST_P(DrivenChain, WaveSpeedAndAttenuationMatchLatticeTheory) {
 
   EngineSettings s;
   s.box.periodic = {false, false, false};
-  s.contact.kn = kappa;
-  s.contact.gamma = gamma_hat * std::sqrt(kappa * m);
+  s.contact["kn"] = kappa;
+  s.contact["gamma"] = gamma_hat * std::sqrt(kappa * m);
   s.skin = 0.05;
   std::vector<Grain> grains;
   for (int n = 0; n < n_grains; ++n) {

@@ -49,11 +49,11 @@ class HookeCollision : public ::testing::TestWithParam<double> {};
 TEST_P(HookeCollision, RestitutionAndContactTimeMatchClosedForm) {
   const double e_n = GetParam();
   ContactSpec c;
-  c.kn = 1000.0;
-  c.restitution = e_n;
+  c["kn"] = 1000.0;
+  c["restitution"] = e_n;
   const double m_eff = 0.5 * testing::sphere_mass(1.0, 0.5);
-  const double gamma = gamma_from_restitution(e_n, c.kn, m_eff);
-  const double t_col = hooke_collision_time(c.kn, m_eff, gamma);
+  const double gamma = gamma_from_restitution(e_n, c["kn"], m_eff);
+  const double t_col = hooke_collision_time(c["kn"], m_eff, gamma);
   const CollisionResult r = collide(c, 1.0, t_col / 2000.0);
   EXPECT_NEAR(r.restitution, e_n, 1e-3);
   EXPECT_NEAR(r.contact_time / t_col, 1.0, 1e-3);
@@ -64,11 +64,11 @@ class HertzCollision : public ::testing::TestWithParam<double> {};
 TEST_P(HertzCollision, RestitutionMatchesTarget) {
   const double e_n = GetParam();
   ContactSpec c;
-  c.normal = NormalLawKind::hertz;
-  c.effective_modulus = hertz_effective_modulus(1e4, 0.3, 1e4, 0.3);
-  c.restitution = e_n;
+  c.normal = "hertz";
+  c["effective_modulus"] = hertz_effective_modulus(1e4, 0.3, 1e4, 0.3);
+  c["restitution"] = e_n;
   const double m_eff = 0.5 * testing::sphere_mass(1.0, 0.5);
-  const double t_col = hertz_collision_time(c.effective_modulus, 0.25, m_eff, 1.0);
+  const double t_col = hertz_collision_time(c["effective_modulus"], 0.25, m_eff, 1.0);
   // The restitution of Hertz-Tsuji damping is independent of the impact speed: try two.
   for (const double speed : {1.0, 0.1}) {
     const CollisionResult r = collide(c, speed, t_col / 4000.0);
@@ -77,7 +77,7 @@ TEST_P(HertzCollision, RestitutionMatchesTarget) {
   // Undamped collision time closed form (Hertz 1882) at the same dt.
   if (e_n == 0.99) {
     ContactSpec elastic = c;
-    elastic.restitution.reset();
+    elastic.erase("restitution");
     const CollisionResult r = collide(elastic, 1.0, t_col / 4000.0);
     EXPECT_NEAR(r.contact_time / t_col, 1.0, 2e-3);
     EXPECT_NEAR(r.restitution, 1.0, 1e-5);
@@ -130,8 +130,8 @@ TEST(TimeStep, DashpotStabilityLimitIsSharp) {
 TEST(TimeStep, DefaultIsOnePercentOfCollisionTime) {
   EngineSettings s;
   s.box.periodic = {false, false, false};
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.9;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.9;
   std::vector<Grain> grains{make_grain(0, {0, 0, 0}), make_grain(1, {0, 0, 2.0})};
   const Engine engine(MPI_COMM_SELF, s, grains);
   const double m_eff = 0.5 * testing::sphere_mass(1.0, 0.5);
@@ -143,8 +143,8 @@ TEST(TimeStep, DefaultIsOnePercentOfCollisionTime) {
 TEST(TimeStep, RefusesUnstableUserStepWithTheLimitInTheMessage) {
   EngineSettings s;
   s.box.periodic = {false, false, false};
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.05;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.05;
   std::vector<Grain> grains{make_grain(0, {0, 0, 0}), make_grain(1, {0, 0, 2.0})};
   s.time_step = 1.0;
   try {

@@ -15,7 +15,7 @@ class Conservation : public ::testing::TestWithParam<bool> {};
 TEST_P(Conservation, EnergyDriftBelow1e6OverHundredThousandStepsInDensePacking) {
   EngineSettings s;
   s.newton = GetParam();
-  s.contact.kn = 1000.0;  // no damping
+  s.contact["kn"] = 1000.0;  // no damping
   std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.1, 7, s.box);
   Engine engine(MPI_COMM_SELF, s, grains);
   // Verlet's energy oscillates (it conserves a nearby shadow energy); the drift is the change of
@@ -42,7 +42,7 @@ TEST(PeriodicImages, ContactThroughTheCornerIsListedAsTheShiftedSourceGrain) {
   for (const bool newton : {false, true}) {
     EngineSettings s;
     s.newton = newton;
-    s.contact.kn = 1000.0;
+    s.contact["kn"] = 1000.0;
     s.box.lo = {0.0, 0.0, 0.0};
     s.box.hi = {3.0, 3.0, 10.0};
     s.box.periodic = {true, true, false};
@@ -72,15 +72,15 @@ TEST(PeriodicImages, ContactThroughTheCornerIsListedAsTheShiftedSourceGrain) {
 TEST(Momentum, LinearAndAngularMomentumOfAFrictionalRollingCluster) {
   EngineSettings s;
   s.box.periodic = {false, false, false};
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.5;
-  s.contact.tangential = TangentialLawKind::spring_history;
-  s.contact.kt = 800.0;
-  s.contact.gamma_t = 5.0;
-  s.contact.friction = 0.4;
-  s.contact.rolling = RollingLawKind::constant_torque;
-  s.contact.rolling_friction = 0.1;
-  s.contact.rolling_regularisation = 0.1;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.5;
+  s.contact.tangential = "spring_history";
+  s.contact["kt"] = 800.0;
+  s.contact["gamma_t"] = 5.0;
+  s.contact["friction"] = 0.4;
+  s.contact.rolling = "constant_torque";
+  s.contact["rolling_friction"] = 0.1;
+  s.contact["rolling_regularisation"] = 0.1;
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Grain> grains;

@@ -29,19 +29,22 @@ Engine sphere_on_wall(const ContactSpec& contact, const Vec3& gravity, const Vec
   return Engine(MPI_COMM_SELF, s, std::vector<Grain>{wall, ball}, {RigidBody("wall", Frozen{})});
 }
 
-ContactSpec frictional(TangentialLawKind law, double mu) {
+ContactSpec frictional(const std::string& law, double mu) {
   ContactSpec c;
-  c.kn = kStiffness;
-  c.restitution = 0.3;
+  c["kn"] = kStiffness;
+  c["restitution"] = 0.3;
   c.tangential = law;
-  c.friction = mu;
-  c.kt = 2.0 / 7.0 * kStiffness;
-  c.gamma_t = 0.0;
-  c.tanh_velocity_scale = 1e3;  // full sliding for |v_t| >> 1e-3
+  c["friction"] = mu;
+  if (law == "coulomb_tanh") {
+    c["tanh_velocity_scale"] = 1e3;  // full sliding for |v_t| >> 1e-3
+  } else {
+    c["kt"] = 2.0 / 7.0 * kStiffness;
+    c["gamma_t"] = 0.0;
+  }
   return c;
 }
 
-class Sliding : public ::testing::TestWithParam<TangentialLawKind> {};
+class Sliding : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Sliding, DeceleratesAtMuG) {
   constexpr double mu = 0.3, g = 1.0, v0 = 1.0;
@@ -57,12 +60,12 @@ TEST_P(Sliding, DeceleratesAtMuG) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Laws, Sliding,
-                         ::testing::Values(TangentialLawKind::spring_history, TangentialLawKind::coulomb_tanh));
+                         ::testing::Values("spring_history", "coulomb_tanh"));
 
 TEST(Rolling, InclineBelowFrictionAngleRollsWithoutSlipping) {
   const double theta = 15.0 * std::numbers::pi / 180.0, g = 1.0, mu = 0.5;
   ASSERT_LT(2.0 / 7.0 * std::tan(theta), mu);  // below the friction angle for rolling
-  Engine engine = sphere_on_wall(frictional(TangentialLawKind::spring_history, mu),
+  Engine engine = sphere_on_wall(frictional("spring_history", mu),
                                  {g * std::sin(theta), 0, -g * std::cos(theta)}, {});
   std::vector<double> t, x;
   engine.add_step_callback(10, [&](const Engine& e) {

@@ -12,8 +12,8 @@ const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnv
 TEST(Guard, FiresOnATimeStepAboveTheCollectiveStabilityLimit) {
   // The pair limit is accepted, but an FCC packing has modes twice as stiff as one pair.
   EngineSettings s;
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.9;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.9;
   s.guard.check_interval = 10;
   std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.01, 11, s.box);
   {
@@ -38,9 +38,9 @@ TEST(Guard, FiresOnATimeStepAboveTheCollectiveStabilityLimit) {
 // only, kinetic plus elastic energy can only fall.
 TEST(Guard, DefaultStepKeepsAnOverdampedPackingStable) {
   EngineSettings s;
-  s.contact.kn = 1000.0;
+  s.contact["kn"] = 1000.0;
   const double m_eff = 0.5 * testing::sphere_mass(1.0, 0.5);
-  s.contact.gamma = 2.0 * 20.0 * std::sqrt(s.contact.kn * m_eff);
+  s.contact["gamma"] = 2.0 * 20.0 * std::sqrt(s.contact["kn"] * m_eff);
   s.guard.check_interval = 10;
   const std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.1, 11, s.box);
   Engine engine(MPI_COMM_SELF, s, grains);
@@ -64,8 +64,8 @@ TEST(Guard, DefaultStepKeepsAnOverdampedPackingStable) {
 
 TEST(Guard, QuietOnAHealthyRun) {
   EngineSettings s;
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.9;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.9;
   s.guard.check_interval = 10;
   std::vector<Grain> grains = testing::compressed_fcc(2, 0.01, 0.1, 11, s.box);
   Engine engine(MPI_COMM_SELF, s, grains);

@@ -30,8 +30,8 @@ EngineSettings fcc_settings(Box box) {
   EngineSettings s;
   s.box = box;
   s.box.periodic[2] = false;  // one open axis, to check the boundary attribute
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.8;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.8;
   return s;
 }
 

@@ -106,8 +106,8 @@ TEST(LammpsData, MalformedInputNamesFileAndLine) {
 Engine small_engine(std::vector<Grain>& grains) {
   EngineSettings s;
   s.box.periodic = {false, false, false};
-  s.contact.kn = 1000.0;
-  s.contact.restitution = 0.9;
+  s.contact["kn"] = 1000.0;
+  s.contact["restitution"] = 0.9;
   Box box;
   grains = random_grains(30, box);
   s.box.lo = box.lo;

@@ -20,11 +20,11 @@ struct Scene {
 Scene frictional_packing(const std::string& checkpoint, bool newton = false) {
   Scene s;
   s.settings.newton = newton;
-  s.settings.contact.kn = 1000.0;
-  s.settings.contact.restitution = 0.7;
-  s.settings.contact.tangential = TangentialLawKind::spring_history;
-  s.settings.contact.kt = 2.0 / 7.0 * 1000.0;
-  s.settings.contact.friction = 0.5;
+  s.settings.contact["kn"] = 1000.0;
+  s.settings.contact["restitution"] = 0.7;
+  s.settings.contact.tangential = "spring_history";
+  s.settings.contact["kt"] = 2.0 / 7.0 * 1000.0;
+  s.settings.contact["friction"] = 0.5;
   s.settings.gravity = {0, 0, -1};
   s.grains = testing::compressed_fcc(3, 0.005, 0.3, 5, s.settings.box);
   s.settings.box.periodic[2] = false;  // a column standing on a wiggling floor

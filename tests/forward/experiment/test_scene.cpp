@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,7 @@ TEST(Scene, ShippedExampleParses) {
   EXPECT_DOUBLE_EQ(s.geometry.width, 3.0);
   EXPECT_DOUBLE_EQ(s.geometry.sizes.min, 0.8);
   // kn from E = 1000, nu = 2/7 by LAMMPS's formula 4G / (3 (1 - nu)), G = E / (2 (1 + nu)).
-  EXPECT_NEAR(s.contact.kn, 4.0 * (1000.0 / (2.0 * (1.0 + 2.0 / 7.0))) / (3.0 * (1.0 - 2.0 / 7.0)), 1e-9);
+  EXPECT_NEAR(std::get<dem::ContactModel<dem::HookeNormal>>(dem::make_contact_model(s.contact)).normal.kn, 4.0 * (1000.0 / (2.0 * (1.0 + 2.0 / 7.0))) / (3.0 * (1.0 - 2.0 / 7.0)), 1e-9);
   EXPECT_DOUBLE_EQ(s.preparation.pressure, 10.0);
   EXPECT_EQ(s.drive.far_end, FarEnd::absorbing);
   EXPECT_DOUBLE_EQ(s.drive.layer_thickness, 1.0);
@@ -33,6 +34,15 @@ TEST(Scene, ShippedLinearExampleParses) {
   EXPECT_DOUBLE_EQ(s.linear.refuse_state_changes, 0.1);
   EXPECT_EQ(read_scene(std::string(SEDWAVE_SOURCE_DIR) + "/data/scenes/thesis_w3.toml").engine,
             EngineKind::time_domain);
+}
+
+TEST(Scene, ContactSelectsEveryKindOfPart) {
+  const ChannelScene s = parse_scene("[contact]\nlaw = \"hertz\"\nyoungs_modulus = 1000\ntangential = \"coulomb_tanh\"\n"
+                                     "friction = 0.3\ntanh_velocity_scale = 10\nrolling = \"constant_torque\"\n"
+                                     "rolling_friction = 0.05\n",
+                                     "x.toml");
+  EXPECT_EQ(dem::describe(s.contact), "hertz+coulomb_tanh+rolling");
+  EXPECT_EQ(s.contact.find("rolling_friction"), 0.05);
 }
 
 TEST(Scene, RestitutionInDriveMapsToGammaHat) {
@@ -86,6 +96,8 @@ INSTANTIATE_TEST_SUITE_P(
                                "bad.toml:7: key 'geometry.periodic_cell.wall_thickness': walls thinner than the largest grain"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 900\n[geometry.periodic_cell]\ngrains = 300\n[preparation]\ncompression = \"wall\"\n",
                                "bad.toml:8: key 'preparation.compression': a periodic cell ([geometry.periodic_cell]) is compressed affinely"},
+                      BadScene{"[contact]\nkn = 726\ntanh_velocity_scale = 10\n", "bad.toml:3: key 'contact.tanh_velocity_scale': unknown key"},
+                      BadScene{"[contact]\nkn = 726\ntangential = \"sticky\"\n", "bad.toml:3: key 'contact.tangential': must be one of coulomb_tanh, mindlin, none, spring_history"},
                       BadScene{"[contact]\nkn = 726\nfriction = -0.5\n", "bad.toml:3: key 'contact.friction' = -0.5: accepted range [0, inf)"},
                       BadScene{"[contact]\nyoungs_modulus = 1000\npoisson_ratio = 1\n", "bad.toml:3: key 'contact.poisson_ratio' = 1: accepted range (-1, 0.5]"},
                       BadScene{"[contact]\nkn = 726\n[geometry]\ngrains = 4294967496\n", "bad.toml:4: key 'geometry.grains' = 4294967496: accepted range [1, 100000000] grains"},

@@ -37,8 +37,8 @@ using Complex = std::complex<double>;
 
 dem::ContactSpec hooke(double kn) {
   dem::ContactSpec c;
-  c.kn = kn;
-  c.restitution = 0.9;
+  c["kn"] = kn;
+  c["restitution"] = 0.9;
   return c;
 }
 
@@ -217,10 +217,10 @@ class Packing : public ::testing::Test {
   /// Hooke with sticking tangential springs and Coulomb friction (as LAMMPS gran/hooke/history).
   static dem::ContactSpec frictional_hooke() {
     dem::ContactSpec c = hooke(kKn);
-    c.tangential = dem::TangentialLawKind::spring_history;
-    c.kt = 2.0 / 7.0 * kKn;
-    c.gamma_t = 5.0;
-    c.friction = 0.5;
+    c.tangential = "spring_history";
+    c["kt"] = 2.0 / 7.0 * kKn;
+    c["gamma_t"] = 5.0;
+    c["friction"] = 0.5;
     return c;
   }
   static std::unique_ptr<channel::PreparedChannel> packing_;
@@ -285,8 +285,8 @@ std::pair<double, double> jacobian_errors(const channel::PreparedChannel& packin
 TEST_F(Packing, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
   ASSERT_TRUE(packing_->report.converged);
   dem::ContactSpec damped = hooke(kKn);
-  damped.restitution.reset();
-  damped.gamma = 3.0;  // a constant dashpot, as the driven runs use
+  damped.erase("restitution");
+  damped["gamma"] = 3.0;  // a constant dashpot, as the driven runs use
   const auto [k_error, c_error] = jacobian_errors(*packing_, hooke(kKn), damped, 3.0);
   EXPECT_LT(k_error, 1e-6);
   EXPECT_LT(c_error, 1e-9);
@@ -320,9 +320,9 @@ class HertzPacking : public ::testing::Test {
  protected:
   static dem::ContactSpec hertz() {
     dem::ContactSpec c;
-    c.normal = dem::NormalLawKind::hertz;
-    c.effective_modulus = 5e4;
-    c.restitution = 0.9;
+    c.normal = "hertz";
+    c["effective_modulus"] = 5e4;
+    c["restitution"] = 0.9;
     return c;
   }
   /// The first packing (seeds 8, 9, ...) with no pair within 1e-5 d of touching (every contact
@@ -370,9 +370,9 @@ std::unique_ptr<channel::PreparedChannel> HertzPacking::packing_;
 TEST_F(HertzPacking, StiffnessAndDashpotsAreTheJacobiansOfTheDemForces) {
   ASSERT_TRUE(packing_->report.converged);
   dem::ContactSpec elastic = hertz(), damped = hertz();
-  elastic.restitution.reset();
-  damped.restitution.reset();
-  damped.gamma = 0.7;  // Tsuji alpha
+  elastic.erase("restitution");
+  damped.erase("restitution");
+  damped["gamma"] = 0.7;  // Tsuji alpha
   ASSERT_GT(smallest_overlap(*packing_), kSmallestOverlap);  // premise: no contact at the edge of opening
   const auto [k_error, c_error] = jacobian_errors(*packing_, elastic, damped, 0.7);
   // Hertz is curved (F ~ delta^1.5): the central difference is good to O(h^2 / delta^2).
@@ -461,9 +461,9 @@ TEST_F(Packing, LoadedFarWallFollowsTheDem) {
 // 1.25x.
 TEST_F(Packing, PredictedSlidingOnsetIsWhereTheDemFirstSlides) {
   dem::ContactSpec frictional = frictional_hooke();
-  frictional.friction = 0.01;
+  frictional["friction"] = 0.01;
   dem::ContactSpec sticking = frictional;
-  sticking.friction = 1e9;
+  sticking["friction"] = 1e9;
   channel::DriveSettings d = tiny_drive();
   d.axis = channel::DriveAxis::transverse;
   const LinearChannel engine(*packing_, frictional);

@@ -1,77 +1,145 @@
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 
+#include <algorithm>
+#include <sstream>
 #include <stdexcept>
 
 namespace sedwave::forward::dem {
 namespace {
 
-void require(bool ok, const char* what) {
-  if (!ok) throw std::invalid_argument(std::string("contact model: ") + what);
+/// Calls f(tag) with a null Part* for the part of `List` called `name`; false when none is.
+template <class List, class F>
+bool with_part(std::string_view name, F&& f) {
+  return for_each_part(List{}, [&](auto* tag) {
+    using Part = std::remove_pointer_t<decltype(tag)>;
+    if (Part::name != name) return false;
+    f(tag);
+    return true;
+  });
 }
 
-template <class N, class T>
-AnyContactModel with_rolling(const N& normal, const T& tangential, const ContactSpec& s) {
-  switch (s.rolling) {
-    case RollingLawKind::none: return ContactModel<N, T, NoRolling>{normal, tangential, {}};
-    case RollingLawKind::constant_torque:
-      require(s.rolling_friction >= 0.0, "rolling_friction must be >= 0");
-      require(s.rolling_regularisation > 0.0, "rolling_regularisation must be > 0");
-      return ContactModel<N, T, ConstantTorqueRolling>{
-          normal, tangential, ConstantTorqueRolling{s.rolling_friction, s.rolling_regularisation}};
+template <class List>
+void require_part(std::string_view name, std::string_view role) {
+  if (!with_part<List>(name, [](auto*) {}))
+    throw std::invalid_argument("contact model: unknown " + std::string(role) + " law '" + std::string(name) + "'");
+}
+
+/// A part's word in describe(): its name unless it states a `label` (checkpoints store these).
+template <class Part>
+constexpr std::string_view label_of_part() {
+  if constexpr (requires { Part::label; }) return Part::label;
+  else return Part::name;
+}
+
+template <class List>
+std::string_view label_of(std::string_view name) {
+  std::string_view label = name;
+  with_part<List>(name, [&](auto* tag) { label = label_of_part<std::remove_pointer_t<decltype(tag)>>(); });
+  return label;
+}
+
+/// Whether the part of `List` called `name` reads `key`.
+template <class List>
+bool reads(std::string_view name, std::string_view key) {
+  bool found = false;
+  with_part<List>(name, [&](auto* tag) {
+    for (const ContactKey* k : std::remove_pointer_t<decltype(tag)>::keys) found = found || k->key == key;
+  });
+  return found;
+}
+
+/// A key no chosen part reads is a mistake (a misspelling, or a law that was not selected).
+void require_keys_apply(const ContactSpec& s) {
+  for (const auto& [key, value] : s.values) {
+    if (!reads<NormalLaws>(s.normal, key) && !reads<TangentialLaws>(s.tangential, key) &&
+        !reads<RollingLaws>(s.rolling, key))
+      throw std::invalid_argument("contact model: key '" + key + "' does not apply to " + describe(s));
   }
-  throw std::invalid_argument("contact model: unknown rolling law");
-}
-
-template <class N>
-AnyContactModel with_tangential(const N& normal, const ContactSpec& s) {
-  switch (s.tangential) {
-    case TangentialLawKind::none: return with_rolling(normal, NoTangential{}, s);
-    case TangentialLawKind::spring_history:
-      require(s.kt > 0.0, "spring_history needs kt > 0");
-      require(s.gamma_t >= 0.0 && s.friction >= 0.0, "gamma_t and friction must be >= 0");
-      return with_rolling(normal, TangentialSpringHistory{s.kt, s.gamma_t, s.friction}, s);
-    case TangentialLawKind::coulomb_tanh:
-      require(s.tanh_velocity_scale > 0.0, "coulomb_tanh needs tanh_velocity_scale > 0");
-      require(s.friction >= 0.0, "friction must be >= 0");
-      return with_rolling(normal, CoulombTanhFriction{s.friction, s.tanh_velocity_scale}, s);
-  }
-  throw std::invalid_argument("contact model: unknown tangential law");
-}
-
-int count_damping_choices(const ContactSpec& s) {
-  return int(s.restitution.has_value()) + int(s.gamma.has_value()) + int(s.lammps_gamma_n.has_value());
 }
 
 }  // namespace
 
-AnyContactModel make_contact_model(const ContactSpec& s) {
-  require(count_damping_choices(s) <= 1, "give at most one of restitution, gamma, lammps_gamma_n");
-  if (s.restitution)
-    require(*s.restitution > 0.0 && *s.restitution <= 1.0, "restitution must lie in (0, 1]");
-  if (s.normal == NormalLawKind::hooke) {
-    require(s.kn > 0.0, "hooke needs kn > 0");
-    LinearDashpot dashpot = LinearDashpot::constant(0.0);
-    if (s.restitution) dashpot = LinearDashpot::from_restitution(*s.restitution);
-    if (s.gamma) dashpot = LinearDashpot::constant(*s.gamma);
-    if (s.lammps_gamma_n) dashpot = LinearDashpot::lammps_gamma_n(*s.lammps_gamma_n);
-    require(dashpot.coefficient() >= 0.0, "damping must be >= 0");
-    return with_tangential(HookeNormal{s.kn, dashpot}, s);
+std::string KeyBounds::describe() const {
+  const auto bound = [](double x) {
+    if (std::isinf(x)) return std::string(x < 0 ? "-inf" : "inf");
+    std::ostringstream text;
+    text << x;
+    return text.str();
+  };
+  return std::string(low_open || std::isinf(low) ? "(" : "[") + bound(low) + ", " + bound(high) +
+         (high_open || std::isinf(high) ? ")" : "]");
+}
+
+std::optional<double> ContactValues::find(const ContactKey& k) const {
+  const std::optional<double> x = spec_.find(k.key);
+  if (x && !(std::isfinite(*x) && k.bounds.contains(*x))) {
+    std::ostringstream why;
+    why << "contact model: " << k.key << " = " << *x << " outside " << k.bounds.describe();
+    throw std::invalid_argument(why.str());
   }
-  require(s.effective_modulus > 0.0, "hertz needs effective_modulus > 0");
-  require(!s.lammps_gamma_n, "lammps_gamma_n applies to hooke only");
-  double alpha = 0.0;
-  if (s.restitution) alpha = hertz_alpha_from_restitution(*s.restitution);
-  if (s.gamma) alpha = *s.gamma;
-  require(alpha >= 0.0, "damping must be >= 0");
-  return with_tangential(HertzNormal{s.effective_modulus, alpha}, s);
+  return x;
+}
+
+double ContactValues::required(const ContactKey& k, std::string_view law) const {
+  const std::optional<double> x = find(k);
+  if (!x) throw std::invalid_argument(std::string(law) + " needs '" + std::string(k.key) + "'");
+  return *x;
+}
+
+AnyContactModel make_contact_model(const ContactSpec& s) {
+  require_part<NormalLaws>(s.normal, "normal");
+  require_part<TangentialLaws>(s.tangential, "tangential");
+  require_part<RollingLaws>(s.rolling, "rolling");
+  require_keys_apply(s);
+  const ContactValues v(s);
+  std::optional<AnyContactModel> model;
+  with_part<NormalLaws>(s.normal, [&](auto* normal_tag) {
+    using Normal = std::remove_pointer_t<decltype(normal_tag)>;
+    const Normal normal = Normal::from(v);
+    with_part<TangentialLaws>(s.tangential, [&](auto* tangential_tag) {
+      using Tangential = std::remove_pointer_t<decltype(tangential_tag)>;
+      const Tangential tangential = Tangential::from(v, normal.stiffness_at_contact());
+      with_part<RollingLaws>(s.rolling, [&](auto* rolling_tag) {
+        using Rolling = std::remove_pointer_t<decltype(rolling_tag)>;
+        model.emplace(ContactModel<Normal, Tangential, Rolling>{normal, tangential, Rolling::from(v)});
+      });
+    });
+  });
+  return *model;
+}
+
+ContactSpec without_dashpot(ContactSpec spec) {
+  require_part<NormalLaws>(spec.normal, "normal");
+  with_part<NormalLaws>(spec.normal, [&](auto* tag) {
+    for (const ContactKey* k : std::remove_pointer_t<decltype(tag)>::dashpot_keys) spec.erase(std::string(k->key));
+  });
+  return spec;
 }
 
 std::string describe(const ContactSpec& s) {
-  std::string out = s.normal == NormalLawKind::hooke ? "hooke" : "hertz";
-  if (s.tangential == TangentialLawKind::spring_history) out += "+spring_history";
-  if (s.tangential == TangentialLawKind::coulomb_tanh) out += "+coulomb_tanh";
-  if (s.rolling == RollingLawKind::constant_torque) out += "+rolling";
+  std::string out(label_of<NormalLaws>(s.normal));
+  for (const std::string_view label : {label_of<TangentialLaws>(s.tangential), label_of<RollingLaws>(s.rolling)}) {
+    if (label.empty() || label == "none") continue;
+    out.push_back('+');
+    out.append(label);
+  }
   return out;
+}
+
+std::optional<TangentialBlock> tangential_block(const AnyContactModel& m, double overlap, double r_i, double r_j) {
+  return std::visit(
+      [&](const auto& model) -> std::optional<TangentialBlock> {
+        using Model = std::decay_t<decltype(model)>;
+        if constexpr (!Model::linearised) {
+          throw std::invalid_argument("linear engine: rolling resistance and the Coulomb-tanh law are not "
+                                      "linearised; use the time-domain engine");
+        } else if constexpr (Model::has_tangential) {
+          return model.tangential.linear_block(overlap, r_i, r_j);
+        } else {
+          return std::nullopt;
+        }
+      },
+      m);
 }
 
 }  // namespace sedwave::forward::dem

@@ -62,7 +62,7 @@ template <class Model>
     // inertia is m_eff / (1 + 5/2).
     const double m_t = m_eff / 3.5;
     const double normal_force = n.stiffness * overlap;
-    const ContactOscillator t = model.tangential.oscillator(m_eff, normal_force);
+    const ContactOscillator t = model.tangential.oscillator(m_eff, r_eff, overlap, normal_force);
     const double omega_t = std::sqrt(t.stiffness / m_t), beta_t = t.damping / m_t;
     stable = std::min(stable, verlet_critical_step(omega_t, beta_t));
     collective = std::min(collective, verlet_critical_step(2.0 * omega_t, 4.0 * beta_t));

@@ -17,6 +17,7 @@
 // tangent stiffness of the contacts for Hertz).
 #include <complex>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -105,6 +106,8 @@ class LinearChannel {
   [[nodiscard]] Eigen::Matrix<std::complex<double>, 6, 1> grain_motion(const Eigen::VectorXcd& u,
                                                                       const channel::DriveSettings& drive,
                                                                       std::int32_t grain) const;
+  /// The tangential law's sticking spring and dashpot at pair p (none without a tangential law).
+  [[nodiscard]] std::optional<dem::TangentialBlock> tangential_block(const StaticPair& p) const;
   /// The linearised force of contact p on its grain i per unit wall amplitude, as assemble()'s K and C
   /// act on the response u: normal spring and dashpot, the pre-stress turning a loaded contact, and
   /// with friction the sticking tangential spring and dashpot.

@@ -1,36 +1,22 @@
 #pragma once
-// A contact model is a compile-time composition of one normal law, one tangential law and one
-// rolling law. Absent laws are the empty policies NoTangential / NoRolling: `if constexpr` removes
-// their code, so the thesis's frictionless, non-rotating Hooke model runs a force loop that does no
-// tangential or rotational work at all (no spin arrays are even allocated).
+// A contact model is a compile-time composition of one part from each list of contact/laws.hpp:
+// a normal law (with its dashpot), a tangential law and a rolling law. Each part is one small
+// evaluator inlined into the single force loop (force_loop.hpp); absent parts (NoTangential,
+// NoRolling) are removed by `if constexpr`.
 //
-// Scenes choose laws at run time through ContactSpec; make_contact_model() turns it into one
-// alternative of AnyContactModel, and the engine std::visit-s once per run call, never per contact.
+// Scenes choose parts at run time by name (ContactSpec); make_contact_model() turns a spec into
+// one alternative of AnyContactModel, a std::variant generated from the lists, and the engine
+// std::visit-s once per run call, never per contact.
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "sedwave/forward/dem/contact/contact_point.hpp"
-#include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
-#include "sedwave/forward/dem/contact/hertz.hpp"
-#include "sedwave/forward/dem/contact/hooke.hpp"
-#include "sedwave/forward/dem/contact/rolling.hpp"
-#include "sedwave/forward/dem/contact/tangential_history.hpp"
+#include "sedwave/forward/dem/contact/contact_spec.hpp"
+#include "sedwave/forward/dem/contact/laws.hpp"
 
 namespace sedwave::forward::dem {
-
-struct NoTangential {
-  static constexpr bool enabled = false;
-  static constexpr bool needs_history = false;
-  struct Pair {};
-  [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
-};
-struct NoRolling {
-  static constexpr bool enabled = false;
-  struct Pair {};
-  [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
-};
 
 /// Force on i (the force on j is its opposite) and the torques on both grains of one contact.
 struct PairResult {
@@ -49,6 +35,8 @@ struct ContactModel {
   static constexpr bool has_rolling = Rolling::enabled;
   static constexpr bool rotates = has_tangential || has_rolling;
   static constexpr bool needs_history = Tangential::needs_history;
+  /// Whether the linear engine can represent every part (as stiffness and damping blocks).
+  static constexpr bool linearised = Tangential::linearised && Rolling::linearised;
 
   Normal normal;
   Tangential tangential{};
@@ -96,48 +84,18 @@ struct ContactModel {
     }
     return r;
   }
+
+  /// Elastic energy of a pair at the given overlap; `shear` is its history slot (read only by laws
+  /// that keep one).
+  [[nodiscard]] double energy(double overlap, double r_i, double r_j, const Vec3& shear) const {
+    double e = normal.energy(overlap, r_i, r_j);
+    if constexpr (has_tangential) e += tangential.energy(overlap, r_i, r_j, shear);
+    return e;
+  }
 };
 
-// ---- Run-time selection --------------------------------------------------------------------------
-
-enum class NormalLawKind { hooke, hertz };
-enum class TangentialLawKind { none, spring_history, coulomb_tanh };
-enum class RollingLawKind { none, constant_torque };
-
-/// Run-time description of a contact model (what a scene file states).
-struct ContactSpec {
-  NormalLawKind normal = NormalLawKind::hooke;
-  double kn = 0.0;                 ///< Hooke stiffness [force/length]
-  double effective_modulus = 0.0;  ///< Hertz E* [force/length^2]
-  // Normal damping: set exactly one (none = undamped).
-  std::optional<double> restitution;     ///< e_n in (0, 1]: exact for Hooke, tabulated map for Hertz
-  std::optional<double> gamma;           ///< Hooke: dashpot [force time/length]; Hertz: alpha [-]
-  std::optional<double> lammps_gamma_n;  ///< Hooke only: dashpot per unit m_eff [1/time]
-
-  TangentialLawKind tangential = TangentialLawKind::none;
-  double kt = 0.0;             ///< spring_history: tangential stiffness
-  double gamma_t = 0.0;        ///< spring_history: dashpot per unit m_eff [1/time]
-  double friction = 0.0;       ///< mu (both tangential laws)
-  double tanh_velocity_scale = 0.0;  ///< coulomb_tanh: k_s [time/length]
-
-  RollingLawKind rolling = RollingLawKind::none;
-  double rolling_friction = 0.0;          ///< mu_r
-  double rolling_regularisation = 1e-3;   ///< omega_reg [1/time]
-};
-
-using AnyContactModel = std::variant<
-    ContactModel<HookeNormal, NoTangential, NoRolling>,
-    ContactModel<HookeNormal, TangentialSpringHistory, NoRolling>,
-    ContactModel<HookeNormal, CoulombTanhFriction, NoRolling>,
-    ContactModel<HookeNormal, NoTangential, ConstantTorqueRolling>,
-    ContactModel<HookeNormal, TangentialSpringHistory, ConstantTorqueRolling>,
-    ContactModel<HookeNormal, CoulombTanhFriction, ConstantTorqueRolling>,
-    ContactModel<HertzNormal, NoTangential, NoRolling>,
-    ContactModel<HertzNormal, TangentialSpringHistory, NoRolling>,
-    ContactModel<HertzNormal, CoulombTanhFriction, NoRolling>,
-    ContactModel<HertzNormal, NoTangential, ConstantTorqueRolling>,
-    ContactModel<HertzNormal, TangentialSpringHistory, ConstantTorqueRolling>,
-    ContactModel<HertzNormal, CoulombTanhFriction, ConstantTorqueRolling>>;
+/// Every combination of the lists of laws.hpp.
+using AnyContactModel = VariantOfProduct<ContactModel, NormalLaws, TangentialLaws, RollingLaws>::type;
 
 /// Per listed pair, the model's Pair constants (parallel to the neighbour list's partners).
 template <class Model>
@@ -153,9 +111,18 @@ struct PairTableFor<std::variant<Models...>> {
 /// The pair table of whichever model a run uses.
 using AnyPairTable = PairTableFor<AnyContactModel>::type;
 
-/// Validates a spec and builds the matching compile-time model. Throws std::invalid_argument.
+/// Validates a spec (every key within its bounds and read by a chosen part) and builds the
+/// matching compile-time model. Throws std::invalid_argument.
 [[nodiscard]] AnyContactModel make_contact_model(const ContactSpec& spec);
-/// Human-readable summary, e.g. "hooke+spring_history".
+/// The spec without its normal dashpot (no dashpot key given: undamped); the linear engine and the
+/// drive set their own through the key gamma.
+[[nodiscard]] ContactSpec without_dashpot(ContactSpec spec);
+/// The model of a spec without its normal dashpot: its traits, springs and tangential blocks, built
+/// without mapping a restitution (which for Hertz integrates a collision).
+[[nodiscard]] inline AnyContactModel undamped_contact_model(const ContactSpec& spec) {
+  return make_contact_model(without_dashpot(spec));
+}
+/// Human-readable summary, e.g. "hooke+spring_history" (stored in checkpoints).
 [[nodiscard]] std::string describe(const ContactSpec& spec);
 
 /// Normal force of a pair at rest at the given overlap (the dashpot does not act): the static
@@ -175,5 +142,20 @@ template <class NormalLaw>
 [[nodiscard]] inline bool needs_history(const AnyContactModel& m) {
   return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::needs_history; }, m);
 }
+[[nodiscard]] inline bool has_tangential(const AnyContactModel& m) {
+  return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::has_tangential; }, m);
+}
+/// Whether the linear engine can represent the model (no rolling torque, no Coulomb-tanh slip).
+[[nodiscard]] inline bool linearised(const AnyContactModel& m) {
+  return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::linearised; }, m);
+}
+/// The normal law's stiffness at zero overlap (0 for Hertz).
+[[nodiscard]] inline double stiffness_at_contact(const AnyContactModel& m) {
+  return std::visit([](const auto& model) { return model.normal.stiffness_at_contact(); }, m);
+}
+/// The tangential law's linear block at a static overlap, none without a tangential law. Throws
+/// std::invalid_argument for a law the linear engine cannot represent.
+[[nodiscard]] std::optional<TangentialBlock> tangential_block(const AnyContactModel& m, double overlap, double r_i,
+                                                              double r_j);
 
 }  // namespace sedwave::forward::dem

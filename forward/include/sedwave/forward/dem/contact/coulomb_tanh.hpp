@@ -4,18 +4,33 @@
 // Smooth in v_t, so sliding and sticking need no state and no event detection; k_s [time/length]
 // sets how sharply the force saturates (|v_t| >> 1/k_s: full Coulomb sliding). It acts like a
 // viscous dashpot of coefficient mu |F_n| k_s at small slip, which bounds the stable time step.
+#include <array>
 #include <cmath>
+#include <string_view>
 
 #include "sedwave/forward/dem/contact/contact_point.hpp"
+#include "sedwave/forward/dem/contact/keys.hpp"
 
 namespace sedwave::forward::dem {
 
 struct CoulombTanhFriction {
+  static constexpr std::string_view name = "coulomb_tanh";
+  static constexpr ContactKey velocity_scale_key{"tanh_velocity_scale", "tanh-velocity-scale",
+                                                 "coulomb_tanh k_s [time/length]: F_t saturates above |v_t| ~ 1/k_s",
+                                                 KeyBounds::positive()};
+  static constexpr std::array keys{&keys::friction, &velocity_scale_key};
   static constexpr bool enabled = true;
   static constexpr bool needs_history = false;
+  /// A velocity-dependent force whose small-slip dashpot grows with the normal force: not a linear
+  /// block the linear engine could hold.
+  static constexpr bool linearised = false;
 
   double friction;        ///< mu
   double velocity_scale;  ///< k_s [time/length]: tanh(k_s |v_t|)
+
+  static CoulombTanhFriction from(const ContactValues& v, double /*normal_stiffness*/) {
+    return {v.get(keys::friction, 0.0), v.required(velocity_scale_key, name)};
+  }
 
   struct Pair {};  ///< nothing per pair
   [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
@@ -27,8 +42,13 @@ struct CoulombTanhFriction {
     const double tanh_over_speed = x > 1e-8 ? std::tanh(x) / speed : velocity_scale;
     return -(friction * std::abs(normal_force) * tanh_over_speed) * tangential_velocity;
   }
-  [[nodiscard]] ContactOscillator oscillator(double /*effective_mass*/, double normal_force) const {
+  [[nodiscard]] ContactOscillator oscillator(double /*effective_mass*/, double /*radius*/, double /*overlap*/,
+                                             double normal_force) const {
     return {0.0, friction * std::abs(normal_force) * velocity_scale};
+  }
+  /// No spring: nothing stored.
+  [[nodiscard]] double energy(double /*overlap*/, double /*r_i*/, double /*r_j*/, const Vec3& /*shear*/) const {
+    return 0.0;
   }
 };
 

@@ -7,9 +7,14 @@
 // so the restitution depends on alpha only, never on the impact speed. e_n(alpha) has no closed form;
 // hertz_restitution() integrates the universal equation and hertz_alpha_from_restitution() inverts it
 // (both to ~1e-6), which is the documented, tested e_n mapping for Hertz.
+#include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string_view>
 
 #include "sedwave/forward/dem/contact/contact_point.hpp"
+#include "sedwave/forward/dem/contact/keys.hpp"
+#include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::dem {
 
@@ -23,8 +28,37 @@ namespace sedwave::forward::dem {
                                           double effective_mass, double impact_speed);
 
 struct HertzNormal {
+  static constexpr std::string_view name = "hertz";
+  static constexpr ContactKey modulus_key{"effective_modulus", "effective-modulus",
+                                          "hertz E* [force/length^2]; or youngs_modulus (and poisson_ratio): "
+                                          "E* = E / (2 (1 - nu^2))",
+                                          KeyBounds::positive()};
+  static constexpr std::array keys{&modulus_key, &keys::youngs_modulus, &keys::poisson_ratio, &keys::restitution,
+                                   &keys::gamma};
+  /// The keys that choose the dashpot (at most one may be given).
+  static constexpr std::array dashpot_keys{&keys::restitution, &keys::gamma};
+
   double effective_modulus;  ///< E* [force/length^2]
   double alpha;              ///< dimensionless dashpot (from e_n via hertz_alpha_from_restitution)
+
+  /// E*, or E and nu of identical grains; restitution or alpha (key gamma), or neither (undamped).
+  static HertzNormal from(const ContactValues& v) {
+    if (v.has(modulus_key) == v.has(keys::youngs_modulus))
+      throw std::invalid_argument("hertz: give exactly one of 'effective_modulus' or 'youngs_modulus'");
+    double modulus = 0.0;
+    if (v.has(modulus_key)) {
+      modulus = v.required(modulus_key, name);
+    } else {
+      const double E = v.required(keys::youngs_modulus, name);
+      const double nu = v.get(keys::poisson_ratio, keys::default_poisson_ratio);
+      modulus = hertz_effective_modulus(E, nu, E, nu);
+    }
+    if (v.has(keys::restitution) && v.has(keys::gamma))
+      throw std::invalid_argument("hertz: give at most one of restitution, gamma");
+    const double alpha = v.has(keys::restitution) ? hertz_alpha_from_restitution(v.required(keys::restitution, name))
+                                                  : v.get(keys::gamma, 0.0);
+    return {modulus, alpha};
+  }
 
   /// What the force needs of one pair beyond its geometry, fixed by its radii and masses.
   struct Pair {
@@ -53,6 +87,8 @@ struct HertzNormal {
     return {2.0 * effective_modulus * a,
             alpha * std::sqrt(effective_mass * (4.0 / 3.0) * effective_modulus * a)};
   }
+  /// A Hertz contact has no stiffness at zero overlap (its energy has no kink there).
+  [[nodiscard]] double stiffness_at_contact() const { return 0.0; }
   [[nodiscard]] double energy(double overlap, double r_i, double r_j) const {
     const double r_eff = r_i * r_j / (r_i + r_j);
     return 0.4 * (4.0 / 3.0) * effective_modulus * std::sqrt(r_eff) * std::pow(overlap, 2.5);

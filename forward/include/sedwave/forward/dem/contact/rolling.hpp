@@ -4,17 +4,36 @@
 //   omega_r = (omega_i - omega_j) - ((omega_i - omega_j).n) n.
 // A strictly constant torque chatters when omega_r passes through zero; it is regularised below
 // omega_reg as tanh(|omega_r|/omega_reg), which changes nothing while the grains roll.
+// (Ai, Chen, Rotter & Ooi 2011, Powder Technology 206, 269: model type A.)
+#include <array>
 #include <cmath>
+#include <string_view>
 
 #include "sedwave/forward/dem/contact/contact_point.hpp"
+#include "sedwave/forward/dem/contact/keys.hpp"
 
 namespace sedwave::forward::dem {
 
 struct ConstantTorqueRolling {
+  static constexpr std::string_view name = "constant_torque";
+  static constexpr std::string_view label = "rolling";  ///< its part of describe(), if not its name
+  static constexpr ContactKey friction_key{"rolling_friction", "rolling-friction",
+                                           "constant_torque mu_r: torque mu_r R_eff |F_n| (default 0)",
+                                           KeyBounds::non_negative()};
+  static constexpr ContactKey regularisation_key{"rolling_regularisation", "rolling-regularisation",
+                                                 "constant_torque omega_reg [1/time] (default 1e-3)",
+                                                 KeyBounds::positive()};
+  static constexpr std::array keys{&friction_key, &regularisation_key};
   static constexpr bool enabled = true;
+  /// A torque of fixed magnitude has no linear part the linear engine could hold.
+  static constexpr bool linearised = false;
 
   double rolling_friction;        ///< mu_r (dimensionless, times R_eff gives a lever arm)
   double regularising_spin_rate;  ///< omega_reg [1/time]
+
+  static ConstantTorqueRolling from(const ContactValues& v) {
+    return {v.get(friction_key, 0.0), v.get(regularisation_key, 1e-3)};
+  }
 
   /// The pair's lever arm, mu_r R_eff (1/R_eff = 1/r_i + 1/r_j).
   struct Pair {
