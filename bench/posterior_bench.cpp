@@ -90,40 +90,40 @@ void model_only(benchmark::State& state) {
   state.SetLabel(cases()[static_cast<std::size_t>(state.range(0))].label);
 }
 
-void report(benchmark::State& state, const Problem& p, long evaluations, double wall) {
-  const double threads = static_cast<double>(state.range(1));
+/// Runs `run(problem, threads)` once per iteration (a result with evaluations and wall_seconds) and
+/// reports the evaluations per second and the model's share of the time.
+template <class Run>
+void time_sampler(benchmark::State& state, Run run) {
+  const Problem& p = problem(static_cast<std::size_t>(state.range(0)));
+  const int threads = static_cast<int>(state.range(1));
+  long evaluations = 0;
+  double wall = 0.0;
+  for (auto _ : state) {
+    const auto result = run(p, threads);
+    evaluations += result.evaluations;
+    wall += result.wall_seconds;
+  }
   state.counters["evals_per_s"] = static_cast<double>(evaluations) / wall;
   state.counters["model_share"] = model_seconds_per_evaluation(p) * static_cast<double>(evaluations) / (wall * threads);
   state.SetLabel(cases()[static_cast<std::size_t>(state.range(0))].label);
 }
 
 void evidence(benchmark::State& state) {
-  const Problem& p = problem(static_cast<std::size_t>(state.range(0)));
-  inversion::EvidenceOptions options;
-  options.threads = static_cast<int>(state.range(1));
-  long evaluations = 0;
-  double wall = 0.0;
-  for (auto _ : state) {
+  time_sampler(state, [&state](const Problem& p, int threads) {
+    inversion::EvidenceOptions options;
+    options.threads = threads;
     const inversion::ModelEvidence e = inversion::model_evidence(p.data, *p.model, p.best, p.priors, p.options, options);
     if (!e.converged) state.SkipWithError("the evidence run did not converge");
-    evaluations += e.evaluations;
-    wall += e.wall_seconds;
-  }
-  report(state, p, evaluations, wall);
+    return e;
+  });
 }
 
 void posterior(benchmark::State& state) {
-  const Problem& p = problem(static_cast<std::size_t>(state.range(0)));
-  inversion::PosteriorOptions options;
-  options.threads = static_cast<int>(state.range(1));
-  long evaluations = 0;
-  double wall = 0.0;
-  for (auto _ : state) {
-    const inversion::PosteriorResult r = inversion::sample_posterior(p.data, *p.model, p.best, p.priors, p.options, options);
-    evaluations += r.evaluations;
-    wall += r.wall_seconds;
-  }
-  report(state, p, evaluations, wall);
+  time_sampler(state, [](const Problem& p, int threads) {
+    inversion::PosteriorOptions options;
+    options.threads = threads;
+    return inversion::sample_posterior(p.data, *p.model, p.best, p.priors, p.options, options);
+  });
 }
 
 }  // namespace
