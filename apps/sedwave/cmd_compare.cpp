@@ -266,17 +266,16 @@ Command add_compare_command(CLI::App& app) {
     inversion::ObservationSet data;
     for (const std::string& f : o->files) data.append(inversion::read_observation_csv(f, read));
     std::vector<std::shared_ptr<const sediment::SedimentModel>> models;
-    for (const std::string& spec : split(o->models, ',')) models.push_back(sediment::make_sediment_model(spec));
+    for (const std::string& spec : model_names) models.push_back(sediment::make_sediment_model(spec));
     require_known(o->priors, "--prior", models);
     require_known(o->shared.set_values, "--set", models);
     for (const std::string& f : o->fits) {
-      const auto names = split(o->models, ',');
-      if (std::find(names.begin(), names.end(), name_of(f)) == names.end()) {
+      if (std::find(model_names.begin(), model_names.end(), name_of(f)) == model_names.end()) {
         throw UsageError("--fit '" + f + "': '" + name_of(f) + "' is not one of --models");
       }
     }
     std::vector<Row> rows;
-    for (const std::string& spec : split(o->models, ',')) {
+    for (const std::string& spec : model_names) {
       std::fprintf(stderr, "sedwave compare: %s ...\n", spec.c_str());
       rows.push_back(compare_one(spec, *o, data));
     }
