@@ -9,7 +9,8 @@
 //   2. if any grain moved more than skin/2 (or a rebuild is forced): wrap, rebalance, migrate,
 //      spatially sort, rebuild ghosts and the neighbour list (history carried by key);
 //      otherwise refresh the ghosts
-//   3. contact forces, gravity, global viscous damping; total force on each wall
+//   3. contact forces (and lubrication), gravity, global viscous damping, fluid drag and buoyancy;
+//      total force on each wall
 //   4. half kick with the new forces; force-controlled walls finish their step
 //   5. guard (every guard.check_interval steps), callbacks, checkpoint, progress
 #include <mpi.h>
@@ -30,6 +31,7 @@
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/contact_history.hpp"
 #include "sedwave/forward/dem/domain.hpp"
+#include "sedwave/forward/dem/fluid.hpp"
 #include "sedwave/forward/dem/force_loop.hpp"
 #include "sedwave/forward/dem/grains.hpp"
 #include "sedwave/forward/dem/neighbor_list.hpp"
@@ -83,6 +85,9 @@ struct EngineSettings {
   double hertz_reference_overlap = 0.02;  ///< Hertz stiffness for dt: at this overlap / radius
   Vec3 gravity;                         ///< uniform acceleration on free grains
   double viscous_damping = 0.0;         ///< global drag F = -c v on free grains (preparation stages)
+  /// A still pore fluid (fluid.hpp): lubrication between grains, drag and buoyancy on free grains.
+  /// Absent: dry, and none of it is evaluated.
+  std::optional<FluidSpec> fluid;
   std::int64_t sort_every_rebuilds = 1; ///< spatial sorting period (0: never)
   /// LAMMPS "newton on": a pair across a periodic face or slab boundary is computed once and its
   /// reaction sent back to the ghost's owner (fewer pair evaluations; one more communication per

@@ -1,0 +1,32 @@
+#include "sedwave/forward/dem/fluid.hpp"
+
+#include <sstream>
+
+namespace sedwave::forward::dem {
+
+std::string_view drag_law_name(DragLaw law) {
+  switch (law) {
+    case DragLaw::none: return "none";
+    case DragLaw::stokes: return "stokes";
+    case DragLaw::richardson_zaki: return "richardson_zaki";
+  }
+  return "?";
+}
+
+std::string FluidSpec::problem() const {
+  std::ostringstream why;
+  why.precision(6);
+  if (!(viscosity > 0.0) || !std::isfinite(viscosity))
+    why << "viscosity = " << viscosity << ": accepted range (0, inf) (a dry run has no fluid at all)";
+  else if (!(density >= 0.0) || !std::isfinite(density))
+    why << "density = " << density << ": accepted range [0, inf)";
+  else if (!(roughness > 0.0) || !std::isfinite(roughness))
+    why << "roughness = " << roughness << ": accepted range (0, inf) (the squeeze-film force diverges at zero gap)";
+  else if (!(cutoff > roughness) || !std::isfinite(cutoff))
+    why << "cutoff = " << cutoff << ": accepted range (roughness, inf) = (" << roughness << ", inf)";
+  else if (drag == DragLaw::richardson_zaki && !(porosity > 0.0 && porosity < 1.0))
+    why << "porosity = " << porosity << ": accepted range (0, 1)";
+  return why.str();
+}
+
+}  // namespace sedwave::forward::dem
