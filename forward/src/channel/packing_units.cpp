@@ -56,4 +56,13 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   return u;
 }
 
+dem::FluidSpec fluid_in_packing_units(const dem::FluidSpec& dimensionless, const PackingUnits& u) {
+  dem::FluidSpec f = dimensionless;
+  f.viscosity = dimensionless.viscosity * std::sqrt(u.kappa * u.mass) / u.diameter;
+  f.roughness = dimensionless.roughness * u.diameter;
+  f.cutoff = dimensionless.cutoff * u.diameter;
+  f.density = dimensionless.density * 6.0 * u.mass / (std::numbers::pi * std::pow(u.diameter, 3));
+  return f;
+}
+
 }  // namespace sedwave::forward::channel

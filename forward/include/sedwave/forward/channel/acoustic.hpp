@@ -93,6 +93,10 @@ struct DriveSettings {
   /// or the user fixed the length); 0: never.
   int steady_extensions = 2;
   double time_step_fraction = 0.01; ///< dt / binary collision time (thesis: 0.01)
+  /// A still pore fluid during the drive, in the packing's dimensionless groups
+  /// (fluid_in_packing_units); absent: dry. The packing itself is prepared dry: viscous forces
+  /// vanish at rest, so the static state is the same.
+  std::optional<dem::FluidSpec> fluid;
 };
 
 /// alpha_hat and c_hat at one frequency of a broadband (pulse) run.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sedwave/forward/channel/preparation.hpp"
+#include "sedwave/forward/dem/fluid.hpp"
 
 namespace sedwave::forward::channel {
 
@@ -54,5 +55,10 @@ struct LayerGrid {
 /// for Hertz (no single stiffness) the mean tangent stiffness of the static contacts. Throws
 /// std::invalid_argument when the packing has no flow grains or lacks a wall.
 [[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact);
+
+/// A pore fluid given in the packing's dimensionless groups (as scene files give it) in the
+/// packing's own units: viscosity mu_hat = mu d / sqrt(kappa m), roughness and cutoff in d, density
+/// as rho_f / rho_s (rho_s = 6 m / (pi d^3), the density of the grain that defines m).
+[[nodiscard]] dem::FluidSpec fluid_in_packing_units(const dem::FluidSpec& dimensionless, const PackingUnits& u);
 
 }  // namespace sedwave::forward::channel
