@@ -78,8 +78,12 @@ Engine::Engine(MPI_Comm comm, EngineSettings settings, std::span<const Grain> gr
       throw std::invalid_argument("DEM: grain " + std::to_string(g.id) + " needs positive radius and mass");
     grains_.push_local(g);
   }
+  if (settings_.fluid) {
+    const std::string why = settings_.fluid->problem();
+    if (!why.empty()) throw std::invalid_argument("DEM: fluid " + why);
+  }
   update_global_grain_stats();
-  ghost_cutoff_ = 2.0 * max_radius_ + skin_;
+  ghost_cutoff_ = 2.0 * max_radius_ + skin_ + interaction_gap();
 
   if (settings_.time_step) {
     const double h = *settings_.time_step;
@@ -123,8 +127,14 @@ void Engine::update_global_grain_stats() {
   max_radius_ = maxs[0];
   skin_ = settings_.skin > 0.0 ? settings_.skin : 0.1 * sums[1] / sums[0];
   const double lightest = std::isfinite(mins[1]) ? mins[1] : mins[2];
-  const TimeStepInputs in{lightest, min_radius_, settings_.hertz_reference_overlap,
-                          settings_.viscous_damping, settings_.time_step_fraction};
+  TimeStepInputs in{lightest, min_radius_, settings_.hertz_reference_overlap, settings_.viscous_damping,
+                    0.0, settings_.time_step_fraction};
+  if (const auto& fluid = settings_.fluid) {
+    // The stiffest fluid dashpots: drag on the smallest grain, lubrication of the lightest pair at
+    // the roughness gap (where it is largest).
+    in.viscous_damping += fluid->drag_coefficient(min_radius_);
+    in.pair_damping = fluid->lubrication_coefficient(fluid->roughness, min_radius_, min_radius_);
+  }
   limits_ = std::visit([&](const auto& m) { return dem::time_step_limits(m, in); }, model_);
   const double guard_overlap = settings_.guard.max_overlap_fraction * min_radius_;
   guard_energy_floor_ = static_cast<double>(n_global_) *
@@ -257,9 +267,9 @@ void Engine::rebuild() {
   domain_.migrate(grains_, entries);
   const std::int64_t sort_every = settings_.sort_every_rebuilds;
   if (sort_every > 0 && rebuilds_ % sort_every == 0)
-    grains_.permute_local(spatial_order(grains_, ghost_cutoff_));
+    grains_.permute_local(spatial_order(grains_, 2.0 * max_radius_ + skin_));  // the same order with or without a fluid
   domain_.build_ghosts(grains_, ghost_cutoff_);
-  list_.build(grains_, skin_, max_radius_, settings_.newton, domain_.ghost_sources());
+  list_.build(grains_, skin_, max_radius_, settings_.newton, domain_.ghost_sources(), interaction_gap());
   if (history) assign_history(list_, grains_, HistoryMap(entries), history_);
   std::visit(
       [&](const auto& model) {
@@ -279,8 +289,13 @@ OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
   const std::size_t n = g.n_local();
   domain_.clear_forces(g);  // remote ghosts too: they collect reactions
   const PairTable<Model>& pairs = std::get<PairTable<Model>>(pair_table_);
-  const OverlapWatch w = watch ? accumulate_contact_forces<Model, true>(model, g, list_, pairs, history_, dt_)
-                               : accumulate_contact_forces<Model, false>(model, g, list_, pairs, history_, dt_);
+  const auto accumulate = [&](const auto& lubrication) {
+    using Lubrication = std::decay_t<decltype(lubrication)>;
+    return watch ? accumulate_contact_forces<Model, true, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication)
+                 : accumulate_contact_forces<Model, false, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication);
+  };
+  const bool lubricated = settings_.fluid && settings_.fluid->lubrication;
+  const OverlapWatch w = lubricated ? accumulate(LubricationEvaluator(*settings_.fluid)) : accumulate(NoLubrication{});
   if (list_.newton()) {
     ScopedTimer t(timings_.communication);
     domain_.reverse_forces(g);
@@ -290,8 +305,19 @@ OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
   if (gravity != Vec3{} || drag != 0.0)
     for (std::size_t i = 0; i < n; ++i)
       if (g.body[i] == kFreeBody) g.force[i] += g.mass[i] * gravity - drag * g.velocity[i];
+  if (settings_.fluid) apply_fluid_drag_and_buoyancy();
   apply_body_forces();
   return w;
+}
+
+void Engine::apply_fluid_drag_and_buoyancy() {
+  const FluidSpec& fluid = *settings_.fluid;
+  GrainArrays& g = grains_;
+  const double drag_per_radius = fluid.drag_coefficient(1.0);  // the drag coefficient is linear in r
+  const Vec3 gravity = settings_.gravity;
+  for (std::size_t i = 0; i < g.n_local(); ++i)
+    if (g.body[i] == kFreeBody)
+      g.force[i] += fluid.buoyancy(g.radius[i], gravity) - (drag_per_radius * g.radius[i]) * g.velocity[i];
 }
 
 void Engine::apply_body_forces() {

@@ -54,12 +54,13 @@ struct CellGrid {
 }  // namespace
 
 void NeighborList::build(const GrainArrays& g, double skin, double max_radius, bool newton,
-                         std::span<const GhostSource> ghost_sources) {
+                         std::span<const GhostSource> ghost_sources, double interaction_gap) {
   skin_ = skin;
   newton_ = newton;
   const std::size_t n_local = g.n_local();
   const std::size_t n_total = g.n_total();
-  const double cutoff = 2.0 * max_radius + skin;
+  const double listed_gap = skin + interaction_gap;
+  const double cutoff = 2.0 * max_radius + listed_gap;
   const CellGrid grid(std::span(g.position.data(), n_total), cutoff, 4 * n_total + 64);
 
   // Counting sort of all grains (local and ghost) into cells.
@@ -116,7 +117,7 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
             // side of the smaller id (the mirror pair keeps it); never two wall grains.
             const bool listed_here = local_j ? j > i : !(newton && g.id[j] < id_i);
             const bool both_rigid = rigid_i && g.body[j] != kFreeBody;
-            const double reach = ri + g.radius[j] + skin;
+            const double reach = ri + g.radius[j] + listed_gap;
             const bool near = norm2(xi - g.position[j]) < reach * reach;
             found[n_found] = static_cast<std::int32_t>(j);
             n_found += static_cast<std::size_t>(listed_here & !both_rigid & near);

@@ -186,6 +186,9 @@ class Engine {
   void rebuild();
   [[nodiscard]] bool rebuild_needed();
   void apply_body_forces();
+  void apply_fluid_drag_and_buoyancy();
+  /// Largest gap across which grains interact (a fluid's lubrication cut-off; 0 dry).
+  [[nodiscard]] double interaction_gap() const { return settings_.fluid ? settings_.fluid->interaction_gap() : 0.0; }
   void guard_check(const OverlapWatch& watch);
   void after_step();
   void update_global_grain_stats();

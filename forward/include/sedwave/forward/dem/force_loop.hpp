@@ -1,12 +1,15 @@
 #pragma once
 // The one pair-force loop, templated on the contact model (so the laws are inlined and absent laws
-// cost nothing) and on whether the guard watches overlaps this step.
+// cost nothing), on whether the guard watches overlaps this step, and on whether a pore fluid's
+// lubrication acts between the grains (NoLubrication: not a single instruction of it is compiled in).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/dem/fluid.hpp"
 #include "sedwave/forward/dem/grains.hpp"
 #include "sedwave/forward/dem/neighbor_list.hpp"
 
@@ -21,6 +24,9 @@
 #endif
 
 namespace sedwave::forward::dem {
+
+/// The lubrication argument of a dry force loop.
+struct NoLubrication {};
 
 /// Largest overlap seen by a watched force evaluation.
 struct OverlapWatch {
@@ -51,10 +57,14 @@ void tabulate_pairs(const Model& model, const GrainArrays& g, const NeighborList
 /// Adds the contact forces (and torques) of all listed pairs to g.force (g.torque): +F on the local
 /// row grain, -F on a local partner. A ghost partner gets -F too under "newton on" (reverse
 /// communication delivers it); under "newton off" its owner computes its share. `table` is
-/// tabulate_pairs() of the same list.
-template <class Model, bool kWatch>
+/// tabulate_pairs() of the same list. `lubrication` (a LubricationEvaluator) adds the squeeze-film
+/// force of every listed pair closer than its cut-off, touching or not; the list must then reach
+/// that far (NeighborList::build's interaction_gap).
+template <class Model, bool kWatch, class Lubrication = NoLubrication>
 SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, GrainArrays& g, const NeighborList& list,
-                                       const PairTable<Model>& table, std::span<Vec3> history, double dt) {
+                                       const PairTable<Model>& table, std::span<Vec3> history, double dt,
+                                       [[maybe_unused]] const Lubrication& lubrication = {}) {
+  constexpr bool kFluid = !std::is_same_v<Lubrication, NoLubrication>;
   OverlapWatch watch;
   const Vec3* x = g.position.data();
   const Vec3* v = g.velocity.data();
@@ -87,6 +97,10 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         if (!(r2 < reach * reach)) {
           if constexpr (Model::needs_history) history[k] = Vec3{};
           tj = Vec3{};
+          if constexpr (kFluid) {
+            const double gap = std::sqrt(r2) - reach;
+            return lubrication.multiple_of_d(gap, ri, radius[j], dot(vi - v[j], d) / r2) * d;
+          }
           return {};
         }
       }
@@ -119,6 +133,10 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         const auto& p = pair[k].normal;
         const double spring = law.spring(c.overlap, p) * inv_distance;
         const double dashpot = law.dashpot_at(c.overlap, p) * approach * inv_r2;
+        if constexpr (kFluid) {
+          const double fluid = lubrication.multiple_of_d(distance - reach, ri, radius[j], approach * inv_r2);
+          return (in_contact * (spring - dashpot) + fluid) * d;
+        }
         return (in_contact * (spring - dashpot)) * d;
       } else {
         Vec3 no_history;
@@ -126,6 +144,8 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         const PairResult r = model.evaluate(c, pair[k], v_rel, wi, spin[j], dt, slot);
         ti += r.torque_i;
         tj = r.torque_j;
+        if constexpr (kFluid)
+          return r.force + lubrication.multiple_of_d(distance - reach, ri, radius[j], approach * inv_r2) * d;
         return r.force;
       }
     };

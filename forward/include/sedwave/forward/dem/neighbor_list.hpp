@@ -3,7 +3,9 @@
 //
 // A pair enters the list when its gap is below the skin: |x_i - x_j| < r_i + r_j + skin. The list
 // stays valid until some grain has moved more than skin/2 since the build (two grains approaching
-// each other by skin/2 each just close the gap), which needs_rebuild() checks.
+// each other by skin/2 each just close the gap), which needs_rebuild() checks. Forces that act
+// across gaps (a pore fluid's lubrication, fluid.hpp) widen the listed gap by their reach,
+// |x_i - x_j| < r_i + r_j + gap + skin, with the same rebuild rule.
 //
 // Layout: compressed rows over the local grains. Row i holds first its local partners j > i (each
 // local pair once: the loop applies +F to i and -F to j) and then its ghost partners.
@@ -32,9 +34,10 @@ class NeighborList {
   /// Builds the list for the current local and ghost grains. max_radius: largest radius anywhere.
   /// newton: list each cross-boundary pair on one side only (see above).
   /// ghost_sources: per ghost, the grain to list instead and the shift to add (Domain::ghost_sources);
-  /// empty: ghosts are listed as themselves.
+  /// empty: ghosts are listed as themselves. interaction_gap: the largest gap across which a force
+  /// acts (0: contact forces only).
   void build(const GrainArrays& g, double skin, double max_radius, bool newton = false,
-             std::span<const GhostSource> ghost_sources = {});
+             std::span<const GhostSource> ghost_sources = {}, double interaction_gap = 0.0);
   /// True when a local grain moved more than skin/2 since the last build (local decision: the engine
   /// reduces it over ranks).
   [[nodiscard]] bool needs_rebuild(const GrainArrays& g) const;

@@ -36,6 +36,7 @@ struct TimeStepInputs {
   double smallest_radius;           ///< smallest grain radius
   double reference_overlap = 0.02;  ///< overlap / smallest radius at which Hertz is linearised
   double viscous_damping = 0.0;     ///< global viscous coefficient (force = -gamma_v v)
+  double pair_damping = 0.0;        ///< a dashpot beside the contact's (a fluid's lubrication) of the lightest pair
   double fraction = 0.01;           ///< default dt = fraction * t_col
 };
 
@@ -54,7 +55,7 @@ template <class Model>
   const double overlap = in.reference_overlap * in.smallest_radius;
   const ContactOscillator n = model.normal.oscillator(m_eff, r_eff, overlap);
   const double omega0 = std::sqrt(n.stiffness / m_eff);
-  const double beta = n.damping / m_eff + in.viscous_damping / in.lightest_mass;
+  const double beta = (n.damping + in.pair_damping) / m_eff + in.viscous_damping / in.lightest_mass;
   double stable = verlet_critical_step(omega0, beta);
   double collective = verlet_critical_step(2.0 * omega0, 4.0 * beta);
   if constexpr (Model::has_tangential) {
