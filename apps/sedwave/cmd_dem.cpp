@@ -43,6 +43,11 @@ struct DemOptions {
   std::optional<std::string> law, tangential, rolling;
   std::map<std::string, std::optional<double>, std::less<>> contact;
   std::vector<double> gravity;
+  /// A still pore fluid (dem/fluid.hpp), in the data file's units; none without --fluid-viscosity.
+  struct Fluid {
+    std::optional<double> viscosity, density, roughness, cutoff, porosity;
+    std::optional<std::string> drag, lubrication;
+  } fluid;
   std::optional<double> dt, skin;
   std::string newton = "on";
   std::vector<int> frozen_types;
@@ -208,9 +213,44 @@ std::map<std::string, std::string> run_inputs(const DemOptions& o) {
           {"--wiggle", list_text(o.wiggles)}};
 }
 
-/// run_inputs and every contact option.
+/// The fluid options, checked together: --fluid-viscosity, --fluid-roughness and --fluid-cutoff
+/// make a fluid, the others refine it; none: dry.
+std::optional<dem::FluidSpec> fluid_spec(const DemOptions& o) {
+  const DemOptions::Fluid& f = o.fluid;
+  const bool any = f.viscosity || f.density || f.roughness || f.cutoff || f.porosity || f.drag || f.lubrication;
+  if (!any) return std::nullopt;
+  for (const auto& [option, value] : {std::pair{"--fluid-viscosity", f.viscosity}, std::pair{"--fluid-roughness", f.roughness},
+                                      std::pair{"--fluid-cutoff", f.cutoff}})
+    if (!value) throw std::invalid_argument(std::string(option) + " is required with any --fluid-* option");
+  dem::FluidSpec spec;
+  spec.viscosity = *f.viscosity;
+  spec.density = f.density.value_or(0.0);
+  spec.roughness = *f.roughness;
+  spec.cutoff = *f.cutoff;
+  spec.lubrication = f.lubrication.value_or("on") == "on";
+  const std::string drag = f.drag.value_or("richardson_zaki");
+  spec.drag = drag == "none" ? dem::DragLaw::none : drag == "stokes" ? dem::DragLaw::stokes : dem::DragLaw::richardson_zaki;
+  if (f.porosity && spec.drag != dem::DragLaw::richardson_zaki)
+    throw std::invalid_argument("--fluid-porosity is read by --fluid-drag richardson_zaki only");
+  spec.porosity = f.porosity.value_or(spec.porosity);
+  if (!(spec.cutoff > spec.roughness))
+    throw std::invalid_argument("--fluid-cutoff " + option_text(spec.cutoff) + ": accepted range (--fluid-roughness, inf) = (" +
+                                option_text(spec.roughness) + ", inf)");
+  if (const std::string why = spec.problem(); !why.empty()) throw std::invalid_argument("fluid options: " + why);
+  return spec;
+}
+
+/// run_inputs, every contact option and the fluid.
 std::map<std::string, std::string> checkpoint_inputs(const DemOptions& o) {
   std::map<std::string, std::string> inputs = run_inputs(o);
+  const DemOptions::Fluid& f = o.fluid;
+  inputs["--fluid-viscosity"] = option_text(f.viscosity);
+  inputs["--fluid-density"] = option_text(f.density);
+  inputs["--fluid-roughness"] = option_text(f.roughness);
+  inputs["--fluid-cutoff"] = option_text(f.cutoff);
+  inputs["--fluid-porosity"] = option_text(f.porosity);
+  inputs["--fluid-drag"] = f.drag.value_or("(none)");
+  inputs["--fluid-lubrication"] = f.lubrication.value_or("(none)");
   inputs["--law"] = o.law.value_or("(none)");
   inputs["--tangential"] = o.tangential.value_or("(none)");
   inputs["--rolling"] = o.rolling.value_or("(none)");
@@ -248,6 +288,7 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
   s.box.periodic = parse_boundary(o.boundary);
   s.contact = contact_spec(o);
   if (!o.gravity.empty()) s.gravity = {o.gravity.at(0), o.gravity.at(1), o.gravity.at(2)};
+  s.fluid = fluid_spec(o);
   s.time_step = o.dt;
   if (o.skin) s.skin = *o.skin;
   s.newton = o.newton == "on";
@@ -270,7 +311,8 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
           << '\n';
   }
   if (root && !o.quiet)
-    out << "dem: " << engine.n_global() << " grains, " << dem::describe(s.contact) << ", time step "
+    out << "dem: " << engine.n_global() << " grains, " << dem::describe(s.contact)
+        << (s.fluid ? " in a fluid (" + dem::describe(*s.fluid) + ")" : std::string()) << ", time step "
         << engine.time_step() << " (" << engine.time_step_limits().summary() << "), " << mpi.size() << " rank(s)\n";
 
   if (!o.dump.empty())
@@ -318,6 +360,26 @@ void add_contact_options(CLI::App& cmd, DemOptions& o) {
         ->check(within(k->bounds));
 }
 
+/// --fluid-*: a still pore fluid around the grains (docs/fluid.md).
+void add_fluid_options(CLI::App& cmd, DemOptions& o) {
+  DemOptions::Fluid& f = o.fluid;
+  cmd.add_option("--fluid-viscosity", f.viscosity, "pore fluid viscosity mu [mass/(length time)]; gives the run a fluid")
+      ->check(within(dem::KeyBounds::positive()));
+  cmd.add_option("--fluid-roughness", f.roughness,
+                 "smallest lubrication gap h_r [length]: the squeeze-film force at smaller gaps and overlaps is that at h_r")
+      ->check(within(dem::KeyBounds::positive()));
+  cmd.add_option("--fluid-cutoff", f.cutoff, "no lubrication at gaps beyond h_c [length] (> --fluid-roughness)")
+      ->check(within(dem::KeyBounds::positive()));
+  cmd.add_option("--fluid-density", f.density, "fluid density [mass/length^3] for buoyancy under --gravity (default 0)")
+      ->check(within(dem::KeyBounds::non_negative()));
+  cmd.add_option("--fluid-drag", f.drag, "drag on each grain: richardson_zaki (default), stokes or none")
+      ->check(CLI::IsMember({"richardson_zaki", "stokes", "none"}));
+  cmd.add_option("--fluid-porosity", f.porosity, "porosity of the Richardson-Zaki drag correction (default 0.4)")
+      ->check(within({0.0, 1.0, true, true}));
+  cmd.add_option("--fluid-lubrication", f.lubrication, "the squeeze-film force between grains: on (default) or off")
+      ->check(CLI::IsMember({"on", "off"}));
+}
+
 }  // namespace
 
 Command add_dem_command(CLI::App& app) {
@@ -334,6 +396,7 @@ Command add_dem_command(CLI::App& app) {
   cmd->add_option("--boundary", o->boundary, "periodicity along x y z, p or f each (LAMMPS boundary)")
       ->capture_default_str();
   add_contact_options(*cmd, *o);
+  add_fluid_options(*cmd, *o);
   cmd->add_option("--gravity", o->gravity, "gravity gx,gy,gz")->delimiter(',')->expected(3);
   cmd->add_option("--dt", o->dt, "time step (default 0.01 binary collision time; refused above the "
                                  "stability limit)")

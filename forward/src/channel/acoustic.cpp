@@ -618,6 +618,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   settings.contact = contact;
   settings.time_step_fraction = d.time_step_fraction;
   settings.balance.every_rebuilds = 0;
+  if (d.fluid) settings.fluid = fluid_in_packing_units(*d.fluid, u);
   std::vector<dem::RigidBody> bodies{dem::RigidBody("lower_wall", wall_motion(d, u, axis)),
                                      dem::RigidBody("upper_wall", far_wall_motion(comm, packing, contact, d, u))};
   dem::Engine engine(comm, settings, packing.grains, std::move(bodies));

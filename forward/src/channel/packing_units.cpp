@@ -12,12 +12,14 @@ namespace sedwave::forward::channel {
 PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
   // Sums on whichever rank holds the grains: flow count, diameters, masses / volumes (density),
   // lower wall (z + r) and count, upper wall (z - r) and count.
-  double s[7] = {0, 0, 0, 0, 0, 0, 0};
+  double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   for (const dem::Grain& g : packing.grains) {
     if (g.group == kFlowGroup) {
       s[0] += 1.0;
       s[1] += 2.0 * g.radius;
-      s[2] += g.mass / (std::numbers::pi / 6.0 * std::pow(2.0 * g.radius, 3));
+      const double volume = std::numbers::pi / 6.0 * std::pow(2.0 * g.radius, 3);
+      s[2] += g.mass / volume;
+      s[7] += volume;
     } else if (g.group == kLowerWallGroup) {
       s[3] += g.position.z + g.radius;
       s[4] += 1.0;
@@ -52,6 +54,9 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   }
   u.wall_surface = s[3] / s[4];
   u.column_top = s[5] / s[6];
+  const dem::Box box = broadcast_box(comm, packing.box);  // rank 0 holds the packing
+  const double cross_section = box.length(0) * box.length(1);
+  u.porosity = 1.0 - s[7] / (cross_section * (u.column_top - u.wall_surface));
   u.damping_scale = std::sqrt(u.kappa * u.mass) / dashpot;
   return u;
 }
@@ -62,6 +67,7 @@ dem::FluidSpec fluid_in_packing_units(const dem::FluidSpec& dimensionless, const
   f.roughness = dimensionless.roughness * u.diameter;
   f.cutoff = dimensionless.cutoff * u.diameter;
   f.density = dimensionless.density * 6.0 * u.mass / (std::numbers::pi * std::pow(u.diameter, 3));
+  if (f.porosity == 0.0) f.porosity = u.porosity;
   return f;
 }
 

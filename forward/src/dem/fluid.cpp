@@ -13,6 +13,16 @@ std::string_view drag_law_name(DragLaw law) {
   return "?";
 }
 
+std::string describe(const FluidSpec& f) {
+  std::ostringstream s;
+  s.precision(4);
+  s << "viscosity " << f.viscosity << ", roughness " << f.roughness << ", cutoff " << f.cutoff << ", "
+    << (f.lubrication ? "lubrication" : "no lubrication") << ", drag " << drag_law_name(f.drag);
+  if (f.drag == DragLaw::richardson_zaki) s << " (porosity " << f.porosity << ": " << f.drag_factor() << " x Stokes)";
+  s << ", density " << f.density;
+  return s.str();
+}
+
 std::string FluidSpec::problem() const {
   std::ostringstream why;
   why.precision(6);

@@ -24,6 +24,10 @@ constexpr double kMaxGrains = 1e8;
 constexpr double kMaxPeriods = 1e6;
 const std::string kDiameters = "d (mean grain diameters)";
 
+double number_value_required(Section& s, const std::string& key, const Range& range) {
+  return s.number_value(s.at(key), s.name(key), range);
+}
+
 void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& base) {
   ChannelGeometry& g = scene.geometry;
   if (s.has("import_lammps_data")) {
@@ -186,10 +190,34 @@ void read_linear(Section s, linear::LinearSettings& l) {
   s.finish();
 }
 
+/// [fluid]: a still pore fluid during the drive, in the packing's dimensionless groups
+/// (docs/fluid.md). Absent: dry.
+std::optional<dem::FluidSpec> read_fluid(Section s) {
+  dem::FluidSpec f;
+  f.viscosity = number_value_required(s, "viscosity", Range::positive("mu_hat = mu d / sqrt(kappa m)"));
+  f.roughness = number_value_required(s, "roughness", Range::positive(kDiameters + ": the smallest lubrication gap"));
+  f.cutoff = number_value_required(s, "cutoff", Range::above(0.0, 1.0, kDiameters + ": no lubrication beyond this gap"));
+  if (!(f.cutoff > f.roughness)) {
+    s.fail_key("cutoff", "= " + toml_io::shortest(f.cutoff) + ": accepted range (roughness, 1] = (" +
+                             toml_io::shortest(f.roughness) + ", 1] " + kDiameters);
+  }
+  f.lubrication = s.boolean("lubrication", f.lubrication);
+  const std::string drag = s.choice("drag", "richardson_zaki", {"richardson_zaki", "stokes", "none"});
+  f.drag = drag == "stokes" ? dem::DragLaw::stokes : drag == "none" ? dem::DragLaw::none : dem::DragLaw::richardson_zaki;
+  // 0 stands for the prepared packing's own porosity, resolved when the drive starts.
+  f.porosity = s.number("porosity", 0.0, Range::open(0.0, 1.0, "(pore volume fraction; default: the packing's)"));
+  if (s.has("porosity") && f.drag != dem::DragLaw::richardson_zaki) {
+    s.fail_key("porosity", "is read by drag = \"richardson_zaki\" only");
+  }
+  f.density = 0.0;  // channel drives have no gravity, so no buoyancy
+  s.finish();
+  return f;
+}
+
 ChannelScene from_value(const toml::value& root, const std::string& origin, const std::filesystem::path& base) {
   ChannelScene scene;
   Section top(root, "", origin);
-  top.allow_only({"title", "engine", "geometry", "contact", "preparation", "drive", "linear"});
+  top.allow_only({"title", "engine", "geometry", "contact", "preparation", "drive", "linear", "fluid"});
   top.text("title", "");
   scene.engine = top.choice("engine", "time_domain", {"time_domain", "linear"}) == "linear" ? EngineKind::linear
                                                                                            : EngineKind::time_domain;
@@ -206,6 +234,7 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   }
   read_drive(top.sub("drive"), scene.drive);
   read_linear(top.sub("linear"), scene.linear);
+  if (top.has("fluid")) scene.drive.fluid = read_fluid(top.sub("fluid"));
   if (const std::string refusal = engine_refusal(scene.engine, scene.drive); !refusal.empty()) {
     top.sub("drive").fail_table(refusal);
   }

@@ -24,6 +24,8 @@ struct PackingUnits {
   double damping_scale = 1.0;
   double wall_surface = 0.0;  ///< z of the driven (lower) wall's mean surface
   double column_top = 0.0;    ///< z of the far (upper) wall's mean surface
+  /// 1 - flow-grain volume / (cross-section x column length between the walls' mean surfaces)
+  double porosity = 0.0;
   [[nodiscard]] double time() const { return std::sqrt(mass / kappa); }
   [[nodiscard]] double column_length() const { return (column_top - wall_surface) / diameter; }  ///< [d]
 };
@@ -58,7 +60,8 @@ struct LayerGrid {
 
 /// A pore fluid given in the packing's dimensionless groups (as scene files give it) in the
 /// packing's own units: viscosity mu_hat = mu d / sqrt(kappa m), roughness and cutoff in d, density
-/// as rho_f / rho_s (rho_s = 6 m / (pi d^3), the density of the grain that defines m).
+/// as rho_f / rho_s (rho_s = 6 m / (pi d^3), the density of the grain that defines m). A porosity
+/// of 0 stands for the packing's own (PackingUnits::porosity).
 [[nodiscard]] dem::FluidSpec fluid_in_packing_units(const dem::FluidSpec& dimensionless, const PackingUnits& u);
 
 }  // namespace sedwave::forward::channel

@@ -48,6 +48,10 @@ enum class DragLaw {
 };
 
 [[nodiscard]] std::string_view drag_law_name(DragLaw law);
+struct FluidSpec;
+/// One line: "viscosity 0.001, roughness 0.001, cutoff 0.1, lubrication, drag richardson_zaki
+/// (porosity 0.4: 28.3 x Stokes), density 0".
+[[nodiscard]] std::string describe(const FluidSpec& f);
 
 struct FluidSpec {
   double viscosity = 0.0;   ///< mu [mass / (length time)]
