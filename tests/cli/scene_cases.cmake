@@ -46,6 +46,19 @@ sedwave_cli_case(scene.zero_layer_thickness 1 [=[zero_layer_thickness\.toml:63: 
 sedwave_cli_case(scene.width_below_largest_grain 1 [=[width_below_largest_grain\.toml:14: key 'geometry.width': must be at least the largest grain diameter]=] forward ${SCENE_DATA}/width_below_largest_grain.toml --out ${SCENE_OUT}/width_below_largest_grain.h5)
 sedwave_cli_case(scene.size_min_above_mean 1 [=[size_min_above_mean\.toml:24: key 'geometry.sizes.min': must not exceed mean]=] forward ${SCENE_DATA}/size_min_above_mean.toml --out ${SCENE_OUT}/size_min_above_mean.h5)
 
+# ---- Pore fluid ([fluid], sedwave forward; --fluid-*, sedwave dem) -------------------------------------
+sedwave_cli_case(scene.fluid.zero_viscosity 1 [=[fluid_zero_viscosity\.toml:71: key 'fluid\.viscosity' = 0: accepted range \(0, inf\) mu_hat = mu d / sqrt\(kappa m\)]=] forward ${SCENE_DATA}/fluid_zero_viscosity.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.negative_viscosity 1 [=[fluid_negative_viscosity\.toml:71: key 'fluid\.viscosity' = -1e-05: accepted range \(0, inf\)]=] forward ${SCENE_DATA}/fluid_negative_viscosity.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.roughness_above_cutoff 1 [=[fluid_roughness_above_cutoff\.toml:73: key 'fluid\.cutoff': must exceed roughness \(0\.1\): accepted range \(0\.1, 1\] d]=] forward ${SCENE_DATA}/fluid_roughness_above_cutoff.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.unknown_key 1 [=[fluid_unknown_key\.toml:74: key 'fluid\.density': unknown key]=] forward ${SCENE_DATA}/fluid_unknown_key.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.missing_cutoff 1 [=[fluid_missing_cutoff\.toml:70: key 'fluid\.cutoff': missing \(required\)]=] forward ${SCENE_DATA}/fluid_missing_cutoff.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.porosity_without_its_drag 1 [=[fluid_porosity_without_its_drag\.toml:75: key 'fluid\.porosity': is read by drag = "richardson_zaki" only]=] forward ${SCENE_DATA}/fluid_porosity_without_its_drag.toml --out ${SCENE_OUT}/fluid.h5)
+set(DEM_COLUMN ${PROJECT_SOURCE_DIR}/tests/forward/dem/data/fcc_column.data)
+sedwave_cli_case(scene.fluid.dem_negative_viscosity 2 [=[--fluid-viscosity: value -1 not in the accepted range \(0, inf\)]=] dem ${DEM_COLUMN} --steps 0 --kn 1000 --quiet --fluid-viscosity -1 --fluid-roughness 0.001 --fluid-cutoff 0.1)
+sedwave_cli_case(scene.fluid.dem_roughness_above_cutoff 1 [=[--fluid-cutoff 0\.01: accepted range \(--fluid-roughness, inf\) = \(0\.1, inf\)]=] dem ${DEM_COLUMN} --steps 0 --kn 1000 --quiet --fluid-viscosity 1 --fluid-roughness 0.1 --fluid-cutoff 0.01)
+sedwave_cli_case(scene.fluid.dem_runs_in_a_fluid 0 [=[in a fluid \(viscosity 0\.01, roughness 0\.001, cutoff 0\.1, lubrication, drag stokes, density 0\.5\)]=] dem ${DEM_COLUMN} --steps 50 --kn 1000 --gravity 0,0,-1 --fluid-viscosity 0.01 --fluid-roughness 0.001 --fluid-cutoff 0.1 --fluid-drag stokes --fluid-density 0.5)
+sedwave_cli_case(scene.fluid.dem_missing_viscosity 1 [=[--fluid-viscosity is required with any --fluid-\* option]=] dem ${DEM_COLUMN} --steps 0 --kn 1000 --quiet --fluid-roughness 0.001 --fluid-cutoff 0.1)
+
 # ---- Grid files (sedwave table) --------------------------------------------------------------------
 sedwave_cli_case(scene.grid.points_overflow 1 [=[grid_points_overflow\.toml:3: key 'omega_hat\.points' = 10000000000: accepted range \[2, 100000\] points]=]
   table ${SCENE_DATA}/grid_points_overflow.toml --out ${SCENE_OUT}/grid_points_overflow.h5)

@@ -198,7 +198,7 @@ std::optional<dem::FluidSpec> read_fluid(Section s) {
   f.roughness = number_value_required(s, "roughness", Range::positive(kDiameters + ": the smallest lubrication gap"));
   f.cutoff = number_value_required(s, "cutoff", Range::above(0.0, 1.0, kDiameters + ": no lubrication beyond this gap"));
   if (!(f.cutoff > f.roughness)) {
-    s.fail_key("cutoff", "= " + toml_io::shortest(f.cutoff) + ": accepted range (roughness, 1] = (" +
+    s.fail_key("cutoff", "must exceed roughness (" + toml_io::shortest(f.roughness) + "): accepted range (" +
                              toml_io::shortest(f.roughness) + ", 1] " + kDiameters);
   }
   f.lubrication = s.boolean("lubrication", f.lubrication);
