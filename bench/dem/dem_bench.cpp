@@ -5,9 +5,10 @@
 //                                   nu = 2/7, e_n = 0.9, LAMMPS kn/gamma_n, dt = 0.01 t_col) and
 //                                   prints "ns_per_grain_step=... " on rank 0
 //   dem_bench params file.data      prints kn gamma_n dt for the LAMMPS input
-//   dem_bench loop file.data        times the force loop alone on one rank, positions frozen after
-//                                   200 steps: the fastest of 20 batches (robust to a noisy host),
-//                                   in ns per grain and per listed pair
+//   dem_bench loop file.data [CUT]  times the force loop alone on one rank, positions frozen after
+//                                   200 steps, dry and with a pore fluid's lubrication (cut-off
+//                                   CUT d, default 0.05) in alternating batches: median and fastest
+//                                   of 20 batches, in ns per grain and per listed pair
 // DEM_BENCH_NEWTON=off runs sedwave with newton off (default on); DEM_BENCH_VERBOSE=1 prints the
 // engine's timing table and list statistics.
 #include <mpi.h>
@@ -19,6 +20,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 #include <variant>
@@ -150,31 +152,85 @@ int run(const std::string& path, long steps) {
   return 0;
 }
 
-int loop(const std::string& path) {
-  dem::LammpsData data = dem::read_lammps_data(path, [](const dem::Grain&) { return true; });
-  dem::Engine engine(MPI_COMM_SELF, settings(data.box, false), data.grains);
-  engine.run(200);
-  const auto& model = std::get<dem::ContactModel<dem::HookeNormal>>(engine.contact_model());
-  using Model = std::decay_t<decltype(model)>;
-  dem::GrainArrays grains = engine.grains();
-  const dem::NeighborList& list = engine.neighbor_list();
-  dem::PairTable<Model> table;
-  dem::tabulate_pairs(model, grains, list, table);
-  constexpr int kBatches = 20, kPerBatch = 100;
-  double best = INFINITY;
-  for (int b = 0; b < kBatches; ++b) {
-    const double t0 = MPI_Wtime();
-    for (int r = 0; r < kPerBatch; ++r) {
-      std::fill(grains.force.begin(), grains.force.end(), dem::Vec3{});
-      (void)dem::accumulate_contact_forces<Model, false>(model, grains, list, table, {}, engine.time_step());
-    }
-    best = std::min(best, (MPI_Wtime() - t0) / kPerBatch);
+/// The times of one force loop, batch by batch.
+struct LoopTimes {
+  std::vector<double> seconds;
+  [[nodiscard]] double median() const {
+    std::vector<double> s = seconds;
+    std::sort(s.begin(), s.end());
+    return s[s.size() / 2];
   }
-  const double n = static_cast<double>(list.n_rows());
-  std::printf("force loop: %.2f ns per grain, %.2f ns per listed pair (%.2f pairs per grain, fastest of %d "
-              "batches of %d)\n",
-              1e9 * best / n, 1e9 * best / static_cast<double>(list.n_pairs()),
-              static_cast<double>(list.n_pairs()) / n, kBatches, kPerBatch);
+  [[nodiscard]] double fastest() const { return *std::min_element(seconds.begin(), seconds.end()); }
+};
+
+/// One engine's force loop on its own list, positions frozen after 200 steps, callable batch by batch.
+class FrozenLoop {
+ public:
+  using Model = dem::ContactModel<dem::HookeNormal>;
+  FrozenLoop(const dem::LammpsData& data, const std::optional<dem::FluidSpec>& fluid)
+      : engine_(MPI_COMM_SELF, with_fluid(settings(data.box, false), fluid), data.grains), grains_(true) {
+    engine_.run(200);
+    grains_ = engine_.grains();
+    dem::tabulate_pairs(model(), grains_, engine_.neighbor_list(), table_);
+    if (fluid) dem::tabulate_films(*fluid, grains_, engine_.neighbor_list(), films_);
+  }
+  [[nodiscard]] const Model& model() const { return std::get<Model>(engine_.contact_model()); }
+  [[nodiscard]] const dem::NeighborList& list() const { return engine_.neighbor_list(); }
+  /// Seconds per force evaluation, over `repeats` evaluations.
+  double batch(int repeats) {
+    const std::optional<dem::FluidSpec>& fluid = engine_.settings().fluid;
+    const double t0 = MPI_Wtime();
+    for (int r = 0; r < repeats; ++r) {
+      std::fill(grains_.force.begin(), grains_.force.end(), dem::Vec3{});
+      if (fluid)
+        (void)dem::accumulate_contact_forces<Model, false>(model(), grains_, list(), table_, {}, engine_.time_step(),
+                                                           dem::LubricationEvaluator(*fluid, films_));
+      else
+        (void)dem::accumulate_contact_forces<Model, false>(model(), grains_, list(), table_, {}, engine_.time_step());
+    }
+    return (MPI_Wtime() - t0) / repeats;
+  }
+
+ private:
+  static dem::EngineSettings with_fluid(dem::EngineSettings s, const std::optional<dem::FluidSpec>& fluid) {
+    s.fluid = fluid;
+    return s;
+  }
+  dem::Engine engine_;
+  dem::GrainArrays grains_;
+  dem::PairTable<Model> table_;
+  std::vector<dem::FilmPair> films_;
+};
+
+/// The dry force loop and the lubricated one (a fluid with lubrication cut-off `cutoff` d: its list
+/// also holds the pairs that far apart), timed in alternating batches on the same grains.
+int loop(const std::string& path, double cutoff) {
+  const dem::LammpsData data = dem::read_lammps_data(path, [](const dem::Grain&) { return true; });
+  dem::FluidSpec fluid;
+  fluid.viscosity = 1e-4;  // mu_hat ~ 5e-6 for kn = 726, m = 0.52: water around 0.3 mm sand
+  fluid.roughness = 1e-3;
+  fluid.cutoff = cutoff;
+  FrozenLoop dry(data, std::nullopt), wet(data, fluid);
+  constexpr int kBatches = 20, kPerBatch = 100;
+  LoopTimes dry_times, wet_times;
+  for (int b = 0; b < kBatches; ++b) {
+    dry_times.seconds.push_back(dry.batch(kPerBatch));
+    wet_times.seconds.push_back(wet.batch(kPerBatch));
+  }
+  const auto report = [](const char* name, const FrozenLoop& l, const LoopTimes& t) {
+    const double n = static_cast<double>(l.list().n_rows());
+    std::printf("%-28s %8.2f %8.2f %10.2f %12.2f\n", name, 1e9 * t.median() / n, 1e9 * t.fastest() / n,
+                static_cast<double>(l.list().n_pairs()) / n, 1e9 * t.median() / static_cast<double>(l.list().n_pairs()));
+  };
+  std::printf("force loop, %zu grains, alternating batches of %d evaluations (%d each)\n", dry.list().n_rows(),
+              kPerBatch, kBatches);
+  std::printf("%-28s %8s %8s %10s %12s\n", "loop", "median", "fastest", "pairs", "median");
+  std::printf("%-28s %8s %8s %10s %12s\n", "", "ns/grain", "ns/grain", "per grain", "ns/pair");
+  report("dry", dry, dry_times);
+  char name[64];
+  std::snprintf(name, sizeof name, "lubricated (cutoff %.3g d)", cutoff);
+  report(name, wet, wet_times);
+  std::printf("ratio lubricated / dry (medians): %.3f\n", wet_times.median() / dry_times.median());
   return 0;
 }
 
@@ -187,13 +243,13 @@ int main(int argc, char** argv) {
     const std::string mode = argc > 1 ? argv[1] : "";
     if (mode == "prepare" && argc == 4) status = prepare(std::stol(argv[2]), argv[3]);
     else if (mode == "run" && argc == 4) status = run(argv[2], std::stol(argv[3]));
-    else if (mode == "loop" && argc == 3) status = loop(argv[2]);
+    else if (mode == "loop" && (argc == 3 || argc == 4)) status = loop(argv[2], argc == 4 ? std::stod(argv[3]) : 0.05);
     else if (mode == "params") {
       const ThesisPhysics p = thesis_physics();
       std::printf("%.17g %.17g %.17g\n", p.kn, p.gamma_n, p.dt);
       status = 0;
     } else {
-      std::cerr << "usage: dem_bench prepare N file | run file steps | loop file | params\n";
+      std::cerr << "usage: dem_bench prepare N file | run file steps | loop file [cutoff] | params\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "dem_bench: " << e.what() << '\n';

@@ -278,6 +278,7 @@ void Engine::rebuild() {
         tabulate_pairs(model, grains_, list_, std::get<PairTable<Model>>(pair_table_));
       },
       model_);
+  if (settings_.fluid && settings_.fluid->lubrication) tabulate_films(*settings_.fluid, grains_, list_, films_);
   list_valid_ = true;
   force_rebuild_ = false;
   ++rebuilds_;
@@ -295,7 +296,8 @@ OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
                  : accumulate_contact_forces<Model, false, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication);
   };
   const bool lubricated = settings_.fluid && settings_.fluid->lubrication;
-  const OverlapWatch w = lubricated ? accumulate(LubricationEvaluator(*settings_.fluid)) : accumulate(NoLubrication{});
+  const OverlapWatch w =
+      lubricated ? accumulate(LubricationEvaluator(*settings_.fluid, films_)) : accumulate(NoLubrication{});
   if (list_.newton()) {
     ScopedTimer t(timings_.communication);
     domain_.reverse_forces(g);
@@ -493,7 +495,7 @@ std::size_t Engine::memory_bytes() const {
           g.force.capacity() + g.torque.capacity()) * vec3 +
          (g.radius.capacity() + g.mass.capacity() + g.inv_mass.capacity()) * sizeof(double) +
          g.id.capacity() * sizeof(std::int64_t) + (g.group.capacity() + g.body.capacity()) * sizeof(std::int32_t) +
-         list_.memory_bytes() + history_.capacity() * vec3 + domain_.ghost_sources().capacity() * sizeof(GhostSource) +
+         list_.memory_bytes() + history_.capacity() * vec3 + films_.capacity() * sizeof(FilmPair) + domain_.ghost_sources().capacity() * sizeof(GhostSource) +
          std::visit([](const auto& t) { return t.pairs.capacity() * sizeof(t.pairs[0]); }, pair_table_);
 }
 

@@ -202,6 +202,7 @@ class Engine {
   NeighborList list_;
   std::vector<Vec3> history_;                    // slots parallel to list_
   AnyPairTable pair_table_;                      // pair constants parallel to list_
+  std::vector<FilmPair> films_;                  // a fluid's film constants parallel to list_
   std::vector<HistoryEntry> pending_history_;    // after restore, until the next rebuild
   bool list_valid_ = false;
   bool force_rebuild_ = true;

@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -83,41 +84,53 @@ struct FluidSpec {
   [[nodiscard]] Vec3 buoyancy(double radius, const Vec3& gravity) const {
     return (-density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius) * gravity;
   }
+  /// 6 pi mu R_eff^2 of grains of radii r_i, r_j: the film's dashpot times the gap.
+  [[nodiscard]] double film_coefficient(double r_i, double r_j) const {
+    const double r_eff = r_i * r_j / (r_i + r_j);
+    return 6.0 * std::numbers::pi * viscosity * r_eff * r_eff;
+  }
   /// Lubrication dashpot between grains of radii r_i, r_j at gap h (<= 0: overlapping): F = -c v_n.
   [[nodiscard]] double lubrication_coefficient(double gap, double r_i, double r_j) const {
     if (!lubrication || !(gap < cutoff)) return 0.0;
-    const double r_eff = r_i * r_j / (r_i + r_j);
-    return 6.0 * std::numbers::pi * viscosity * r_eff * r_eff / std::max(gap, roughness);
+    return film_coefficient(r_i, r_j) / std::max(gap, roughness);
   }
   /// Largest gap at which grains interact through the fluid (0 without lubrication).
   [[nodiscard]] double interaction_gap() const { return lubrication ? cutoff : 0.0; }
 };
 
-/// The squeeze-film force in the form the force loop evaluates, branch-free: given the gap, the
-/// pair's radii and (d . v_rel) / |d|^2 for d = x_i - x_j, the multiple of d that is the force on i.
-/// Equal to -lubrication_coefficient(gap, r_i, r_j) v_n / |d| for every gap.
+/// What the force loop needs of one listed pair's film, fixed by the pair's radii (tabulated with
+/// the neighbour list: tabulate_films in force_loop.hpp). reach = r_i + r_j.
+struct FilmPair {
+  double film;     ///< 6 pi mu R_eff^2
+  double reach2;   ///< reach^2
+  double clamp;    ///< (reach + h_r)^2 - reach^2: below it the film sees the roughness gap
+  double cut2;     ///< (reach + h_c)^2: no film from here on
+};
+
+/// The squeeze-film force as the force loop evaluates it, from the tabulated FilmPair of each
+/// listed pair, so that per step a pair costs two clamps, a mask and a few products.
 class LubricationEvaluator {
  public:
-  explicit LubricationEvaluator(const FluidSpec& f)
-      : six_pi_mu_(f.lubrication ? 6.0 * std::numbers::pi * f.viscosity : 0.0), roughness_(f.roughness),
-        cutoff_(f.cutoff) {}
-  /// `approach_over_r2` = (d . v_rel) / |d|^2 (positive while separating).
-  [[nodiscard]] double multiple_of_d(double gap, double r_i, double r_j, double approach_over_r2) const {
-    // 0/1 factors rather than branches or std::max (force_loop.hpp: GCC turns those into jumps,
-    // mispredicted half the time over a packing's mix of gaps).
-    const double in_range = static_cast<double>(gap < cutoff_);
-    const double above_roughness = static_cast<double>(gap > roughness_);
-    const double h = roughness_ + above_roughness * (gap - roughness_);
-    const double product = r_i * r_j;
-    const double sum = r_i + r_j;
-    return -(in_range * six_pi_mu_ * product * product) / (sum * sum * h) * approach_over_r2;
+  LubricationEvaluator(const FluidSpec& f, std::span<const FilmPair> films)
+      : roughness_(f.roughness), cutoff_(f.cutoff), films_(films) {}
+  [[nodiscard]] static FilmPair pair(const FluidSpec& f, double r_i, double r_j) {
+    const double reach = r_i + r_j;
+    const double cut = reach + f.cutoff;
+    return {f.film_coefficient(r_i, r_j), reach * reach, f.roughness * (2.0 * reach + f.roughness), cut * cut};
   }
-  [[nodiscard]] double cutoff() const { return cutoff_; }
+  [[nodiscard]] const FilmPair& film(std::size_t k) const { return films_[k]; }
+  [[nodiscard]] double roughness() const { return roughness_; }
+  /// The force on i as a multiple of d = x_i - x_j, given the gap and (d . v_rel) / |d|^2
+  /// (positive while separating): -lubrication_coefficient(gap) v_n / |d|.
+  [[nodiscard]] double multiple_of_d(std::size_t k, double gap, double approach_over_r2) const {
+    const double in_range = static_cast<double>(gap < cutoff_);
+    return -in_range * films_[k].film / std::max(gap, roughness_) * approach_over_r2;
+  }
 
  private:
-  double six_pi_mu_;
   double roughness_;
   double cutoff_;
+  std::span<const FilmPair> films_;
 };
 
 }  // namespace sedwave::forward::dem

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <type_traits>
+#include <vector>
 
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/fluid.hpp"
@@ -54,6 +55,17 @@ void tabulate_pairs(const Model& model, const GrainArrays& g, const NeighborList
     }
 }
 
+/// Fills `films` with each listed pair's FilmPair (parallel to the list's partners), for a
+/// lubricated force loop's LubricationEvaluator.
+inline void tabulate_films(const FluidSpec& fluid, const GrainArrays& g, const NeighborList& list,
+                           std::vector<FilmPair>& films) {
+  films.resize(list.n_pairs());
+  const std::int32_t* partner = list.partners().data();
+  for (std::size_t i = 0; i < list.n_rows(); ++i)
+    for (std::uint32_t k = list.row_begin(i); k < list.row_end(i); ++k)
+      films[k] = LubricationEvaluator::pair(fluid, g.radius[i], g.radius[static_cast<std::size_t>(partner[k])]);
+}
+
 /// Adds the contact forces (and torques) of all listed pairs to g.force (g.torque): +F on the local
 /// row grain, -F on a local partner. A ghost partner gets -F too under "newton on" (reverse
 /// communication delivers it); under "newton off" its owner computes its share. `table` is
@@ -99,7 +111,7 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
           tj = Vec3{};
           if constexpr (kFluid) {
             const double gap = std::sqrt(r2) - reach;
-            return lubrication.multiple_of_d(gap, ri, radius[j], dot(vi - v[j], d) / r2) * d;
+            return lubrication.multiple_of_d(k, gap, dot(vi - v[j], d) / r2) * d;
           }
           return {};
         }
@@ -134,8 +146,21 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         const double spring = law.spring(c.overlap, p) * inv_distance;
         const double dashpot = law.dashpot_at(c.overlap, p) * approach * inv_r2;
         if constexpr (kFluid) {
-          const double fluid = lubrication.multiple_of_d(distance - reach, ri, radius[j], approach * inv_r2);
-          return (in_contact * (spring - dashpot) + fluid) * d;
+          // The film's force, -C v_n / h on i, is (-C (d . v_rel) / |d|^2) / h times d, with h the
+          // gap clamped at the roughness. 1/h = 1/(|d| - reach) = (|d| + reach) / (|d|^2 - reach^2)
+          // has a denominator that needs no root: clamped, max(|d|^2, (reach + h_r)^2) - reach^2.
+          // So one division, of |d|^2 times it, gives both 1/|d|^2 and 1/h and runs beside the
+          // root, as the dry loop's does (after the root, its latency made lubricated pairs 1.5x
+          // slower than dry ones).
+          const FilmPair& f = lubrication.film(k);
+          const double film_denominator = std::max(r2 - f.reach2, f.clamp);
+          const double inverse = 1.0 / (r2 * film_denominator);
+          const double lub_inv_r2 = film_denominator * inverse;
+          const double inv_h = (std::max(distance, reach + lubrication.roughness()) + reach) * (r2 * inverse);
+          const double in_range = static_cast<double>(r2 < f.cut2);
+          const double contact = law.spring(c.overlap, p) * distance - law.dashpot_at(c.overlap, p) * approach;
+          const double film = in_range * f.film * approach * inv_h;
+          return ((in_contact * contact - film) * lub_inv_r2) * d;
         }
         return (in_contact * (spring - dashpot)) * d;
       } else {
@@ -145,7 +170,7 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         ti += r.torque_i;
         tj = r.torque_j;
         if constexpr (kFluid)
-          return r.force + lubrication.multiple_of_d(distance - reach, ri, radius[j], approach * inv_r2) * d;
+          return r.force + lubrication.multiple_of_d(k, distance - reach, approach * inv_r2) * d;
         return r.force;
       }
     };
