@@ -2,6 +2,7 @@
 // compress and relax it, drive it, measure alpha_hat and c_hat, write everything to HDF5. The
 // scene's `engine` picks the time-domain DEM or the linear-response engine (over an ensemble of
 // packings).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -34,6 +35,20 @@ struct ForwardOptions {
   bool quiet = false;
 };
 
+/// The scene's pore fluid and the dashpots it puts beside the contacts' gamma_hat (rank 0, which
+/// holds the packing's grains): docs/fluid.md.
+void print_fluid(const experiment::ChannelScene& scene, const forward::channel::PreparedChannel& packing) {
+  if (!scene.drive.fluid) return;
+  namespace channel = forward::channel;
+  const channel::PackingUnits u = channel::packing_units(MPI_COMM_SELF, packing, scene.contact);
+  const forward::dem::FluidSpec f = channel::fluid_in_packing_units(*scene.drive.fluid, u);
+  const double unit = std::sqrt(u.kappa * u.mass), r = 0.5 * u.diameter;
+  std::printf("pore fluid: %s; in sqrt(kappa m): film at the roughness %.3g (two grains of diameter d), drag %.3g "
+              "per grain (porosity %.3g)\n",
+              channel::describe_fluid_groups(*scene.drive.fluid).c_str(), f.lubrication_coefficient(0.0, r, r) / unit,
+              f.drag_coefficient(r) / unit, f.porosity);
+}
+
 /// The linear engine: one packing per ensemble member (prepared, or read with --packing), solved on
 /// rank 0 (the solve is serial and takes seconds; preparation uses every rank).
 int run_linear(const ForwardOptions& o, const experiment::ChannelScene& scene, const MpiSession& mpi, bool talk) {
@@ -46,6 +61,7 @@ int run_linear(const ForwardOptions& o, const experiment::ChannelScene& scene, c
       std::cout << "member " << k << ":\n" << forward::channel::describe(packing.channel.report) << "\n";
     }
     if (mpi.rank() != 0) continue;
+    if (talk && k == 0) print_fluid(scene, packing.channel);
     reports.push_back(packing.channel.report);
     members.emplace_back(packing.channel, scene.contact, scene.linear);
   }
@@ -166,6 +182,7 @@ int run_forward(const ForwardOptions& o) {
     std::cout << describe(packing.channel.report) << "\n";
     if (!o.packing_out.empty()) std::cout << "packing written to " << o.packing_out << " (and .data for LAMMPS)\n";
   }
+  if (talk) print_fluid(scene, packing.channel);
   const AcousticResult r = run_acoustic(MPI_COMM_WORLD, packing.channel, scene.contact, scene.drive);
   if (mpi.rank() == 0) {
     experiment::write_run_file(o.out, scene, packing.channel.report, r);

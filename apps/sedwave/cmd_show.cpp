@@ -43,7 +43,8 @@ Command add_show_command(CLI::App& app) {
     const forward::table::DispersionTable t = forward::table::read_table(o->table);
     if (!o->values_only) {
       std::cout << "# table " << o->table << "\n# engine: " << t.metadata().engine << "\n# sedwave version: "
-                << t.metadata().code_version << "\n# sigma: " << forward::table::sigma_meaning(t.metadata()) << "\n";
+                << t.metadata().code_version << "\n# sigma: " << forward::table::sigma_meaning(t.metadata())
+                << "\n# pore fluid: " << (t.metadata().pore_fluid.empty() ? "none" : t.metadata().pore_fluid) << "\n";
     }
     std::cout << "omega_hat,gamma_hat,status,alpha_hat,sigma_alpha_hat,c_hat,sigma_c_hat"
               << (o->values_only ? "" : ",wall_seconds") << ",reason\n";

@@ -1,6 +1,7 @@
 #include "sedwave/forward/channel/packing_units.hpp"
 
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "sedwave/forward/channel/contact_network.hpp"
@@ -59,6 +60,18 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   u.porosity = 1.0 - s[7] / (cross_section * (u.column_top - u.wall_surface));
   u.damping_scale = std::sqrt(u.kappa * u.mass) / dashpot;
   return u;
+}
+
+std::string describe_fluid_groups(const dem::FluidSpec& f) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "mu_hat " << f.viscosity << ", roughness " << f.roughness << " d, cutoff " << f.cutoff << " d, "
+    << (f.lubrication ? "lubrication" : "no lubrication") << ", drag " << dem::drag_law_name(f.drag);
+  if (f.drag == dem::DragLaw::richardson_zaki) {
+    if (f.porosity == 0.0) s << " (porosity of the packing)";
+    else s << " (porosity " << f.porosity << ")";
+  }
+  return s.str();
 }
 
 dem::FluidSpec fluid_in_packing_units(const dem::FluidSpec& dimensionless, const PackingUnits& u) {

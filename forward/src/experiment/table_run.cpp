@@ -31,6 +31,7 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const Chan
   table::TableMetadata m;
   m.packing_hash = std::move(packing_hash);
   m.packings = packings;
+  if (scene.drive.fluid) m.pore_fluid = channel::describe_fluid_groups(*scene.drive.fluid);
   m.scene_toml = scene.text;
   m.engine = engine_tag(scene, run);
   std::ostringstream definitions;

@@ -85,6 +85,7 @@ void write_layout(const h5::Handle& file, const DispersionTable& table) {
   h5::write_string_attribute(file, "packing_hash", m.packing_hash, kStrings);
   h5::write_attribute<int>(file, "packings", m.packings);
   h5::write_string_attribute(file, "sigma_includes", sigma_meaning(m), kStrings);
+  h5::write_string_attribute(file, "pore_fluid", m.pore_fluid.empty() ? "none" : m.pore_fluid, kStrings);
   h5::write_string_dataset(file, "scene", m.scene_toml, kStrings);
   write_grid(file, table.grid());
   create_results(file, table.grid());
@@ -143,6 +144,10 @@ TableMetadata read_metadata(const h5::Handle& file) {
   m.definitions = h5::read_string_attribute(file, "definitions");
   if (h5::has_attribute(file, "packing_hash")) m.packing_hash = h5::read_string_attribute(file, "packing_hash");
   if (h5::has_attribute(file, "packings")) m.packings = h5::read_attribute<int>(file, "packings");
+  if (h5::has_attribute(file, "pore_fluid")) {
+    m.pore_fluid = h5::read_string_attribute(file, "pore_fluid");
+    if (m.pore_fluid == "none") m.pore_fluid.clear();
+  }
   return m;
 }
 

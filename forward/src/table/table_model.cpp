@@ -177,6 +177,14 @@ std::vector<ModelDiagnostic> TableModel::diagnostics() const {
        extrapolated > 0 ? std::to_string(extrapolated) + " model evaluations lay below the table's resolved omega_hat "
                                                          "and used its long-wavelength limit (docs/tables.md)"
                         : std::string()},
+      // A table's fluid groups are fixed while the fit varies kappa and d: the fit describes a
+      // sediment only where mu d / sqrt(kappa m) at the fitted values is the table's mu_hat.
+      {"table_pore_fluid", table_.metadata().pore_fluid.empty() ? 0u : 1u,
+       table_.metadata().pore_fluid.empty()
+           ? std::string()
+           : "the table was computed in a pore fluid (" + table_.metadata().pore_fluid +
+                 "), fixed while the fit varies kappa and d: check that mu d / sqrt(kappa m) at the fitted values "
+                 "matches its mu_hat (docs/fluid.md)"},
   };
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "sedwave/forward/channel/preparation.hpp"
@@ -63,5 +64,8 @@ struct LayerGrid {
 /// as rho_f / rho_s (rho_s = 6 m / (pi d^3), the density of the grain that defines m). A porosity
 /// of 0 stands for the packing's own (PackingUnits::porosity).
 [[nodiscard]] dem::FluidSpec fluid_in_packing_units(const dem::FluidSpec& dimensionless, const PackingUnits& u);
+/// The dimensionless groups in one line, e.g. "mu_hat 5e-06, roughness 0.001 d, cutoff 0.05 d,
+/// lubrication, drag richardson_zaki (porosity of the packing)".
+[[nodiscard]] std::string describe_fluid_groups(const dem::FluidSpec& dimensionless);
 
 }  // namespace sedwave::forward::channel

@@ -69,6 +69,9 @@ struct TableMetadata {
   /// standard error of the mean over n packings, which includes it; 0 = a closed form or not
   /// recorded (tables written before it was stored). sigma_meaning() says it in words.
   int packings = 0;
+  /// The pore fluid of the scene's drive in its dimensionless groups (docs/fluid.md), one line;
+  /// empty for a dry table (or one written before it was recorded).
+  std::string pore_fluid;
 
   friend bool operator==(const TableMetadata&, const TableMetadata&) = default;
 };
