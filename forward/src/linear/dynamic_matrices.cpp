@@ -75,11 +75,12 @@ class BlockPattern {
     const std::int32_t column = ends[static_cast<std::size_t>(end_col)];
     const std::int64_t where = end_row == end_col ? place(column, column)
                                                   : position_[q][static_cast<std::size_t>(end_col)];
-    const std::int64_t length = first_[static_cast<std::size_t>(column) + 1] - first_[static_cast<std::size_t>(column)];
-    double* entry = values.data() + dofs_ * (dofs_ * first_[static_cast<std::size_t>(column)] + where);
-    for (int a = 0; a < dofs_; ++a, entry += dofs_ * length) {
-      for (int b = 0; b < dofs_; ++b) entry[b] += block(b, a);
-    }
+    add_at(values, column, where, block);
+  }
+
+  /// Adds `block` to node `node`'s own (diagonal) block.
+  void add_to_node(std::vector<double>& values, std::int32_t node, const Block& block) const {
+    add_at(values, node, place(node, node), block);
   }
 
   /// The matrix of `values` without its exact zeros (blocks of pairs that a law leaves out).
@@ -106,6 +107,15 @@ class BlockPattern {
   }
 
  private:
+  /// Adds `block` at the `where`-th node of node `column`'s list.
+  void add_at(std::vector<double>& values, std::int32_t column, std::int64_t where, const Block& block) const {
+    const std::int64_t length = first_[static_cast<std::size_t>(column) + 1] - first_[static_cast<std::size_t>(column)];
+    double* entry = values.data() + dofs_ * (dofs_ * first_[static_cast<std::size_t>(column)] + where);
+    for (int a = 0; a < dofs_; ++a, entry += dofs_ * length) {
+      for (int b = 0; b < dofs_; ++b) entry[b] += block(b, a);
+    }
+  }
+
   /// Index of node `row` in node `column`'s list.
   [[nodiscard]] std::int64_t place(std::int32_t column, std::int32_t row) const {
     const auto begin = rows_.begin() + first_[static_cast<std::size_t>(column)];
@@ -167,6 +177,18 @@ void add_pair(Targets& t, const BlockPattern& pattern, const PairEnds& pair, con
   }
 }
 
+/// The fluid's drag on every free grain's translation, relative to the fluid at rest (the walls,
+/// moved by the drive, get none, as in the time-domain engine).
+void add_drag(std::vector<double>& values, const BlockPattern& pattern, std::span<const dem::Grain> grains,
+              const DynamicMatrices& m, const dem::FluidSpec& fluid) {
+  Block drag = Block::Zero(m.dofs_per_node, m.dofs_per_node);
+  for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
+    const dem::Grain& g = grains[static_cast<std::size_t>(m.grain_of_node[n])];
+    drag.topLeftCorner<3, 3>().diagonal().setConstant(fluid.drag_coefficient(g.radius));
+    pattern.add_to_node(values, static_cast<std::int32_t>(n), drag);
+  }
+}
+
 Eigen::SparseMatrix<double> from_triplets(const Triplets& t, Eigen::Index rows, Eigen::Index cols) {
   Eigen::SparseMatrix<double> m(rows, cols);
   m.setFromTriplets(t.begin(), t.end());
@@ -176,7 +198,8 @@ Eigen::SparseMatrix<double> from_triplets(const Triplets& t, Eigen::Index rows, 
 }  // namespace
 
 DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network, int n_bodies,
-                         const dem::ContactSpec& contact, const PairLinearisation* pairs) {
+                         const dem::ContactSpec& contact, const PairLinearisation* pairs,
+                         const dem::FluidSpec* fluid) {
   const dem::AnyContactModel model = dem::undamped_contact_model(contact);
   if (!dem::linearised(model)) {
     throw std::invalid_argument("linear engine: rolling resistance and the Coulomb-tanh law are not linearised; "
@@ -209,7 +232,9 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     if (friction) m.mass.segment<3>(row + 3).setConstant(0.4 * g.mass * g.radius * g.radius);  // solid sphere
   }
 
-  const std::size_t n_pairs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
+  // Gaps carry an equivalent spring and dashpot (pairs) or a squeeze film (fluid); a dry packing's
+  // tangent matrices leave them out.
+  const std::size_t n_pairs = network.contacts.size() + (pairs || fluid ? network.gaps.size() : 0);
   if (pairs && (pairs->stiffness.size() != n_pairs || pairs->dashpot.size() != n_pairs)) {
     throw std::invalid_argument("linear engine: one equivalent stiffness and dashpot per contact and gap needed");
   }
@@ -225,7 +250,9 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
   Targets k{std::vector<double>(pattern.entries(), 0.0), std::vector<Triplets>(static_cast<std::size_t>(n_bodies)),
             std::vector<Eigen::Matrix3d>(static_cast<std::size_t>(n_bodies), Eigen::Matrix3d::Zero())};
   Targets c = k;
-  Targets ct{friction ? k.matrix : std::vector<double>{}, k.body, k.body_self};
+  const bool fixed = friction || fluid != nullptr;  // C_t has entries
+  Targets ct{fixed ? k.matrix : std::vector<double>{}, k.body, k.body_self};
+  if (fluid) add_drag(ct.matrix, pattern, grains, m, *fluid);
   for (std::size_t q = 0; q < n_pairs; ++q) {
     const bool touching = q < network.contacts.size();
     const StaticPair& p = pair_at(q);
@@ -236,11 +263,21 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     Operator translation_i = Operator::Zero(), translation_j = Operator::Zero();
     translation_i.leftCols<3>().setIdentity();
     translation_j.leftCols<3>() = -Eigen::Matrix3d::Identity();
-    const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
-    add_pair(k, pattern, pair, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, translation_i,
-             translation_j, dofs);
-    add_pair(c, pattern, pair, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j,
-             dofs);
+    if (touching || pairs) {
+      const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
+      add_pair(k, pattern, pair, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, translation_i,
+               translation_j, dofs);
+      add_pair(c, pattern, pair, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j,
+               dofs);
+    }
+    if (fluid) {
+      // The squeeze film at the static gap (a contact overlaps: the film between the asperities, at
+      // the roughness gap), normal to the pair like the DEM's. It stays linear and keeps its static
+      // gap for any drive; see LinearChannel::respond_equivalent.
+      const double lubrication = fluid->lubrication_coefficient(-p.overlap, grains[static_cast<std::size_t>(p.i)].radius,
+                                                                grains[static_cast<std::size_t>(p.j)].radius);
+      if (lubrication > 0.0) add_pair(ct, pattern, pair, lubrication * nn, translation_i, translation_j, dofs);
+    }
     if (!friction || !touching) continue;
     // Sticking tangential spring and dashpot on the contact point's tangential displacement.
     const SlipOperators slip = slip_operators(p);
@@ -252,7 +289,7 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
   }
   m.stiffness = pattern.matrix(k.matrix);
   m.dashpots = pattern.matrix(c.matrix);
-  m.fixed_dashpots = friction ? pattern.matrix(ct.matrix) : Eigen::SparseMatrix<double>(unknowns, unknowns);
+  m.fixed_dashpots = fixed ? pattern.matrix(ct.matrix) : Eigen::SparseMatrix<double>(unknowns, unknowns);
   for (std::size_t b = 0; b < static_cast<std::size_t>(n_bodies); ++b) {
     m.bodies.push_back({from_triplets(k.body[b], unknowns, 3), from_triplets(c.body[b], unknowns, 3),
                         from_triplets(ct.body[b], unknowns, 3), k.body_self[b], c.body_self[b],

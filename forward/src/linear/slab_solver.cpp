@@ -162,7 +162,10 @@ SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z)
   if (dofs * nodes != m.unknowns()) throw std::invalid_argument("slab solver: one z per node is needed");
   // Slabs of thickness h >= the longest coupling: neighbours in z are at most one slab apart.
   // Slab boundaries fall between nodes; empty slabs are dropped (nothing couples across them).
-  thickness_ = longest_coupling(m.stiffness, node_z, dofs) * (1.0 + 1e-9);
+  // Every matrix counts: a pore fluid's squeeze films join grains across gaps that K leaves apart.
+  thickness_ = std::max({longest_coupling(m.stiffness, node_z, dofs), longest_coupling(m.dashpots, node_z, dofs),
+                         longest_coupling(m.fixed_dashpots, node_z, dofs)}) *
+               (1.0 + 1e-9);
   std::vector<Eigen::Index> slab_of_node(node_z.size(), 0);
   Eigen::Index slab = -1;
   long previous_cell = 0;
