@@ -271,16 +271,16 @@ Eigen::MatrixXcd SlabSolver::eliminate(std::complex<double> damping_factor, std:
                                        const Eigen::MatrixXcd& rhs) const {
   using Complex = std::complex<double>;
   const Complex a = damping_factor;
-  const bool tangential = !t_diagonal_.empty();
+  const bool fixed = !t_diagonal_.empty();  // C_t: friction or a fluid
   auto lower = [&](std::size_t s) -> Eigen::MatrixXcd {
     Eigen::MatrixXcd z = k_lower_[s].cast<Complex>() + (a * gamma) * c_lower_[s].cast<Complex>();
-    if (tangential) add_scaled(z, a, t_lower_[s]);
+    if (fixed) add_scaled(z, a, t_lower_[s]);
     return z;
   };
   auto diagonal = [&](std::size_t s) -> Eigen::MatrixXcd {
     const Eigen::Index o = offset_[s], n = offset_[s + 1] - offset_[s];
     Eigen::MatrixXcd z = k_diagonal_[s].cast<Complex>() + (a * gamma) * c_diagonal_[s].cast<Complex>();
-    if (tangential) add_scaled(z, a, t_diagonal_[s]);
+    if (fixed) add_scaled(z, a, t_diagonal_[s]);
     z.diagonal() += mass_factor * mass_.segment(o, n).cast<Complex>();
     if (extra_damping.size() > 0) z.diagonal() += a * extra_damping.segment(o, n).cast<Complex>();
     return z;
