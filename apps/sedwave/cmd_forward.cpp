@@ -63,7 +63,7 @@ int run_linear(const ForwardOptions& o, const experiment::ChannelScene& scene, c
     if (mpi.rank() != 0) continue;
     if (talk && k == 0) print_fluid(scene, packing.channel);
     reports.push_back(packing.channel.report);
-    members.emplace_back(packing.channel, scene.contact, scene.linear);
+    members.emplace_back(packing.channel, scene.contact, scene.linear, scene.drive.fluid);
   }
   if (mpi.rank() != 0) return 0;
   const forward::linear::EnsembleResult e = forward::linear::respond(members, scene.drive);

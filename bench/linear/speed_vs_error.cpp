@@ -16,6 +16,10 @@
 // --fit-layers L adds, per linear member, the fit over the layers skip_layers..L-1 only: the
 // stretch a short DEM run's lock-in windows reach (its "layers used"), for a like-for-like
 // comparison on the same packing.
+// --fluid MU_HAT also times the linear engine with a pore fluid of that viscosity (squeeze films
+// below --fluid-cutoff, default 0.1 d, regularised at --fluid-roughness, default 0.001 d;
+// Richardson-Zaki drag) against the dry engine on the first packing of each size: assembly and
+// solve and respond, dry and wet alternating, median of --fluid-repeats (default 5) each.
 #include <mpi.h>
 
 #include <algorithm>
@@ -25,6 +29,7 @@
 #include <cstdlib>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +59,55 @@ double median_seconds(int repeats, F&& f) {
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
+}
+
+/// Assembly, solve (displacement) and respond (solve and measurement) of the dry and the wet
+/// engine on one packing, alternating, median of `repeats` each: what a fluid costs the linear engine.
+void fluid_cost(const channel::PreparedChannel& packing, const dem::ContactSpec& contact,
+                const channel::DriveSettings& drive, const dem::FluidSpec& fluid, int repeats) {
+  enum { kAssembly, kSolve, kRespond, kStages };
+  std::vector<double> seconds[2][kStages];
+  std::size_t slabs[2] = {0, 0}, gaps[2] = {0, 0};
+  long largest[2] = {0, 0};
+  linear::LinearResult result[2];
+  for (int r = 0; r < repeats; ++r) {
+    for (int wet = 0; wet < 2; ++wet) {
+      channel::DriveSettings d = drive;
+      if (wet == 1) d.fluid = fluid;
+      auto start = std::chrono::steady_clock::now();
+      const linear::LinearChannel engine(packing, contact, {}, d.fluid);
+      seconds[wet][kAssembly].push_back(seconds_since(start));
+      start = std::chrono::steady_clock::now();
+      (void)engine.displacement(d);
+      seconds[wet][kSolve].push_back(seconds_since(start));
+      start = std::chrono::steady_clock::now();
+      result[wet] = engine.respond(d);
+      seconds[wet][kRespond].push_back(seconds_since(start));
+      slabs[wet] = engine.solver().slabs();
+      largest[wet] = static_cast<long>(engine.solver().largest_slab());
+      gaps[wet] = engine.network().gaps.size();
+    }
+  }
+  double median[2][kStages];
+  for (int wet = 0; wet < 2; ++wet) {
+    for (int stage = 0; stage < kStages; ++stage) {
+      std::vector<double>& t = seconds[wet][stage];
+      std::sort(t.begin(), t.end());
+      median[wet][stage] = t[t.size() / 2];
+    }
+  }
+  std::printf("# fluid cost, %zu grains (mu_hat %g, h_r %g d, h_c %g d, median of %d alternating runs):\n",
+              packing.grains.size(), fluid.viscosity, fluid.roughness, fluid.cutoff, repeats);
+  for (int wet = 0; wet < 2; ++wet) {
+    std::printf("#   %s: assembly %.4f s, solve %.4f s, respond %.4f s; %zu gaps, %zu slabs of <= %ld unknowns; "
+                "alpha_hat %.5g c_hat %.5g %s\n",
+                wet ? "fluid" : "dry  ", median[wet][kAssembly], median[wet][kSolve], median[wet][kRespond], gaps[wet],
+                slabs[wet], largest[wet], result[wet].fit.alpha, result[wet].fit.c, result[wet].problem.c_str());
+  }
+  std::printf("#   fluid / dry: assembly %.3f, solve %.3f, respond %.3f, assembly + respond %.3f\n",
+              median[1][kAssembly] / median[0][kAssembly], median[1][kSolve] / median[0][kSolve],
+              median[1][kRespond] / median[0][kRespond],
+              (median[1][kAssembly] + median[1][kRespond]) / (median[0][kAssembly] + median[0][kRespond]));
 }
 
 struct Row {
@@ -101,6 +155,9 @@ int main(int argc, char** argv) {
   int tile = 0;
   std::vector<double> dem_periods;
   int fit_layers = 0;
+  std::optional<dem::FluidSpec> fluid;
+  double fluid_cutoff = 0.1, fluid_roughness = 1e-3;
+  int fluid_repeats = 5;
   std::size_t dem_max_grains = 0, reference_grains = 0;
   std::string rows_file;
   std::vector<std::string> files;
@@ -116,9 +173,17 @@ int main(int argc, char** argv) {
     else if (a == "--dem-max-grains") dem_max_grains = static_cast<std::size_t>(next());
     else if (a == "--reference") reference_grains = static_cast<std::size_t>(next());
     else if (a == "--rows") rows_file = argv[++i];
+    else if (a == "--fluid") fluid.emplace().viscosity = next();
+    else if (a == "--fluid-cutoff") fluid_cutoff = next();
+    else if (a == "--fluid-roughness") fluid_roughness = next();
+    else if (a == "--fluid-repeats") fluid_repeats = static_cast<int>(next());
     else files.push_back(a);
   }
   const dem::ContactSpec contact = sedwave::bench::bench_contact(kn, 0.0);
+  if (fluid) {
+    fluid->cutoff = fluid_cutoff;
+    fluid->roughness = fluid_roughness;
+  }
 
   std::vector<Row> rows;
   // 1D theories: closed forms (median of 1e5 evaluations per repeat).
@@ -182,6 +247,9 @@ int main(int argc, char** argv) {
       rows.push_back({"3D linear (ensemble)", std::to_string(n) + " x" + std::to_string(members.size()), t + assembly,
                       e.alpha_hat, e.sigma_alpha_hat, e.c_hat, e.sigma_c_hat});
     }
+  }
+  for (const auto& [n, members_packings] : packings) {
+    if (fluid) fluid_cost(members_packings.front(), contact, drive, *fluid, fluid_repeats);
   }
   if (tile > 1 && !packings.empty()) {
     for (int copies = 1; copies <= tile; copies = copies < tile && 2 * copies > tile ? tile : 2 * copies) {

@@ -79,7 +79,7 @@ table::FarmReport fill_linear(const table::TableGridFile& grid, const ChannelSce
     ScenePacking packing = table_packing(scene, run, k);
     share_packing_with_groups(MPI_COMM_WORLD, packing.channel, 1);
     packing_hashes.push_back(packing_fingerprint(packing.channel));
-    members.emplace_back(packing.channel, scene.contact, scene.linear);
+    members.emplace_back(packing.channel, scene.contact, scene.linear, scene.drive.fluid);
     provenance += (k > first ? "; " : "") + packing.provenance;
   }
   const table::PointFunction point =

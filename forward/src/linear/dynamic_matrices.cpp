@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
 
 namespace sedwave::forward::linear {
@@ -75,11 +76,12 @@ class BlockPattern {
     const std::int32_t column = ends[static_cast<std::size_t>(end_col)];
     const std::int64_t where = end_row == end_col ? place(column, column)
                                                   : position_[q][static_cast<std::size_t>(end_col)];
-    const std::int64_t length = first_[static_cast<std::size_t>(column) + 1] - first_[static_cast<std::size_t>(column)];
-    double* entry = values.data() + dofs_ * (dofs_ * first_[static_cast<std::size_t>(column)] + where);
-    for (int a = 0; a < dofs_; ++a, entry += dofs_ * length) {
-      for (int b = 0; b < dofs_; ++b) entry[b] += block(b, a);
-    }
+    add_at(values, column, where, block);
+  }
+
+  /// Adds `block` to node `node`'s own (diagonal) block.
+  void add_to_node(std::vector<double>& values, std::int32_t node, const Block& block) const {
+    add_at(values, node, place(node, node), block);
   }
 
   /// The matrix of `values` without its exact zeros (blocks of pairs that a law leaves out).
@@ -106,6 +108,15 @@ class BlockPattern {
   }
 
  private:
+  /// Adds `block` at the `where`-th node of node `column`'s list.
+  void add_at(std::vector<double>& values, std::int32_t column, std::int64_t where, const Block& block) const {
+    const std::int64_t length = first_[static_cast<std::size_t>(column) + 1] - first_[static_cast<std::size_t>(column)];
+    double* entry = values.data() + dofs_ * (dofs_ * first_[static_cast<std::size_t>(column)] + where);
+    for (int a = 0; a < dofs_; ++a, entry += dofs_ * length) {
+      for (int b = 0; b < dofs_; ++b) entry[b] += block(b, a);
+    }
+  }
+
   /// Index of node `row` in node `column`'s list.
   [[nodiscard]] std::int64_t place(std::int32_t column, std::int32_t row) const {
     const auto begin = rows_.begin() + first_[static_cast<std::size_t>(column)];
@@ -167,6 +178,42 @@ void add_pair(Targets& t, const BlockPattern& pattern, const PairEnds& pair, con
   }
 }
 
+/// add_pair for the relative translation r = u_i - u_j (A_i = [I 0], A_j = [-I 0]): its blocks are
+/// +-S, written without add_pair's operator products (which took most of the time of assembling a
+/// fluid's squeeze films). Products with 0 and +-1 are exact: the same sums as add_pair's.
+void add_translation_pair(Targets& t, const BlockPattern& pattern, const PairEnds& pair, const Eigen::Matrix3d& s,
+                          int dofs) {
+  constexpr double sign[2] = {1.0, -1.0};
+  Block block = Block::Zero(dofs, dofs);
+  for (std::size_t r = 0; r < 2; ++r) {
+    if (pair.nodes[r] < 0) {
+      t.body_self[static_cast<std::size_t>(pair.bodies[r] - 1)] += s;  // as add_pair: (-I) S (-I)
+      continue;
+    }
+    for (std::size_t c = 0; c < 2; ++c) {
+      block.topLeftCorner<3, 3>() = (sign[r] * sign[c]) * s;
+      if (pair.nodes[c] >= 0) {
+        pattern.add(t.matrix, pair.index, pair.nodes, static_cast<int>(r), static_cast<int>(c), block);
+      } else {
+        add_block(t.body[static_cast<std::size_t>(pair.bodies[c] - 1)], dofs * static_cast<Eigen::Index>(pair.nodes[r]),
+                  0, Block(block.topLeftCorner<3, 3>()));
+      }
+    }
+  }
+}
+
+/// The fluid's drag on every free grain's translation, relative to the fluid at rest (the walls,
+/// moved by the drive, get none, as in the time-domain engine).
+void add_drag(std::vector<double>& values, const BlockPattern& pattern, std::span<const dem::Grain> grains,
+              const DynamicMatrices& m, const dem::FluidSpec& fluid) {
+  Block drag = Block::Zero(m.dofs_per_node, m.dofs_per_node);
+  for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
+    const dem::Grain& g = grains[static_cast<std::size_t>(m.grain_of_node[n])];
+    drag.topLeftCorner<3, 3>().diagonal().setConstant(fluid.drag_coefficient(g.radius));
+    pattern.add_to_node(values, static_cast<std::int32_t>(n), drag);
+  }
+}
+
 Eigen::SparseMatrix<double> from_triplets(const Triplets& t, Eigen::Index rows, Eigen::Index cols) {
   Eigen::SparseMatrix<double> m(rows, cols);
   m.setFromTriplets(t.begin(), t.end());
@@ -176,7 +223,8 @@ Eigen::SparseMatrix<double> from_triplets(const Triplets& t, Eigen::Index rows, 
 }  // namespace
 
 DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network, int n_bodies,
-                         const dem::ContactSpec& contact, const PairLinearisation* pairs) {
+                         const dem::ContactSpec& contact, const PairLinearisation* pairs,
+                         const dem::FluidSpec* fluid) {
   const dem::AnyContactModel model = dem::undamped_contact_model(contact);
   if (!dem::linearised(model)) {
     throw std::invalid_argument("linear engine: rolling resistance and the Coulomb-tanh law are not linearised; "
@@ -209,7 +257,10 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     if (friction) m.mass.segment<3>(row + 3).setConstant(0.4 * g.mass * g.radius * g.radius);  // solid sphere
   }
 
-  const std::size_t n_pairs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
+  // Gaps carry an equivalent spring and dashpot (pairs) or a squeeze film (fluid); a dry packing's
+  // tangent matrices leave them out. Pairs q < n_springs act on K and C1, all n_pairs on C_t.
+  const std::size_t n_springs = network.contacts.size() + (pairs ? network.gaps.size() : 0);
+  const std::size_t n_pairs = network.contacts.size() + (pairs || fluid ? network.gaps.size() : 0);
   if (pairs && (pairs->stiffness.size() != n_pairs || pairs->dashpot.size() != n_pairs)) {
     throw std::invalid_argument("linear engine: one equivalent stiffness and dashpot per contact and gap needed");
   }
@@ -221,11 +272,18 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     ends[q] = {m.node_of_grain[static_cast<std::size_t>(pair_at(q).i)],
                m.node_of_grain[static_cast<std::size_t>(pair_at(q).j)]};
   }
-  const BlockPattern pattern(m.grain_of_node.size(), ends, dofs);
+  const BlockPattern pattern(m.grain_of_node.size(), std::span(ends).first(n_springs), dofs);
+  // Squeeze films across gaps that K and C1 leave out: C_t's own pattern, so that theirs keeps only
+  // what they hold (the first n_springs pairs are the same in both: same indices).
+  std::optional<BlockPattern> film_pattern;
+  if (n_pairs > n_springs) film_pattern.emplace(m.grain_of_node.size(), ends, dofs);
+  const BlockPattern& fixed_pattern = film_pattern ? *film_pattern : pattern;
   Targets k{std::vector<double>(pattern.entries(), 0.0), std::vector<Triplets>(static_cast<std::size_t>(n_bodies)),
             std::vector<Eigen::Matrix3d>(static_cast<std::size_t>(n_bodies), Eigen::Matrix3d::Zero())};
   Targets c = k;
-  Targets ct{friction ? k.matrix : std::vector<double>{}, k.body, k.body_self};
+  const bool fixed = friction || fluid != nullptr;  // C_t has entries
+  Targets ct{fixed ? std::vector<double>(fixed_pattern.entries(), 0.0) : std::vector<double>{}, k.body, k.body_self};
+  if (fluid) add_drag(ct.matrix, fixed_pattern, grains, m, *fluid);
   for (std::size_t q = 0; q < n_pairs; ++q) {
     const bool touching = q < network.contacts.size();
     const StaticPair& p = pair_at(q);
@@ -233,26 +291,31 @@ DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwor
     const Eigen::Vector3d n(p.normal.x, p.normal.y, p.normal.z);
     const Eigen::Matrix3d nn = n * n.transpose(), tangent_plane = Eigen::Matrix3d::Identity() - nn;
     // Normal law on u_i - u_j: tangent stiffness plus pre-stress, and the normal dashpot.
-    Operator translation_i = Operator::Zero(), translation_j = Operator::Zero();
-    translation_i.leftCols<3>().setIdentity();
-    translation_j.leftCols<3>() = -Eigen::Matrix3d::Identity();
-    const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
-    add_pair(k, pattern, pair, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, translation_i,
-             translation_j, dofs);
-    add_pair(c, pattern, pair, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, translation_i, translation_j,
-             dofs);
+    if (q < n_springs) {
+      const double normal_stiffness = pairs ? pairs->stiffness[q] : p.stiffness;
+      add_translation_pair(k, pattern, pair, normal_stiffness * nn - (p.force / p.distance) * tangent_plane, dofs);
+      add_translation_pair(c, pattern, pair, p.dashpot * (pairs ? pairs->dashpot[q] : 1.0) * nn, dofs);
+    }
+    if (fluid) {
+      // The squeeze film at the static gap (a contact overlaps: the film between the asperities, at
+      // the roughness gap), normal to the pair like the DEM's. It stays linear and keeps its static
+      // gap for any drive; see LinearChannel::respond_equivalent.
+      const double lubrication = fluid->lubrication_coefficient(
+          -p.overlap, grains[static_cast<std::size_t>(p.i)].radius, grains[static_cast<std::size_t>(p.j)].radius);
+      if (lubrication > 0.0) add_translation_pair(ct, fixed_pattern, pair, lubrication * nn, dofs);
+    }
     if (!friction || !touching) continue;
     // Sticking tangential spring and dashpot on the contact point's tangential displacement.
     const SlipOperators slip = slip_operators(p);
     const dem::TangentialBlock t = *dem::tangential_block(model, p.overlap, grains[static_cast<std::size_t>(p.i)].radius,
                                                           grains[static_cast<std::size_t>(p.j)].radius);
     add_pair(k, pattern, pair, t.stiffness * Eigen::Matrix3d::Identity(), slip.i, slip.j, dofs);
-    add_pair(ct, pattern, pair, t.damping_per_mass * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i, slip.j,
-             dofs);
+    add_pair(ct, fixed_pattern, pair, t.damping_per_mass * p.effective_mass * Eigen::Matrix3d::Identity(), slip.i,
+             slip.j, dofs);
   }
   m.stiffness = pattern.matrix(k.matrix);
   m.dashpots = pattern.matrix(c.matrix);
-  m.fixed_dashpots = friction ? pattern.matrix(ct.matrix) : Eigen::SparseMatrix<double>(unknowns, unknowns);
+  m.fixed_dashpots = fixed ? fixed_pattern.matrix(ct.matrix) : Eigen::SparseMatrix<double>(unknowns, unknowns);
   for (std::size_t b = 0; b < static_cast<std::size_t>(n_bodies); ++b) {
     m.bodies.push_back({from_triplets(k.body[b], unknowns, 3), from_triplets(c.body[b], unknowns, 3),
                         from_triplets(ct.body[b], unknowns, 3), k.body_self[b], c.body_self[b],

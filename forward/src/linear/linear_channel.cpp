@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <variant>
 
 #include "sedwave/forward/channel/geometry.hpp"
@@ -38,6 +41,26 @@ Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& a, const
   return m;
 }
 
+/// Presence and every field: the channel's matrices hold one fluid's dashpots.
+bool same_fluid(const std::optional<dem::FluidSpec>& a, const std::optional<dem::FluidSpec>& b) {
+  if (!a || !b) return !a && !b;
+  return a->viscosity == b->viscosity && a->density == b->density && a->roughness == b->roughness &&
+         a->cutoff == b->cutoff && a->lubrication == b->lubrication && a->drag == b->drag && a->porosity == b->porosity;
+}
+
+/// A checked fluid in the packing's units (none for a dry channel).
+std::optional<dem::FluidSpec> in_packing_units(const std::optional<dem::FluidSpec>& fluid,
+                                               const channel::PackingUnits& units) {
+  if (!fluid) return std::nullopt;
+  if (const std::string why = fluid->problem(); !why.empty()) throw std::invalid_argument("linear engine: fluid " + why);
+  return channel::fluid_in_packing_units(*fluid, units);
+}
+
+/// Gaps up to the user's search distance and, with a fluid, its lubrication cut-off [d].
+double gap_search(const LinearSettings& settings, const std::optional<dem::FluidSpec>& fluid) {
+  return std::max(settings.gap_search, fluid ? fluid->interaction_gap() : 0.0);
+}
+
 void check_drive(const channel::DriveSettings& d) {
   if (!(d.omega_hat > 0.0) || !(d.gamma_hat >= 0.0) || !(d.amplitude > 0.0)) {
     throw std::invalid_argument("linear engine: omega_hat and amplitude must be positive, gamma_hat non-negative");
@@ -59,17 +82,27 @@ const channel::PreparedChannel& open_along_z(const channel::PreparedChannel& pac
 }  // namespace
 
 LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact,
-                             LinearSettings settings)
+                             LinearSettings settings, std::optional<dem::FluidSpec> fluid)
     : grains_(open_along_z(packing).grains),
       cross_section_(packing.box.length(0) * packing.box.length(1)),
       contact_(contact),
       model_(dem::make_contact_model(contact)),
       settings_(settings),
       units_(channel::packing_units(MPI_COMM_SELF, packing, contact)),
-      network_(channel::find_contacts(grains_, packing.box, contact,
-                             settings.gap_search * units_.diameter)),
-      matrices_(assemble(grains_, network_, 2, contact)),
+      fluid_(std::move(fluid)),
+      packing_fluid_(in_packing_units(fluid_, units_)),
+      network_(channel::find_contacts(grains_, packing.box, contact, gap_search(settings, fluid_) * units_.diameter)),
+      matrices_(assemble(grains_, network_, 2, contact, nullptr, packing_fluid())),
       solver_(matrices_, node_heights(grains_, matrices_)) {
+}
+
+void LinearChannel::check(const channel::DriveSettings& d) const {
+  check_drive(d);
+  if (!same_fluid(d.fluid, fluid_)) {
+    throw std::invalid_argument(std::string("linear engine: the drive's pore fluid differs from the one the channel "
+                                            "was assembled with (") +
+                                (fluid_ ? "a fluid" : "dry") + "); build the LinearChannel with the drive's fluid");
+  }
 }
 
 Eigen::VectorXd LinearChannel::sponge(const channel::DriveSettings& d, double omega) const {
@@ -84,7 +117,7 @@ Eigen::VectorXd LinearChannel::sponge(const channel::DriveSettings& d, double om
 }
 
 Eigen::VectorXcd LinearChannel::displacement(const channel::DriveSettings& d) const {
-  check_drive(d);
+  check(d);
   return solve(matrices_, solver_, d);
 }
 
@@ -272,7 +305,11 @@ LinearResult LinearChannel::respond_equivalent(const channel::DriveSettings& d, 
       }
     }
     pairs = std::move(next);
-    const DynamicMatrices m = assemble(grains_, network_, 2, contact_, &pairs);
+    // The fluid's dashpots stay those of the static state: drag and the squeeze film are linear in
+    // the velocities, and where a contact claps or a gap closes the film keeps its static gap's
+    // coefficient rather than a cycle average (the film between the asperities of a contact acts at
+    // the roughness gap whether or not the contact carries load; FluidSpec's regularisation).
+    const DynamicMatrices m = assemble(grains_, network_, 2, contact_, &pairs, packing_fluid());
     const Eigen::VectorXcd updated = solve(m, SlabSolver(m, z), d);
     change = (updated - u).norm() / u.norm();
     u = updated;
@@ -360,7 +397,7 @@ LinearResult LinearChannel::measure(const Eigen::VectorXcd& u, const channel::Dr
 
 std::vector<std::vector<double>> LinearChannel::integrate(const channel::DriveSettings& d, double time_step,
                                                          std::int64_t steps, std::int64_t steps_per_sample) const {
-  check_drive(d);
+  check(d);
   const double t0 = units_.time();
   const double dt = time_step * t0;
   const double omega = d.omega_hat / t0;

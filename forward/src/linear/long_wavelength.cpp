@@ -29,6 +29,11 @@ Eigen::Vector3cd force_on_driven_wall(const LinearChannel& c, const Eigen::Vecto
 
 LongWavelengthLimit long_wavelength_limit(const LinearChannel& c, double x, channel::DriveAxis axis_kind) {
   if (!(x >= 0.0) || !std::isfinite(x)) throw std::invalid_argument("long-wavelength limit: x must be >= 0");
+  if (c.fluid()) {
+    // A fluid's dashpots do not scale with gamma: M would depend on omega_hat and gamma_hat apart.
+    throw std::invalid_argument("long-wavelength limit: not defined with a pore fluid (its dashpots do not scale "
+                                "with gamma, so the modulus is no function of omega_hat * gamma_hat alone)");
+  }
   const auto start = std::chrono::steady_clock::now();
   const channel::PackingUnits& units = c.units();
   // A frequency at which the column is a thousandth of a wavelength (c_hat of a packing is O(1) and

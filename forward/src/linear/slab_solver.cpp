@@ -154,6 +154,13 @@ std::optional<Matrix> block_thomas(std::span<const Eigen::Index> offset, const S
   return u;
 }
 
+/// z += a t for a real t: as z += a * t.cast<Complex>() up to the sign of exact zeros, without a
+/// complex product (and its NaN checks) per entry.
+void add_scaled(Eigen::MatrixXcd& z, std::complex<double> a, const Eigen::MatrixXd& t) {
+  z.real() += a.real() * t;
+  z.imag() += a.imag() * t;
+}
+
 }  // namespace
 
 SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z) : mass_(m.mass) {
@@ -162,7 +169,11 @@ SlabSolver::SlabSolver(const DynamicMatrices& m, std::span<const double> node_z)
   if (dofs * nodes != m.unknowns()) throw std::invalid_argument("slab solver: one z per node is needed");
   // Slabs of thickness h >= the longest coupling: neighbours in z are at most one slab apart.
   // Slab boundaries fall between nodes; empty slabs are dropped (nothing couples across them).
-  thickness_ = longest_coupling(m.stiffness, node_z, dofs) * (1.0 + 1e-9);
+  // C_t counts too: a pore fluid's squeeze films join grains across gaps that K leaves apart. (C1
+  // joins no pair that K does not: every pair with a dashpot has a spring.)
+  thickness_ =
+      std::max(longest_coupling(m.stiffness, node_z, dofs), longest_coupling(m.fixed_dashpots, node_z, dofs)) *
+      (1.0 + 1e-9);
   std::vector<Eigen::Index> slab_of_node(node_z.size(), 0);
   Eigen::Index slab = -1;
   long previous_cell = 0;
@@ -260,16 +271,16 @@ Eigen::MatrixXcd SlabSolver::eliminate(std::complex<double> damping_factor, std:
                                        const Eigen::MatrixXcd& rhs) const {
   using Complex = std::complex<double>;
   const Complex a = damping_factor;
-  const bool tangential = !t_diagonal_.empty();
+  const bool fixed = !t_diagonal_.empty();  // C_t: friction or a fluid
   auto lower = [&](std::size_t s) -> Eigen::MatrixXcd {
     Eigen::MatrixXcd z = k_lower_[s].cast<Complex>() + (a * gamma) * c_lower_[s].cast<Complex>();
-    if (tangential) z += a * t_lower_[s].cast<Complex>();
+    if (fixed) add_scaled(z, a, t_lower_[s]);
     return z;
   };
   auto diagonal = [&](std::size_t s) -> Eigen::MatrixXcd {
     const Eigen::Index o = offset_[s], n = offset_[s + 1] - offset_[s];
     Eigen::MatrixXcd z = k_diagonal_[s].cast<Complex>() + (a * gamma) * c_diagonal_[s].cast<Complex>();
-    if (tangential) z += a * t_diagonal_[s].cast<Complex>();
+    if (fixed) add_scaled(z, a, t_diagonal_[s]);
     z.diagonal() += mass_factor * mass_.segment(o, n).cast<Complex>();
     if (extra_damping.size() > 0) z.diagonal() += a * extra_damping.segment(o, n).cast<Complex>();
     return z;

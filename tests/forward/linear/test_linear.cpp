@@ -514,6 +514,73 @@ TEST_F(Packing, SlabSolverEqualsSparseLu) {
   EXPECT_GT(engine.solver().slabs(), 3u);
 }
 
+/// A pore fluid for the packing, in the scenes' dimensionless groups: squeeze films across gaps up to
+/// 0.05 d, five times the default gap search.
+dem::FluidSpec packing_fluid() {
+  dem::FluidSpec f;
+  f.viscosity = 0.05;
+  f.roughness = 0.005;
+  f.cutoff = 0.05;
+  return f;
+}
+
+bool identical(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && a.nonZeros() == b.nonZeros() &&
+         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr());
+}
+
+// A fluid adds dashpots to C_t and nothing else: K, C1, M and the walls' springs and unit dashpots are
+// bit for bit those of the dry packing, although the fluid's wider gap search lists more gaps.
+TEST_F(Packing, FluidOnlyAddsFixedDashpots) {
+  const LinearChannel dry(*packing_, hooke(kKn));
+  const LinearChannel wet(*packing_, hooke(kKn), {}, packing_fluid());
+  const DynamicMatrices &a = dry.matrices(), &b = wet.matrices();
+  EXPECT_TRUE(identical(a.stiffness, b.stiffness));
+  EXPECT_TRUE(identical(a.dashpots, b.dashpots));
+  EXPECT_EQ(a.mass, b.mass);
+  EXPECT_EQ(a.fixed_dashpots.nonZeros(), 0);
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+    EXPECT_TRUE(identical(a.bodies[k].stiffness, b.bodies[k].stiffness));
+    EXPECT_TRUE(identical(a.bodies[k].dashpots, b.bodies[k].dashpots));
+    EXPECT_EQ(a.bodies[k].self_stiffness, b.bodies[k].self_stiffness);
+    EXPECT_EQ(a.bodies[k].self_dashpots, b.bodies[k].self_dashpots);
+    EXPECT_GT(b.bodies[k].self_fixed_dashpots.norm(), 0.0);  // films between the wall and its grains
+  }
+  EXPECT_EQ(dry.network().contacts.size(), wet.network().contacts.size());
+  EXPECT_GT(wet.network().gaps.size(), dry.network().gaps.size());
+  double widest = 0.0;
+  for (const StaticPair& p : wet.network().gaps) widest = std::max(widest, -p.overlap);
+  EXPECT_GT(widest, LinearSettings{}.gap_search * wet.units().diameter);
+  EXPECT_LT(widest, packing_fluid().cutoff * wet.units().diameter);
+  const Eigen::SparseMatrix<double> transposed = b.fixed_dashpots.transpose();
+  EXPECT_EQ((b.fixed_dashpots - transposed).norm(), 0.0);
+}
+
+// The slab solver with the fluid's C_t (3 unknowns per grain, films across gaps that K does not
+// couple) against a general sparse LU of the same system.
+TEST_F(Packing, SlabSolverEqualsSparseLuWithAFluid) {
+  const LinearChannel engine(*packing_, hooke(kKn), {}, packing_fluid());
+  const DynamicMatrices& m = engine.matrices();
+  ASSERT_EQ(m.dofs_per_node, 3);
+  const double omega = 0.7 * std::sqrt(kKn), gamma = 0.5;
+  const Eigen::VectorXd extra = Eigen::VectorXd::LinSpaced(m.unknowns(), 0.0, 2.0);
+  const Eigen::VectorXcd rhs = Eigen::VectorXcd::Random(m.unknowns());
+  const Eigen::VectorXcd slab = engine.solver().solve(omega, gamma, extra, rhs);
+  Eigen::SparseMatrix<Complex> z = m.stiffness.cast<Complex>() + Complex(0.0, omega * gamma) * m.dashpots.cast<Complex>() +
+                                   Complex(0.0, omega) * m.fixed_dashpots.cast<Complex>();
+  for (Eigen::Index i = 0; i < m.unknowns(); ++i) z.coeffRef(i, i) += Complex(-omega * omega * m.mass(i), omega * extra(i));
+  Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu(z);
+  ASSERT_EQ(lu.info(), Eigen::Success);
+  const Eigen::VectorXcd reference = lu.solve(rhs);
+  EXPECT_LT((slab - reference).norm(), 1e-10 * reference.norm());
+  // premise: the fluid changes the solution
+  const Eigen::VectorXcd dry = LinearChannel(*packing_, hooke(kKn)).solver().solve(omega, gamma, extra, rhs);
+  EXPECT_GT((slab - dry).norm(), 1e-3 * reference.norm());
+}
+
 // The static solve (block Cholesky, for the relaxation's Newton steps) against a sparse LU, and its
 // refusal of a matrix that is not positive definite: a negative mass shift pushes the rattlers' and
 // the softest modes' eigenvalues below zero.

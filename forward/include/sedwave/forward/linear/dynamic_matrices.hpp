@@ -20,6 +20,15 @@
 // the spring acts on it (F_t = -kt d_t on i, torque arm_i (F_t x n)), and its dashpot gamma_t m_eff
 // goes to a second damping matrix that does not scale with gamma (C_t).
 //
+// With a pore fluid (dem/fluid.hpp) the viscous forces go to C_t as well, as the time-domain engine
+// applies them: every pair closer than the lubrication cut-off h_c (contacts included, at the
+// roughness gap) gets the squeeze-film dashpot c_lub n n^T on u_i - u_j, c_lub from the pair's static
+// gap (FluidSpec::lubrication_coefficient: Jeffrey & Onishi 1984's singular term, regularised as
+// Ball & Melrose 1995), and every free grain's translation the drag c_drag = 6 pi mu r f(eps)
+// relative to the fluid at rest (FluidSpec::drag_coefficient: Stokes with the Richardson & Zaki
+// 1954 correction). Rigid-body grains get no drag; their lubrication with free grains goes to the
+// body couplings as any other pair's.
+//
 // Units: those of the packing (force/length for K, mass and moment of inertia for M; C1 is
 // dimensionless, C_t in force time/length).
 #include <Eigen/Dense>
@@ -28,6 +37,7 @@
 #include <span>
 #include <vector>
 
+#include "sedwave/forward/dem/fluid.hpp"
 #include "sedwave/forward/dem/grains.hpp"
 #include "sedwave/forward/channel/contact_network.hpp"
 
@@ -40,7 +50,7 @@ using channel::StaticPair;
 struct BodyCoupling {
   Eigen::SparseMatrix<double> stiffness;
   Eigen::SparseMatrix<double> dashpots;        ///< per unit damping coefficient (scales with gamma)
-  Eigen::SparseMatrix<double> fixed_dashpots;  ///< tangential dashpots (do not scale with gamma)
+  Eigen::SparseMatrix<double> fixed_dashpots;  ///< tangential and fluid dashpots (do not scale with gamma)
   /// The body's own translational stiffness and dashpots (its contacts with free grains), for a
   /// body whose translation is an unknown (a wall under a constant force: static_equilibrium.hpp,
   /// and the loaded far wall of a drive, linear_channel.hpp).
@@ -55,7 +65,8 @@ struct DynamicMatrices {
   std::vector<std::int32_t> node_of_grain;   ///< per packing grain; -1 for grains of rigid bodies
   Eigen::SparseMatrix<double> stiffness;     ///< K, 3n x 3n, symmetric
   Eigen::SparseMatrix<double> dashpots;      ///< C1, symmetric
-  Eigen::SparseMatrix<double> fixed_dashpots;  ///< C_t, symmetric (empty pattern without friction)
+  /// C_t, symmetric: tangential and fluid dashpots (empty pattern without friction and fluid)
+  Eigen::SparseMatrix<double> fixed_dashpots;
   Eigen::VectorXd mass;                      ///< diagonal of M: masses, then moments of inertia 2/5 m r^2
   std::vector<BodyCoupling> bodies;          ///< per rigid body (index body - 1)
 
@@ -75,9 +86,13 @@ struct PairLinearisation {
 /// linearised: std::invalid_argument). `n_bodies` is the number of rigid bodies (Grain::body runs
 /// over 1..n_bodies for their grains). Without `pairs`, contacts get their tangent stiffness and a
 /// unit dashpot, gaps nothing; with it, each pair gets its own normal stiffness and dashpot factor.
+/// With `fluid` (in the packing's units: channel::fluid_in_packing_units) its lubrication and drag
+/// dashpots at the static state are added to C_t; the network must then list the gaps up to the
+/// fluid's cut-off. Without it the matrices are those of a dry packing.
 [[nodiscard]] DynamicMatrices assemble(std::span<const dem::Grain> grains, const ContactNetwork& network,
                                        int n_bodies, const dem::ContactSpec& contact,
-                                       const PairLinearisation* pairs = nullptr);
+                                       const PairLinearisation* pairs = nullptr,
+                                       const dem::FluidSpec* fluid = nullptr);
 
 /// The slip of a contact, the relative tangential displacement of its contact point, as
 /// i * x_i + j * x_j, x = a grain's (translation, rotation): d_t above. The tangential spring and

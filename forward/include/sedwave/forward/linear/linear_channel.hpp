@@ -13,6 +13,11 @@
 // the drive amplitude (the response scales with A), warns, and refuses when too many do; the
 // time-domain engine is then the right one.
 //
+// A pore fluid (DriveSettings::fluid) enters as the time-domain engine applies it: squeeze-film
+// dashpots between grains closer than its cut-off and drag on every free grain (dynamic_matrices.hpp),
+// both linear in the velocities, so the steady response stays exact for them. A channel is built
+// for one fluid (or none), and drives must name the same.
+//
 // Units: dimensionless results, as channel/acoustic.hpp (d, m, kappa; kappa = kn for Hooke, the mean
 // tangent stiffness of the contacts for Hertz).
 #include <complex>
@@ -39,7 +44,7 @@ struct StateChanges {
   std::int64_t contacts = 0;
   std::int64_t opening = 0;
   std::int64_t sliding = 0;     ///< contacts that stay closed but reach the Coulomb limit
-  std::int64_t gaps = 0;        ///< gaps narrower than LinearSettings::gap_search
+  std::int64_t gaps = 0;        ///< gaps narrower than LinearSettings::gap_search (or a fluid's cut-off)
   std::int64_t closing = 0;
   [[nodiscard]] double fraction() const {
     return contacts > 0 ? static_cast<double>(opening + sliding + closing) / static_cast<double>(contacts) : 0.0;
@@ -67,18 +72,24 @@ struct LinearResult {
 
 class LinearChannel {
  public:
-  /// Finds the contacts of `packing` (its grains must be on this rank), assembles K, C1 and M once,
-  /// and cuts them into slabs. Throws std::invalid_argument for a packing without walls or grains.
-  LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact, LinearSettings settings = {});
+  /// Finds the contacts of `packing` (its grains must be on this rank), assembles K, C1, C_t and M
+  /// once, and cuts them into slabs. `fluid`: the pore fluid in the packing's dimensionless groups,
+  /// as DriveSettings::fluid holds it (none: dry); gaps are then searched at least up to its
+  /// lubrication cut-off. Throws std::invalid_argument for a packing without walls or grains, or a
+  /// fluid that FluidSpec::problem() rejects.
+  LinearChannel(const channel::PreparedChannel& packing, const dem::ContactSpec& contact, LinearSettings settings = {},
+                std::optional<dem::FluidSpec> fluid = std::nullopt);
 
   /// The steady response to `drive` (its omega_hat, gamma_hat, amplitude, axis, far end, layers).
-  /// The far end must be absorbing: in a steady state a frozen end reflects everything.
+  /// The far end must be absorbing: in a steady state a frozen end reflects everything. The drive's
+  /// fluid must be the channel's (std::invalid_argument otherwise; the same for every solve below).
   [[nodiscard]] LinearResult respond(const channel::DriveSettings& drive) const;
 
   /// The same with every contact and gap replaced by its equivalent linearisation at the drive
   /// amplitude (equivalent_linearisation.hpp), iterated (under-relaxed) until the field changes by
   /// less than `tolerance` (relative) between iterations. Closes much of the gap to the time-domain
-  /// engine where contacts clap; identical to respond() where none does.
+  /// engine where contacts clap; identical to respond() where none does. A fluid's dashpots stay
+  /// those of the static gaps (linear in the velocities; a clapping pair keeps its static film).
   [[nodiscard]] LinearResult respond_equivalent(const channel::DriveSettings& drive, int max_iterations = 40,
                                                 double tolerance = 1e-6) const;
 
@@ -120,10 +131,16 @@ class LinearChannel {
   [[nodiscard]] const SlabSolver& solver() const { return solver_; }
   [[nodiscard]] const std::vector<dem::Grain>& grains() const { return grains_; }
   [[nodiscard]] const dem::ContactSpec& contact() const { return contact_; }
+  /// The pore fluid the channel was built with, in the packing's dimensionless groups (none: dry).
+  [[nodiscard]] const std::optional<dem::FluidSpec>& fluid() const { return fluid_; }
   /// The channel's cross-section, the periodic box's x by y extent [length^2].
   [[nodiscard]] double cross_section() const { return cross_section_; }
 
  private:
+  /// Throws std::invalid_argument for a drive the engine cannot solve, or whose fluid is not the channel's.
+  void check(const channel::DriveSettings& drive) const;
+  /// The fluid in the packing's units for assemble(), or null when dry.
+  [[nodiscard]] const dem::FluidSpec* packing_fluid() const { return packing_fluid_ ? &*packing_fluid_ : nullptr; }
   [[nodiscard]] Eigen::VectorXd sponge(const channel::DriveSettings& drive, double omega) const;
   [[nodiscard]] Eigen::VectorXcd solve(const DynamicMatrices& m, const SlabSolver& s, const channel::DriveSettings& d) const;
   /// `refuse`: a result with too many state changes is refused (plain linearisation) or only warned
@@ -148,6 +165,8 @@ class LinearChannel {
   dem::AnyContactModel model_;
   LinearSettings settings_;
   channel::PackingUnits units_;
+  std::optional<dem::FluidSpec> fluid_;          ///< dimensionless, as drives name it
+  std::optional<dem::FluidSpec> packing_fluid_;  ///< in the packing's units
   ContactNetwork network_;
   DynamicMatrices matrices_;
   SlabSolver solver_;

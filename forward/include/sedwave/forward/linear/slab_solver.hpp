@@ -64,7 +64,7 @@ class SlabSolver {
   SlabCoupling coupling_;
   /// lower[s]: rows s, cols s-1, restricted to coupling_.rows[s] x coupling_.cols[s]
   std::vector<Eigen::MatrixXd> k_diagonal_, k_lower_, c_diagonal_, c_lower_;
-  std::vector<Eigen::MatrixXd> t_diagonal_, t_lower_;  ///< C_t blocks (empty without friction)
+  std::vector<Eigen::MatrixXd> t_diagonal_, t_lower_;  ///< C_t blocks (empty when C_t is: no friction, no fluid)
   Eigen::VectorXd mass_;
   double thickness_ = 0.0;
 };
