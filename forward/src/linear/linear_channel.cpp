@@ -41,19 +41,14 @@ Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& a, const
   return m;
 }
 
-/// Presence and every field: the channel's matrices hold one fluid's dashpots.
-bool same_fluid(const std::optional<dem::FluidSpec>& a, const std::optional<dem::FluidSpec>& b) {
-  if (!a || !b) return !a && !b;
-  return a->viscosity == b->viscosity && a->density == b->density && a->roughness == b->roughness &&
-         a->cutoff == b->cutoff && a->lubrication == b->lubrication && a->drag == b->drag && a->porosity == b->porosity;
-}
-
-/// A checked fluid in the packing's units (none for a dry channel).
+/// A checked fluid in the packing's units (none for a dry channel). Checked after the conversion,
+/// which resolves a porosity of 0 to the packing's.
 std::optional<dem::FluidSpec> in_packing_units(const std::optional<dem::FluidSpec>& fluid,
                                                const channel::PackingUnits& units) {
   if (!fluid) return std::nullopt;
-  if (const std::string why = fluid->problem(); !why.empty()) throw std::invalid_argument("linear engine: fluid " + why);
-  return channel::fluid_in_packing_units(*fluid, units);
+  dem::FluidSpec f = channel::fluid_in_packing_units(*fluid, units);
+  if (const std::string why = f.problem(); !why.empty()) throw std::invalid_argument("linear engine: fluid " + why);
+  return f;
 }
 
 /// Gaps up to the user's search distance and, with a fluid, its lubrication cut-off [d].
@@ -98,7 +93,7 @@ LinearChannel::LinearChannel(const channel::PreparedChannel& packing, const dem:
 
 void LinearChannel::check(const channel::DriveSettings& d) const {
   check_drive(d);
-  if (!same_fluid(d.fluid, fluid_)) {
+  if (d.fluid != fluid_) {
     throw std::invalid_argument(std::string("linear engine: the drive's pore fluid differs from the one the channel "
                                             "was assembled with (") +
                                 (fluid_ ? "a fluid" : "dry") + "); build the LinearChannel with the drive's fluid");

@@ -96,6 +96,8 @@ struct FluidSpec {
   }
   /// Largest gap at which grains interact through the fluid (0 without lubrication).
   [[nodiscard]] double interaction_gap() const { return lubrication ? cutoff : 0.0; }
+
+  friend bool operator==(const FluidSpec&, const FluidSpec&) = default;
 };
 
 /// What the force loop needs of one listed pair's film, fixed by the pair's radii (tabulated with

@@ -71,7 +71,7 @@ struct TableMetadata {
   int packings = 0;
   /// The pore fluid of the scene's drive in its dimensionless groups (docs/fluid.md), one line;
   /// empty for a dry table (or one written before it was recorded).
-  std::string pore_fluid;
+  std::string pore_fluid{};
 
   friend bool operator==(const TableMetadata&, const TableMetadata&) = default;
 };
