@@ -35,6 +35,14 @@ for engine in time_domain linear; do
   done
 done
 
+step "The same point as a table, both engines"
+# A table records its fluid (attribute pore_fluid, printed by show) and holds its groups fixed.
+for engine in time_domain linear; do
+  printf 'scene = "%s_wet.toml"\nomega_hat = [%s]\ngamma_hat = [%s]\n' $engine $W $G > ${engine}_grid.toml
+  run 0 "$SEDWAVE" table ${engine}_grid.toml --engine $engine --packing "$PACKING" --out ${engine}_table.h5 --quiet
+  run 0 "$SEDWAVE" show ${engine}_table.h5 | tee ${engine}_table.csv
+done
+
 # alpha_hat, its sigma, c_hat and its sigma from each run's result line.
 fit() { sed -n 's/^alpha_hat \(\S*\) +- \(\S*\) *c_hat \(\S*\) +- \(\S*\) .*/\1 \2 \3 \4/p' "$1"; }
 read -r a_dd s_dd c_dd sc_dd <<<"$(fit time_domain_dry.log)"
@@ -51,6 +59,10 @@ result dem_wet_alpha_hat "$a_dw"
 result dem_wet_c_hat "$c_dw"
 result linear_wet_alpha_hat "$a_lw"
 result linear_wet_c_hat "$c_lw"
+table_alpha() { tail -1 "$1" | cut -d, -f4; }
+check "both tables record the fluid" "$(cat time_domain_table.csv linear_table.csv | grep -c '^# pore fluid: mu_hat 0.0002, roughness 0.001 d, cutoff 0.05 d') == 2"
+check "the tables' points are the forward runs' (time domain; forward prints 6 digits)" "abs($(table_alpha time_domain_table.csv) - $a_dw) < 1e-6"
+check "the tables' points are the forward runs' (linear; forward prints 6 digits)" "abs($(table_alpha linear_table.csv) - $a_lw) < 1e-6"
 check "wet alpha_hat: engines within one combined sigma" "abs($a_dw - $a_lw) < ($s_dw**2 + $s_lw**2)**0.5"
 check "wet c_hat: engines within one combined sigma" "abs($c_dw - $c_lw) < ($sc_dw**2 + $sc_lw**2)**0.5"
 check "engines agree wet about as well as dry (within 2x the dry difference plus a tenth of a sigma)" \
