@@ -2,6 +2,7 @@
 // spheres, the Stokes terminal velocity with and without the porosity correction, and a dry run
 // left exactly as it was by a fluid whose forces vanish.
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <optional>
 
@@ -32,7 +33,11 @@ FluidSpec squeeze_film(double viscosity, double roughness, double cutoff) {
 //   m h' + A h / h_r + F0 t = const.
 // At small Stokes number (m h F0 / A^2 << 1) the gap closes as h0 exp(-F0 t / A). The work of the
 // applied force minus the kinetic energy is what the film dissipated, the integral of A h'^2 / h.
-TEST(SqueezeFilm, GapFollowsTheLubricationOdeAndDissipatesItsWork) {
+// The same for a frictionless (non-rotating) contact and a frictional one, whose force loop takes
+// the rotating path (head on, its tangential force stays zero).
+class SqueezeFilm : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SqueezeFilm, GapFollowsTheLubricationOdeAndDissipatesItsWork) {
   constexpr double radius = 0.5, r_eff = 0.25;
   constexpr double h0 = 0.08, roughness = 0.01, cutoff = 0.2;
   constexpr double viscosity = 1.0, force = 1.0;
@@ -41,6 +46,8 @@ TEST(SqueezeFilm, GapFollowsTheLubricationOdeAndDissipatesItsWork) {
   EngineSettings s;
   s.box.periodic = {false, false, false};
   s.contact["kn"] = 1e3;
+  s.contact.tangential = GetParam();
+  if (GetParam() != "none") s.contact["friction"] = 0.5;
   s.skin = 0.05;
   s.fluid = squeeze_film(viscosity, roughness, cutoff);
   Grain wall = testing::make_grain(0, {0, 0, 0}, radius);
@@ -91,7 +98,12 @@ TEST(SqueezeFilm, GapFollowsTheLubricationOdeAndDissipatesItsWork) {
   const Sample& last = path.back();
   const double work = force * (h0 - last.h) - 0.5 * m * last.v * last.v;
   EXPECT_NEAR(dissipated / work, 1.0, 1e-4);
+  std::printf("[ info ] first integral %.2g of F0 t, quasi-static gap %.2g, time to h_r %.2g, energy %.2g\n",
+              worst_first_integral, worst_quasi_static,
+              at_roughness->t / (a * std::log(h0 / roughness) / force) - 1.0, dissipated / work - 1.0);
 }
+
+INSTANTIATE_TEST_SUITE_P(TangentialLaws, SqueezeFilm, ::testing::Values("none", "spring_history"));
 
 // A lone grain sinking from rest: m v' = (m - rho_f V) g - c v, so v = v_t (1 - exp(-c t / m)) with
 // v_t = (m - rho_f V) g / c and c = 6 pi mu r f, f = 1 (Stokes) or porosity^(1 - 4.65).

@@ -40,8 +40,21 @@ std::vector<Grain> tall_column(int nx, int nz, double overlap, Box& box, std::ui
   return grains;
 }
 
-EngineSettings scene_settings(bool periodic_z, const Box& box, bool newton = false) {
+/// A pore fluid whose film and drag are comparable with the contacts' dashpots; buoyancy under the
+/// open box's gravity. Its cut-off widens the ghost layer and the neighbour list.
+FluidSpec test_fluid() {
+  FluidSpec f;
+  f.viscosity = 0.05;
+  f.density = 0.5;
+  f.roughness = 1e-3;
+  f.cutoff = 0.1;
+  f.drag = DragLaw::stokes;
+  return f;
+}
+
+EngineSettings scene_settings(bool periodic_z, const Box& box, bool newton = false, bool fluid = false) {
   EngineSettings s;
+  if (fluid) s.fluid = test_fluid();
   s.newton = newton;
   s.box = box;
   s.box.periodic = {true, true, periodic_z};
@@ -59,7 +72,7 @@ EngineSettings scene_settings(bool periodic_z, const Box& box, bool newton = fal
 
 /// Runs the scene on `comm` and returns all grains by id on the communicator's rank 0.
 std::map<std::int64_t, Grain> run_on(MPI_Comm comm, bool periodic_z, bool newton, std::int64_t steps,
-                                     std::size_t* history_records) {
+                                     std::size_t* history_records, bool fluid = false) {
   Box box;
   std::vector<Grain> all = tall_column(2, 12, 0.01, box, 42);
   int rank = 0;
@@ -72,7 +85,7 @@ std::map<std::int64_t, Grain> run_on(MPI_Comm comm, bool periodic_z, bool newton
       if (g.position.z < 0.6) g.body = 1;
     bodies.emplace_back("floor", Wiggle{2, 0.01, 0.5});
   }
-  Engine engine(comm, scene_settings(periodic_z, box, newton), mine, bodies);
+  Engine engine(comm, scene_settings(periodic_z, box, newton, fluid), mine, bodies);
   engine.run(steps);
   const std::size_t records = engine.contact_history().size();
   std::size_t total_records = 0;
@@ -96,11 +109,12 @@ double max_difference(const std::map<std::int64_t, Grain>& a, const std::map<std
   return worst;
 }
 
-/// (periodic z, newton on): the same trajectories on 1, 2 and 4 ranks, and with newton on and off.
-class RankEquivalence : public ::testing::TestWithParam<std::tuple<bool, bool>> {};
+/// (periodic z, newton on, pore fluid): the same trajectories on 1, 2 and 4 ranks, and with newton
+/// on and off.
+class RankEquivalence : public ::testing::TestWithParam<std::tuple<bool, bool, bool>> {};
 
 TEST_P(RankEquivalence, SameTrajectoriesOnOneTwoAndFourRanks) {
-  const auto [periodic_z, newton] = GetParam();
+  const auto [periodic_z, newton, fluid] = GetParam();
   int world_rank = 0, world_size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &world_size);
@@ -108,15 +122,15 @@ TEST_P(RankEquivalence, SameTrajectoriesOnOneTwoAndFourRanks) {
   constexpr std::int64_t steps = 400;
 
   std::size_t records1 = 0, records2 = 0, records4 = 0, records_other = 0;
-  const auto four = run_on(MPI_COMM_WORLD, periodic_z, newton, steps, &records4);
+  const auto four = run_on(MPI_COMM_WORLD, periodic_z, newton, steps, &records4, fluid);
   MPI_Comm pairs;
   MPI_Comm_split(MPI_COMM_WORLD, world_rank / 2, world_rank, &pairs);
-  const auto two = run_on(pairs, periodic_z, newton, steps, &records2);
+  const auto two = run_on(pairs, periodic_z, newton, steps, &records2, fluid);
   MPI_Comm_free(&pairs);
   std::map<std::int64_t, Grain> one, other_newton;
   if (world_rank == 0) {
-    one = run_on(MPI_COMM_SELF, periodic_z, newton, steps, &records1);
-    other_newton = run_on(MPI_COMM_SELF, periodic_z, !newton, steps, &records_other);
+    one = run_on(MPI_COMM_SELF, periodic_z, newton, steps, &records1, fluid);
+    other_newton = run_on(MPI_COMM_SELF, periodic_z, !newton, steps, &records_other, fluid);
   }
   if (world_rank != 0) return;
 
@@ -128,9 +142,9 @@ TEST_P(RankEquivalence, SameTrajectoriesOnOneTwoAndFourRanks) {
   ASSERT_EQ(four.size(), one.size());
   const double d2 = max_difference(one, two, box), d4 = max_difference(one, four, box);
   const double d_newton = max_difference(one, other_newton, box);
-  std::printf("[ info ] periodic_z=%d newton=%d: max |1-rank - 2-rank| = %.3g, |1-rank - 4-rank| = %.3g, "
+  std::printf("[ info ] periodic_z=%d newton=%d fluid=%d: max |1-rank - 2-rank| = %.3g, |1-rank - 4-rank| = %.3g, "
               "|newton on - off| = %.3g; history records %zu/%zu/%zu\n",
-              int(periodic_z), int(newton), d2, d4, d_newton, records1, records2, records4);
+              int(periodic_z), int(newton), int(fluid), d2, d4, d_newton, records1, records2, records4);
   EXPECT_LT(d2, kTolerance);
   EXPECT_LT(d4, kTolerance);
   EXPECT_LT(d_newton, kTolerance);
@@ -142,7 +156,10 @@ TEST_P(RankEquivalence, SameTrajectoriesOnOneTwoAndFourRanks) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BoundariesAndNewton, RankEquivalence,
-                         ::testing::Combine(::testing::Bool(), ::testing::Bool()));
+                         ::testing::Combine(::testing::Bool(), ::testing::Bool(), ::testing::Values(false)));
+// The lubricated force loop of a rotating model, drag and buoyancy, across ranks and periodic faces.
+INSTANTIATE_TEST_SUITE_P(PoreFluid, RankEquivalence,
+                         ::testing::Values(std::tuple{true, true, true}, std::tuple{false, false, true}));
 
 // Trajectory writers on 4 ranks (each rank writes its own grains in turn): every grain appears once
 // with exactly the state the ranks hold.
