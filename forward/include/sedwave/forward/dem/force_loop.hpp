@@ -148,19 +148,20 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
         if constexpr (kFluid) {
           // The film's force, -C v_n / h on i, is (-C (d . v_rel) / |d|^2) / h times d, with h the
           // gap clamped at the roughness. 1/h = 1/(|d| - reach) = (|d| + reach) / (|d|^2 - reach^2)
-          // has a denominator that needs no root: clamped, max(|d|^2, (reach + h_r)^2) - reach^2.
-          // So one division, of |d|^2 times it, gives both 1/|d|^2 and 1/h and runs beside the
-          // root, as the dry loop's does (after the root, its latency made lubricated pairs 1.5x
-          // slower than dry ones).
+          // has a denominator q that needs no root: clamped, q = max(|d|^2, (reach + h_r)^2) -
+          // reach^2. Over the common denominator |d|^2 q, contact and film need one division, which
+          // runs beside the root as the dry loop's does (after the root, its latency made
+          // lubricated pairs 1.5x slower than dry ones):
+          //   multiple of d = (q contact - C (d . v_rel) (max(|d|, reach + h_r) + reach)) / (|d|^2 q),
+          // contact = spring |d| - dashpot (d . v_rel) (the dry loop's force times |d|^2).
           const FilmPair& f = lubrication.film(k);
-          const double film_denominator = std::max(r2 - f.reach2, f.clamp);
-          const double inverse = 1.0 / (r2 * film_denominator);
-          const double lub_inv_r2 = film_denominator * inverse;
-          const double inv_h = (std::max(distance, reach + lubrication.roughness()) + reach) * (r2 * inverse);
+          const double q = std::max(r2 - f.reach2, f.clamp);
+          const double inverse = 1.0 / (r2 * q);
           const double in_range = static_cast<double>(r2 < f.cut2);
           const double contact = law.spring(c.overlap, p) * distance - law.dashpot_at(c.overlap, p) * approach;
-          const double film = in_range * f.film * approach * inv_h;
-          return ((in_contact * contact - film) * lub_inv_r2) * d;
+          const double film =
+              (in_range * f.film * approach) * (std::max(distance, reach + lubrication.roughness()) + reach);
+          return ((q * (in_contact * contact) - film) * inverse) * d;
         }
         return (in_contact * (spring - dashpot)) * d;
       } else {
