@@ -140,7 +140,8 @@ TEST_P(TerminalVelocity, IsTheStokesVelocityWithTheDragCorrection) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Drag, TerminalVelocity, ::testing::Values(DragLaw::stokes, DragLaw::richardson_zaki));
+INSTANTIATE_TEST_SUITE_P(Drag, TerminalVelocity, ::testing::Values(DragLaw::stokes, DragLaw::richardson_zaki),
+                         [](const ::testing::TestParamInfo<DragLaw>& p) { return std::string(drag_law_name(p.param)); });
 
 /// A pre-compressed Hooke column of 30 grains, one end driven, in a fluid or dry; its final state.
 std::vector<Vec3> driven_column_positions(const std::optional<FluidSpec>& fluid) {
