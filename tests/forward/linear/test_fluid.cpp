@@ -22,18 +22,14 @@
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "sedwave/forward/linear/long_wavelength.hpp"
 #include "sedwave/forward/linear/ordered_chain.hpp"
+#include "linear_test_support.hpp"
 
 namespace sedwave::forward::linear {
 namespace {
 
 using Complex = std::complex<double>;
 
-dem::ContactSpec hooke(double kn) {
-  dem::ContactSpec c;
-  c["kn"] = kn;
-  c["restitution"] = 0.9;
-  return c;
-}
+using testing::hooke;
 
 // ---- The assembled dashpots of a hand-built packing ------------------------------------------------
 

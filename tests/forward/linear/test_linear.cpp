@@ -26,6 +26,7 @@
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "sedwave/forward/linear/long_wavelength.hpp"
 #include "sedwave/forward/linear/ordered_chain.hpp"
+#include "linear_test_support.hpp"
 #include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 #include "sedwave/forward/linear/newton_stage.hpp"
@@ -35,12 +36,7 @@ namespace {
 
 using Complex = std::complex<double>;
 
-dem::ContactSpec hooke(double kn) {
-  dem::ContactSpec c;
-  c["kn"] = kn;
-  c["restitution"] = 0.9;
-  return c;
-}
+using testing::hooke;
 
 // ---- Ordered chain ----------------------------------------------------------------------------------
 
