@@ -185,6 +185,21 @@ TEST(DryLimit, VanishingViscosityConvergesToTheDryRun) {
   EXPECT_GT(moved, 1e-8);
 }
 
+// A fluid whose terms are all switched off (no film, no drag, no density) runs bit for bit as dry:
+// its presence changes neither the time step, nor the lists, the ghosts or the order of the sums.
+TEST(DryLimit, AFluidWithoutForcesIsTheDryRunBitForBit) {
+  FluidSpec inert = squeeze_film(1.0, 1e-3, 0.2);
+  inert.lubrication = false;
+  inert.drag = DragLaw::none;
+  const std::vector<Vec3> dry = driven_column_positions(std::nullopt);
+  const std::vector<Vec3> wet = driven_column_positions(inert);
+  for (std::size_t n = 0; n < dry.size(); ++n) {
+    EXPECT_EQ(dry[n].x, wet[n].x) << n;
+    EXPECT_EQ(dry[n].y, wet[n].y) << n;
+    EXPECT_EQ(dry[n].z, wet[n].z) << n;
+  }
+}
+
 TEST(FluidSpec, RefusesWhatItCannotModelNamingTheField) {
   const auto problem = [](auto change) {
     FluidSpec f = squeeze_film(1.0, 1e-3, 0.1);

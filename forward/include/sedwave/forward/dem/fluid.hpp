@@ -2,7 +2,7 @@
 // A still pore fluid around the grains: the hydrodynamic forces that act where grains meet
 // (lubrication) and on each grain as a whole (drag, buoyancy). docs/fluid.md has the equations, the
 // dimensionless groups and the measured effect; the engine evaluates nothing of this unless a run
-// asks for a fluid (EngineSettings::fluid), so a dry run is the same code as before.
+// asks for a fluid (EngineSettings::fluid): a dry run executes a force loop without any of it.
 //
 // Normal lubrication (squeeze film). Two spheres of radii r_i, r_j a gap h apart, approaching at
 // v_n, push the fluid out of the gap; to leading order in h / R the force on each is
@@ -49,10 +49,6 @@ enum class DragLaw {
 };
 
 [[nodiscard]] std::string_view drag_law_name(DragLaw law);
-struct FluidSpec;
-/// One line: "viscosity 0.001, roughness 0.001, cutoff 0.1, lubrication, drag richardson_zaki
-/// (porosity 0.4: 28.3 x Stokes), density 0".
-[[nodiscard]] std::string describe(const FluidSpec& f);
 
 struct FluidSpec {
   double viscosity = 0.0;   ///< mu [mass / (length time)]
@@ -99,6 +95,10 @@ struct FluidSpec {
 
   friend bool operator==(const FluidSpec&, const FluidSpec&) = default;
 };
+
+/// One line: "viscosity 0.001, roughness 0.001, cutoff 0.1, lubrication, drag richardson_zaki
+/// (porosity 0.4: 28.3 x Stokes), density 0".
+[[nodiscard]] std::string describe(const FluidSpec& f);
 
 /// What the force loop needs of one listed pair's film, fixed by the pair's radii (tabulated with
 /// the neighbour list: tabulate_films in force_loop.hpp). reach = r_i + r_j.
