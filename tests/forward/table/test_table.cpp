@@ -111,6 +111,33 @@ TEST_F(TableTest, RoundTripIsBitExact) {
   EXPECT_TRUE(std::isnan(back.at(5, 40).c_hat));
 }
 
+// A table made in a pore fluid keeps its groups (attribute pore_fluid), and a model built from it says
+// that a fit holds them fixed; a dry table says nothing.
+TEST_F(TableTest, RecordsItsPoreFluidAndItsModelSaysSo) {
+  const auto fluid_note = [](const TableModel& model) {
+    for (const ModelDiagnostic& d : model.diagnostics())
+      if (d.key == "table_pore_fluid") return d.note;
+    return std::string("(no entry)");
+  };
+  write_table(file("dry.h5"), theory_table());
+  const DispersionTable dry = read_table(file("dry.h5"));
+  EXPECT_EQ(dry.metadata().pore_fluid, "");
+  EXPECT_EQ(fluid_note(TableModel(dry, "dry")), "");
+
+  TableMetadata wet_metadata = theory_metadata();
+  wet_metadata.pore_fluid = "mu_hat 5e-06, roughness 0.001 d, cutoff 0.05 d, lubrication, drag stokes";
+  const DispersionTable points = theory_table();
+  DispersionTable wet(points.grid(), wet_metadata);
+  for (std::size_t g = 0; g < points.n_gamma(); ++g)
+    for (std::size_t w = 0; w < points.n_omega(); ++w) wet.set(g, w, points.at(g, w));
+  write_table(file("wet.h5"), wet);
+  const DispersionTable back = read_table(file("wet.h5"));
+  EXPECT_EQ(back.metadata().pore_fluid, wet_metadata.pore_fluid);
+  const std::string note = fluid_note(TableModel(back, "wet"));
+  EXPECT_NE(note.find(wet_metadata.pore_fluid), std::string::npos) << note;
+  EXPECT_NE(note.find("mu d / sqrt(kappa m)"), std::string::npos) << note;
+}
+
 TEST_F(TableTest, IncrementalWritesAndRestart) {
   const TableGrid grid{log_spaced(0.01, 1.0, 5), log_spaced(0.1, 10.0, 3)};
   {
