@@ -10,15 +10,17 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 
 if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
   # Under AddressSanitizer + UBSan: the theories, the sediment models, the inversion, tables and HDF5 files, the DEM
-  # engine, and every command-line case (tests/cli: bad input of every kind, restarts, outputs)
+  # engine, the linear-response engine, and every command-line case (tests/cli: bad input of every kind, restarts, outputs)
   # through a sanitized `sedwave`. Open MPI's own allocations are not ours to fix: no leak check.
   SAN_DIR="${BUILD_DIR}-sanitize"
-  SAN_TARGETS=(test_theory test_io test_sediment test_inversion test_channel_table test_dem sedwave)
+  SAN_TARGETS=(test_theory test_io test_sediment test_inversion test_channel_table test_dem test_linear sedwave)
   cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEDWAVE_SANITIZE=ON \
     -DSEDWAVE_WERROR=ON -DSEDWAVE_BUILD_BENCH=OFF $(sedwave_compiler_cache) >/dev/null
-  cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
+  # Before the build: test discovery runs the MPI test binaries (test_linear) at link time.
   export ASAN_OPTIONS=detect_leaks=0
-  for t in tests/test_theory tests/test_io tests/test_sediment tests/test_inversion tests/test_channel_table tests/forward/dem/test_dem; do
+  cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
+  for t in tests/test_theory tests/test_io tests/test_sediment tests/test_inversion tests/test_channel_table \
+           tests/forward/dem/test_dem tests/test_linear; do
     echo "== $t under AddressSanitizer + UBSan"
     "$SAN_DIR/$t" --gtest_brief=1
   done
