@@ -101,6 +101,11 @@ TableEngine table_engine_of(const ChannelScene& scene) {
 
 void use_table_engine(ChannelScene& scene, TableEngine engine) {
   scene.engine = engine == TableEngine::time_domain ? EngineKind::time_domain : EngineKind::linear;
+  if (engine == TableEngine::long_wavelength && scene.drive.fluid) {
+    // Refused before any packing is prepared: every point would fail (linear/long_wavelength.hpp).
+    throw std::invalid_argument(scene.path.string() + ": the long-wavelength limit is not defined with a pore fluid "
+                                "([fluid]: its dashpots do not scale with gamma_hat); use --engine linear");
+  }
   if (engine != TableEngine::linear) return;
   if (const std::string refusal = engine_refusal(scene.engine, scene.drive); !refusal.empty()) {
     throw std::invalid_argument(scene.path.string() + ": the linear engine cannot run this scene: [drive] " + refusal);
