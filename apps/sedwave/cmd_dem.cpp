@@ -228,8 +228,7 @@ std::optional<dem::FluidSpec> fluid_spec(const DemOptions& o) {
   spec.roughness = *f.roughness;
   spec.cutoff = *f.cutoff;
   spec.lubrication = f.lubrication.value_or("on") == "on";
-  const std::string drag = f.drag.value_or("richardson_zaki");
-  spec.drag = drag == "none" ? dem::DragLaw::none : drag == "stokes" ? dem::DragLaw::stokes : dem::DragLaw::richardson_zaki;
+  if (f.drag) spec.drag = dem::drag_law_of(*f.drag);
   if (f.porosity && spec.drag != dem::DragLaw::richardson_zaki)
     throw std::invalid_argument("--fluid-porosity is read by --fluid-drag richardson_zaki only");
   spec.porosity = f.porosity.value_or(spec.porosity);
@@ -373,7 +372,7 @@ void add_fluid_options(CLI::App& cmd, DemOptions& o) {
   cmd.add_option("--fluid-density", f.density, "fluid density [mass/length^3] for buoyancy under --gravity (default 0)")
       ->check(within(dem::KeyBounds::non_negative()));
   cmd.add_option("--fluid-drag", f.drag, "drag on each grain: richardson_zaki (default), stokes or none")
-      ->check(CLI::IsMember({"richardson_zaki", "stokes", "none"}));
+      ->check(CLI::IsMember(dem::drag_law_names()));
   cmd.add_option("--fluid-porosity", f.porosity, "porosity of the Richardson-Zaki drag correction (default 0.4)")
       ->check(within({0.0, 1.0, true, true}));
   cmd.add_option("--fluid-lubrication", f.lubrication, "the squeeze-film force between grains: on (default) or off")

@@ -1,16 +1,26 @@
 #include "sedwave/forward/dem/fluid.hpp"
 
 #include <sstream>
+#include <stdexcept>
 
 namespace sedwave::forward::dem {
 
 std::string_view drag_law_name(DragLaw law) {
-  switch (law) {
-    case DragLaw::none: return "none";
-    case DragLaw::stokes: return "stokes";
-    case DragLaw::richardson_zaki: return "richardson_zaki";
-  }
+  for (const auto& [name, l] : kDragLaws)
+    if (l == law) return name;
   return "?";
+}
+
+DragLaw drag_law_of(std::string_view name) {
+  for (const auto& [n, law] : kDragLaws)
+    if (n == name) return law;
+  throw std::invalid_argument("unknown drag law '" + std::string(name) + "'");
+}
+
+std::vector<std::string> drag_law_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : kDragLaws) names.emplace_back(entry.first);
+  return names;
 }
 
 std::string describe(const FluidSpec& f) {

@@ -202,8 +202,8 @@ std::optional<dem::FluidSpec> read_fluid(Section s) {
                              toml_io::shortest(f.roughness) + ", 1] " + kDiameters);
   }
   f.lubrication = s.boolean("lubrication", f.lubrication);
-  const std::string drag = s.choice("drag", "richardson_zaki", {"richardson_zaki", "stokes", "none"});
-  f.drag = drag == "stokes" ? dem::DragLaw::stokes : drag == "none" ? dem::DragLaw::none : dem::DragLaw::richardson_zaki;
+  const std::vector<std::string> drag_laws = dem::drag_law_names();
+  f.drag = dem::drag_law_of(s.choice("drag", drag_laws.front(), {drag_laws.begin(), drag_laws.end()}));
   // 0 stands for the prepared packing's own porosity, resolved when the drive starts.
   f.porosity = s.number("porosity", 0.0, Range::open(0.0, 1.0, "(pore volume fraction; default: the packing's)"));
   if (s.has("porosity") && f.drag != dem::DragLaw::richardson_zaki) {

@@ -32,11 +32,14 @@
 // Units: the engine's (any consistent set). Scene files give the dimensionless groups
 // (experiment/scene.hpp): mu_hat = mu d / sqrt(kappa m), h_r / d, h_c / d.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "sedwave/forward/dem/vec3.hpp"
 
@@ -48,7 +51,14 @@ enum class DragLaw {
   richardson_zaki  ///< f = porosity^(1 - 4.65)
 };
 
+/// The drag laws by the names scene files and `sedwave dem` use, the default first.
+inline constexpr std::array<std::pair<std::string_view, DragLaw>, 3> kDragLaws{
+    {{"richardson_zaki", DragLaw::richardson_zaki}, {"stokes", DragLaw::stokes}, {"none", DragLaw::none}}};
 [[nodiscard]] std::string_view drag_law_name(DragLaw law);
+/// The law of a name in kDragLaws; std::invalid_argument for any other name.
+[[nodiscard]] DragLaw drag_law_of(std::string_view name);
+/// The names of kDragLaws, in its order.
+[[nodiscard]] std::vector<std::string> drag_law_names();
 
 struct FluidSpec {
   double viscosity = 0.0;   ///< mu [mass / (length time)]
