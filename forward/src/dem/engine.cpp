@@ -278,7 +278,7 @@ void Engine::rebuild() {
         tabulate_pairs(model, grains_, list_, std::get<PairTable<Model>>(pair_table_));
       },
       model_);
-  if (settings_.fluid && settings_.fluid->lubrication) tabulate_films(*settings_.fluid, grains_, list_, films_);
+  if (lubricated()) tabulate_films(*settings_.fluid, grains_, list_, films_);
   list_valid_ = true;
   force_rebuild_ = false;
   ++rebuilds_;
@@ -295,9 +295,8 @@ OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
     return watch ? accumulate_contact_forces<Model, true, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication)
                  : accumulate_contact_forces<Model, false, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication);
   };
-  const bool lubricated = settings_.fluid && settings_.fluid->lubrication;
   const OverlapWatch w =
-      lubricated ? accumulate(LubricationEvaluator(*settings_.fluid, films_)) : accumulate(NoLubrication{});
+      lubricated() ? accumulate(LubricationEvaluator(*settings_.fluid, films_)) : accumulate(NoLubrication{});
   if (list_.newton()) {
     ScopedTimer t(timings_.communication);
     domain_.reverse_forces(g);

@@ -187,6 +187,8 @@ class Engine {
   [[nodiscard]] bool rebuild_needed();
   void apply_body_forces();
   void apply_fluid_drag_and_buoyancy();
+  /// Whether a fluid's squeeze film acts between grains (the lubricated force loop and its films_).
+  [[nodiscard]] bool lubricated() const { return settings_.fluid && settings_.fluid->lubrication; }
   /// Largest gap across which grains interact (a fluid's lubrication cut-off; 0 dry).
   [[nodiscard]] double interaction_gap() const { return settings_.fluid ? settings_.fluid->interaction_gap() : 0.0; }
   void guard_check(const OverlapWatch& watch);
