@@ -30,6 +30,16 @@ MPIRUN=${MPIRUN:-mpirun}
 : > "$OUT/results.txt"
 FAILED=0
 
+# small_channel_scene ENGINE: prints the shipped small table's scene with `engine` set (time_domain
+# or linear), fitting the layers 2 .. 25 d from the driven wall (max_fit_depth: the DEM's lock-in
+# windows reach about that far before echoes could return, and the linear engine would otherwise fit
+# the whole column), and one packing for the linear engine ([linear] ensemble = 1).
+small_channel_scene() {
+  echo "engine = \"$1\""
+  cat "$DATA/scenes/table_small_scene.toml"
+  printf '\n[drive.measurement]\nmax_fit_depth = 25\n\n[linear]\nensemble = 1\n'
+}
+
 # step TEXT: a heading in the example's output.
 step() { printf '\n== %s\n' "$*"; }
 

@@ -15,14 +15,10 @@ W=0.4 G=0.3
 
 step "Two scenes that differ only in the engine"
 # The shipped scene of the small table, with `engine` set at the top. Both fit the layers
-# 2 .. 25 d from the driven wall (max_fit_depth): the DEM's lock-in windows reach about that far
-# before echoes could return, and the linear engine would otherwise fit the whole column.
-# [linear] ensemble = 1: one packing (the linear engine can average several: docs/linear.md).
+# 2 .. 25 d from the driven wall (max_fit_depth); [linear] ensemble = 1: one packing (the linear
+# engine can average several: docs/linear.md). small_channel_scene in ../common.sh writes them.
 for engine in time_domain linear; do
-  { echo "engine = \"$engine\""
-    cat "$DATA/scenes/table_small_scene.toml"
-    printf '\n[drive.measurement]\nmax_fit_depth = 25\n\n[linear]\nensemble = 1\n'
-  } > $engine.toml
+  small_channel_scene $engine > $engine.toml
 done
 diff time_domain.toml linear.toml || true
 

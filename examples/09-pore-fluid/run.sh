@@ -18,10 +18,7 @@ step "Four scenes: two engines, dry and wet"
 # contacts, as water around 0.3 mm sand), roughness 1e-3 d, cut-off 0.05 d, Richardson-Zaki drag at
 # the packing's porosity. Both engines fit the layers 2 .. 25 d from the driven wall.
 for engine in time_domain linear; do
-  { echo "engine = \"$engine\""
-    cat "$DATA/scenes/table_small_scene.toml"
-    printf '\n[drive.measurement]\nmax_fit_depth = 25\n\n[linear]\nensemble = 1\n'
-  } > ${engine}_dry.toml
+  small_channel_scene $engine > ${engine}_dry.toml
   { cat ${engine}_dry.toml
     printf '\n[fluid]\nviscosity = 2e-4\nroughness = 1e-3\ncutoff = 0.05\n'
   } > ${engine}_wet.toml
