@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "job_queue.hpp"
 #include "model_options.hpp"
 #include "option_checks.hpp"
 #include "output_paths.hpp"
@@ -35,7 +36,7 @@ struct CompareOptions {
   ModelOptions shared;              ///< --set and site inputs, for every model that has the parameter
   std::optional<double> water_speed;
   inversion::EvidenceOptions evidence;
-  int threads = 1;
+  int threads = 0;  ///< 0: every usable core
   bool plot = true;
   std::string out = "sedwave-compare";
 };
@@ -73,7 +74,25 @@ void require_known(const std::vector<std::string>& items, const char* option,
   }
 }
 
-Row compare_one(const std::string& spec, const CompareOptions& o, const inversion::ObservationSet& data) {
+/// One model's comparison, filled in by jobs (job_queue.hpp): its fit, then its evidence under the
+/// priors and under the priors widened x10, then its posterior band. Each job writes only its own
+/// fields, and each sampler has its own seeded random stream: the results do not depend on how many
+/// threads run the jobs or in which order they finish.
+struct ModelRun {
+  std::string spec;
+  std::shared_ptr<const sediment::SedimentModel> model;
+  inversion::FitParameters parameters;
+  std::vector<std::string> site_priors;
+  std::string site;
+  std::vector<inversion::Prior> priors;
+  Row row;
+};
+
+const inversion::FitOptions kFitOptions{.method = inversion::FitMethod::Global, .profile_likelihood = false};
+
+/// The model, its free parameters and its site priors, before any work: an unusable option stops
+/// the comparison before the first fit.
+ModelRun prepare(const std::string& spec, const CompareOptions& o) {
   ModelOptions mo = o.shared;
   mo.model = spec;
   for (const std::string& f : o.fits) {
@@ -83,31 +102,62 @@ Row compare_one(const std::string& spec, const CompareOptions& o, const inversio
   mo.set_values.erase(std::remove_if(mo.set_values.begin(), mo.set_values.end(),
                                      [&](const std::string& item) { return !has_parameter(*probe, name_of(item)); }),
                       mo.set_values.end());
-  const auto model = make_model(mo);
-  std::vector<std::string> notes, site_priors;
-  const inversion::FitParameters parameters = make_parameters(mo, *model, ModelUse::Fit, &notes, &site_priors);
-  const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
-  Row row{model->name(), "", inversion::fit(data, *model, parameters, fit_options), {}, {}, {}, {}};
+  ModelRun run;
+  run.spec = spec;
+  run.model = make_model(mo);
+  std::vector<std::string> notes;
+  run.parameters = make_parameters(mo, *run.model, ModelUse::Fit, &notes, &run.site_priors);
+  run.site = mo.site;
+  return run;
+}
+
+/// The fit, then the priors around it (every prior covers the search bounds of the fitted set).
+void fit_model(ModelRun& run, const CompareOptions& o, const inversion::ObservationSet& data) {
+  std::fprintf(stderr, "sedwave compare: %s: fit ...\n", run.spec.c_str());
+  Row& row = run.row;
+  row.model = run.model->name();
+  row.fit = inversion::fit(data, *run.model, run.parameters, kFitOptions);
   std::vector<std::string> prior_items;
   for (const std::string& item : o.priors) {
-    const int i = has_parameter(*model, name_of(item)) ? parameters.index_of(name_of(item)) : -1;
-    if (i >= 0 && parameters.spec[i].free) prior_items.push_back(item);
+    const int i = has_parameter(*run.model, name_of(item)) ? run.parameters.index_of(name_of(item)) : -1;
+    if (i >= 0 && run.parameters.spec[i].free) prior_items.push_back(item);
   }
-  std::vector<inversion::Prior> priors = inversion::default_priors(row.fit.fitted);
-  inversion::apply_priors(row.fit.fitted, site_priors, "site file " + mo.site, priors);
-  inversion::apply_priors(row.fit.fitted, prior_items, "command line", priors);
+  run.priors = inversion::default_priors(row.fit.fitted);
+  inversion::apply_priors(row.fit.fitted, run.site_priors, "site file " + run.site, run.priors);
+  inversion::apply_priors(row.fit.fitted, prior_items, "command line", run.priors);
   for (int i : row.fit.fitted.free_indices()) {
     const auto& parameter = row.fit.fitted.spec[i];
     row.free += (row.free.empty() ? "" : ",") + parameter.name;
-    row.priors.push_back(parameter.name + ": " + priors[static_cast<std::size_t>(i)].describe(parameter.unit));
+    row.priors.push_back(parameter.name + ": " + run.priors[static_cast<std::size_t>(i)].describe(parameter.unit));
   }
+}
+
+/// Queues every model's jobs; `threads` run them, and threads beyond the two evidence runs per
+/// model share each sampler's evaluations.
+void run_all(std::vector<ModelRun>& runs, const CompareOptions& o, const inversion::ObservationSet& data,
+             int threads) {
   inversion::EvidenceOptions evidence = o.evidence;
-  evidence.threads = threads_to_use(o.threads);
-  row.evidence = inversion::model_evidence(data, *model, row.fit, priors, fit_options, evidence);
-  row.widened = inversion::model_evidence(data, *model, row.fit, inversion::widened(priors, 10.0), fit_options, evidence);
-  row.band = inversion::predictive_band(row.model, *model, row.fit, row.evidence.samples,
-                                        inversion::curve_frequencies(data));
-  return row;
+  evidence.threads = std::max(1, threads / (2 * static_cast<int>(runs.size())));
+  JobQueue queue;
+  for (ModelRun& run : runs) {
+    queue.add([&run, &o, &data, evidence](JobQueue& next) {
+      fit_model(run, o, data);
+      next.add([&run, &data, evidence](JobQueue&) {
+        std::fprintf(stderr, "sedwave compare: %s: evidence, priors widened x10 ...\n", run.spec.c_str());
+        run.row.widened = inversion::model_evidence(data, *run.model, run.row.fit, inversion::widened(run.priors, 10.0),
+                                                    kFitOptions, evidence);
+      });
+      next.add([&run, &data, evidence](JobQueue& after) {
+        std::fprintf(stderr, "sedwave compare: %s: evidence ...\n", run.spec.c_str());
+        run.row.evidence = inversion::model_evidence(data, *run.model, run.row.fit, run.priors, kFitOptions, evidence);
+        after.add([&run, &data](JobQueue&) {
+          run.row.band = inversion::predictive_band(run.row.model, *run.model, run.row.fit, run.row.evidence.samples,
+                                                    inversion::curve_frequencies(data));
+        });
+      });
+    });
+  }
+  queue.run(threads);
 }
 
 std::vector<int> ranking(const std::vector<Row>& rows, bool widened) {
@@ -252,7 +302,8 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("--steps", o->evidence.steps, "ensemble updates per temperature, the first half burn-in")
       ->capture_default_str()->check(CLI::Range(100, 10000000));
   cmd->add_option("--seed", o->evidence.seed, "seed of the samplers")->capture_default_str();
-  add_threads_option(*cmd, o->threads);
+  add_threads_option(*cmd, o->threads,
+                     "threads that run the models' fits and evidence computations side by side");
   cmd->add_option("--out", o->out, "output directory (compare.json, each model's posterior band, the band plot)")
       ->capture_default_str();
   cmd->add_flag("!--no-plot", o->plot, "skip the gnuplot figure");
@@ -274,11 +325,11 @@ Command add_compare_command(CLI::App& app) {
         throw UsageError("--fit '" + f + "': '" + name_of(f) + "' is not one of --models");
       }
     }
+    std::vector<ModelRun> runs;
+    for (const std::string& spec : model_names) runs.push_back(prepare(spec, *o));
+    run_all(runs, *o, data, threads_to_use(o->threads));
     std::vector<Row> rows;
-    for (const std::string& spec : model_names) {
-      std::fprintf(stderr, "sedwave compare: %s ...\n", spec.c_str());
-      rows.push_back(compare_one(spec, *o, data));
-    }
+    for (ModelRun& run : runs) rows.push_back(std::move(run.row));
     std::printf("sedwave compare: %zu models, %zu observations; ln Z up to a constant common to all models\n",
                 rows.size(), data.observations.size());
     for (const Row& row : rows) {

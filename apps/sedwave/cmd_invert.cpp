@@ -164,6 +164,13 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
   std::printf("\nreport: %s/fit.json, curves: %s/curves.csv\n%s\n", out.c_str(), out.c_str(), plot.message.c_str());
 }
 
+/// Beside an interval that the prior rather than the data made (posterior.hpp, prior_dominated).
+std::string prior_note(const inversion::PosteriorQuantity& q) {
+  if (!q.prior_dominated) return "";
+  return "  PRIOR-CONTROLLED: " + std::to_string(std::lround(100.0 * q.prior_share)) +
+         " % of its spread lies where the data did not narrow the prior";
+}
+
 void print_posterior(const inversion::PosteriorResult& p, const std::string& out) {
   std::printf("\nposterior (%d walkers x %d steps, first half burn-in; acceptance %.2f; %.1f s):\n", p.walkers, p.steps,
               p.acceptance, p.wall_seconds);
@@ -174,7 +181,7 @@ void print_posterior(const inversion::PosteriorResult& p, const std::string& out
   const auto row = [](const inversion::PosteriorQuantity& q) {
     std::printf("  %-16s %-6s %11.4g  %10.4g .. %-10.4g  %10.4g .. %-10.4g %6.3f %7.0f%s\n", q.name.c_str(),
                 q.unit.c_str(), q.median, q.lower_68, q.upper_68, q.lower_95, q.upper_95, q.split_rhat,
-                q.effective_samples, q.prior_dominated ? "  (prior: the data did not inform it)" : "");
+                q.effective_samples, prior_note(q).c_str());
   };
   for (const auto& q : p.parameters) row(q);
   for (const auto& q : p.combinations) row(q);
@@ -236,7 +243,9 @@ Command add_invert_command(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(0, 100000));
   cmd->add_option("--steps", o->posterior.steps, "posterior: ensemble updates, the first half discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
-  add_threads_option(*cmd, o->threads);
+  add_threads_option(*cmd, o->threads,
+                     "posterior: threads that share each half-ensemble's model evaluations (default 1: they wait for "
+                     "each other at every half-step, which costs more than it saves on a busy machine)");
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));

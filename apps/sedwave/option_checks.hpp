@@ -7,7 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <thread>
+
+#include "usable_cores.hpp"
 
 namespace sedwave::app {
 
@@ -39,17 +40,14 @@ inline CLI::Validator finite_positive() {
   return finite_in(std::numeric_limits<double>::denorm_min());
 }
 
-/// The samplers' --threads: 0 means every core this machine has. The samples do not depend on it.
-/// One by default: on a machine that runs other work the threads wait for each other at every
-/// half-ensemble step, and a loaded machine makes two threads slower than one.
-inline void add_threads_option(CLI::App& cmd, int& threads) {
-  cmd.add_option("--threads", threads, "threads that share the model evaluations (0: every core); the samples "
-                                       "do not depend on it")
+/// The samplers' --threads: 0 means every usable core (usable_cores.hpp). The samples do not
+/// depend on it.
+inline void add_threads_option(CLI::App& cmd, int& threads, const std::string& what) {
+  cmd.add_option("--threads", threads, what + " (0: every usable core: OMP_NUM_THREADS, else the CPU affinity); "
+                                       "the results do not depend on it")
       ->capture_default_str()->check(CLI::Range(0, 1024));
 }
 
-inline int threads_to_use(int requested) {
-  return requested > 0 ? requested : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
+inline int threads_to_use(int requested) { return requested > 0 ? requested : usable_cores(); }
 
 }  // namespace sedwave::app

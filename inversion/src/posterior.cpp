@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "fit_problem.hpp"
+#include "prior_control.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/io/column_file.hpp"
 #include "sedwave/sampling/diagnostics.hpp"
@@ -110,7 +111,14 @@ PosteriorQuantity summarize(const std::string& name, const std::string& unit, co
                             double rhat, double ess) {
   const sampling::ParameterSummary m = sampling::summarize(values)[0];
   return {name, unit, m.median, m.central68.lower, m.central68.upper, m.central95.lower, m.central95.upper, rhat, ess,
-          false};
+          false, 0.0};
+}
+
+/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow
+/// (prior_control.hpp).
+void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& control, const Eigen::VectorXd& ln_values) {
+  q.prior_share = control.prior_share(ln_values);
+  q.prior_dominated = q.prior_share > detail::kPriorControlledShare;
 }
 
 /// The free ln-parameters of x placed into theta.
@@ -244,6 +252,9 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const Eigen::MatrixXd pooled = sampling::pooled_samples(run.chains);  // ln values
   result.correlation = sampling::correlation_matrix(pooled);
   result.samples = pooled.array().exp().matrix();
+  const Eigen::MatrixXd jacobian =
+      detail::whitened_jacobian(s, with_free(s, theta, pooled.row(detail::central_draw(pooled)).transpose()));
+  const detail::PriorControl control(pooled, jacobian.transpose() * jacobian);
   for (Eigen::Index j = 0; j < k; ++j) {
     const int i = s.free[static_cast<std::size_t>(j)];
     const ParameterSpec& spec = s.parameters.spec[i];
@@ -252,12 +263,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     result.sample_units.push_back(spec.unit);
     result.priors.push_back(spec.name + ": " + prior.describe(spec.unit));
     PosteriorQuantity q = summarize(spec.name, spec.unit, result.samples.col(j), diagnostics.rhat(j), diagnostics.ess(j));
-    // Prior-dominated: the posterior is about as wide as the prior and sits where the prior does
-    // (within a quarter of the prior's half-width): the data moved it neither way.
-    const PriorQuantiles pq = prior_quantiles(prior);
-    const double prior_width = pq.p84 - pq.p16;
-    q.prior_dominated = std::log(q.upper_68 / q.lower_68) >= 0.8 * prior_width &&
-                        std::abs(std::log(q.median) - pq.p50) <= 0.125 * prior_width;
+    flag_prior_control(q, control, pooled.col(j));
     result.parameters.push_back(q);
   }
 
@@ -282,6 +288,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
       const auto col = static_cast<Eigen::Index>(c);
       result.combinations.push_back(
           summarize(combinations[c].name, combinations[c].unit, all.col(col), d.rhat(col), d.ess(col)));
+      flag_prior_control(result.combinations.back(), control, all.col(col).array().log().matrix());
     }
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -307,7 +314,8 @@ nlohmann::json posterior_report(const PosteriorResult& p) {
                           {"credible_95", {q.lower_95, q.upper_95}},
                           {"split_rhat", q.split_rhat},
                           {"effective_samples", q.effective_samples},
-                          {"prior_dominated", q.prior_dominated}};
+                          {"prior_dominated", q.prior_dominated},
+                          {"prior_share", q.prior_share}};
   };
   for (const auto& q : p.parameters) j["parameters"][q.name] = quantity(q);
   for (const auto& q : p.combinations) j["combinations"][q.name] = quantity(q);

@@ -7,7 +7,7 @@
 // Reported per free parameter and per combination (c0, tau, f*, gamma_hat, kappa/kappa_Hertz where
 // they mean something): the posterior median, the 68 % and 95 % central credible intervals, and the
 // sampler's split-R-hat and effective sample size; plus the acceptance, a convergence verdict with
-// advice, and whether each parameter's marginal is still its prior (the data did not inform it).
+// advice, and whether the prior rather than the data made each interval.
 #include <Eigen/Dense>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -35,10 +35,12 @@ struct PosteriorQuantity {
   double lower_95 = 0.0, upper_95 = 0.0;
   double split_rhat = 0.0;
   double effective_samples = 0.0;
-  /// The 68 % interval spans at least 80 % (in ln) of the prior's own 68 % interval and the median
-  /// lies within a quarter of the prior's half-width of the prior's median: the data did not
-  /// inform this quantity, its posterior is (close to) its prior.
+  /// The prior, not the data, made this interval: the prior supplies more than half of the
+  /// posterior precision behind the quantity's spread (prior_share > 0.5), judged over the whole
+  /// posterior against the data's information at its central draw, so that a ridge through several
+  /// parameters (e.g. kappa d gamma unseen), which no single marginal shows, is flagged too.
   bool prior_dominated = false;
+  double prior_share = 0.0;  ///< the prior's share, 0 (the data alone) .. 1 (the prior alone)
 };
 
 struct PosteriorResult {
