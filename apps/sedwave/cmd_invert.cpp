@@ -167,8 +167,7 @@ void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& 
 /// Beside an interval that the prior rather than the data made (posterior.hpp, prior_dominated).
 std::string prior_note(const inversion::PosteriorQuantity& q) {
   if (!q.prior_dominated) return "";
-  return "  PRIOR-CONTROLLED: " + std::to_string(std::lround(100.0 * q.prior_share)) +
-         " % of its spread lies where the data did not narrow the prior";
+  return "  PRIOR-CONTROLLED (prior's share " + std::to_string(std::lround(100.0 * q.prior_share)) + " %)";
 }
 
 void print_posterior(const inversion::PosteriorResult& p, const std::string& out) {

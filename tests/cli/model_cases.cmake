@@ -102,6 +102,9 @@ sedwave_cli_case(compare.writes_each_models_band 0 "^posterior bands: .*/predict
   compare ${OBS} --models edfm,grain-shearing ${COMPARE_FAST} --no-plot --out ${CLI_OUT}/compare_bands)
 sedwave_cli_case(compare.threads_must_be_a_count 2 "--threads: Value -1 not in range"
   compare ${OBS} --models edfm --threads -1 --out ${CLI_OUT}/compare_never)
+# The models' jobs run side by side on the default thread count; the results are those of 1 thread.
+add_test(NAME cli.compare.threads_give_the_same_results
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/compare_threads_agree.sh $<TARGET_FILE:sedwave> ${OBS} ${CLI_OUT}/compare_threads)
 # A combination made of fixed parameters only (c0 with d from --phi and kappa from --depth) is known
 # exactly, and checked for plausibility like a fitted value.
 sedwave_cli_case(invert.fixed_combination_is_checked 3 "! c0 = 409.3 is below the physical range"
