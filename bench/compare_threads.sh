@@ -33,6 +33,7 @@ fingerprint() {  # DIR
 }
 
 declare -A times
+load_before=$(uptime | sed 's/.*load/load/')
 for run in $(seq 1 "$RUNS"); do
   for t in "${VARIANTS[@]}"; do
     times[$t]+="$(run_once "$t" "$run") "
@@ -53,4 +54,4 @@ for t in "${VARIANTS[@]}"; do
   printf "%-22s | %8s | %8.2f | %-36s | %s\n" "$label" "$m" "$(python3 -c "print($m / $base)")" \
     "$(printf '%.2f ' ${times[$t]})" "$identical"
 done
-echo "runs alternate 1, 2, default; pinned with taskset -c 0,1; load while measuring: $(uptime | sed 's/.*load/load/')"
+echo "runs alternate 1, 2, default, pinned with taskset -c 0,1; $(nproc) usable cores; $load_before before, $(uptime | sed 's/.*load/load/') after"

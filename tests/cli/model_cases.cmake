@@ -56,9 +56,12 @@ sedwave_cli_case(invert.site_temperature_outside_mackenzie 1 "temperature T = 35
   invert ${OBS} --model edfm --fit permeability --water-temperature 35 --salinity 35 ${FAST})
 
 # The Bayesian posterior (--method posterior): priors printed with their source, credible intervals,
-# R-hat and ESS; an unseen parameter is said to follow its prior; bad priors are refused.
-sedwave_cli_case(invert.posterior_prior_on_d 3 "^  d +m +0.000297[0-9]* +0.00022[0-9]* \\.\\. 0.00040[0-9]* .*\\(prior: the data did not inform it\\)"
+# R-hat and ESS; an interval the prior made is flagged (d, unseen, and kappa, which c0 ties to it);
+# bad priors are refused.
+sedwave_cli_case(invert.posterior_prior_on_d 3 "^  d +m +0.000297[0-9]* +0.00022[0-9]* \\.\\. 0.00040[0-9]* .*PRIOR-CONTROLLED \\(prior's share 100 %\\)"
   invert ${OBS} --method posterior --prior d=log-normal:3e-4,0.3 --steps 4000 --no-plot --out ${CLI_OUT}/posterior)
+sedwave_cli_case(invert.posterior_flags_a_ridge_parameter 3 "^  kappa +N/m .*PRIOR-CONTROLLED \\(prior's share"
+  invert ${OBS} --method posterior --prior d=log-normal:3e-4,0.3 --steps 4000 --no-plot --out ${CLI_OUT}/posterior_ridge)
 sedwave_cli_case(invert.posterior_lists_priors 3 "^    d: log-normal\\(median 0.0003 m, sd of ln 0.3\\) on the bounds .*\\(command line\\)"
   invert ${OBS} --method posterior --prior d=log-normal:3e-4,0.3 --steps 4000 --no-plot --out ${CLI_OUT}/posterior2)
 sedwave_cli_case(invert.prior_without_posterior 2 "--prior is for --method posterior"
