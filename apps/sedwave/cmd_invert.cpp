@@ -243,8 +243,8 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--steps", o->posterior.steps, "posterior: ensemble updates, the first half discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
   add_threads_option(*cmd, o->threads,
-                     "posterior: threads that share each half-ensemble's model evaluations (default 1: they wait for "
-                     "each other at every half-step, which costs more than it saves on a busy machine)");
+                     "posterior: threads that share each half-ensemble's evaluations (they meet at every "
+                     "half-step, which on a busy machine costs more than it saves)");
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));
