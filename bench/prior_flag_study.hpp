@@ -14,12 +14,17 @@
 //   well-determined sets: the band's top at omega_hat in [1.3, 1.9], a factor 20 wide: the data
 //     resolve the dispersion and see all three. d in [0.1, 1] mm, c0 in [1500, 1900] m/s,
 //     gamma_hat in [0.3, 3]; 1-3 % attenuation noise, 0.2-0.6 % in speed.
+// Either prior: the default, or a site prior that knows each of kappa, d, gamma to a factor e
+// (log-normal, sd of ln 1, its median the truth times e^N(0, 1)).
 // A ridge set counts as flagged when all of kappa, d and gamma are flagged; a well-determined set
 // counts as (falsely) flagged when any of them is.
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "sedwave/forward/theory/lattice.hpp"
 #include "sedwave/forward/units.hpp"
@@ -30,6 +35,7 @@
 namespace sedwave::bench {
 
 enum class FlagSet { Ridge, WellDetermined };
+enum class FlagPriors { Default, Site };
 
 struct FlagSetResult {
   std::array<bool, 3> flagged{};        ///< kappa, d, gamma
@@ -38,7 +44,8 @@ struct FlagSetResult {
   bool converged = false;
 };
 
-inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int steps) {
+inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int steps,
+                                  FlagPriors prior_kind = FlagPriors::Default) {
   std::mt19937_64 rng(seed * 1000033ull + static_cast<unsigned>(index) * 2ull + (kind == FlagSet::Ridge ? 0u : 1u));
   auto log_uniform = [&](double lo, double hi) {
     return std::exp(std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(rng));
@@ -68,8 +75,18 @@ inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int st
   const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
   const inversion::FitParameters start;  // kappa, d, gamma free from their defaults, as a user starts
   const inversion::FitResult best = inversion::fit(data, *frame, start, fit_options);
+  std::vector<std::string> prior_items;
+  if (prior_kind == FlagPriors::Site) {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (const int i : {inversion::kKappa, inversion::kDiameter, inversion::kDamping}) {
+      char item[96];
+      std::snprintf(item, sizeof item, "%s=log-normal:%.17g,1", truth.spec[i].name.c_str(),
+                    truth.spec[i].value * std::exp(normal(rng)));
+      prior_items.emplace_back(item);
+    }
+  }
   const inversion::PosteriorResult posterior =
-      inversion::sample_posterior(data, *frame, best, inversion::make_priors(best.fitted, {}), fit_options,
+      inversion::sample_posterior(data, *frame, best, inversion::make_priors(best.fitted, prior_items), fit_options,
                                   {.steps = steps, .seed = seed + static_cast<unsigned>(index)});
   FlagSetResult r;
   r.converged = posterior.converged;
