@@ -71,7 +71,7 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   dashpot_.resize(n);
   drive_.resize(n);
   build_pairs();
-  compute_forces();
+  compute_forces(0.0);
 }
 
 void GranularPlate::set_drive(ForcePulse pulse) {
@@ -80,12 +80,12 @@ void GranularPlate::set_drive(ForcePulse pulse) {
       throw std::out_of_range("interface: driven grain index out of range");
   if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: force pulse duration must be > 0");
   pulse_ = std::move(pulse);
-  compute_forces();
+  compute_forces(0.0);
 }
 
 void GranularPlate::refresh_forces() {
   build_pairs();
-  compute_forces();
+  compute_forces(0.0);
 }
 
 // Cell list over the packing's bounding box; a pair is listed while |x_i - x_j| < r_i + r_j + skin
@@ -153,7 +153,9 @@ void GranularPlate::add_grain_pair(const Pair& p) {
   const double effective_mass = gi.mass * gj.mass / (gi.mass + gj.mass);
   const dem::HertzNormal law{grain_modulus_, dashpot_alpha_};
   const auto pair = law.pair(effective_mass, gi.radius, gj.radius);
-  const double vrx = gi.vx - gj.vx, vry = gi.vy - gj.vy;
+  const auto& si = seen_[static_cast<std::size_t>(p.i)];
+  const auto& sj = seen_[static_cast<std::size_t>(p.j)];
+  const double vrx = si.vx - sj.vx, vry = si.vy - sj.vy;
   const double vn = vrx * nx + vry * ny;
   const double spring = law.spring(overlap, pair);
   const double dashpot = -law.dashpot_at(overlap, pair) * vn;
@@ -170,7 +172,7 @@ void GranularPlate::add_grain_pair(const Pair& p) {
   // lever arms a = r - delta/2; torques -a n x F_t on both grains.
   const double arm_i = gi.radius - 0.5 * overlap, arm_j = gj.radius - 0.5 * overlap;
   const double tx = -ny, ty = nx;
-  const double roll = arm_i * gi.spin + arm_j * gj.spin;
+  const double roll = arm_i * si.spin + arm_j * sj.spin;
   const Vec3 slip{vrx - vn * nx - roll * tx, vry - vn * ny - roll * ty, 0.0};
   const dem::CoulombTanhFriction friction{contacts_.friction, contacts_.tanh_velocity_scale};
   const dem::ContactPoint point{{nx, ny, 0.0}, overlap, vn, gi.radius, gj.radius};
@@ -210,8 +212,9 @@ void GranularPlate::add_plate_contact(int index) {
   if (contacts_.friction <= 0.0) return;
   const auto xa = static_cast<std::size_t>(2 * e.node_left), xb = static_cast<std::size_t>(2 * e.node_right);
   // Slip of the grain's lowest point against the edge: v_x + w r - v_edge,x (z x (-r y) = r x).
-  const double edge_vx = e.shape_left * v_[xa] + e.shape_right * v_[xb];
-  const Vec3 slip{g.vx + g.spin * g.radius - edge_vx, 0.0, 0.0};
+  const double edge_vx = e.shape_left * plate_seen_[xa] + e.shape_right * plate_seen_[xb];
+  const auto& seen = seen_[static_cast<std::size_t>(index)];
+  const Vec3 slip{seen.vx + seen.spin * g.radius - edge_vx, 0.0, 0.0};
   const dem::CoulombTanhFriction friction{contacts_.friction, contacts_.tanh_velocity_scale};
   const dem::ContactPoint point{{0.0, 1.0, 0.0}, overlap, 0.0, g.radius, inf};
   Vec3 unused;
@@ -224,7 +227,28 @@ void GranularPlate::add_plate_contact(int index) {
   plate_tangential_force_ -= ft;
 }
 
-void GranularPlate::compute_forces() {
+// Velocity-dependent forces (friction, dashpots) at t + dt see the half-step velocity advanced by the
+// old acceleration, v(t + dt/2) + (dt/2) a(t), which is v(t + dt) to O(dt^2). With the half-step
+// velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
+// frictional run (measured: order 1.2 in the tolerance instead of 2).
+void GranularPlate::compute_forces(double half_step) {
+  seen_.resize(grains_.size());
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto& g = grains_[i];
+    const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
+    seen_[i] = {g.vx + half_step * (c.fx + f.fx + d.fx + w.fx) / g.mass,
+                g.vy + half_step * (c.fy + f.fy + d.fy + w.fy) / g.mass,
+                contacts_.rotation ? g.spin + half_step * (c.torque + f.torque) / g.inertia : 0.0};
+  }
+  if (plate_) {
+    plate_seen_.resize(v_.size());
+    const auto& mass = plate_->mass();
+    const auto& damping = plate_->damping();
+    for (std::size_t d = 0; d < v_.size(); ++d) {
+      const double force = f_conservative_.empty() ? 0.0 : f_conservative_[d] + f_friction_[d];
+      plate_seen_[d] = plate_->fixed()[d] ? 0.0 : v_[d] + half_step * (force - damping[d] * v_[d]) / mass[d];
+    }
+  }
   std::fill(conservative_.begin(), conservative_.end(), Parts{});
   std::fill(friction_.begin(), friction_.end(), Parts{});
   std::fill(dashpot_.begin(), dashpot_.end(), Parts{});
@@ -375,7 +399,7 @@ double GranularPlate::step(double max_dt) {
   drift(dt);
   time_ += dt;
   if (pairs_stale()) build_pairs();
-  compute_forces();
+  compute_forces(0.5 * dt);
   kick(0.5 * dt, true);
   ++steps_;
   return dt;

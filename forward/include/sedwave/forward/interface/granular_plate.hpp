@@ -130,7 +130,7 @@ class GranularPlate {
   };
   void build_pairs();
   bool pairs_stale() const;
-  void compute_forces();
+  void compute_forces(double half_step);
   void add_grain_pair(const Pair& p);
   void add_plate_contact(int g);
   void kick(double h, bool second_half);
@@ -150,6 +150,11 @@ class GranularPlate {
   double skin_ = 0.0;
 
   std::vector<Parts> conservative_, friction_, dashpot_, drive_;
+  struct Motion {  // the velocity and spin a velocity-dependent force sees
+    double vx, vy, spin;
+  };
+  std::vector<Motion> seen_;
+  std::vector<double> plate_seen_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
   std::optional<ForcePulse> pulse_;
 
