@@ -390,9 +390,13 @@ StepLimits GranularPlate::current_limits() const {
   return limits;
 }
 
-double GranularPlate::step(double max_dt) {
-  limits_ = current_limits();
-  const double dt = std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
+double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
+
+double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
+  limits_ = limits;
+  const double dt = control_.fixed_step > 0.0
+                        ? std::min(control_.fixed_step, max_dt)
+                        : std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
   kick(0.5 * dt, false);
@@ -405,15 +409,19 @@ double GranularPlate::step(double max_dt) {
   return dt;
 }
 
+double GranularPlate::step_towards(double t_end) {
+  const double left = t_end - time_;
+  const StepLimits limits = current_limits();
+  const double free_step =
+      control_.fixed_step > 0.0 ? control_.fixed_step
+                                : std::min({control_.tolerance * limits.tightest(), limits.travel, control_.max_step});
+  const double dt = step_with(limits, (left > free_step && left < 2.0 * free_step) ? 0.5 * left : left);
+  if (t_end - time_ < 1e-9 * dt) time_ = t_end;  // round-off, not a step
+  return dt;
+}
+
 void GranularPlate::advance_to(double t_end) {
-  // Land exactly on t_end without a sliver of a last step: the last two steps share what is left.
-  while (time_ < t_end) {
-    const double left = t_end - time_;
-    const double dt_free = std::min({control_.tolerance * current_limits().tightest(), control_.max_step});
-    const double cap = (left > dt_free && left < 2.0 * dt_free) ? 0.5 * left : left;
-    step(cap);
-    if (t_end - time_ < 1e-14 * std::max(1.0, std::abs(t_end))) time_ = t_end;
-  }
+  while (time_ < t_end) step_towards(t_end);
 }
 
 Energies GranularPlate::energies() const {

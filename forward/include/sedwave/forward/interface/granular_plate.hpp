@@ -38,6 +38,8 @@ struct InterfaceContacts {
 struct StepControl {
   double tolerance = 0.1;  ///< theta in (0, 0.5]: 0.5 leaves room for a packing's collective modes
   double max_step = std::numeric_limits<double>::infinity();
+  /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
+  double fixed_step = 0.0;
 };
 
 /// Each limit of the last step (infinite where no such contact exists) and the step taken.
@@ -89,7 +91,10 @@ class GranularPlate {
 
   /// One step of at most max_dt; returns the step taken.
   double step(double max_dt = std::numeric_limits<double>::infinity());
-  /// Steps until time t_end exactly (the last step is shortened to land on it).
+  /// One step towards t_end, shortened so that the steps land on t_end exactly without a sliver of
+  /// a last step (the last two share what is left); returns the step taken.
+  double step_towards(double t_end);
+  /// Steps until time t_end exactly.
   void advance_to(double t_end);
 
   void set_drive(ForcePulse pulse);
@@ -128,6 +133,7 @@ class GranularPlate {
   struct Parts {  // forces on one grain by kind: conservative, friction, dashpot, drive
     double fx = 0.0, fy = 0.0, torque = 0.0;
   };
+  double step_with(const StepLimits& limits, double max_dt);
   void build_pairs();
   bool pairs_stale() const;
   void compute_forces(double half_step);
