@@ -101,7 +101,7 @@ Command add_interface_command(CLI::App& app) {
       "interface", "Run a granular-solid interface scene: 2D grains on an elastic plate (docs/interface.md)");
   cmd->add_option("scene", o->scene, "interface scene file (TOML, SI units)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "run file to write (HDF5)")->capture_default_str();
-  cmd->add_option("--csv", o->csv, "also write energies.csv, probes.csv, snapshot.csv into this directory");
+  cmd->add_option("--csv", o->csv, "also write energies.csv, probes.csv and snapshot_K.csv (K = 1, 2, ...) into this directory");
   cmd->add_option("--speed", o->speed, "override the drive's speed [m/s] (velocity drives)");
   cmd->add_option("--tolerance", o->tolerance, "override the adaptive step's tolerance theta, in (0, 0.5]");
   cmd->add_option("--fixed-step", o->fixed_step, "a fixed step [s] instead of the adaptive one (for comparisons)");

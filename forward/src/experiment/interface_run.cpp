@@ -265,10 +265,11 @@ void write_interface_csv(const std::filesystem::path& dir, const InterfaceScene&
       f << "\n";
     }
   });
-  if (!r.snapshots.empty()) {
-    io::write_text_atomically(dir / "snapshot.csv", [&](std::ostream& f) {
-      f << "# plate displacement at t = " << r.snapshot_time.back() << " s; x_m,y_m,ux_m,uy_m (blank line per row of nodes)\n";
-      const auto& u = r.snapshots.back();
+  for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
+    io::write_text_atomically(dir / ("snapshot_" + std::to_string(k + 1) + ".csv"), [&](std::ostream& f) {
+      f << "# plate displacement at t = " << r.snapshot_time[k]
+        << " s; x_m,y_m,ux_m,uy_m (blank line per row of nodes)\n";
+      const auto& u = r.snapshots[k];
       const std::size_t nx = r.line_nodes.size();
       for (std::size_t n = 0; n < r.node_x.size(); ++n) {
         f << r.node_x[n] << "," << r.node_y[n] << "," << u[2 * n] << "," << u[2 * n + 1] << "\n";

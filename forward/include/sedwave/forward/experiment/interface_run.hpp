@@ -47,7 +47,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress);
 /// Writes the run atomically (every dataset states its unit in an attribute).
 void write_interface_run_file(const std::filesystem::path& path, const InterfaceScene& scene, const InterfaceRun& run);
 
-/// energies.csv, probes.csv, snapshot.csv (the last snapshot) and line.csv under `dir`, for plots.
+/// energies.csv, probes.csv and snapshot_K.csv (K = 1, 2, ...: each snapshot) under `dir`, for plots.
 void write_interface_csv(const std::filesystem::path& dir, const InterfaceScene& scene, const InterfaceRun& run);
 
 }  // namespace sedwave::forward::experiment

@@ -1,0 +1,11 @@
+# Command-line cases of `sedwave interface` (docs/interface.md): bad scene values are refused naming
+# file, line, key and accepted range; a tiny scene runs and closes its energy balance. Files under
+# data/interface/.
+set(INTERFACE_DATA ${CLI_DATA}/interface)
+set(INTERFACE_OUT ${CLI_OUT}/interface)
+file(MAKE_DIRECTORY ${INTERFACE_OUT})
+sedwave_cli_case(interface.bad_poisson 1 [=[bad_poisson\.toml:5: key 'plate\.poisson_ratio' = 0\.6: accepted range \[0, 0\.5\)]=] interface ${INTERFACE_DATA}/bad_poisson.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.misspelt_key 1 [=[misspelt_key\.toml:11: key 'packing\.colums': unknown key]=] interface ${INTERFACE_DATA}/misspelt_key.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.packing_wider_than_plate 1 [=[packing_too_wide\.toml:[0-9]+: \[packing\]: 'x_offset' \(default\): the packing \(0\.1525 m wide\) must lie over the plate \(0\.024 m\)]=] interface ${INTERFACE_DATA}/packing_too_wide.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.output_over_scene 2 [=[--out.*scene|input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_DATA}/tiny.toml)
+sedwave_cli_case(interface.tiny_run 0 [=[6 grains \(3 driven\), 8 x 4 plate elements.*energy balance within [0-9.e-]+ of the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/tiny.h5)
