@@ -8,4 +8,4 @@ sedwave_cli_case(interface.bad_poisson 1 [=[bad_poisson\.toml:4: key 'plate\.poi
 sedwave_cli_case(interface.misspelt_key 1 [=[misspelt_key\.toml:10: key 'packing\.colums': unknown key]=] interface ${INTERFACE_DATA}/misspelt_key.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.packing_wider_than_plate 1 [=[packing_too_wide\.toml:[0-9]+: \[packing\]: 'x_offset' \(default\): the packing \(0\.1525 m wide\) must lie over the plate \(0\.024 m\)]=] interface ${INTERFACE_DATA}/packing_too_wide.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.output_over_scene 2 [=[--out: output .*would overwrite the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_DATA}/tiny.toml)
-sedwave_cli_case(interface.tiny_run 0 [=[largest share in the plate [0-9.]+; energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/tiny.h5)
+sedwave_cli_case(interface.tiny_run 0 [=[largest share in the plate [0-9.]+. energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/tiny.h5)
