@@ -13,6 +13,7 @@
 #include "output_paths.hpp"
 #include "sedwave/forward/experiment/interface_run.hpp"
 #include "sedwave/forward/experiment/interface_scene.hpp"
+#include "sedwave/forward/experiment/interface_spectrum.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -53,6 +54,16 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
   for (std::size_t p = 0; p < r.probe_nodes.size(); ++p) {
     const auto n = static_cast<std::size_t>(r.probe_nodes[p]);
     std::printf("probe at x = %.4g m, y = %.4g m: arrival %.6g s\n", r.node_x[n], r.node_y[n], r.arrival[p]);
+  }
+  const double spacing = r.node_x.size() > 1 ? r.node_x[1] - r.node_x[0] : 1.0;
+  const auto spread = experiment::wavenumber_spread(r, scene.plate_material.density, scene.plate_material.thickness,
+                                                    spacing);
+  if (spread.last > spread.first + 2) {
+    std::printf("line at y = %.4g m: wavenumber variance sigma_k^2 from %.4g to %.4g rad^2/m^2 over %.4g .. %.4g s; "
+                "linear fit %.4g rad^2/m^2/s (R^2 = %.3f)\n",
+                r.node_y[static_cast<std::size_t>(r.line_nodes.front())], spread.variance[spread.first],
+                spread.variance[spread.last - 1], r.series.time[spread.first], r.series.time[spread.last - 1],
+                spread.growth.slope, spread.growth.r_squared);
   }
   std::printf("largest grain-plate contact radius %.3g m against element size %.3g m\n", r.max_contact_radius,
               r.element_size);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "../io/hdf5.hpp"
+#include "sedwave/forward/experiment/interface_spectrum.hpp"
 #include "sedwave/io/atomic_file.hpp"
 
 namespace sedwave::forward::experiment {
@@ -215,6 +216,17 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     h5::write_attribute(line, "y", r.node_y[static_cast<std::size_t>(r.line_nodes.front())]);
     write_with_unit(line, "velocity_x", flatten(r.line_vx), "m/s", lx.size());
     write_with_unit(line, "velocity_y", flatten(r.line_vy), "m/s", lx.size());
+    const WavenumberSpread spread = wavenumber_spread(r, scene.plate_material.density, scene.plate_material.thickness,
+                                                      lx.size() > 1 ? lx[1] - lx[0] : 1.0);
+    write_with_unit(line, "k", spread.k, "rad/m");
+    write_with_unit(line, "energy_spectrum", flatten(spread.energy), "J/m", spread.k.size());
+    write_with_unit(line, "line_energy", spread.line_energy, "J/m");
+    write_with_unit(line, "k_variance", spread.variance, "rad^2/m^2");
+    h5::write_attribute(line, "k_variance_rate", spread.growth.slope);
+    h5::write_attribute(line, "k_variance_intercept", spread.growth.intercept);
+    h5::write_attribute(line, "k_variance_r_squared", spread.growth.r_squared);
+    h5::write_attribute(line, "fit_first_time", s.time[std::min(spread.first, s.time.size() - 1)]);
+    h5::write_attribute(line, "fit_last_time", s.time[std::min(spread.last, s.time.size()) - 1]);
 
     h5::Handle snap = h5::create_group(file, "snapshots");
     write_with_unit(snap, "node_x", r.node_x, "m");

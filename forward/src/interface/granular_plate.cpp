@@ -24,14 +24,14 @@ double oscillator_limit(double omega_squared, double beta) {
   return denominator > 0.0 ? 4.0 / denominator : inf;
 }
 
-/// The largest overlap a Hertz pair can reach from its state: its elastic energy now plus the
-/// relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2) + m v_n^2 / 2
-/// when closing (v_n < 0). Zero when neither touching nor closing.
-double predicted_overlap(double overlap, double normal_velocity, double effective_mass, double k_hertz) {
+/// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
+/// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
+/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing.
+double reach_energy(double overlap, double normal_velocity, double effective_mass, double k_hertz) {
   const double touching = std::max(overlap, 0.0);
   double e = touching * touching * std::sqrt(touching);
   if (normal_velocity < 0.0) e += 1.25 * effective_mass * normal_velocity * normal_velocity / k_hertz;
-  return e > 0.0 ? std::pow(e, 0.4) : 0.0;
+  return e;
 }
 
 }  // namespace
@@ -321,11 +321,16 @@ void GranularPlate::drift(double h) {
   for (std::size_t d = 0; d < u_.size(); ++d) u_[d] += h * v_[d];
 }
 
+// Every Hertz limit is a function of omega^2 = (3/2)(k/m) delta_max^(1/2) alone (the Tsuji dashpot's
+// beta^2 = alpha^2 omega^2 / (3/2) follows it), and omega^10 is proportional to (k/m)^5 delta_max^(5/2):
+// the loop keeps the largest of those, scaled by the first pair's k/m against overflow, and takes one
+// fifth root at the end instead of a power per pair. Coulomb-tanh limits fall with their beta alone.
 StepLimits GranularPlate::current_limits() const {
   StepLimits limits;
   const double omega_plate = plate_ ? plate_->max_frequency_bound() : 0.0;
   if (plate_) limits.plate = plate_->stable_time_step();
   const double mu_ks = contacts_.friction * contacts_.tanh_velocity_scale;
+  double rate_scale = 0.0, largest = 0.0, beta_friction = 0.0;
   for (const auto& p : pairs_) {
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
@@ -333,16 +338,13 @@ StepLimits GranularPlate::current_limits() const {
     const double d = std::sqrt(dx * dx + dy * dy);
     const double overlap = gi.radius + gj.radius - d;
     const double vn = ((gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy) / d;
+    if (overlap <= 0.0 && vn >= 0.0) continue;
     const double m = gi.mass * gj.mass / (gi.mass + gj.mass);
     const double r = gi.radius * gj.radius / (gi.radius + gj.radius);
     const double k = (4.0 / 3.0) * grain_modulus_ * std::sqrt(r);
-    const double reach = predicted_overlap(overlap, vn, m, k);
-    if (reach <= 0.0) continue;
-    // Tangent stiffness (3/2) k delta^(1/2) at the largest overlap this collision can reach, and the
-    // Hertz-Tsuji dashpot alpha sqrt(m k) delta^(1/4) there.
-    const double omega2 = 1.5 * k * std::sqrt(reach) / m;
-    const double beta = dashpot_alpha_ * std::sqrt(m * k) * std::sqrt(std::sqrt(reach)) / m;
-    limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, beta));
+    if (rate_scale == 0.0) rate_scale = k / m;
+    const double ratio = k / m / rate_scale;
+    largest = std::max(largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, m, k));
     if (mu_ks > 0.0 && overlap > 0.0) {
       // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b);
       // against the tangential effective mass 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for
@@ -354,14 +356,22 @@ StepLimits GranularPlate::current_limits() const {
         const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
         inverse_mt += ai * ai / gi.inertia + aj * aj / gj.inertia;
       }
-      limits.friction = std::min(limits.friction, oscillator_limit(0.0, mu_ks * fn * inverse_mt));
+      beta_friction = std::max(beta_friction, mu_ks * fn * inverse_mt);
     }
   }
-  double v_max = 0.0;
-  for (const auto& g : grains_) v_max = std::max(v_max, std::hypot(g.vx, g.vy));
-  if (v_max > 0.0) limits.travel = 0.5 * skin_ / v_max;
+  if (largest > 0.0) {
+    // Tangent stiffness (3/2) k delta^(1/2) at the largest overlap a collision can reach, and the
+    // Hertz-Tsuji dashpot alpha sqrt(m k) delta^(1/4) there.
+    const double omega2 = 1.5 * rate_scale * std::pow(largest, 0.2);
+    limits.hertz = oscillator_limit(omega2, dashpot_alpha_ * std::sqrt(omega2 / 1.5));
+  }
+  if (beta_friction > 0.0) limits.friction = oscillator_limit(0.0, beta_friction);
+  double v2_max = 0.0;
+  for (const auto& g : grains_) v2_max = std::max(v2_max, g.vx * g.vx + g.vy * g.vy);
+  if (v2_max > 0.0) limits.travel = 0.5 * skin_ / std::sqrt(v2_max);
   if (!plate_) return limits;
   const auto& mass = plate_->mass();
+  double plate_scale = 0.0, plate_largest = 0.0, plate_beta = 0.0;
   for (const auto& g : grains_) {
     if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;
     const auto e = plate_->top_edge_point(g.x);
@@ -369,24 +379,30 @@ StepLimits GranularPlate::current_limits() const {
     const double overlap = g.radius - (g.y - (e.shape_left * u_[ya] + e.shape_right * u_[yb]));
     if (overlap < -skin_) continue;
     const double vn = g.vy - (e.shape_left * v_[ya] + e.shape_right * v_[yb]);
+    if (overlap <= 0.0 && vn >= 0.0) continue;
     // The edge moves with the nodes: 1/m_eff = 1/m_g + sum_a N_a^2 / M_a.
     const double edge_inverse_mass =
         e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
     const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
-    const double reach = predicted_overlap(overlap, vn, 1.0 / inverse_m, k);
-    if (reach <= 0.0) continue;
-    // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
-    const double omega2 = omega_plate * omega_plate + 1.5 * k * std::sqrt(reach) * inverse_m;
-    limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
+    if (plate_scale == 0.0) plate_scale = k * inverse_m;
+    const double ratio = k * inverse_m / plate_scale;
+    plate_largest =
+        std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, 1.0 / inverse_m, k));
     if (mu_ks > 0.0 && overlap > 0.0) {
       const double fn = k * overlap * std::sqrt(overlap);
       double inverse_mt = 1.0 / g.mass + edge_inverse_mass;  // x and y masses of a node are equal
       if (contacts_.rotation) inverse_mt += g.radius * g.radius / g.inertia;  // 2m/7 on a rigid wall
-      limits.friction =
-          std::min(limits.friction, oscillator_limit(omega_plate * omega_plate, mu_ks * fn * inverse_mt));
+      plate_beta = std::max(plate_beta, mu_ks * fn * inverse_mt);
     }
   }
+  // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
+  if (plate_largest > 0.0) {
+    const double omega2 = omega_plate * omega_plate + 1.5 * plate_scale * std::pow(plate_largest, 0.2);
+    limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
+  }
+  if (plate_beta > 0.0)
+    limits.friction = std::min(limits.friction, oscillator_limit(omega_plate * omega_plate, plate_beta));
   return limits;
 }
 
