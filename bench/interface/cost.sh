@@ -10,7 +10,7 @@
 #   bench/interface/cost.sh [SEDWAVE [OUT]]
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-SEDWAVE=${1:-$ROOT/build/bin/sedwave}
+SEDWAVE=$(realpath "${1:-$ROOT/build/bin/sedwave}")
 OUT=${2:-${TMPDIR:-/tmp}/sedwave-bench-interface}
 mkdir -p "$OUT" && cd "$OUT"
 SCENE=$ROOT/examples/11-granular-plate/scene.toml
