@@ -44,6 +44,7 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
               e.boundary_work / in);
   std::printf("largest share in the plate %.4f; energy balance within %.3g of the input\n", plate_peak / in,
               r.worst_balance);
+  std::printf("kinetic energy left in the three rows at the free end: %.4f of the input\n", r.near_impact_share);
   double min_step = INFINITY, max_step = 0.0;
   for (std::size_t k = 1; k < r.series.time.size(); ++k) {
     min_step = std::min(min_step, r.series.step_min[k]);

@@ -69,6 +69,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
     for (int i = 0; i < plate.nodes_x(); ++i) out.line_nodes.push_back(row + i);
   }
 
+  const std::vector<interface::Grain> grains_at_start = grains;
   interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts,
                                interface::StepControl{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
                                                       scene.recording.fixed_step});
@@ -134,6 +135,18 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
   for (std::size_t p = 0; p < out.probe_nodes.size(); ++p)
     out.arrival.push_back(arrival_time(out.series.time, out.probe_velocity[p], rec.arrival_fraction));
   out.final_grains = run.grains();
+  {
+    const double r = scene.packing.radius, layer = (2.0 * r + scene.packing.gap) * std::sqrt(3.0) / 2.0;
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& g : grains_at_start) top = std::max(top, g.y);
+    double near = 0.0;
+    for (std::size_t i = 0; i < out.final_grains.size(); ++i) {
+      const auto& g = out.final_grains[i];
+      if (grains_at_start[i].y < top - 2.5 * layer) continue;
+      near += 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy) + 0.5 * g.inertia * g.spin * g.spin;
+    }
+    out.near_impact_share = near / std::max(out.input_energy, 1e-300);
+  }
   out.max_contact_radius = run.max_plate_contact_radius();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -170,6 +183,7 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     h5::write_string_dataset(file, "scene", scene.text);
     h5::write_attribute(file, "input_energy", r.input_energy);
     h5::write_attribute(file, "worst_energy_balance", r.worst_balance);
+    h5::write_attribute(file, "near_impact_share", r.near_impact_share);
     h5::write_attribute(file, "max_plate_contact_radius", r.max_contact_radius);
     h5::write_attribute(file, "element_size", r.element_size);
     h5::write_attribute(file, "wall_seconds", r.seconds);

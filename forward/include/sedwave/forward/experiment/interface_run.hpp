@@ -37,6 +37,9 @@ struct InterfaceRun {
   double max_contact_radius = 0.0;             ///< [m] largest grain-plate contact radius
   double element_size = 0.0;                   ///< [m] min(a, b)
   double worst_balance = 0.0;                  ///< max |balance - input| / input over the samples
+  /// Kinetic energy (translation and rotation) left at the end in the three rows nearest the free
+  /// end, as a fraction of the input: how much stays localised near the impact.
+  double near_impact_share = 0.0;
   double seconds = 0.0;                        ///< wall-clock time of the run
 };
 
