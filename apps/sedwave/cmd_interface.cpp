@@ -37,6 +37,9 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
   for (const auto& s : r.series.energies) plate_peak = std::max(plate_peak, s.plate_kinetic + s.plate_strain);
   std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
               r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  if (scene.packing_load > 0.0)
+    std::printf("precompression %.6g N on each bead of the free row: relaxed in %ld steps\n", scene.packing_load,
+                r.relaxation_steps);
   std::printf("input energy %.6g J; at t = %.6g s: grains %.4f (rotation %.4f), contacts %.4f, plate %.4f, "
               "friction %.4f, dashpots %.4f, absorbed by the plate's edges %.4f of it\n",
               in, r.series.time.back(), (e.grain_translation + e.grain_rotation) / in, e.grain_rotation / in,

@@ -56,8 +56,6 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
   plate::ElasticPlate plate(scene.plate_material, scene.mesh, scene.edges);
   auto grains = interface::make_hex_packing(scene.packing);
   out.driven = driven_grains(grains, scene.drive.width, 0.5 * scene.mesh.length_x);
-  if (scene.drive.kind == InterfaceDrive::Kind::velocity)
-    for (const int g : out.driven) grains[static_cast<std::size_t>(g)].vy = -scene.drive.speed;
   for (int n = 0; n < plate.node_count(); ++n) {
     out.node_x.push_back(plate.node_x(n));
     out.node_y.push_back(plate.node_y(n));
@@ -73,8 +71,19 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
   interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts,
                                interface::StepControl{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
                                                       scene.recording.fixed_step});
-  if (scene.drive.kind == InterfaceDrive::Kind::force)
+  double static_energy = 0.0;
+  if (scene.packing_load > 0.0) {
+    // Static precompression: the whole free row pushed towards the plate, relaxed to rest first.
+    run.set_static_load(driven_grains(run.grains(), 0, 0.5 * scene.mesh.length_x), 0.0, -scene.packing_load);
+    out.relaxation_steps = run.relax(scene.relaxation_time, 1e-12, 200'000);
+    static_energy = run.energies().mechanical();
+  }
+  if (scene.drive.kind == InterfaceDrive::Kind::velocity) {
+    for (const int g : out.driven) run.grains_mutable()[static_cast<std::size_t>(g)].vy = -scene.drive.speed;
+    run.refresh_forces();
+  } else {
     run.set_drive({out.driven, scene.drive.peak, scene.drive.duration, 0.0, -1.0});
+  }
   const double initial = run.energies().mechanical();
 
   out.probe_velocity.resize(out.probe_nodes.size());
@@ -129,7 +138,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
                 << (e.plate_kinetic + e.plate_strain) << " J\n";
     }
   }
-  out.input_energy = initial + out.series.energies.back().drive_work;
+  out.input_energy = initial - static_energy + out.series.energies.back().drive_work;
   for (const auto& e : out.series.energies)
     out.worst_balance = std::max(out.worst_balance, std::abs(e.balance() - initial) / std::max(out.input_energy, 1e-300));
   for (std::size_t p = 0; p < out.probe_nodes.size(); ++p)

@@ -56,6 +56,12 @@ void read_packing(Section s, InterfaceScene& scene) {
   p.orientation = s.choice("orientation", "rows_parallel", {"rows_parallel", "rows_perpendicular"}) == "rows_parallel"
                       ? interface::HexOrientation::rows_parallel
                       : interface::HexOrientation::rows_perpendicular;
+  scene.packing_load = s.number("precompression", 0.0, Range::non_negative("N"));
+  scene.relaxation_time = s.positive("relaxation_time", scene.relaxation_time, "s");
+  if (scene.packing_load > 0.0 && scene.edges.top != plate::EdgeCondition::clamped &&
+      scene.edges.bottom != plate::EdgeCondition::clamped && scene.edges.left != plate::EdgeCondition::clamped &&
+      scene.edges.right != plate::EdgeCondition::clamped)
+    s.fail_key("precompression", "a static load needs a clamped plate edge to hold it (plate.edges)");
   scene.grain_material.youngs_modulus = s.positive("youngs_modulus", scene.grain_material.youngs_modulus, "Pa");
   scene.grain_material.poisson_ratio =
       s.number("poisson_ratio", scene.grain_material.poisson_ratio, Range{0.0, 0.5, false, true, ""});

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
@@ -81,6 +82,47 @@ void GranularPlate::set_drive(ForcePulse pulse) {
   if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: force pulse duration must be > 0");
   pulse_ = std::move(pulse);
   compute_forces(0.0);
+}
+
+void GranularPlate::set_static_load(std::vector<int> grains, double force_x, double force_y) {
+  for (const int g : grains)
+    if (g < 0 || static_cast<std::size_t>(g) >= grains_.size())
+      throw std::out_of_range("interface: loaded grain index out of range");
+  loaded_ = std::move(grains);
+  load_x_ = force_x;
+  load_y_ = force_y;
+  compute_forces(0.0);
+}
+
+long GranularPlate::relax(double damping_time, double tolerance, long max_steps) {
+  if (!(damping_time > 0.0)) throw std::invalid_argument("interface: relaxation damping time must be > 0");
+  const auto kinetic = [&] {
+    const Energies e = energies_without_strain();
+    return e.grain_translation + e.grain_rotation + e.plate_kinetic;
+  };
+  double largest = 0.0;
+  long n = 0;
+  for (; n < max_steps; ++n) {
+    const double dt = step();
+    const double keep = std::exp(-dt / damping_time);
+    for (auto& g : grains_) g.vx *= keep, g.vy *= keep, g.spin *= keep;
+    for (auto& v : v_) v *= keep;
+    const double now = kinetic();
+    largest = std::max(largest, now);
+    if (n > 10 && now < tolerance * largest) break;
+  }
+  if (n == max_steps)
+    throw std::runtime_error("interface: the loaded packing did not come to rest in " + std::to_string(max_steps) +
+                             " steps (Coulomb-tanh has no static friction: a packing free to spread creeps under a "
+                             "static load)");
+  for (auto& g : grains_) g.vx = g.vy = g.spin = 0.0;
+  std::fill(v_.begin(), v_.end(), 0.0);
+  time_ = 0.0;
+  steps_ = 0;
+  friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
+  max_plate_contact_radius_ = 0.0;
+  refresh_forces();
+  return n;
 }
 
 void GranularPlate::refresh_forces() {
@@ -262,6 +304,10 @@ void GranularPlate::compute_forces(double half_step) {
     plate_->add_elastic_forces(u_, f_conservative_);
     for (std::size_t g = 0; g < grains_.size(); ++g) add_plate_contact(static_cast<int>(g));
   }
+  for (const int g : loaded_) {
+    drive_[static_cast<std::size_t>(g)].fx += load_x_;
+    drive_[static_cast<std::size_t>(g)].fy += load_y_;
+  }
   if (pulse_ && time_ < pulse_->duration) {
     const double f = pulse_->peak * std::sin(std::numbers::pi * time_ / pulse_->duration);
     for (const int g : pulse_->grains) {
@@ -438,6 +484,19 @@ double GranularPlate::step_towards(double t_end) {
 
 void GranularPlate::advance_to(double t_end) {
   while (time_ < t_end) step_towards(t_end);
+}
+
+Energies GranularPlate::energies_without_strain() const {
+  Energies e;
+  for (const auto& g : grains_) {
+    e.grain_translation += 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy);
+    if (contacts_.rotation) e.grain_rotation += 0.5 * g.inertia * g.spin * g.spin;
+  }
+  if (plate_) {
+    const auto& mass = plate_->mass();
+    for (std::size_t d = 0; d < v_.size(); ++d) e.plate_kinetic += 0.5 * mass[d] * v_[d] * v_[d];
+  }
+  return e;
 }
 
 Energies GranularPlate::energies() const {

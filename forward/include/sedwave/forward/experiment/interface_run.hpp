@@ -23,7 +23,10 @@ struct InterfaceSeries {
 
 struct InterfaceRun {
   InterfaceSeries series;
-  double input_energy = 0.0;  ///< [J] initial mechanical energy (velocity drive) or the drive's total work
+  /// [J] the strike's kinetic energy (velocity drive) or the pulse's work, plus the static load's work
+  /// during the run; the precompressed static state's own energy is not counted
+  double input_energy = 0.0;
+  long relaxation_steps = 0;  ///< steps taken to bring a precompressed packing to rest
   std::vector<int> driven;    ///< indices of the driven grains
   std::vector<int> probe_nodes;
   std::vector<std::vector<double>> probe_velocity;  ///< [probe][sample] |v| [m/s]

@@ -47,6 +47,8 @@ struct InterfaceScene {
   plate::PlateMesh mesh{120, 40, 0.12, 0.04};
   plate::PlateEdges edges;
   interface::HexPacking packing;
+  double packing_load = 0.0;       ///< static precompression [N] on each bead of the free row (0: none)
+  double relaxation_time = 2e-5;   ///< damping time [s] of the relaxation under that load
   interface::GrainMaterial grain_material{200e9, 0.3};
   interface::InterfaceContacts contacts;
   InterfaceDrive drive;

@@ -98,6 +98,15 @@ class GranularPlate {
   void advance_to(double t_end);
 
   void set_drive(ForcePulse pulse);
+  /// A constant force (force_x, force_y) on each of `grains`, held for the whole run: a static
+  /// precompression of the packing against the plate. Its work counts as the drive's.
+  void set_static_load(std::vector<int> grains, double force_x, double force_y);
+  /// Brings the loaded packing and plate to rest: steps with every velocity scaled by
+  /// exp(-dt/damping_time) after each step until the kinetic energy falls below `tolerance` times
+  /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step count
+  /// and the energy books, so that the run starts from the static state. Returns the steps taken;
+  /// throws std::runtime_error when the packing is not at rest after max_steps.
+  long relax(double damping_time, double tolerance, long max_steps);
   /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
   void refresh_forces();
   [[nodiscard]] double time() const { return time_; }
@@ -134,6 +143,7 @@ class GranularPlate {
     double fx = 0.0, fy = 0.0, torque = 0.0;
   };
   double step_with(const StepLimits& limits, double max_dt);
+  [[nodiscard]] Energies energies_without_strain() const;  ///< kinetic parts only
   void build_pairs();
   bool pairs_stale() const;
   void compute_forces(double half_step);
@@ -163,6 +173,8 @@ class GranularPlate {
   std::vector<double> plate_seen_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
   std::optional<ForcePulse> pulse_;
+  std::vector<int> loaded_;
+  double load_x_ = 0.0, load_y_ = 0.0;
 
   double time_ = 0.0;
   long steps_ = 0;
