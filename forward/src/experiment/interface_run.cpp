@@ -75,7 +75,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
   if (scene.packing_load > 0.0) {
     // Static precompression: the whole free row pushed towards the plate, relaxed to rest first.
     run.set_static_load(driven_grains(run.grains(), 0, 0.5 * scene.mesh.length_x), 0.0, -scene.packing_load);
-    out.relaxation_steps = run.relax(scene.relaxation_time, 1e-12, 200'000);
+    out.relaxation_steps = run.relax(scene.relaxation_time, 1e-10, 200'000);
     static_energy = run.energies().mechanical();
   }
   if (scene.drive.kind == InterfaceDrive::Kind::velocity) {
