@@ -26,6 +26,7 @@ struct InterfaceOptions {
   std::string csv;
   std::optional<double> speed;
   std::optional<double> tolerance;
+  bool direct = false;
   std::optional<double> fixed_step;
   bool quiet = false;
 };
@@ -35,8 +36,15 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
   const double in = r.input_energy;
   double plate_peak = 0.0;
   for (const auto& s : r.series.energies) plate_peak = std::max(plate_peak, s.plate_kinetic + s.plate_strain);
-  std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
-              r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  if (scene.drive.direct) {
+    std::printf("direct strike on the plate's edge over x = %.4g .. %.4g m with the energy of %zu beads at %g m/s "
+                "(no beads), %d x %d plate elements; %ld steps in %.2f s\n",
+                r.direct_from, r.direct_to, r.driven.size(), scene.drive.speed, scene.mesh.elements_x,
+                scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  } else {
+    std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
+                r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  }
   if (scene.packing_load > 0.0)
     std::printf("precompression %.6g N on each bead of the free row: relaxed in %ld steps\n", scene.packing_load,
                 r.relaxation_steps);
@@ -83,6 +91,7 @@ int run_interface_command(const InterfaceOptions& o) {
     if (!(*o.speed > 0.0)) throw std::invalid_argument("--speed must be > 0");
     scene.drive.speed = *o.speed;
   }
+  scene.drive.direct = o.direct;
   if (o.tolerance) {
     if (!(*o.tolerance > 0.0 && *o.tolerance <= 0.5)) throw std::invalid_argument("--tolerance must lie in (0, 0.5]");
     scene.recording.tolerance = *o.tolerance;
@@ -120,6 +129,8 @@ Command add_interface_command(CLI::App& app) {
   cmd->add_option("--speed", o->speed, "override the drive's speed [m/s] (velocity drives)");
   cmd->add_option("--tolerance", o->tolerance, "override the adaptive step's tolerance theta, in (0, 0.5]");
   cmd->add_option("--fixed-step", o->fixed_step, "a fixed step [s] instead of the adaptive one (for comparisons)");
+  cmd->add_flag("--direct", o->direct,
+                "strike the plate's edge directly (no beads) with the driven beads' energy: the delay's reference");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
   return {cmd, [o]() { return run_interface_command(*o); }};
 }

@@ -68,6 +68,20 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
   }
 
   const std::vector<interface::Grain> grains_at_start = grains;
+  if (scene.drive.direct && scene.drive.kind != InterfaceDrive::Kind::velocity)
+    throw std::invalid_argument("interface: a direct strike takes a velocity drive's energy");
+  double strike_energy = 0.0;
+  if (scene.drive.direct) {
+    out.direct_from = std::numeric_limits<double>::infinity();
+    out.direct_to = -out.direct_from;
+    for (const int g : out.driven) {
+      const auto& b = grains[static_cast<std::size_t>(g)];
+      strike_energy += 0.5 * b.mass * scene.drive.speed * scene.drive.speed;
+      out.direct_from = std::min(out.direct_from, b.x - b.radius);
+      out.direct_to = std::max(out.direct_to, b.x + b.radius);
+    }
+    grains.clear();
+  }
   interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts,
                                interface::StepControl{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
                                                       scene.recording.fixed_step});
@@ -78,7 +92,22 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
     out.relaxation_steps = run.relax(scene.relaxation_time, 1e-10, 200'000);
     static_energy = run.energies().mechanical();
   }
-  if (scene.drive.kind == InterfaceDrive::Kind::velocity) {
+  if (scene.drive.direct) {
+    // One speed V on the struck edge's y-components with (1/2) sum M V^2 = the strike's energy.
+    const auto& p = *run.plate();
+    std::vector<std::size_t> struck;
+    double mass = 0.0;
+    for (int i = 0; i < p.nodes_x(); ++i) {
+      const int n = p.node(i, p.nodes_y() - 1);
+      if (p.node_x(n) < out.direct_from || p.node_x(n) > out.direct_to) continue;
+      struck.push_back(static_cast<std::size_t>(2 * n + 1));
+      mass += p.mass()[struck.back()];
+    }
+    if (struck.empty()) throw std::invalid_argument("interface: the direct strike's span holds no node");
+    const double speed = std::sqrt(2.0 * strike_energy / mass);
+    for (const std::size_t d : struck) run.plate_velocity_mutable()[d] = -speed;
+    run.refresh_forces();
+  } else if (scene.drive.kind == InterfaceDrive::Kind::velocity) {
     for (const int g : out.driven) run.grains_mutable()[static_cast<std::size_t>(g)].vy = -scene.drive.speed;
     run.refresh_forces();
   } else {
@@ -262,7 +291,8 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     for (const auto& g : r.final_grains) {
       gx.push_back(g.x), gy.push_back(g.y), gvx.push_back(g.vx), gvy.push_back(g.vy), spin.push_back(g.spin);
     }
-    for (const int d : r.driven) driven[static_cast<std::size_t>(d)] = 1.0;
+    if (!r.final_grains.empty())  // a direct strike runs without beads
+      for (const int d : r.driven) driven[static_cast<std::size_t>(d)] = 1.0;
     write_with_unit(grains, "x", gx, "m");
     write_with_unit(grains, "y", gy, "m");
     write_with_unit(grains, "vx", gvx, "m/s");

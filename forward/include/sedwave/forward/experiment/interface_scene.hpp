@@ -26,6 +26,9 @@ struct InterfaceDrive {
   double peak = 0.0;        ///< force: peak of the half-sine on each driven grain [N]
   double duration = 0.0;    ///< force: its duration [s]
   int width = 0;            ///< driven grains of the free row, centred on the plate (0: the whole row)
+  /// The reference for the delay: no beads; the plate's top-edge nodes under the driven beads' span
+  /// start with one speed towards the plate's inside, carrying the strike's kinetic energy.
+  bool direct = false;
 };
 
 struct InterfaceRecording {
