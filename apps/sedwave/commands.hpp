@@ -28,5 +28,6 @@ Command add_merge_command(CLI::App& app);
 Command add_show_command(CLI::App& app);
 Command add_models_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_interface_command(CLI::App& app);
 
 }  // namespace sedwave::app

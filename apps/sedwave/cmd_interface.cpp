@@ -1,0 +1,138 @@
+// `sedwave interface`: one run of a granular-solid interface scene (docs/interface.md): a 2D
+// hexagonal packing of spheres on the edge of an elastic plate, driven at its free end; energies,
+// forces, arrival times, step sizes and plate snapshots to HDF5 (and CSV for plots).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "commands.hpp"
+#include "output_paths.hpp"
+#include "sedwave/forward/experiment/interface_run.hpp"
+#include "sedwave/forward/experiment/interface_scene.hpp"
+#include "sedwave/forward/experiment/interface_spectrum.hpp"
+
+namespace sedwave::app {
+namespace {
+
+namespace experiment = forward::experiment;
+
+struct InterfaceOptions {
+  std::string scene;
+  std::string out = "interface.h5";
+  std::string csv;
+  std::optional<double> speed;
+  std::optional<double> tolerance;
+  bool direct = false;
+  std::optional<double> fixed_step;
+  bool quiet = false;
+};
+
+void print_summary(const experiment::InterfaceScene& scene, const experiment::InterfaceRun& r) {
+  const auto& e = r.series.energies.back();
+  const double in = r.input_energy;
+  double plate_peak = 0.0;
+  for (const auto& s : r.series.energies) plate_peak = std::max(plate_peak, s.plate_kinetic + s.plate_strain);
+  if (scene.drive.direct) {
+    std::printf("direct strike on the plate's edge over x = %.4g .. %.4g m with the energy of %zu beads at %g m/s "
+                "(no beads), %d x %d plate elements; %ld steps in %.2f s\n",
+                r.direct_from, r.direct_to, r.driven.size(), scene.drive.speed, scene.mesh.elements_x,
+                scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  } else {
+    std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
+                r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  }
+  if (scene.packing_load > 0.0)
+    std::printf("precompression %.6g N on each bead of the free row: relaxed in %ld steps\n", scene.packing_load,
+                r.relaxation_steps);
+  std::printf("input energy %.6g J; at t = %.6g s: grains %.4f (rotation %.4f), contacts %.4f, plate %.4f, "
+              "friction %.4f, dashpots %.4f, absorbed by the plate's edges %.4f of it\n",
+              in, r.series.time.back(), (e.grain_translation + e.grain_rotation) / in, e.grain_rotation / in,
+              e.contact / in, (e.plate_kinetic + e.plate_strain) / in, e.friction_work / in, e.dashpot_work / in,
+              e.boundary_work / in);
+  std::printf("largest share in the plate %.4f; energy balance within %.3g of the input\n", plate_peak / in,
+              r.worst_balance);
+  std::printf("kinetic energy left in the three rows at the free end: %.4f of the input\n", r.near_impact_share);
+  double min_step = INFINITY, max_step = 0.0;
+  for (std::size_t k = 1; k < r.series.time.size(); ++k) {
+    min_step = std::min(min_step, r.series.step_min[k]);
+    max_step = std::max(max_step, r.series.step_max[k]);
+  }
+  std::printf("step %.3g .. %.3g s (plate limit %.3g s, tolerance %g)\n", min_step, max_step,
+              r.series.limits.back().plate, scene.recording.tolerance);
+  for (std::size_t p = 0; p < r.probe_nodes.size(); ++p) {
+    const auto n = static_cast<std::size_t>(r.probe_nodes[p]);
+    std::printf("probe at x = %.4g m, y = %.4g m: arrival %.6g s\n", r.node_x[n], r.node_y[n], r.arrival[p]);
+  }
+  const double spacing = r.node_x.size() > 1 ? r.node_x[1] - r.node_x[0] : 1.0;
+  const auto spread = experiment::wavenumber_spread(r, scene.plate_material.density, scene.plate_material.thickness,
+                                                    spacing);
+  if (spread.last > spread.first + 2) {
+    std::printf("line at y = %.4g m: wavenumber variance sigma_k^2 from %.4g to %.4g rad^2/m^2 over %.4g .. %.4g s; "
+                "linear fit %.4g rad^2/m^2/s (R^2 = %.3f)\n",
+                r.node_y[static_cast<std::size_t>(r.line_nodes.front())], spread.variance[spread.first],
+                spread.variance[spread.last - 1], r.series.time[spread.first], r.series.time[spread.last - 1],
+                spread.growth.slope, spread.growth.r_squared);
+  }
+  std::printf("largest grain-plate contact radius %.3g m against element size %.3g m\n", r.max_contact_radius,
+              r.element_size);
+}
+
+int run_interface_command(const InterfaceOptions& o) {
+  experiment::InterfaceScene scene = experiment::read_interface_scene(o.scene);
+  std::vector<OutputPath> outputs{{"--out", o.out}};
+  check_outputs(outputs, {o.scene}, "interface");
+  if (o.speed) {
+    if (scene.drive.kind != experiment::InterfaceDrive::Kind::velocity)
+      throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene drives a force pulse");
+    if (!(*o.speed > 0.0)) throw std::invalid_argument("--speed must be > 0");
+    scene.drive.speed = *o.speed;
+  }
+  scene.drive.direct = o.direct;
+  if (o.tolerance) {
+    if (!(*o.tolerance > 0.0 && *o.tolerance <= 0.5)) throw std::invalid_argument("--tolerance must lie in (0, 0.5]");
+    scene.recording.tolerance = *o.tolerance;
+  }
+  if (o.fixed_step) {
+    if (!(*o.fixed_step > 0.0)) throw std::invalid_argument("--fixed-step must be > 0");
+    scene.recording.fixed_step = *o.fixed_step;
+  }
+  const experiment::InterfaceRun r = experiment::run_interface(scene, o.quiet ? nullptr : &std::cout);
+  experiment::write_interface_run_file(o.out, scene, r);
+  if (!o.csv.empty()) experiment::write_interface_csv(o.csv, scene, r);
+  if (!o.quiet) {
+    print_summary(scene, r);
+    std::printf("written to %s%s\n", o.out.c_str(), o.csv.empty() ? "" : (" and " + o.csv + "/*.csv").c_str());
+  }
+  // The element must be much larger than the contact patch: the Hertz modulus already holds the
+  // plate's local indentation (docs/interface.md, "The coupling").
+  if (r.max_contact_radius > 0.5 * r.element_size) {
+    std::printf("flagged: the contact radius exceeds half the element size; the plate's local compliance is "
+                "counted twice\n");
+    return kExitIncomplete;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_interface_command(CLI::App& app) {
+  auto o = std::make_shared<InterfaceOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "interface", "Run a granular-solid interface scene: 2D grains on an elastic plate (docs/interface.md)");
+  cmd->add_option("scene", o->scene, "interface scene file (TOML, SI units)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--out", o->out, "run file to write (HDF5)")->capture_default_str();
+  cmd->add_option("--csv", o->csv, "also write energies.csv, probes.csv and snapshot_K.csv (K = 1, 2, ...) into this directory");
+  cmd->add_option("--speed", o->speed, "override the drive's speed [m/s] (velocity drives)");
+  cmd->add_option("--tolerance", o->tolerance, "override the adaptive step's tolerance theta, in (0, 0.5]");
+  cmd->add_option("--fixed-step", o->fixed_step, "a fixed step [s] instead of the adaptive one (for comparisons)");
+  cmd->add_flag("--direct", o->direct,
+                "strike the plate's edge directly (no beads) with the driven beads' energy: the delay's reference");
+  cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
+  return {cmd, [o]() { return run_interface_command(*o); }};
+}
+
+}  // namespace sedwave::app

@@ -1,0 +1,60 @@
+#pragma once
+// One run of a granular-solid interface scene and its HDF5 file (docs/interface.md, "Outputs").
+// SI units (m, kg, s, N, J).
+#include <filesystem>
+#include <ostream>
+#include <vector>
+
+#include "sedwave/forward/experiment/interface_scene.hpp"
+
+namespace sedwave::forward::experiment {
+
+/// Time series sampled every output interval (and at t = 0).
+struct InterfaceSeries {
+  std::vector<double> time;
+  std::vector<interface::Energies> energies;
+  std::vector<double> plate_normal_force;      ///< [N] total grain force on the plate, normal to it
+  std::vector<double> plate_tangential_force;  ///< [N] along it
+  std::vector<double> step;                    ///< [s] the last step before the sample
+  std::vector<double> step_min, step_max;      ///< [s] over the interval
+  std::vector<long> steps;                     ///< steps taken so far
+  std::vector<interface::StepLimits> limits;   ///< the limits of the last step [s]
+};
+
+struct InterfaceRun {
+  InterfaceSeries series;
+  /// [J] the strike's kinetic energy (velocity drive) or the pulse's work, plus the static load's work
+  /// during the run; the precompressed static state's own energy is not counted
+  double input_energy = 0.0;
+  long relaxation_steps = 0;
+  double direct_from = 0.0, direct_to = 0.0;  ///< [m] the edge struck by a direct strike  ///< steps taken to bring a precompressed packing to rest
+  std::vector<int> driven;    ///< indices of the driven grains
+  std::vector<int> probe_nodes;
+  std::vector<std::vector<double>> probe_velocity;  ///< [probe][sample] |v| [m/s]
+  std::vector<double> arrival;                      ///< [s] per probe (NaN: never moved)
+  std::vector<int> line_nodes;                      ///< the nodes of the recorded line, left to right
+  std::vector<std::vector<double>> line_vx, line_vy;  ///< [sample][node] [m/s]
+  std::vector<double> snapshot_time;
+  std::vector<std::vector<double>> snapshots;  ///< plate displacements [m], 2 per node (x, y)
+  std::vector<double> node_x, node_y;          ///< reference node positions [m]
+  std::vector<interface::Grain> final_grains;
+  double max_contact_radius = 0.0;             ///< [m] largest grain-plate contact radius
+  double element_size = 0.0;                   ///< [m] min(a, b)
+  double worst_balance = 0.0;                  ///< max |balance - input| / input over the samples
+  /// Kinetic energy (translation and rotation) left at the end in the three rows nearest the free
+  /// end, as a fraction of the input: how much stays localised near the impact.
+  double near_impact_share = 0.0;
+  double seconds = 0.0;                        ///< wall-clock time of the run
+};
+
+/// Builds the scene's plate and packing, drives the free row and records. `progress` (may be null)
+/// gets a line per tenth of the run.
+InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress);
+
+/// Writes the run atomically (every dataset states its unit in an attribute).
+void write_interface_run_file(const std::filesystem::path& path, const InterfaceScene& scene, const InterfaceRun& run);
+
+/// energies.csv, probes.csv and snapshot_K.csv (K = 1, 2, ...: each snapshot) under `dir`, for plots.
+void write_interface_csv(const std::filesystem::path& dir, const InterfaceScene& scene, const InterfaceRun& run);
+
+}  // namespace sedwave::forward::experiment

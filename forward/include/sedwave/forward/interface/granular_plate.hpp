@@ -1,0 +1,188 @@
+#pragma once
+// The granular-solid interface: spheres confined to the plane z = 0 (out-of-plane translation and the
+// in-plane-axis rotations frozen, as LAMMPS's enforce2d) on the top edge of an elastic plate
+// (plate/elastic_plate.hpp), with Hertz contacts, rotation, Coulomb-tanh friction and an optional
+// Hertz dashpot between grains; one explicit velocity-Verlet step for grains and plate together with
+// a self-adaptive step (docs/interface.md).
+//
+// Contact laws are the DEM engine's parts (dem/contact/hertz.hpp, dem/contact/coulomb_tanh.hpp).
+// Grain-plate contact: a sphere on the deforming edge y = u_y(x), u_y interpolated with the edge's
+// linear shape functions at the grain's abscissa; the overlap is delta = r - (y_g - u_y(x_g)); the
+// force is the gradient of the Hertz energy (2/5) k delta^(5/2), k = (4/3) E*_gp sqrt(r), so it goes
+// back to the nodes with the same shape functions, equal and opposite. Friction acts along x with the
+// edge's interpolated velocity. Units: any consistent set (SI in scenes).
+#include <functional>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "sedwave/forward/interface/hex_packing.hpp"
+#include "sedwave/forward/plate/elastic_plate.hpp"
+
+namespace sedwave::forward::interface {
+
+struct GrainMaterial {
+  double youngs_modulus;
+  double poisson_ratio;
+};
+
+struct InterfaceContacts {
+  double friction = 0.0;             ///< mu, grain-grain and grain-plate (0: frictionless)
+  double tanh_velocity_scale = 1e3;  ///< k_s [time/length] of Coulomb-tanh
+  double restitution = 1.0;          ///< grain-grain Hertz-Tsuji dashpot from e_n (1: none)
+  bool rotation = true;              ///< integrate spins (false: spins stay zero)
+};
+
+/// dt = tolerance * min(the stability limits of the FE mesh, of every Hertz contact and of every
+/// Coulomb-tanh contact), each evaluated from the state at the start of the step.
+struct StepControl {
+  double tolerance = 0.1;  ///< theta in (0, 0.5]: 0.5 leaves room for a packing's collective modes
+  double max_step = std::numeric_limits<double>::infinity();
+  /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
+  double fixed_step = 0.0;
+};
+
+/// Each limit of the last step (infinite where no such contact exists) and the step taken.
+struct StepLimits {
+  double plate = std::numeric_limits<double>::infinity();
+  double hertz = std::numeric_limits<double>::infinity();
+  double friction = std::numeric_limits<double>::infinity();
+  /// Not a stability limit: no grain moves more than half the neighbour-list skin in one step.
+  double travel = std::numeric_limits<double>::infinity();
+  /// min(plate, hertz, friction): the step is the tolerance times this, capped by travel.
+  [[nodiscard]] double tightest() const;
+};
+
+/// A force pulse F(t) = peak sin(pi t / duration) for t < duration, along (direction_x, direction_y),
+/// on each driven grain. (A velocity impulse is an initial velocity and needs no drive.)
+struct ForcePulse {
+  std::vector<int> grains;
+  double peak = 0.0;
+  double duration = 0.0;
+  double direction_x = 0.0;
+  double direction_y = -1.0;
+};
+
+/// Energies [force length]. The balance kinetic + potential + dissipated - drive_work is constant.
+struct Energies {
+  double grain_translation = 0.0;
+  double grain_rotation = 0.0;
+  double contact = 0.0;  ///< Hertz energy of grain-grain and grain-plate contacts
+  double plate_kinetic = 0.0;
+  double plate_strain = 0.0;
+  double friction_work = 0.0;  ///< dissipated by Coulomb-tanh (>= 0)
+  double dashpot_work = 0.0;   ///< dissipated by grain-grain dashpots
+  double boundary_work = 0.0;  ///< absorbed by the plate's absorbing edges
+  double drive_work = 0.0;     ///< done by the force pulse
+  [[nodiscard]] double mechanical() const {
+    return grain_translation + grain_rotation + contact + plate_kinetic + plate_strain;
+  }
+  /// Mechanical energy plus everything dissipated minus the drive's work: constant in exact dynamics.
+  [[nodiscard]] double balance() const {
+    return mechanical() + friction_work + dashpot_work + boundary_work - drive_work;
+  }
+};
+
+class GranularPlate {
+ public:
+  GranularPlate(std::vector<Grain> grains, const GrainMaterial& grain_material,
+                std::optional<plate::ElasticPlate> plate, const InterfaceContacts& contacts,
+                const StepControl& control);
+
+  /// One step of at most max_dt; returns the step taken.
+  double step(double max_dt = std::numeric_limits<double>::infinity());
+  /// One step towards t_end, shortened so that the steps land on t_end exactly without a sliver of
+  /// a last step (the last two share what is left); returns the step taken.
+  double step_towards(double t_end);
+  /// Steps until time t_end exactly.
+  void advance_to(double t_end);
+
+  void set_drive(ForcePulse pulse);
+  /// A constant force (force_x, force_y) on each of `grains`, held for the whole run: a static
+  /// precompression of the packing against the plate. Its work counts as the drive's.
+  void set_static_load(std::vector<int> grains, double force_x, double force_y);
+  /// Brings the loaded packing and plate to rest: steps with every velocity scaled by
+  /// exp(-dt/damping_time) after each step until the kinetic energy falls below `tolerance` times
+  /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step count
+  /// and the energy books, so that the run starts from the static state. Returns the steps taken;
+  /// throws std::runtime_error when the packing is not at rest after max_steps.
+  long relax(double damping_time, double tolerance, long max_steps);
+  /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
+  void refresh_forces();
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] long steps() const { return steps_; }
+  [[nodiscard]] const std::vector<Grain>& grains() const { return grains_; }
+  std::vector<Grain>& grains_mutable() { return grains_; }  ///< set initial velocities before the first step
+  [[nodiscard]] const std::optional<plate::ElasticPlate>& plate() const { return plate_; }
+  [[nodiscard]] const std::vector<double>& plate_displacement() const { return u_; }
+  [[nodiscard]] const std::vector<double>& plate_velocity() const { return v_; }
+  std::vector<double>& plate_displacement_mutable() { return u_; }  ///< initial conditions
+  std::vector<double>& plate_velocity_mutable() { return v_; }
+
+  [[nodiscard]] Energies energies() const;
+  [[nodiscard]] const StepLimits& last_limits() const { return limits_; }
+  /// The limits of the current state (what the next step will use).
+  [[nodiscard]] StepLimits current_limits() const;
+  /// Total normal force the grains exert on the plate (>= 0) and its tangential part, at the last step.
+  [[nodiscard]] double plate_normal_force() const { return plate_normal_force_; }
+  [[nodiscard]] double plate_tangential_force() const { return plate_tangential_force_; }
+  /// Hertz effective modulus of grain-grain and grain-plate contacts.
+  [[nodiscard]] double grain_modulus() const { return grain_modulus_; }
+  [[nodiscard]] double plate_contact_modulus() const { return plate_modulus_; }
+  /// Largest contact radius sqrt(R delta) seen at the plate so far (compare with the element size).
+  [[nodiscard]] double max_plate_contact_radius() const { return max_plate_contact_radius_; }
+  /// Number of grain-grain pairs in contact now.
+  [[nodiscard]] int grain_contacts() const;
+
+ private:
+  struct Pair {
+    int i;
+    int j;
+  };
+  struct Parts {  // forces on one grain by kind: conservative, friction, dashpot, drive
+    double fx = 0.0, fy = 0.0, torque = 0.0;
+  };
+  double step_with(const StepLimits& limits, double max_dt);
+  [[nodiscard]] Energies energies_without_strain() const;  ///< kinetic parts only
+  void build_pairs();
+  bool pairs_stale() const;
+  void compute_forces(double half_step);
+  void add_grain_pair(const Pair& p);
+  void add_plate_contact(int g);
+  void kick(double h, bool second_half);
+  void drift(double h);
+
+  std::vector<Grain> grains_;
+  std::optional<plate::ElasticPlate> plate_;
+  InterfaceContacts contacts_;
+  StepControl control_;
+  double grain_modulus_ = 0.0;
+  double plate_modulus_ = 0.0;
+  double dashpot_alpha_ = 0.0;
+
+  std::vector<Pair> pairs_;
+  std::vector<double> x_at_build_;
+  std::vector<double> y_at_build_;
+  double skin_ = 0.0;
+
+  std::vector<Parts> conservative_, friction_, dashpot_, drive_;
+  struct Motion {  // the velocity and spin a velocity-dependent force sees
+    double vx, vy, spin;
+  };
+  std::vector<Motion> seen_;
+  std::vector<double> plate_seen_;
+  std::vector<double> u_, v_, f_conservative_, f_friction_;
+  std::optional<ForcePulse> pulse_;
+  std::vector<int> loaded_;
+  double load_x_ = 0.0, load_y_ = 0.0;
+
+  double time_ = 0.0;
+  long steps_ = 0;
+  StepLimits limits_;
+  double contact_energy_ = 0.0;
+  double friction_work_ = 0.0, dashpot_work_ = 0.0, boundary_work_ = 0.0, drive_work_ = 0.0;
+  double plate_normal_force_ = 0.0, plate_tangential_force_ = 0.0;
+  double max_plate_contact_radius_ = 0.0;
+};
+
+}  // namespace sedwave::forward::interface

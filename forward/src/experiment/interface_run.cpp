@@ -1,0 +1,347 @@
+#include "sedwave/forward/experiment/interface_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "../io/hdf5.hpp"
+#include "sedwave/forward/experiment/interface_spectrum.hpp"
+#include "sedwave/io/atomic_file.hpp"
+
+namespace sedwave::forward::experiment {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+/// The driven grains: the free row (the highest grains, within half a radius), the `width` nearest
+/// the plate's centre (all when width is 0).
+std::vector<int> driven_grains(const std::vector<interface::Grain>& grains, int width, double centre) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (const auto& g : grains) top = std::max(top, g.y);
+  std::vector<int> row;
+  for (std::size_t i = 0; i < grains.size(); ++i)
+    if (grains[i].y > top - 0.5 * grains[i].radius) row.push_back(static_cast<int>(i));
+  std::stable_sort(row.begin(), row.end(), [&](int a, int b) {
+    return std::abs(grains[static_cast<std::size_t>(a)].x - centre) < std::abs(grains[static_cast<std::size_t>(b)].x - centre);
+  });
+  if (width > 0 && static_cast<std::size_t>(width) < row.size()) row.resize(static_cast<std::size_t>(width));
+  std::sort(row.begin(), row.end());
+  return row;
+}
+
+int nearest_node(const plate::ElasticPlate& p, double x, double depth) {
+  const int i = std::clamp(static_cast<int>(std::lround(x / p.element_width())), 0, p.nodes_x() - 1);
+  const int j = std::clamp(static_cast<int>(std::lround((p.mesh().length_y - depth) / p.element_height())), 0, p.nodes_y() - 1);
+  return p.node(i, j);
+}
+
+/// First time |v| reaches `fraction` of its maximum, interpolated between samples.
+double arrival_time(const std::vector<double>& t, const std::vector<double>& v, double fraction) {
+  const double peak = *std::max_element(v.begin(), v.end());
+  if (!(peak > 0.0)) return nan;
+  const double level = fraction * peak;
+  for (std::size_t k = 1; k < v.size(); ++k)
+    if (v[k] >= level) return t[k - 1] + (t[k] - t[k - 1]) * (level - v[k - 1]) / (v[k] - v[k - 1]);
+  return nan;
+}
+
+}  // namespace
+
+InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  InterfaceRun out;
+  plate::ElasticPlate plate(scene.plate_material, scene.mesh, scene.edges);
+  auto grains = interface::make_hex_packing(scene.packing);
+  out.driven = driven_grains(grains, scene.drive.width, 0.5 * scene.mesh.length_x);
+  for (int n = 0; n < plate.node_count(); ++n) {
+    out.node_x.push_back(plate.node_x(n));
+    out.node_y.push_back(plate.node_y(n));
+  }
+  out.element_size = std::min(plate.element_width(), plate.element_height());
+  for (const double x : scene.recording.probe_x) out.probe_nodes.push_back(nearest_node(plate, x, scene.recording.probe_depth));
+  {
+    const int row = plate.node(0, nearest_node(plate, 0.0, scene.recording.line_depth) / plate.nodes_x());
+    for (int i = 0; i < plate.nodes_x(); ++i) out.line_nodes.push_back(row + i);
+  }
+
+  const std::vector<interface::Grain> grains_at_start = grains;
+  if (scene.drive.direct && scene.drive.kind != InterfaceDrive::Kind::velocity)
+    throw std::invalid_argument("interface: a direct strike takes a velocity drive's energy");
+  double strike_energy = 0.0;
+  if (scene.drive.direct) {
+    out.direct_from = std::numeric_limits<double>::infinity();
+    out.direct_to = -out.direct_from;
+    for (const int g : out.driven) {
+      const auto& b = grains[static_cast<std::size_t>(g)];
+      strike_energy += 0.5 * b.mass * scene.drive.speed * scene.drive.speed;
+      out.direct_from = std::min(out.direct_from, b.x - b.radius);
+      out.direct_to = std::max(out.direct_to, b.x + b.radius);
+    }
+    grains.clear();
+  }
+  interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts,
+                               interface::StepControl{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
+                                                      scene.recording.fixed_step});
+  double static_energy = 0.0;
+  if (scene.packing_load > 0.0) {
+    // Static precompression: the whole free row pushed towards the plate, relaxed to rest first.
+    run.set_static_load(driven_grains(run.grains(), 0, 0.5 * scene.mesh.length_x), 0.0, -scene.packing_load);
+    out.relaxation_steps = run.relax(scene.relaxation_time, 1e-10, 200'000);
+    static_energy = run.energies().mechanical();
+  }
+  if (scene.drive.direct) {
+    // One speed V on the struck edge's y-components with (1/2) sum M V^2 = the strike's energy.
+    const auto& p = *run.plate();
+    std::vector<std::size_t> struck;
+    double mass = 0.0;
+    for (int i = 0; i < p.nodes_x(); ++i) {
+      const int n = p.node(i, p.nodes_y() - 1);
+      if (p.node_x(n) < out.direct_from || p.node_x(n) > out.direct_to) continue;
+      struck.push_back(static_cast<std::size_t>(2 * n + 1));
+      mass += p.mass()[struck.back()];
+    }
+    if (struck.empty()) throw std::invalid_argument("interface: the direct strike's span holds no node");
+    const double speed = std::sqrt(2.0 * strike_energy / mass);
+    for (const std::size_t d : struck) run.plate_velocity_mutable()[d] = -speed;
+    run.refresh_forces();
+  } else if (scene.drive.kind == InterfaceDrive::Kind::velocity) {
+    for (const int g : out.driven) run.grains_mutable()[static_cast<std::size_t>(g)].vy = -scene.drive.speed;
+    run.refresh_forces();
+  } else {
+    run.set_drive({out.driven, scene.drive.peak, scene.drive.duration, 0.0, -1.0});
+  }
+  const double initial = run.energies().mechanical();
+
+  out.probe_velocity.resize(out.probe_nodes.size());
+  double interval_min = std::numeric_limits<double>::infinity(), interval_max = 0.0, last_step = 0.0;
+  auto sample = [&] {
+    auto& s = out.series;
+    s.time.push_back(run.time());
+    s.energies.push_back(run.energies());
+    s.plate_normal_force.push_back(run.plate_normal_force());
+    s.plate_tangential_force.push_back(run.plate_tangential_force());
+    s.step.push_back(last_step);
+    s.step_min.push_back(std::isfinite(interval_min) ? interval_min : 0.0);
+    s.step_max.push_back(interval_max);
+    s.steps.push_back(run.steps());
+    s.limits.push_back(run.last_limits());
+    const auto& v = run.plate_velocity();
+    for (std::size_t p = 0; p < out.probe_nodes.size(); ++p) {
+      const auto n = static_cast<std::size_t>(out.probe_nodes[p]);
+      out.probe_velocity[p].push_back(std::hypot(v[2 * n], v[2 * n + 1]));
+    }
+    std::vector<double> vx, vy;
+    for (const int n : out.line_nodes) {
+      vx.push_back(v[2 * static_cast<std::size_t>(n)]);
+      vy.push_back(v[2 * static_cast<std::size_t>(n) + 1]);
+    }
+    out.line_vx.push_back(std::move(vx));
+    out.line_vy.push_back(std::move(vy));
+    interval_min = std::numeric_limits<double>::infinity();
+    interval_max = 0.0;
+  };
+  sample();
+  const auto& rec = scene.recording;
+  const long samples = std::max(1L, std::lround(rec.duration / rec.output_interval));
+  int next_snapshot = 1;
+  for (long k = 1; k <= samples; ++k) {
+    const double target = rec.duration * static_cast<double>(k) / static_cast<double>(samples);
+    while (run.time() < target) {
+      last_step = run.step_towards(target);
+      interval_min = std::min(interval_min, last_step);
+      interval_max = std::max(interval_max, last_step);
+    }
+    sample();
+    while (rec.snapshots > 0 && next_snapshot <= rec.snapshots &&
+           run.time() >= rec.duration * next_snapshot / rec.snapshots * (1.0 - 1e-12)) {
+      out.snapshot_time.push_back(run.time());
+      out.snapshots.push_back(run.plate_displacement());
+      ++next_snapshot;
+    }
+    if (progress && (k * 10) / samples != ((k - 1) * 10) / samples) {
+      const auto& e = out.series.energies.back();
+      *progress << "t = " << run.time() << " s, " << run.steps() << " steps, plate holds "
+                << (e.plate_kinetic + e.plate_strain) << " J\n";
+    }
+  }
+  out.input_energy = initial - static_energy + out.series.energies.back().drive_work;
+  for (const auto& e : out.series.energies)
+    out.worst_balance = std::max(out.worst_balance, std::abs(e.balance() - initial) / std::max(out.input_energy, 1e-300));
+  for (std::size_t p = 0; p < out.probe_nodes.size(); ++p)
+    out.arrival.push_back(arrival_time(out.series.time, out.probe_velocity[p], rec.arrival_fraction));
+  out.final_grains = run.grains();
+  {
+    const double r = scene.packing.radius, layer = (2.0 * r + scene.packing.gap) * std::sqrt(3.0) / 2.0;
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& g : grains_at_start) top = std::max(top, g.y);
+    double near = 0.0;
+    for (std::size_t i = 0; i < out.final_grains.size(); ++i) {
+      const auto& g = out.final_grains[i];
+      if (grains_at_start[i].y < top - 2.5 * layer) continue;
+      near += 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy) + 0.5 * g.inertia * g.spin * g.spin;
+    }
+    out.near_impact_share = near / std::max(out.input_energy, 1e-300);
+  }
+  out.max_contact_radius = run.max_plate_contact_radius();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+namespace {
+
+template <typename T>
+void write_with_unit(hid_t parent, const std::string& name, const std::vector<T>& data, const std::string& unit,
+                     std::size_t columns = 0) {
+  h5::write(parent, name, data.data(), columns ? data.size() / columns : data.size(), columns);
+  h5::Handle set = h5::open_dataset(parent, name);
+  h5::write_string_attribute(set, "unit", unit);
+}
+
+template <typename F>
+std::vector<double> column(const InterfaceRun& r, F&& field) {
+  std::vector<double> c;
+  for (std::size_t k = 0; k < r.series.time.size(); ++k) c.push_back(field(k));
+  return c;
+}
+
+std::vector<double> flatten(const std::vector<std::vector<double>>& rows) {
+  std::vector<double> flat;
+  for (const auto& row : rows) flat.insert(flat.end(), row.begin(), row.end());
+  return flat;
+}
+
+}  // namespace
+
+void write_interface_run_file(const std::filesystem::path& path, const InterfaceScene& scene, const InterfaceRun& r) {
+  h5::write_file_atomically(path, [&](hid_t file) {
+    h5::write_string_attribute(file, "units", "SI: m, kg, s, N, J");
+    h5::write_string_dataset(file, "scene", scene.text);
+    h5::write_attribute(file, "input_energy", r.input_energy);
+    h5::write_attribute(file, "worst_energy_balance", r.worst_balance);
+    h5::write_attribute(file, "near_impact_share", r.near_impact_share);
+    h5::write_attribute(file, "max_plate_contact_radius", r.max_contact_radius);
+    h5::write_attribute(file, "element_size", r.element_size);
+    h5::write_attribute(file, "wall_seconds", r.seconds);
+    const auto& s = r.series;
+    h5::Handle ts = h5::create_group(file, "time_series");
+    write_with_unit(ts, "time", s.time, "s");
+    const auto e = [&](auto member) { return column(r, [&](std::size_t k) { return s.energies[k].*member; }); };
+    using E = interface::Energies;
+    write_with_unit(ts, "grain_translation", e(&E::grain_translation), "J");
+    write_with_unit(ts, "grain_rotation", e(&E::grain_rotation), "J");
+    write_with_unit(ts, "contact", e(&E::contact), "J");
+    write_with_unit(ts, "plate_kinetic", e(&E::plate_kinetic), "J");
+    write_with_unit(ts, "plate_strain", e(&E::plate_strain), "J");
+    write_with_unit(ts, "friction_work", e(&E::friction_work), "J");
+    write_with_unit(ts, "dashpot_work", e(&E::dashpot_work), "J");
+    write_with_unit(ts, "boundary_work", e(&E::boundary_work), "J");
+    write_with_unit(ts, "drive_work", e(&E::drive_work), "J");
+    write_with_unit(ts, "plate_normal_force", s.plate_normal_force, "N");
+    write_with_unit(ts, "plate_tangential_force", s.plate_tangential_force, "N");
+    write_with_unit(ts, "step", s.step, "s");
+    write_with_unit(ts, "step_min", s.step_min, "s");
+    write_with_unit(ts, "step_max", s.step_max, "s");
+    std::vector<std::int64_t> steps(s.steps.begin(), s.steps.end());
+    write_with_unit(ts, "steps", steps, "1");
+    write_with_unit(ts, "limit_plate", column(r, [&](std::size_t k) { return s.limits[k].plate; }), "s");
+    write_with_unit(ts, "limit_hertz", column(r, [&](std::size_t k) { return s.limits[k].hertz; }), "s");
+    write_with_unit(ts, "limit_friction", column(r, [&](std::size_t k) { return s.limits[k].friction; }), "s");
+
+    h5::Handle probes = h5::create_group(file, "probes");
+    std::vector<double> px, py;
+    for (const int n : r.probe_nodes) {
+      px.push_back(r.node_x[static_cast<std::size_t>(n)]);
+      py.push_back(r.node_y[static_cast<std::size_t>(n)]);
+    }
+    write_with_unit(probes, "x", px, "m");
+    write_with_unit(probes, "y", py, "m");
+    write_with_unit(probes, "speed", flatten(r.probe_velocity), "m/s", s.time.size());
+    write_with_unit(probes, "arrival_time", r.arrival, "s");
+
+    h5::Handle line = h5::create_group(file, "line");
+    std::vector<double> lx;
+    for (const int n : r.line_nodes) lx.push_back(r.node_x[static_cast<std::size_t>(n)]);
+    write_with_unit(line, "x", lx, "m");
+    h5::write_attribute(line, "y", r.node_y[static_cast<std::size_t>(r.line_nodes.front())]);
+    write_with_unit(line, "velocity_x", flatten(r.line_vx), "m/s", lx.size());
+    write_with_unit(line, "velocity_y", flatten(r.line_vy), "m/s", lx.size());
+    const WavenumberSpread spread = wavenumber_spread(r, scene.plate_material.density, scene.plate_material.thickness,
+                                                      lx.size() > 1 ? lx[1] - lx[0] : 1.0);
+    write_with_unit(line, "k", spread.k, "rad/m");
+    write_with_unit(line, "energy_spectrum", flatten(spread.energy), "J/m", spread.k.size());
+    write_with_unit(line, "line_energy", spread.line_energy, "J/m");
+    write_with_unit(line, "k_variance", spread.variance, "rad^2/m^2");
+    h5::write_attribute(line, "k_variance_rate", spread.growth.slope);
+    h5::write_attribute(line, "k_variance_intercept", spread.growth.intercept);
+    h5::write_attribute(line, "k_variance_r_squared", spread.growth.r_squared);
+    h5::write_attribute(line, "fit_first_time", s.time[std::min(spread.first, s.time.size() - 1)]);
+    h5::write_attribute(line, "fit_last_time", s.time[std::min(spread.last, s.time.size()) - 1]);
+
+    h5::Handle snap = h5::create_group(file, "snapshots");
+    write_with_unit(snap, "node_x", r.node_x, "m");
+    write_with_unit(snap, "node_y", r.node_y, "m");
+    write_with_unit(snap, "time", r.snapshot_time, "s");
+    if (!r.snapshots.empty()) write_with_unit(snap, "displacement", flatten(r.snapshots), "m", r.snapshots.front().size());
+
+    h5::Handle grains = h5::create_group(file, "grains");
+    std::vector<double> gx, gy, gvx, gvy, spin, driven(r.final_grains.size(), 0.0);
+    for (const auto& g : r.final_grains) {
+      gx.push_back(g.x), gy.push_back(g.y), gvx.push_back(g.vx), gvy.push_back(g.vy), spin.push_back(g.spin);
+    }
+    if (!r.final_grains.empty())  // a direct strike runs without beads
+      for (const int d : r.driven) driven[static_cast<std::size_t>(d)] = 1.0;
+    write_with_unit(grains, "x", gx, "m");
+    write_with_unit(grains, "y", gy, "m");
+    write_with_unit(grains, "vx", gvx, "m/s");
+    write_with_unit(grains, "vy", gvy, "m/s");
+    write_with_unit(grains, "spin", spin, "rad/s");
+    write_with_unit(grains, "driven", driven, "1");
+  });
+}
+
+void write_interface_csv(const std::filesystem::path& dir, const InterfaceScene& scene, const InterfaceRun& r) {
+  std::filesystem::create_directories(dir);
+  const auto& s = r.series;
+  io::write_text_atomically(dir / "energies.csv", [&](std::ostream& f) {
+    f << "# granular-solid interface run of " << scene.path.string() << "; SI units; input energy " << r.input_energy
+      << " J\n# time_s,grain_translation_J,grain_rotation_J,contact_J,plate_kinetic_J,plate_strain_J,friction_J,"
+         "dashpot_J,boundary_J,drive_J,plate_normal_force_N,plate_tangential_force_N,step_s,limit_plate_s,"
+         "limit_hertz_s,limit_friction_s\n";
+    for (std::size_t k = 0; k < s.time.size(); ++k) {
+      const auto& e = s.energies[k];
+      char line[512];
+      std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g\n",
+                    s.time[k], e.grain_translation, e.grain_rotation, e.contact, e.plate_kinetic, e.plate_strain,
+                    e.friction_work, e.dashpot_work, e.boundary_work, e.drive_work, s.plate_normal_force[k],
+                    s.plate_tangential_force[k], s.step[k], s.limits[k].plate, s.limits[k].hertz, s.limits[k].friction);
+      f << line;
+    }
+  });
+  io::write_text_atomically(dir / "probes.csv", [&](std::ostream& f) {
+    f << "# |v| [m/s] of the plate at the probes; columns: time_s then one per probe (x [m] in the header)\n# time_s";
+    for (const int n : r.probe_nodes) f << ",x=" << r.node_x[static_cast<std::size_t>(n)];
+    f << "\n";
+    for (std::size_t k = 0; k < s.time.size(); ++k) {
+      f << s.time[k];
+      for (const auto& p : r.probe_velocity) f << "," << p[k];
+      f << "\n";
+    }
+  });
+  for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
+    io::write_text_atomically(dir / ("snapshot_" + std::to_string(k + 1) + ".csv"), [&](std::ostream& f) {
+      f << "# plate displacement at t = " << r.snapshot_time[k]
+        << " s; x_m,y_m,ux_m,uy_m (blank line per row of nodes)\n";
+      const auto& u = r.snapshots[k];
+      const std::size_t nx = r.line_nodes.size();
+      for (std::size_t n = 0; n < r.node_x.size(); ++n) {
+        f << r.node_x[n] << "," << r.node_y[n] << "," << u[2 * n] << "," << u[2 * n + 1] << "\n";
+        if ((n + 1) % nx == 0) f << "\n";
+      }
+    });
+  }
+}
+
+}  // namespace sedwave::forward::experiment

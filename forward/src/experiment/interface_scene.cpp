@@ -1,0 +1,153 @@
+#include "sedwave/forward/experiment/interface_scene.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <toml.hpp>
+
+#include "sedwave/io/toml_table.hpp"
+
+namespace sedwave::forward::experiment {
+namespace {
+
+using Section = toml_io::Table<InterfaceSceneError>;
+using Range = toml_io::Range;
+
+plate::EdgeCondition edge(Section& s, const std::string& key, plate::EdgeCondition fallback) {
+  const std::string names[] = {"free", "clamped", "absorbing"};
+  const std::string chosen = s.choice(key, names[static_cast<int>(fallback)], {"free", "clamped", "absorbing"});
+  return chosen == "free" ? plate::EdgeCondition::free
+                          : (chosen == "clamped" ? plate::EdgeCondition::clamped : plate::EdgeCondition::absorbing);
+}
+
+void read_plate(Section s, InterfaceScene& scene) {
+  auto& m = scene.plate_material;
+  m.youngs_modulus = s.positive("youngs_modulus", m.youngs_modulus, "Pa");
+  m.poisson_ratio = s.number("poisson_ratio", m.poisson_ratio, Range{0.0, 0.5, false, true, ""});
+  m.density = s.positive("density", m.density, "kg/m^3");
+  m.thickness = s.positive("thickness", m.thickness, "m");
+  auto& mesh = scene.mesh;
+  mesh.length_x = s.positive("length_x", mesh.length_x, "m");
+  mesh.length_y = s.positive("length_y", mesh.length_y, "m");
+  mesh.elements_x = s.integer<int>("elements_x", mesh.elements_x, Range::closed(1, 1e5));
+  mesh.elements_y = s.integer<int>("elements_y", mesh.elements_y, Range::closed(1, 1e5));
+  Section edges = s.sub("edges");
+  scene.edges.top = edge(edges, "top", scene.edges.top);
+  scene.edges.bottom = edge(edges, "bottom", scene.edges.bottom);
+  scene.edges.left = edge(edges, "left", scene.edges.left);
+  scene.edges.right = edge(edges, "right", scene.edges.right);
+  edges.finish();
+  s.finish();
+}
+
+std::string metres(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g m", x);
+  return text;
+}
+
+void read_packing(Section s, InterfaceScene& scene) {
+  auto& p = scene.packing;
+  p.rows = s.integer<int>("rows", 10, Range::closed(1, 1e5));
+  p.columns = s.integer<int>("columns", 20, Range::closed(1, 1e5));
+  p.radius = s.positive("radius", 2.5e-3, "m");
+  p.density = s.positive("density", 7850.0, "kg/m^3");
+  p.gap = s.number("gap", 0.0, Range::non_negative("m"));
+  p.lift = s.number("lift", 0.0, Range::non_negative("m"));
+  p.orientation = s.choice("orientation", "rows_parallel", {"rows_parallel", "rows_perpendicular"}) == "rows_parallel"
+                      ? interface::HexOrientation::rows_parallel
+                      : interface::HexOrientation::rows_perpendicular;
+  scene.packing_load = s.number("precompression", 0.0, Range::non_negative("N"));
+  scene.relaxation_time = s.positive("relaxation_time", scene.relaxation_time, "s");
+  if (scene.packing_load > 0.0 && scene.edges.top != plate::EdgeCondition::clamped &&
+      scene.edges.bottom != plate::EdgeCondition::clamped && scene.edges.left != plate::EdgeCondition::clamped &&
+      scene.edges.right != plate::EdgeCondition::clamped)
+    s.fail_key("precompression", "a static load needs a clamped plate edge to hold it (plate.edges)");
+  scene.grain_material.youngs_modulus = s.positive("youngs_modulus", scene.grain_material.youngs_modulus, "Pa");
+  scene.grain_material.poisson_ratio =
+      s.number("poisson_ratio", scene.grain_material.poisson_ratio, Range{0.0, 0.5, false, true, ""});
+  // Centred on the plate unless placed.
+  const double pitch = 2.0 * p.radius + p.gap;
+  const double span = p.orientation == interface::HexOrientation::rows_parallel
+                          ? (p.columns - 1) * pitch + 2.0 * p.radius + (p.rows > 1 ? 0.5 * pitch : 0.0)
+                          : (p.rows - 1) * pitch * std::sqrt(3.0) / 2.0 + 2.0 * p.radius;
+  p.x_offset = s.number("x_offset", 0.5 * (scene.mesh.length_x - span), Range{});
+  if (p.x_offset < 0.0 || p.x_offset + span > scene.mesh.length_x)
+    s.fail_key("x_offset", "the packing (" + metres(span) + " wide) must lie over the plate (" +
+                               metres(scene.mesh.length_x) + ")");
+  s.finish();
+}
+
+void read_contact(Section s, InterfaceScene& scene) {
+  auto& c = scene.contacts;
+  c.friction = s.number("friction", 0.0, Range::non_negative());
+  c.tanh_velocity_scale = s.positive("tanh_velocity_scale", c.tanh_velocity_scale, "s/m");
+  c.restitution = s.number("restitution", 1.0, Range::above(0.0, 1.0));
+  c.rotation = s.boolean("rotation", true);
+  s.finish();
+}
+
+void read_drive(Section s, InterfaceScene& scene) {
+  auto& d = scene.drive;
+  const bool force = s.choice("kind", "velocity", {"velocity", "force"}) == "force";
+  d.kind = force ? InterfaceDrive::Kind::force : InterfaceDrive::Kind::velocity;
+  if (force) {
+    d.peak = s.required_positive("peak");
+    d.duration = s.required_positive("duration");
+  } else {
+    d.speed = s.positive("speed", d.speed, "m/s");
+  }
+  d.width = s.integer<int>("width", 0, Range::closed(0, 1e5));
+  s.finish();
+}
+
+void read_recording(Section s, InterfaceScene& scene) {
+  auto& r = scene.recording;
+  r.duration = s.required_positive("duration");
+  r.tolerance = s.number("tolerance", r.tolerance, Range::above(0.0, 0.5));
+  r.fixed_step = s.number("fixed_step", 0.0, Range::non_negative("s"));
+  r.output_interval = s.number("output_interval", r.duration / 1000.0, Range::above(0.0, r.duration, "s"));
+  r.snapshots = s.integer<int>("snapshots", r.snapshots, Range::closed(0, 1000));
+  if (s.has("probe_x")) {
+    const toml::value& v = s.at("probe_x");
+    if (!v.is_array()) toml_io::fail<InterfaceSceneError>(v, s.name("probe_x"), "must be an array of abscissae [m]", s.origin());
+    for (const auto& x : v.as_array()) {
+      const double value = s.number_value(x, s.name("probe_x"), Range::closed(0.0, scene.mesh.length_x, "m"));
+      r.probe_x.push_back(value);
+    }
+  } else {
+    r.probe_x = {0.5 * scene.mesh.length_x};
+  }
+  r.probe_depth = s.number("probe_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
+  r.line_depth = s.number("line_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
+  r.arrival_fraction = s.number("arrival_fraction", r.arrival_fraction, Range::open(0.0, 1.0));
+  s.finish();
+}
+
+InterfaceScene from_value(const toml::value& root, const std::string& origin) {
+  InterfaceScene scene;
+  Section top(root, "", origin);
+  top.allow_only({"plate", "packing", "contact", "drive", "run"});
+  read_plate(top.sub("plate"), scene);
+  read_packing(top.sub("packing"), scene);
+  read_contact(top.sub("contact"), scene);
+  read_drive(top.sub("drive"), scene);
+  if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");
+  read_recording(top.sub("run"), scene);
+  top.finish();
+  return scene;
+}
+
+}  // namespace
+
+InterfaceScene parse_interface_scene(const std::string& text, const std::string& origin) {
+  InterfaceScene scene = from_value(toml_io::parse<InterfaceSceneError>(text, origin), origin);
+  scene.text = text;
+  scene.path = origin;
+  return scene;
+}
+
+InterfaceScene read_interface_scene(const std::filesystem::path& path) {
+  return parse_interface_scene(toml_io::read_text<InterfaceSceneError>(path, "interface scene file"), path.string());
+}
+
+}  // namespace sedwave::forward::experiment

@@ -1,0 +1,532 @@
+#include "sedwave/forward/interface/granular_plate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
+#include "sedwave/forward/dem/contact/hertz.hpp"
+#include "sedwave/forward/units.hpp"
+
+namespace sedwave::forward::interface {
+namespace {
+
+using dem::Vec3;
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+/// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
+/// omega^2 = k/m, beta = c/m, the dashpot seeing the half-step velocity (docs/dem.md, "Numerics"):
+/// h_c = 4 / (beta + sqrt(beta^2 + 4 omega^2)).
+double oscillator_limit(double omega_squared, double beta) {
+  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
+  return denominator > 0.0 ? 4.0 / denominator : inf;
+}
+
+/// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
+/// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
+/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing.
+double reach_energy(double overlap, double normal_velocity, double effective_mass, double k_hertz) {
+  const double touching = std::max(overlap, 0.0);
+  double e = touching * touching * std::sqrt(touching);
+  if (normal_velocity < 0.0) e += 1.25 * effective_mass * normal_velocity * normal_velocity / k_hertz;
+  return e;
+}
+
+}  // namespace
+
+double StepLimits::tightest() const { return std::min({plate, hertz, friction}); }
+
+GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& grain_material,
+                             std::optional<plate::ElasticPlate> plate, const InterfaceContacts& contacts,
+                             const StepControl& control)
+    : grains_(std::move(grains)), plate_(std::move(plate)), contacts_(contacts), control_(control) {
+  if (!(control.tolerance > 0.0 && control.tolerance <= 0.5))
+    throw std::invalid_argument("interface: step tolerance must lie in (0, 0.5]");
+  if (!(contacts.friction >= 0.0)) throw std::invalid_argument("interface: friction must be >= 0");
+  if (contacts.friction > 0.0 && !(contacts.tanh_velocity_scale > 0.0))
+    throw std::invalid_argument("interface: tanh_velocity_scale must be > 0");
+  grain_modulus_ = hertz_effective_modulus(grain_material.youngs_modulus, grain_material.poisson_ratio,
+                                           grain_material.youngs_modulus, grain_material.poisson_ratio);
+  if (plate_) {
+    const auto& pm = plate_->material();
+    plate_modulus_ = hertz_effective_modulus(grain_material.youngs_modulus, grain_material.poisson_ratio,
+                                             pm.youngs_modulus, pm.poisson_ratio);
+    u_.assign(static_cast<std::size_t>(plate_->dof_count()), 0.0);
+    v_ = u_;
+  }
+  dashpot_alpha_ = contacts.restitution < 1.0 ? dem::hertz_alpha_from_restitution(contacts.restitution) : 0.0;
+  double mean_radius = 0.0;
+  for (const auto& g : grains_) {
+    if (!(g.radius > 0.0 && g.mass > 0.0 && g.inertia > 0.0))
+      throw std::invalid_argument("interface: every grain needs radius, mass and inertia > 0");
+    mean_radius += g.radius;
+  }
+  if (!grains_.empty()) mean_radius /= static_cast<double>(grains_.size());
+  skin_ = 0.2 * mean_radius;
+  const std::size_t n = grains_.size();
+  conservative_.resize(n);
+  friction_.resize(n);
+  dashpot_.resize(n);
+  drive_.resize(n);
+  build_pairs();
+  compute_forces(0.0);
+}
+
+void GranularPlate::set_drive(ForcePulse pulse) {
+  for (const int g : pulse.grains)
+    if (g < 0 || static_cast<std::size_t>(g) >= grains_.size())
+      throw std::out_of_range("interface: driven grain index out of range");
+  if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: force pulse duration must be > 0");
+  pulse_ = std::move(pulse);
+  compute_forces(0.0);
+}
+
+void GranularPlate::set_static_load(std::vector<int> grains, double force_x, double force_y) {
+  for (const int g : grains)
+    if (g < 0 || static_cast<std::size_t>(g) >= grains_.size())
+      throw std::out_of_range("interface: loaded grain index out of range");
+  loaded_ = std::move(grains);
+  load_x_ = force_x;
+  load_y_ = force_y;
+  compute_forces(0.0);
+}
+
+long GranularPlate::relax(double damping_time, double tolerance, long max_steps) {
+  if (!(damping_time > 0.0)) throw std::invalid_argument("interface: relaxation damping time must be > 0");
+  const auto kinetic = [&] {
+    const Energies e = energies_without_strain();
+    return e.grain_translation + e.grain_rotation + e.plate_kinetic;
+  };
+  double largest = 0.0;
+  long n = 0;
+  for (; n < max_steps; ++n) {
+    const double dt = step();
+    const double keep = std::exp(-dt / damping_time);
+    for (auto& g : grains_) g.vx *= keep, g.vy *= keep, g.spin *= keep;
+    for (auto& v : v_) v *= keep;
+    const double now = kinetic();
+    largest = std::max(largest, now);
+    if (n > 10 && now < tolerance * largest) break;
+  }
+  if (n == max_steps)
+    throw std::runtime_error("interface: the loaded packing did not come to rest in " + std::to_string(max_steps) +
+                             " steps (Coulomb-tanh has no static friction: a packing free to spread creeps under a "
+                             "static load)");
+  for (auto& g : grains_) g.vx = g.vy = g.spin = 0.0;
+  std::fill(v_.begin(), v_.end(), 0.0);
+  time_ = 0.0;
+  steps_ = 0;
+  friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
+  max_plate_contact_radius_ = 0.0;
+  refresh_forces();
+  return n;
+}
+
+void GranularPlate::refresh_forces() {
+  build_pairs();
+  compute_forces(0.0);
+}
+
+// Cell list over the packing's bounding box; a pair is listed while |x_i - x_j| < r_i + r_j + skin
+// and the list is rebuilt once any grain has moved skin/2 (as the DEM engine does, docs/dem.md).
+void GranularPlate::build_pairs() {
+  pairs_.clear();
+  x_at_build_.resize(grains_.size());
+  y_at_build_.resize(grains_.size());
+  if (grains_.empty()) return;
+  double x0 = inf, y0 = inf, x1 = -inf, y1 = -inf, r_max = 0.0;
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto& g = grains_[i];
+    x0 = std::min(x0, g.x), x1 = std::max(x1, g.x), y0 = std::min(y0, g.y), y1 = std::max(y1, g.y);
+    r_max = std::max(r_max, g.radius);
+    x_at_build_[i] = g.x;
+    y_at_build_[i] = g.y;
+  }
+  const double cell = 2.0 * r_max + skin_;
+  const int nx = static_cast<int>((x1 - x0) / cell) + 1;
+  const int ny = static_cast<int>((y1 - y0) / cell) + 1;
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  auto cell_of = [&](const Grain& g) {
+    const int cx = std::min(static_cast<int>((g.x - x0) / cell), nx - 1);
+    const int cy = std::min(static_cast<int>((g.y - y0) / cell), ny - 1);
+    return std::pair{cx, cy};
+  };
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto [cx, cy] = cell_of(grains_[i]);
+    cells[static_cast<std::size_t>(cy * nx + cx)].push_back(static_cast<int>(i));
+  }
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto& gi = grains_[i];
+    const auto [cx, cy] = cell_of(gi);
+    for (int oy = std::max(cy - 1, 0); oy <= std::min(cy + 1, ny - 1); ++oy)
+      for (int ox = std::max(cx - 1, 0); ox <= std::min(cx + 1, nx - 1); ++ox)
+        for (const int j : cells[static_cast<std::size_t>(oy * nx + ox)]) {
+          if (j <= static_cast<int>(i)) continue;
+          const auto& gj = grains_[static_cast<std::size_t>(j)];
+          const double reach = gi.radius + gj.radius + skin_;
+          const double dx = gi.x - gj.x, dy = gi.y - gj.y;
+          if (dx * dx + dy * dy < reach * reach) pairs_.push_back({static_cast<int>(i), j});
+        }
+  }
+}
+
+bool GranularPlate::pairs_stale() const {
+  const double limit = 0.25 * skin_ * skin_;
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const double dx = grains_[i].x - x_at_build_[i], dy = grains_[i].y - y_at_build_[i];
+    if (dx * dx + dy * dy > limit) return true;
+  }
+  return false;
+}
+
+void GranularPlate::add_grain_pair(const Pair& p) {
+  auto& gi = grains_[static_cast<std::size_t>(p.i)];
+  auto& gj = grains_[static_cast<std::size_t>(p.j)];
+  const double dx = gi.x - gj.x, dy = gi.y - gj.y;
+  const double reach = gi.radius + gj.radius;
+  const double d2 = dx * dx + dy * dy;
+  if (d2 >= reach * reach) return;
+  const double d = std::sqrt(d2);
+  const double overlap = reach - d;
+  const double nx = dx / d, ny = dy / d;
+  const double effective_mass = gi.mass * gj.mass / (gi.mass + gj.mass);
+  const dem::HertzNormal law{grain_modulus_, dashpot_alpha_};
+  const auto pair = law.pair(effective_mass, gi.radius, gj.radius);
+  const auto& si = seen_[static_cast<std::size_t>(p.i)];
+  const auto& sj = seen_[static_cast<std::size_t>(p.j)];
+  const double vrx = si.vx - sj.vx, vry = si.vy - sj.vy;
+  const double vn = vrx * nx + vry * ny;
+  const double spring = law.spring(overlap, pair);
+  const double dashpot = -law.dashpot_at(overlap, pair) * vn;
+  auto& ci = conservative_[static_cast<std::size_t>(p.i)];
+  auto& cj = conservative_[static_cast<std::size_t>(p.j)];
+  ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
+  auto& di = dashpot_[static_cast<std::size_t>(p.i)];
+  auto& dj = dashpot_[static_cast<std::size_t>(p.j)];
+  di.fx += dashpot * nx, di.fy += dashpot * ny, dj.fx -= dashpot * nx, dj.fy -= dashpot * ny;
+  contact_energy_ += law.energy(overlap, gi.radius, gj.radius);
+  if (contacts_.friction <= 0.0) return;
+
+  // Slip of the contact point (docs/dem.md): v_t = v_rel - v_n n - (a_i w_i + a_j w_j) t, t = z x n,
+  // lever arms a = r - delta/2; torques -a n x F_t on both grains.
+  const double arm_i = gi.radius - 0.5 * overlap, arm_j = gj.radius - 0.5 * overlap;
+  const double tx = -ny, ty = nx;
+  const double roll = arm_i * si.spin + arm_j * sj.spin;
+  const Vec3 slip{vrx - vn * nx - roll * tx, vry - vn * ny - roll * ty, 0.0};
+  const dem::CoulombTanhFriction friction{contacts_.friction, contacts_.tanh_velocity_scale};
+  const dem::ContactPoint point{{nx, ny, 0.0}, overlap, vn, gi.radius, gj.radius};
+  Vec3 unused;
+  const Vec3 ft = friction.force(point, {}, slip, spring + dashpot, 0.0, unused);
+  const double n_cross_f = nx * ft.y - ny * ft.x;
+  auto& fi = friction_[static_cast<std::size_t>(p.i)];
+  auto& fj = friction_[static_cast<std::size_t>(p.j)];
+  fi.fx += ft.x, fi.fy += ft.y, fj.fx -= ft.x, fj.fy -= ft.y;
+  fi.torque -= arm_i * n_cross_f;
+  fj.torque -= arm_j * n_cross_f;
+}
+
+void GranularPlate::add_plate_contact(int index) {
+  auto& g = grains_[static_cast<std::size_t>(index)];
+  const auto& mesh = plate_->mesh();
+  if (g.x < 0.0 || g.x > mesh.length_x) return;  // beyond the plate's ends
+  const auto e = plate_->top_edge_point(g.x);
+  const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
+  const double edge_y = e.shape_left * u_[ya] + e.shape_right * u_[yb];
+  const double overlap = g.radius - (g.y - edge_y);
+  if (overlap <= 0.0) return;
+  // Hertz sphere on a flat: R* = r. Force = -grad of (2/5) k delta^(5/2) with
+  // delta = r - y_g + sum_a N_a(x_g) u_a: on the grain +F_n along y and -F_n du_y/dx along x (the
+  // tilt of the deformed edge), on node a -F_n N_a along y.
+  const double contact_radius = std::sqrt(g.radius * overlap);
+  const double fn = (4.0 / 3.0) * plate_modulus_ * contact_radius * overlap;
+  const double slope = (u_[yb] - u_[ya]) / plate_->element_width();
+  auto& c = conservative_[static_cast<std::size_t>(index)];
+  c.fy += fn;
+  c.fx -= fn * slope;
+  f_conservative_[ya] -= fn * e.shape_left;
+  f_conservative_[yb] -= fn * e.shape_right;
+  contact_energy_ += 0.4 * fn * overlap;
+  plate_normal_force_ += fn;
+  max_plate_contact_radius_ = std::max(max_plate_contact_radius_, contact_radius);
+  if (contacts_.friction <= 0.0) return;
+  const auto xa = static_cast<std::size_t>(2 * e.node_left), xb = static_cast<std::size_t>(2 * e.node_right);
+  // Slip of the grain's lowest point against the edge: v_x + w r - v_edge,x (z x (-r y) = r x).
+  const double edge_vx = e.shape_left * plate_seen_[xa] + e.shape_right * plate_seen_[xb];
+  const auto& seen = seen_[static_cast<std::size_t>(index)];
+  const Vec3 slip{seen.vx + seen.spin * g.radius - edge_vx, 0.0, 0.0};
+  const dem::CoulombTanhFriction friction{contacts_.friction, contacts_.tanh_velocity_scale};
+  const dem::ContactPoint point{{0.0, 1.0, 0.0}, overlap, 0.0, g.radius, inf};
+  Vec3 unused;
+  const double ft = friction.force(point, {}, slip, fn, 0.0, unused).x;
+  auto& f = friction_[static_cast<std::size_t>(index)];
+  f.fx += ft;
+  f.torque += g.radius * ft;  // (-r y) x (F_t x) = r F_t z
+  f_friction_[xa] -= ft * e.shape_left;
+  f_friction_[xb] -= ft * e.shape_right;
+  plate_tangential_force_ -= ft;
+}
+
+// Velocity-dependent forces (friction, dashpots) at t + dt see the half-step velocity advanced by the
+// old acceleration, v(t + dt/2) + (dt/2) a(t), which is v(t + dt) to O(dt^2). With the half-step
+// velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
+// frictional run (measured: order 1.2 in the tolerance instead of 2).
+void GranularPlate::compute_forces(double half_step) {
+  seen_.resize(grains_.size());
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto& g = grains_[i];
+    const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
+    seen_[i] = {g.vx + half_step * (c.fx + f.fx + d.fx + w.fx) / g.mass,
+                g.vy + half_step * (c.fy + f.fy + d.fy + w.fy) / g.mass,
+                contacts_.rotation ? g.spin + half_step * (c.torque + f.torque) / g.inertia : 0.0};
+  }
+  if (plate_) {
+    plate_seen_.resize(v_.size());
+    const auto& mass = plate_->mass();
+    const auto& damping = plate_->damping();
+    for (std::size_t d = 0; d < v_.size(); ++d) {
+      const double force = f_conservative_.empty() ? 0.0 : f_conservative_[d] + f_friction_[d];
+      plate_seen_[d] = plate_->fixed()[d] ? 0.0 : v_[d] + half_step * (force - damping[d] * v_[d]) / mass[d];
+    }
+  }
+  std::fill(conservative_.begin(), conservative_.end(), Parts{});
+  std::fill(friction_.begin(), friction_.end(), Parts{});
+  std::fill(dashpot_.begin(), dashpot_.end(), Parts{});
+  std::fill(drive_.begin(), drive_.end(), Parts{});
+  contact_energy_ = 0.0;
+  plate_normal_force_ = plate_tangential_force_ = 0.0;
+  for (const auto& p : pairs_) add_grain_pair(p);
+  if (plate_) {
+    f_conservative_.assign(u_.size(), 0.0);
+    f_friction_.assign(u_.size(), 0.0);
+    plate_->add_elastic_forces(u_, f_conservative_);
+    for (std::size_t g = 0; g < grains_.size(); ++g) add_plate_contact(static_cast<int>(g));
+  }
+  for (const int g : loaded_) {
+    drive_[static_cast<std::size_t>(g)].fx += load_x_;
+    drive_[static_cast<std::size_t>(g)].fy += load_y_;
+  }
+  if (pulse_ && time_ < pulse_->duration) {
+    const double f = pulse_->peak * std::sin(std::numbers::pi * time_ / pulse_->duration);
+    for (const int g : pulse_->grains) {
+      drive_[static_cast<std::size_t>(g)].fx += f * pulse_->direction_x;
+      drive_[static_cast<std::size_t>(g)].fy += f * pulse_->direction_y;
+    }
+  }
+}
+
+// Half a kick (h = dt/2). The kinetic energy changes by exactly h F . (v + v')/2 in a kick, so the
+// work of each non-conservative force is summed the same way and the energy balance closes to the
+// conservative forces' integration error alone.
+void GranularPlate::kick(double h, bool second_half) {
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    auto& g = grains_[i];
+    const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
+    const double vx = g.vx, vy = g.vy, spin = g.spin;
+    g.vx += h * (c.fx + f.fx + d.fx + w.fx) / g.mass;
+    g.vy += h * (c.fy + f.fy + d.fy + w.fy) / g.mass;
+    const double mx = 0.5 * (vx + g.vx), my = 0.5 * (vy + g.vy);
+    friction_work_ -= h * (f.fx * mx + f.fy * my);
+    dashpot_work_ -= h * (d.fx * mx + d.fy * my);
+    drive_work_ += h * (w.fx * mx + w.fy * my);
+    if (contacts_.rotation) {
+      g.spin += h * (c.torque + f.torque) / g.inertia;
+      friction_work_ -= h * f.torque * 0.5 * (spin + g.spin);
+    }
+  }
+  if (!plate_) return;
+  const auto& mass = plate_->mass();
+  const auto& damping = plate_->damping();
+  const auto& fixed = plate_->fixed();
+  for (std::size_t d = 0; d < u_.size(); ++d) {
+    if (fixed[d]) continue;
+    const double v = v_[d];
+    const double force = f_conservative_[d] + f_friction_[d];
+    // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
+    // full step multiplies a free dashpot's velocity by (1 - h c/m)/(1 + h c/m), stable for any c.
+    double dashpot_velocity = v;
+    if (second_half) {
+      v_[d] = (v + h * force / mass[d]) / (1.0 + h * damping[d] / mass[d]);
+      dashpot_velocity = v_[d];
+    } else {
+      v_[d] = v + h * (force - damping[d] * v) / mass[d];
+    }
+    const double mean = 0.5 * (v + v_[d]);
+    boundary_work_ += h * damping[d] * dashpot_velocity * mean;
+    friction_work_ -= h * f_friction_[d] * mean;
+  }
+}
+
+void GranularPlate::drift(double h) {
+  for (auto& g : grains_) {
+    g.x += h * g.vx;
+    g.y += h * g.vy;
+  }
+  for (std::size_t d = 0; d < u_.size(); ++d) u_[d] += h * v_[d];
+}
+
+// Every Hertz limit is a function of omega^2 = (3/2)(k/m) delta_max^(1/2) alone (the Tsuji dashpot's
+// beta^2 = alpha^2 omega^2 / (3/2) follows it), and omega^10 is proportional to (k/m)^5 delta_max^(5/2):
+// the loop keeps the largest of those, scaled by the first pair's k/m against overflow, and takes one
+// fifth root at the end instead of a power per pair. Coulomb-tanh limits fall with their beta alone.
+StepLimits GranularPlate::current_limits() const {
+  StepLimits limits;
+  const double omega_plate = plate_ ? plate_->max_frequency_bound() : 0.0;
+  if (plate_) limits.plate = plate_->stable_time_step();
+  const double mu_ks = contacts_.friction * contacts_.tanh_velocity_scale;
+  double rate_scale = 0.0, largest = 0.0, beta_friction = 0.0;
+  for (const auto& p : pairs_) {
+    const auto& gi = grains_[static_cast<std::size_t>(p.i)];
+    const auto& gj = grains_[static_cast<std::size_t>(p.j)];
+    const double dx = gi.x - gj.x, dy = gi.y - gj.y;
+    const double d = std::sqrt(dx * dx + dy * dy);
+    const double overlap = gi.radius + gj.radius - d;
+    const double vn = ((gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy) / d;
+    if (overlap <= 0.0 && vn >= 0.0) continue;
+    const double m = gi.mass * gj.mass / (gi.mass + gj.mass);
+    const double r = gi.radius * gj.radius / (gi.radius + gj.radius);
+    const double k = (4.0 / 3.0) * grain_modulus_ * std::sqrt(r);
+    if (rate_scale == 0.0) rate_scale = k / m;
+    const double ratio = k / m / rate_scale;
+    largest = std::max(largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, m, k));
+    if (mu_ks > 0.0 && overlap > 0.0) {
+      // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b);
+      // against the tangential effective mass 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for
+      // two equal spheres with rotation).
+      const double fn = std::abs(k * overlap * std::sqrt(overlap) -
+                                 dashpot_alpha_ * std::sqrt(m * k) * std::sqrt(std::sqrt(overlap)) * vn);
+      double inverse_mt = 1.0 / gi.mass + 1.0 / gj.mass;
+      if (contacts_.rotation) {
+        const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
+        inverse_mt += ai * ai / gi.inertia + aj * aj / gj.inertia;
+      }
+      beta_friction = std::max(beta_friction, mu_ks * fn * inverse_mt);
+    }
+  }
+  if (largest > 0.0) {
+    // Tangent stiffness (3/2) k delta^(1/2) at the largest overlap a collision can reach, and the
+    // Hertz-Tsuji dashpot alpha sqrt(m k) delta^(1/4) there.
+    const double omega2 = 1.5 * rate_scale * std::pow(largest, 0.2);
+    limits.hertz = oscillator_limit(omega2, dashpot_alpha_ * std::sqrt(omega2 / 1.5));
+  }
+  if (beta_friction > 0.0) limits.friction = oscillator_limit(0.0, beta_friction);
+  double v2_max = 0.0;
+  for (const auto& g : grains_) v2_max = std::max(v2_max, g.vx * g.vx + g.vy * g.vy);
+  if (v2_max > 0.0) limits.travel = 0.5 * skin_ / std::sqrt(v2_max);
+  if (!plate_) return limits;
+  const auto& mass = plate_->mass();
+  double plate_scale = 0.0, plate_largest = 0.0, plate_beta = 0.0;
+  for (const auto& g : grains_) {
+    if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;
+    const auto e = plate_->top_edge_point(g.x);
+    const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
+    const double overlap = g.radius - (g.y - (e.shape_left * u_[ya] + e.shape_right * u_[yb]));
+    if (overlap < -skin_) continue;
+    const double vn = g.vy - (e.shape_left * v_[ya] + e.shape_right * v_[yb]);
+    if (overlap <= 0.0 && vn >= 0.0) continue;
+    // The edge moves with the nodes: 1/m_eff = 1/m_g + sum_a N_a^2 / M_a.
+    const double edge_inverse_mass =
+        e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
+    const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
+    const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
+    if (plate_scale == 0.0) plate_scale = k * inverse_m;
+    const double ratio = k * inverse_m / plate_scale;
+    plate_largest =
+        std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, 1.0 / inverse_m, k));
+    if (mu_ks > 0.0 && overlap > 0.0) {
+      const double fn = k * overlap * std::sqrt(overlap);
+      double inverse_mt = 1.0 / g.mass + edge_inverse_mass;  // x and y masses of a node are equal
+      if (contacts_.rotation) inverse_mt += g.radius * g.radius / g.inertia;  // 2m/7 on a rigid wall
+      plate_beta = std::max(plate_beta, mu_ks * fn * inverse_mt);
+    }
+  }
+  // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
+  if (plate_largest > 0.0) {
+    const double omega2 = omega_plate * omega_plate + 1.5 * plate_scale * std::pow(plate_largest, 0.2);
+    limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
+  }
+  if (plate_beta > 0.0)
+    limits.friction = std::min(limits.friction, oscillator_limit(omega_plate * omega_plate, plate_beta));
+  return limits;
+}
+
+double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
+
+double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
+  limits_ = limits;
+  const double dt = control_.fixed_step > 0.0
+                        ? std::min(control_.fixed_step, max_dt)
+                        : std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
+  if (!std::isfinite(dt) || !(dt > 0.0))
+    throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
+  kick(0.5 * dt, false);
+  drift(dt);
+  time_ += dt;
+  if (pairs_stale()) build_pairs();
+  compute_forces(0.5 * dt);
+  kick(0.5 * dt, true);
+  ++steps_;
+  return dt;
+}
+
+double GranularPlate::step_towards(double t_end) {
+  const double left = t_end - time_;
+  const StepLimits limits = current_limits();
+  const double free_step =
+      control_.fixed_step > 0.0 ? control_.fixed_step
+                                : std::min({control_.tolerance * limits.tightest(), limits.travel, control_.max_step});
+  const double dt = step_with(limits, (left > free_step && left < 2.0 * free_step) ? 0.5 * left : left);
+  if (t_end - time_ < 1e-9 * dt) time_ = t_end;  // round-off, not a step
+  return dt;
+}
+
+void GranularPlate::advance_to(double t_end) {
+  while (time_ < t_end) step_towards(t_end);
+}
+
+Energies GranularPlate::energies_without_strain() const {
+  Energies e;
+  for (const auto& g : grains_) {
+    e.grain_translation += 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy);
+    if (contacts_.rotation) e.grain_rotation += 0.5 * g.inertia * g.spin * g.spin;
+  }
+  if (plate_) {
+    const auto& mass = plate_->mass();
+    for (std::size_t d = 0; d < v_.size(); ++d) e.plate_kinetic += 0.5 * mass[d] * v_[d] * v_[d];
+  }
+  return e;
+}
+
+Energies GranularPlate::energies() const {
+  Energies e;
+  for (const auto& g : grains_) {
+    e.grain_translation += 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy);
+    if (contacts_.rotation) e.grain_rotation += 0.5 * g.inertia * g.spin * g.spin;
+  }
+  e.contact = contact_energy_;
+  if (plate_) {
+    const auto& mass = plate_->mass();
+    for (std::size_t d = 0; d < v_.size(); ++d) e.plate_kinetic += 0.5 * mass[d] * v_[d] * v_[d];
+    e.plate_strain = plate_->strain_energy(u_);
+  }
+  e.friction_work = friction_work_;
+  e.dashpot_work = dashpot_work_;
+  e.boundary_work = boundary_work_;
+  e.drive_work = drive_work_;
+  return e;
+}
+
+int GranularPlate::grain_contacts() const {
+  int n = 0;
+  for (const auto& p : pairs_) {
+    const auto& gi = grains_[static_cast<std::size_t>(p.i)];
+    const auto& gj = grains_[static_cast<std::size_t>(p.j)];
+    const double reach = gi.radius + gj.radius;
+    if (std::hypot(gi.x - gj.x, gi.y - gj.y) < reach) ++n;
+  }
+  return n;
+}
+
+}  // namespace sedwave::forward::interface

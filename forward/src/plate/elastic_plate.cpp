@@ -1,0 +1,155 @@
+#include "sedwave/forward/plate/elastic_plate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sedwave::forward::plate {
+namespace {
+
+void check(const PlateMaterial& m, const PlateMesh& mesh) {
+  if (!(m.youngs_modulus > 0.0)) throw std::invalid_argument("plate: youngs_modulus must be > 0");
+  if (!(m.poisson_ratio >= 0.0 && m.poisson_ratio < 0.5))
+    throw std::invalid_argument("plate: poisson_ratio must lie in [0, 0.5)");
+  if (!(m.density > 0.0)) throw std::invalid_argument("plate: density must be > 0");
+  if (!(m.thickness > 0.0)) throw std::invalid_argument("plate: thickness must be > 0");
+  if (mesh.elements_x < 1 || mesh.elements_y < 1)
+    throw std::invalid_argument("plate: elements_x and elements_y must be >= 1");
+  if (!(mesh.length_x > 0.0 && mesh.length_y > 0.0))
+    throw std::invalid_argument("plate: length_x and length_y must be > 0");
+}
+
+// Plane-stress bilinear rectangle a x b, thickness t, 2x2 Gauss quadrature (exact for this element).
+// Shape functions N_k = (1 + xi xi_k)(1 + eta eta_k)/4 (Zienkiewicz & Taylor, vol. 1, ch. 6).
+Eigen::Matrix<double, 8, 8> rectangle_stiffness(const PlateMaterial& m, double a, double b) {
+  const double e = m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio);
+  Eigen::Matrix3d D;
+  D << e, e * m.poisson_ratio, 0.0, e * m.poisson_ratio, e, 0.0, 0.0, 0.0, e * 0.5 * (1.0 - m.poisson_ratio);
+  const double xi_k[4] = {-1.0, 1.0, 1.0, -1.0};
+  const double eta_k[4] = {-1.0, -1.0, 1.0, 1.0};
+  const double g = 1.0 / std::sqrt(3.0);
+  Eigen::Matrix<double, 8, 8> K = Eigen::Matrix<double, 8, 8>::Zero();
+  for (const double xi : {-g, g}) {
+    for (const double eta : {-g, g}) {
+      Eigen::Matrix<double, 3, 8> B = Eigen::Matrix<double, 3, 8>::Zero();
+      for (int k = 0; k < 4; ++k) {
+        const double dndx = 0.25 * xi_k[k] * (1.0 + eta * eta_k[k]) * 2.0 / a;
+        const double dndy = 0.25 * eta_k[k] * (1.0 + xi * xi_k[k]) * 2.0 / b;
+        B(0, 2 * k) = dndx;
+        B(1, 2 * k + 1) = dndy;
+        B(2, 2 * k) = dndy;
+        B(2, 2 * k + 1) = dndx;
+      }
+      K += B.transpose() * D * B * (m.thickness * a * b / 4.0);  // unit Gauss weights, dA = ab/4
+    }
+  }
+  return K;
+}
+
+}  // namespace
+
+double dilatational_speed(const PlateMaterial& m) {
+  return std::sqrt(m.youngs_modulus / (m.density * (1.0 - m.poisson_ratio * m.poisson_ratio)));
+}
+
+double shear_speed(const PlateMaterial& m) {
+  return std::sqrt(m.youngs_modulus / (2.0 * m.density * (1.0 + m.poisson_ratio)));
+}
+
+ElasticPlate::ElasticPlate(const PlateMaterial& material, const PlateMesh& mesh, const PlateEdges& edges)
+    : material_(material), mesh_(mesh), a_(0.0), b_(0.0) {
+  check(material, mesh);
+  a_ = mesh.length_x / mesh.elements_x;
+  b_ = mesh.length_y / mesh.elements_y;
+  element_stiffness_ = rectangle_stiffness(material, a_, b_);
+
+  const auto n = static_cast<std::size_t>(dof_count());
+  mass_.assign(n, 0.0);
+  damping_.assign(n, 0.0);
+  fixed_.assign(n, 0);
+  const double quarter = material.density * material.thickness * a_ * b_ / 4.0;
+  for (int j = 0; j < mesh.elements_y; ++j)
+    for (int i = 0; i < mesh.elements_x; ++i)
+      for (const int k : {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)}) {
+        mass_[static_cast<std::size_t>(2 * k)] += quarter;
+        mass_[static_cast<std::size_t>(2 * k + 1)] += quarter;
+      }
+
+  // Irons' bound: the largest eigenvalue of the element pencil (K_e, M_e), M_e = quarter I.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 8, 8>> eig(element_stiffness_, Eigen::EigenvaluesOnly);
+  omega_bound_ = std::sqrt(eig.eigenvalues().maxCoeff() / quarter);
+
+  // Edges. Lysmer & Kuhlemeyer (1969): a dashpot rho c t per unit length of edge along the normal
+  // (c = c_L) and along the edge (c = c_S) absorbs plane waves at normal incidence exactly.
+  const double z_normal = material.density * dilatational_speed(material) * material.thickness;
+  const double z_shear = material.density * shear_speed(material) * material.thickness;
+  auto apply = [&](EdgeCondition condition, int node_index, int normal_component, double tributary_length) {
+    const auto dof = [&](int c) { return static_cast<std::size_t>(2 * node_index + c); };
+    switch (condition) {
+      case EdgeCondition::free: break;
+      case EdgeCondition::clamped: fixed_[dof(0)] = fixed_[dof(1)] = 1; break;
+      case EdgeCondition::absorbing:
+        damping_[dof(normal_component)] += z_normal * tributary_length;
+        damping_[dof(1 - normal_component)] += z_shear * tributary_length;
+        break;
+    }
+  };
+  for (int i = 0; i < nodes_x(); ++i) {
+    const double length = (i == 0 || i == mesh.elements_x) ? 0.5 * a_ : a_;
+    apply(edges.bottom, node(i, 0), 1, length);
+    apply(edges.top, node(i, mesh.elements_y), 1, length);
+  }
+  for (int j = 0; j < nodes_y(); ++j) {
+    const double length = (j == 0 || j == mesh.elements_y) ? 0.5 * b_ : b_;
+    apply(edges.left, node(0, j), 0, length);
+    apply(edges.right, node(mesh.elements_x, j), 0, length);
+  }
+  for (std::size_t d = 0; d < n; ++d)
+    if (fixed_[d]) damping_[d] = 0.0;
+}
+
+void ElasticPlate::fix(int node_index, int component) {
+  if (node_index < 0 || node_index >= node_count() || component < 0 || component > 1)
+    throw std::out_of_range("ElasticPlate::fix: node " + std::to_string(node_index) + " component " +
+                            std::to_string(component));
+  const auto d = static_cast<std::size_t>(2 * node_index + component);
+  fixed_[d] = 1;
+  damping_[d] = 0.0;
+}
+
+void ElasticPlate::add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {
+  const int nx = mesh_.elements_x;
+  Eigen::Matrix<double, 8, 1> ue;
+  for (int j = 0; j < mesh_.elements_y; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int nodes[4] = {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)};
+      for (int k = 0; k < 4; ++k) {
+        ue(2 * k) = u[static_cast<std::size_t>(2 * nodes[k])];
+        ue(2 * k + 1) = u[static_cast<std::size_t>(2 * nodes[k] + 1)];
+      }
+      const Eigen::Matrix<double, 8, 1> fe = element_stiffness_ * ue;
+      for (int k = 0; k < 4; ++k) {
+        f[static_cast<std::size_t>(2 * nodes[k])] -= fe(2 * k);
+        f[static_cast<std::size_t>(2 * nodes[k] + 1)] -= fe(2 * k + 1);
+      }
+    }
+  }
+}
+
+double ElasticPlate::strain_energy(const std::vector<double>& u) const {
+  std::vector<double> f(u.size(), 0.0);
+  add_elastic_forces(u, f);
+  double e = 0.0;
+  for (std::size_t d = 0; d < u.size(); ++d) e -= 0.5 * u[d] * f[d];
+  return e;
+}
+
+ElasticPlate::EdgePoint ElasticPlate::top_edge_point(double x) const {
+  const int column = std::clamp(static_cast<int>(std::floor(x / a_)), 0, mesh_.elements_x - 1);
+  const double xi = x / a_ - column;
+  const int j = mesh_.elements_y;
+  return {node(column, j), node(column + 1, j), 1.0 - xi, xi};
+}
+
+}  // namespace sedwave::forward::plate
