@@ -199,42 +199,89 @@ void Domain::image_swaps(GrainArrays& g, int axis, double cutoff) {
   }
 }
 
-void Domain::neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candidates, double cutoff) {
+namespace {
+
+/// What a neighbouring slab needs of a grain to hold it as a ghost: 104 bytes rather than the 152 of
+/// a whole Grain (no force, no torque, which a ghost starts without).
+struct GhostRecord {
+  std::int64_t id;
+  std::int32_t group;
+  std::int32_t body;
+  double radius;
+  double mass;
+  Vec3 position;
+  Vec3 velocity;
+  Vec3 angular_velocity;
+};
+
+static_assert(sizeof(GhostRecord) == 104 && sizeof(Grain) == 152, "docs/dem.md quotes both sizes");
+
+Grain ghost_from(const GhostRecord& r) {
+  Grain g;
+  g.id = r.id;
+  g.group = r.group;
+  g.body = r.body;
+  g.radius = r.radius;
+  g.mass = r.mass;
+  g.position = r.position;
+  g.velocity = r.velocity;
+  g.angular_velocity = r.angular_velocity;
+  return g;
+}
+
+constexpr int kGhostBuildTag = 12;
+
+}  // namespace
+
+void Domain::neighbour_swaps(GrainArrays& g, std::size_t n_candidates, double cutoff) {
   const bool periodic = box_.periodic[2];
-  Swap s;
   const int below = rank_ > 0 ? rank_ - 1 : (periodic ? size_ - 1 : MPI_PROC_NULL);
   const int above = rank_ < size_ - 1 ? rank_ + 1 : (periodic ? 0 : MPI_PROC_NULL);
-  s.send_to = downwards ? below : above;
-  s.recv_from = downwards ? above : below;
-  if (downwards && rank_ == 0 && periodic) s.shift.z = box_.length(2);
-  if (!downwards && rank_ == size_ - 1 && periodic) s.shift.z = -box_.length(2);
-  if (s.send_to != MPI_PROC_NULL)
-    for (std::size_t i = 0; i < n_candidates; ++i) {
-      const double z = g.position[i].z;
-      if (downwards ? z < slab_lo() + cutoff : z >= slab_hi() - cutoff)
-        s.send.push_back(static_cast<std::int32_t>(i));
+  const parallel::RecordType<GhostRecord> record;
+  // Both directions are posted before either is received; each receive learns its length from the
+  // message itself (probe), so no count travels ahead of the records.
+  std::vector<GhostRecord> out[2];
+  MPI_Request sent[2];
+  const std::size_t first_swap = swaps_.size();
+  for (const int side : {0, 1}) {
+    const bool downwards = side == 0;
+    Swap s;
+    s.send_to = downwards ? below : above;
+    s.recv_from = downwards ? above : below;
+    if (downwards && rank_ == 0 && periodic) s.shift.z = box_.length(2);
+    if (!downwards && rank_ == size_ - 1 && periodic) s.shift.z = -box_.length(2);
+    if (s.send_to != MPI_PROC_NULL)
+      for (std::size_t i = 0; i < n_candidates; ++i) {
+        const double z = g.position[i].z;
+        if (downwards ? z < slab_lo() + cutoff : z >= slab_hi() - cutoff) s.send.push_back(static_cast<std::int32_t>(i));
+      }
+    out[side].reserve(s.send.size());
+    for (const std::int32_t i : s.send) {
+      const auto k = static_cast<std::size_t>(i);
+      out[side].push_back({g.id[k], g.group[k], g.body[k], g.radius[k], g.mass[k], g.position[k] + s.shift,
+                           g.velocity[k], g.rotation() ? g.angular_velocity[k] : Vec3{}});
     }
-  std::vector<Grain> out;
-  out.reserve(s.send.size());
-  for (const std::int32_t i : s.send) {
-    out.push_back(g.grain(static_cast<std::size_t>(i)));
-    out.back().position += s.shift;
+    if (s.send_to != MPI_PROC_NULL) rebuild_bytes_sent_ += out[side].size() * sizeof(GhostRecord);
+    MPI_Isend(out[side].data(), parallel::mpi_count(out[side].size()), record.get(), s.send_to, kGhostBuildTag + side,
+              comm_, &sent[side]);
+    swaps_.push_back(std::move(s));
   }
-  if (s.send_to != MPI_PROC_NULL) rebuild_bytes_sent_ += out.size() * sizeof(Grain);
-  int n_out = static_cast<int>(out.size()), n_in = 0;
-  MPI_Sendrecv(&n_out, 1, MPI_INT, s.send_to, 11, &n_in, 1, MPI_INT, s.recv_from, 11, comm_,
-               MPI_STATUS_IGNORE);
-  std::vector<Grain> in(static_cast<std::size_t>(n_in));
-  MPI_Sendrecv(out.data(), n_out * static_cast<int>(sizeof(Grain)), MPI_BYTE, s.send_to, 12, in.data(),
-               n_in * static_cast<int>(sizeof(Grain)), MPI_BYTE, s.recv_from, 12, comm_,
-               MPI_STATUS_IGNORE);
-  s.recv_first = g.n_total();
-  s.recv_count = in.size();
-  for (const Grain& ghost : in) {
-    ghost_sources_.push_back({static_cast<std::int32_t>(g.n_total()), Vec3{}});
-    g.push_ghost(ghost);
+  for (const int side : {0, 1}) {
+    Swap& s = swaps_[first_swap + static_cast<std::size_t>(side)];
+    MPI_Status status;
+    MPI_Probe(s.recv_from, kGhostBuildTag + side, comm_, &status);
+    int count = 0;
+    MPI_Get_count(&status, record.get(), &count);
+    std::vector<GhostRecord> in(static_cast<std::size_t>(count));
+    MPI_Recv(in.data(), count, record.get(), s.recv_from, kGhostBuildTag + side, comm_, MPI_STATUS_IGNORE);
+    s.recv_first = g.n_total();
+    s.recv_count = in.size();
+    for (const GhostRecord& r : in) {
+      ghost_sources_.push_back({static_cast<std::int32_t>(g.n_total()), Vec3{}});
+      g.push_ghost(ghost_from(r));
+    }
   }
-  swaps_.push_back(std::move(s));
+  MPI_Waitall(2, sent, MPI_STATUSES_IGNORE);
 }
 
 void Domain::build_ghosts(GrainArrays& g, double cutoff) {
@@ -250,9 +297,7 @@ void Domain::build_ghosts(GrainArrays& g, double cutoff) {
   for (int r = 1; r < size_; ++r)
     if (boundaries_[r + 1] - boundaries_[r] < cutoff && r + 1 < size_)
       throw std::runtime_error("Domain: slab " + std::to_string(r) + " is thinner than the ghost cutoff");
-  const std::size_t candidates = g.n_total();  // locals and x/y images, not z ghosts
-  neighbour_swap(g, true, candidates, cutoff);
-  neighbour_swap(g, false, candidates, cutoff);
+  neighbour_swaps(g, g.n_total(), cutoff);  // candidates: locals and x/y images, not z ghosts
 }
 
 void Domain::clear_forces(GrainArrays& g) const {

@@ -101,7 +101,8 @@ class Domain {
     std::vector<double> recv_values;  // about the received ghosts: their state in, their forces out
   };
   void image_swaps(GrainArrays& g, int axis, double cutoff);
-  void neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candidates, double cutoff);
+  /// The z swaps with the slabs below and above (ghosts from the one above first, then below).
+  void neighbour_swaps(GrainArrays& g, std::size_t n_candidates, double cutoff);
   void clamp_thickness(double min_thickness);
   /// Posts a non-blocking receive and send (counted in halo_bytes_sent) for wait_for_messages().
   void post(std::vector<double>& send, int to, std::vector<double>& receive, int from, int tag);

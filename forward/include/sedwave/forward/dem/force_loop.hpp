@@ -96,8 +96,16 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
   const Vec3* shifts = list.shifts().data();
   const typename Model::Pair* pair = table.pairs.data();
 
-  // Pairs [first, end) of row i.
-  auto row = [&](std::size_t i, std::uint32_t first, std::uint32_t end) {
+  // One loop over the rows for every subset (a lambda per row, called from three loops, is not
+  // inlined into this function's AVX + FMA clone: 40 % slower). kRemote visits only the rows that
+  // have remote pairs; each row's pairs are [first, end).
+  const std::span<const std::uint32_t> remote_rows = list.remote_rows();
+  const bool remote_only = subset == PairSubset::kRemote;
+  const std::size_t n_rows = remote_only ? remote_rows.size() : list.n_rows();
+  for (std::size_t row = 0; row < n_rows; ++row) {
+    const std::size_t i = remote_only ? remote_rows[row] : row;
+    const std::uint32_t first = remote_only ? list.remote_begin(i) : list.row_begin(i);
+    const std::uint32_t end = subset == PairSubset::kHeld ? list.remote_begin(i) : list.row_end(i);
     const Vec3 xi = x[i];
     const Vec3 vi = v[i];
     const double ri = radius[i];
@@ -199,17 +207,6 @@ SEDWAVE_FMA_CLONES OverlapWatch accumulate_contact_forces(const Model& model, Gr
     for (std::uint32_t k = with_reaction; k < end; ++k) fi += pair_force(k, static_cast<std::size_t>(partner[k]), tj);
     force[i] += fi;
     if constexpr (Model::rotates) torque[i] += ti;
-  };
-  switch (subset) {
-    case PairSubset::kAll:
-      for (std::size_t i = 0; i < list.n_rows(); ++i) row(i, list.row_begin(i), list.row_end(i));
-      break;
-    case PairSubset::kHeld:
-      for (std::size_t i = 0; i < list.n_rows(); ++i) row(i, list.row_begin(i), list.remote_begin(i));
-      break;
-    case PairSubset::kRemote:
-      for (const std::uint32_t i : list.remote_rows()) row(i, list.remote_begin(i), list.row_end(i));
-      break;
   }
   return watch;
 }
