@@ -86,9 +86,9 @@ check "no index: exit status 2 and a message naming the variables" \
       "$rc == 2 and 'SLURM_ARRAY_TASK_ID' in open('noindex.err').read()"
 
 step "One channel on 2 ranks through the Slurm script (srun replaced by MPIRUN), then resubmitted"
-# The shipped 1000-grain packing, Hooke contacts, wall type 3 frozen: 400 steps, a checkpoint every 200.
+# The shipped 1000-grain packing, Hooke contacts, both walls (types 2 and 3) frozen: 400 steps, a checkpoint every 200.
 channel=(env DATA="$DATA/tables/thesis_w3_small.packing.data" STEPS=400 EVERY=200 RUN="$OUT/channel"
-         LAUNCH="$MPIRUN -np 2" DEM_ARGS="--kn 726 --restitution 0.9 --frozen 3 --quiet")
+         LAUNCH="$MPIRUN -np 2" DEM_ARGS="--kn 726 --restitution 0.9 --frozen 2 --frozen 3 --quiet")
 run 0 "${channel[@]}" bash "$RECIPES/slurm/channel.sbatch"
 cp channel/final.data first_final.data
 # The resubmitted job (here through the PBS script) finds the checkpoint of step 400: nothing is left.
