@@ -159,9 +159,12 @@ int run(const std::string& path, long steps) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   const long rss_before = peak_rss_kib();
-  // Rank 0 reads and the engine distributes.
-  dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) { return rank == 0; });
-  MPI_Bcast(&data.box, sizeof(dem::Box), MPI_BYTE, 0, MPI_COMM_WORLD);
+  // Each rank keeps every size-th grain of the file, as `sedwave dem` does, so no rank holds them
+  // all; the engine then sends each grain to its slab's owner.
+  std::size_t index = 0;
+  dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) {
+    return static_cast<int>(index++ % static_cast<std::size_t>(size)) == rank;
+  });
   dem::EngineSettings s = settings(data.box, false);
   s.guard.check_interval = 1000;
   s.progress.enabled = std::getenv("DEM_BENCH_VERBOSE") != nullptr;

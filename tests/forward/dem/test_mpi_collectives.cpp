@@ -41,6 +41,22 @@ TEST(Collectives, BroadcastAndSumInPiecesMatchOneCall) {
   sum(MPI_COMM_WORLD, std::span(empty), 3);  // zero elements: one call, nothing to do
 }
 
+TEST(Collectives, SubCommunicatorHoldsTheMembersOnlyInRankOrder) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  const bool member = r % 2 == 0;  // as the groups' leaders of ranks_per_point = 2
+  const SubCommunicator even(MPI_COMM_WORLD, member);
+  if (!member) {
+    EXPECT_EQ(even.get(), MPI_COMM_NULL);
+    return;
+  }
+  ASSERT_NE(even.get(), MPI_COMM_NULL);
+  EXPECT_EQ(size(even.get()), (n + 1) / 2);
+  EXPECT_EQ(rank(even.get()), r / 2);
+  std::int64_t from_root = r == 0 ? 42 : -1;
+  broadcast(even.get(), std::span(&from_root, 1));
+  EXPECT_EQ(from_root, 42);
+}
+
 TEST(Collectives, GatherCountsGrainRecordsInRankOrder) {
   const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
   std::vector<dem::Grain> mine(static_cast<std::size_t>(r + 1));

@@ -110,6 +110,24 @@ inline int size(MPI_Comm comm) {
   return n;
 }
 
+/// The ranks of `comm` that pass `member` = true, as a communicator in the same rank order
+/// (collective over `comm`; get() is MPI_COMM_NULL on the others). Freed with this object.
+class SubCommunicator {
+ public:
+  SubCommunicator(MPI_Comm comm, bool member) {
+    MPI_Comm_split(comm, member ? 0 : MPI_UNDEFINED, rank(comm), &sub_);
+  }
+  ~SubCommunicator() {
+    if (sub_ != MPI_COMM_NULL) MPI_Comm_free(&sub_);
+  }
+  SubCommunicator(const SubCommunicator&) = delete;
+  SubCommunicator& operator=(const SubCommunicator&) = delete;
+  [[nodiscard]] MPI_Comm get() const { return sub_; }
+
+ private:
+  MPI_Comm sub_ = MPI_COMM_NULL;
+};
+
 /// Element by element over every rank of `comm`, in place (collective). `max_count`: the most
 /// elements per MPI call (any length works; tests pass small values to exercise the pieces).
 template <typename T, std::size_t N>
