@@ -13,7 +13,10 @@
 //                                   CUT d, default 0.05) in alternating batches: median and fastest
 //                                   of 20 batches, in ns per grain and per listed pair
 // DEM_BENCH_NEWTON=off runs sedwave with newton off (default on); DEM_BENCH_VERBOSE=1 prints the
-// engine's timing table and list statistics.
+// engine's timing table and list statistics. DEM_BENCH_BALANCE_EVERY=K (`run` only) rebuilds the
+// lists every K steps and balances the slabs at every rebuild on the measured force-loop time, which
+// also evens out ranks on slower cores (default: the engine's balancing on listed pairs, at the
+// rebuilds the motion asks for).
 //
 // `run` prints one line of key=value pairs on rank 0: the time per grain-step, the split of a step
 // into force, neighbour, communication and integration (mean and slowest rank, ms per step; the
@@ -168,15 +171,26 @@ int run(const std::string& path, long steps) {
   dem::EngineSettings s = settings(data.box, false);
   s.guard.check_interval = 1000;
   s.progress.enabled = std::getenv("DEM_BENCH_VERBOSE") != nullptr;
+  const char* balance_every = std::getenv("DEM_BENCH_BALANCE_EVERY");
+  const long rebuild_every = balance_every != nullptr ? std::stol(balance_every) : 0;
+  if (rebuild_every > 0) s.balance = {1, true};
   dem::Engine engine(MPI_COMM_WORLD, s, data.grains);
   data.grains.clear();
   data.grains.shrink_to_fit();
-  engine.run(std::min(steps / 10, 200L));  // warm-up
+  // Steps in chunks of rebuild_every, each ending with a requested rebuild (and so a balance).
+  const auto advance = [&](long n) {
+    if (rebuild_every <= 0) return engine.run(n);
+    for (long done = 0; done < n; done += rebuild_every) {
+      engine.run(std::min(rebuild_every, n - done));
+      engine.request_rebuild();
+    }
+  };
+  advance(std::min(steps / 10, 200L));  // warm-up
   MPI_Barrier(MPI_COMM_WORLD);
   const dem::Timings before = engine.timings();
   const auto halo_before = engine.domain().halo_bytes_sent();
   const double t0 = MPI_Wtime();
-  engine.run(steps);
+  advance(steps);
   MPI_Barrier(MPI_COMM_WORLD);
   const double seconds = MPI_Wtime() - t0;
   const dem::Timings& after = engine.timings();

@@ -16,7 +16,8 @@
 #   OUT        where raw numbers, logs and the table go (default ./scaling-out)
 #   BUDGET_S   no run starts after this many seconds (default 420); PASSES (default 2); RANKS;
 #   STEPS_DIVISOR  divides every run's steps (a quick check of the script: 20)
-#   SERIES     which series run (default "strong_5e4 weak strong_2.5e5"); LAMMPS=0 leaves LAMMPS out
+#   SERIES     which series run (default "strong_5e4 weak strong_2.5e5"); LAMMPS=0 leaves LAMMPS out;
+#              VARIANTS, ONLY_VARIANTS: dem_bench with an environment setting (see below)
 #              (e.g. to compare packed sedwave builds alone: SERIES=strong_5e4 RANKS="2 4" LAMMPS=0)
 # Prints the table at the end (also $OUT/table.md); $OUT/raw.txt holds one key=value line per run.
 set -uo pipefail
@@ -97,11 +98,18 @@ for series in $SERIES; do
 done
 BUILDS=()
 for b in "$PACK"/usr/bin/dem_bench*; do BUILDS+=("$(basename "$b")"); done
+# VARIANTS="name:VAR=VALUE ..." adds dem_bench runs with an environment setting, recorded as build
+# dem_bench@name (e.g. balanced:DEM_BENCH_BALANCE_EVERY=20); ONLY_VARIANTS=1 runs those alone.
+declare -A VARIANT_ENV=()
+[[ ${ONLY_VARIANTS:-0} == 1 ]] && BUILDS=()
+for v in ${VARIANTS:-}; do BUILDS+=("dem_bench@${v%%:*}"); VARIANT_ENV[dem_bench@${v%%:*}]=${v#*:}; done
 
 run_sedwave() {  # build packing ranks pass
   local build=$1 packing=$2 ranks=$3 pass=$4 line
-  line=$(DEM_BENCH_NEWTON=on bounded env LD_LIBRARY_PATH="$PACK_LIBS" mpirun -np "$ranks" "${BIND[@]}" \
-         "$build" run "${DATA[$packing]}" "${STEPS[$packing]}" 2>"$OUT/logs/${build}_${packing}_${ranks}_$pass.err")
+  local setting=${VARIANT_ENV[$build]:-DEM_BENCH_NEWTON=on}
+  line=$(DEM_BENCH_NEWTON=on bounded env LD_LIBRARY_PATH="$PACK_LIBS" "$setting" mpirun -np "$ranks" "${BIND[@]}" \
+         -x "${setting%%=*}" "${build%@*}" run "${DATA[$packing]}" "${STEPS[$packing]}" \
+         2>"$OUT/logs/${build}_${packing}_${ranks}_$pass.err")
   if [[ $line == ns_per_grain_step=* ]]; then
     echo "code=sedwave build=$build packing=$packing pass=$pass $line" >>"$RAW"
     log "$build $packing ranks=$ranks: $(sed -E 's/.*ms_per_step=([0-9.]+).*/\1/' <<<"$line") ms/step"
