@@ -4,13 +4,24 @@
 //   dem_bench run file.data STEPS   runs the thesis physics (frictionless Hooke, E = 1000,
 //                                   nu = 2/7, e_n = 0.9, LAMMPS kn/gamma_n, dt = 0.01 t_col) and
 //                                   prints "ns_per_grain_step=... " on rank 0
-//   dem_bench params file.data      prints kn gamma_n dt for the LAMMPS input
+//   dem_bench params                prints kn gamma_n dt for the LAMMPS input
+//   dem_bench stack in.data K out.data
+//                                   K copies of a packing periodic along z, one above the other
+//                                   (ids renumbered), for larger packings than are worth relaxing
 //   dem_bench loop file.data [CUT]  times the force loop alone on one rank, positions frozen after
 //                                   200 steps, dry and with a pore fluid's lubrication (cut-off
 //                                   CUT d, default 0.05) in alternating batches: median and fastest
 //                                   of 20 batches, in ns per grain and per listed pair
 // DEM_BENCH_NEWTON=off runs sedwave with newton off (default on); DEM_BENCH_VERBOSE=1 prints the
-// engine's timing table and list statistics.
+// engine's timing table and list statistics. DEM_BENCH_BALANCE_EVERY=K (`run` only) rebuilds the
+// lists every K steps and balances the slabs at every rebuild on the measured force-loop time, which
+// also evens out ranks on slower cores (default: the engine's balancing on listed pairs, at the
+// rebuilds the motion asks for).
+//
+// `run` prints one line of key=value pairs on rank 0: the time per grain-step, the split of a step
+// into force, neighbour, communication and integration (mean and slowest rank, ms per step; the
+// communication time includes waiting for slower ranks), the halo-exchange volume per step and
+// every rank's peak resident memory (smallest, median, largest, rank 0's; MB).
 #include <mpi.h>
 #include <sys/resource.h>
 
@@ -115,26 +126,82 @@ int prepare(long n, const std::string& path) {
   return 0;
 }
 
+/// Peak resident memory of every rank in MB, sorted, and rank 0's (valid on rank 0).
+struct RankMemory {
+  std::vector<double> sorted_mb;
+  double rank0_mb = 0.0;
+};
+
+RankMemory gather_peak_memory(int rank, int size) {
+  const double mine = static_cast<double>(peak_rss_kib()) / 1024.0;
+  RankMemory m;
+  m.sorted_mb.resize(static_cast<std::size_t>(size));
+  MPI_Gather(&mine, 1, MPI_DOUBLE, m.sorted_mb.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  if (rank == 0) {
+    m.rank0_mb = m.sorted_mb[0];
+    std::sort(m.sorted_mb.begin(), m.sorted_mb.end());
+  }
+  return m;
+}
+
+/// A phase's time per step in ms: the mean over ranks and the slowest rank's.
+struct PhaseTime {
+  double mean_ms, max_ms;
+};
+
+PhaseTime phase_per_step(double seconds, long steps, int size) {
+  double sum = 0.0, max = 0.0;
+  MPI_Allreduce(&seconds, &sum, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&seconds, &max, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  const double per_step_ms = 1e3 / static_cast<double>(steps);
+  return {per_step_ms * sum / size, per_step_ms * max};
+}
+
 int run(const std::string& path, long steps) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   const long rss_before = peak_rss_kib();
-  // Rank 0 reads and the engine distributes.
-  dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) { return rank == 0; });
-  MPI_Bcast(&data.box, sizeof(dem::Box), MPI_BYTE, 0, MPI_COMM_WORLD);
+  // Each rank keeps every size-th grain of the file, as `sedwave dem` does, so no rank holds them
+  // all; the engine then sends each grain to its slab's owner.
+  std::size_t index = 0;
+  dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) {
+    return static_cast<int>(index++ % static_cast<std::size_t>(size)) == rank;
+  });
   dem::EngineSettings s = settings(data.box, false);
   s.guard.check_interval = 1000;
   s.progress.enabled = std::getenv("DEM_BENCH_VERBOSE") != nullptr;
+  const char* balance_every = std::getenv("DEM_BENCH_BALANCE_EVERY");
+  const long rebuild_every = balance_every != nullptr ? std::stol(balance_every) : 0;
+  if (rebuild_every > 0) s.balance = {1, true};
   dem::Engine engine(MPI_COMM_WORLD, s, data.grains);
   data.grains.clear();
   data.grains.shrink_to_fit();
-  engine.run(std::min(steps / 10, 200L));  // warm-up
+  // Steps in chunks of rebuild_every, each ending with a requested rebuild (and so a balance).
+  const auto advance = [&](long n) {
+    if (rebuild_every <= 0) return engine.run(n);
+    for (long done = 0; done < n; done += rebuild_every) {
+      engine.run(std::min(rebuild_every, n - done));
+      engine.request_rebuild();
+    }
+  };
+  advance(std::min(steps / 10, 200L));  // warm-up
   MPI_Barrier(MPI_COMM_WORLD);
+  const dem::Timings before = engine.timings();
+  const auto halo_before = engine.domain().halo_bytes_sent();
   const double t0 = MPI_Wtime();
-  engine.run(steps);
+  advance(steps);
   MPI_Barrier(MPI_COMM_WORLD);
   const double seconds = MPI_Wtime() - t0;
+  const dem::Timings& after = engine.timings();
+  const PhaseTime force = phase_per_step(after.force - before.force, steps, size);
+  const PhaseTime neighbour = phase_per_step(after.neighbor - before.neighbor, steps, size);
+  const PhaseTime communication = phase_per_step(after.communication - before.communication, steps, size);
+  const PhaseTime integration = phase_per_step(after.integrate - before.integrate, steps, size);
+  // Sent by all ranks together per step.
+  double halo_bytes = static_cast<double>(engine.domain().halo_bytes_sent() - halo_before) / static_cast<double>(steps);
+  MPI_Allreduce(MPI_IN_PLACE, &halo_bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  const RankMemory memory = gather_peak_memory(rank, size);
   double bytes = static_cast<double>(engine.memory_bytes());
   MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   long rss_growth = peak_rss_kib() - rss_before;
@@ -144,11 +211,41 @@ int run(const std::string& path, long steps) {
     std::printf("listed pairs per local grain (rank 0): %.2f, ghosts per local grain: %.2f\n",
                 double(engine.neighbor_list().n_pairs()) / double(engine.n_local()),
                 double(engine.grains().n_ghost()) / double(engine.n_local()));
-  if (rank == 0)
+  if (rank == 0) {
+    const std::vector<double>& mb = memory.sorted_mb;
     std::printf("ns_per_grain_step=%.2f ranks=%d grains=%.0f steps=%ld engine_bytes_per_grain=%.0f "
-                "rss_growth_bytes_per_grain=%.0f dt=%.6g\n",
+                "rss_growth_bytes_per_grain=%.0f dt=%.6g ms_per_step=%.4f "
+                "force_ms=%.4f/%.4f neighbour_ms=%.4f/%.4f communication_ms=%.4f/%.4f integration_ms=%.4f/%.4f "
+                "halo_bytes_per_step=%.0f peak_rss_mb_min=%.1f peak_rss_mb_median=%.1f peak_rss_mb_max=%.1f "
+                "peak_rss_mb_rank0=%.1f\n",
                 1e9 * seconds / (n * static_cast<double>(steps)), size, n, steps, bytes / n,
-                1024.0 * static_cast<double>(rss_growth) / n, engine.time_step());
+                1024.0 * static_cast<double>(rss_growth) / n, engine.time_step(),
+                1e3 * seconds / static_cast<double>(steps), force.mean_ms, force.max_ms, neighbour.mean_ms,
+                neighbour.max_ms, communication.mean_ms, communication.max_ms, integration.mean_ms,
+                integration.max_ms, halo_bytes, mb.front(), mb[mb.size() / 2], mb.back(), memory.rank0_mb);
+  }
+  return 0;
+}
+
+/// K copies of a z-periodic packing stacked along z; ids renumbered copy by copy.
+int stack(const std::string& in, long copies, const std::string& out) {
+  if (copies < 1) throw std::invalid_argument("stack: the number of copies must be at least 1");
+  const dem::LammpsData data = dem::read_lammps_data(in, [](const dem::Grain&) { return true; });
+  const double height = data.box.length(2);
+  std::int64_t max_id = 0;
+  for (const dem::Grain& g : data.grains) max_id = std::max(max_id, g.id);
+  std::vector<dem::Grain> grains;
+  grains.reserve(data.grains.size() * static_cast<std::size_t>(copies));
+  for (long k = 0; k < copies; ++k)
+    for (dem::Grain g : data.grains) {
+      g.id += k * max_id;
+      g.position.z += static_cast<double>(k) * height;
+      grains.push_back(g);
+    }
+  dem::Box box = data.box;
+  box.hi.z = box.lo.z + static_cast<double>(copies) * height;
+  dem::write_lammps_data(out, box, grains);
+  std::printf("stacked %ld copies: %zu grains, box height %g\n", copies, grains.size(), box.length(2));
   return 0;
 }
 
@@ -249,13 +346,14 @@ int main(int argc, char** argv) {
     const std::string mode = argc > 1 ? argv[1] : "";
     if (mode == "prepare" && argc == 4) status = prepare(std::stol(argv[2]), argv[3]);
     else if (mode == "run" && argc == 4) status = run(argv[2], std::stol(argv[3]));
+    else if (mode == "stack" && argc == 5) status = stack(argv[2], std::stol(argv[3]), argv[4]);
     else if (mode == "loop" && (argc == 3 || argc == 4)) status = loop(argv[2], argc == 4 ? std::stod(argv[3]) : 0.05);
     else if (mode == "params") {
       const ThesisPhysics p = thesis_physics();
       std::printf("%.17g %.17g %.17g\n", p.kn, p.gamma_n, p.dt);
       status = 0;
     } else {
-      std::cerr << "usage: dem_bench prepare N file | run file steps | loop file [cutoff] | params\n";
+      std::cerr << "usage: dem_bench prepare N file | run file steps | stack file K out | loop file [cutoff] | params\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "dem_bench: " << e.what() << '\n';

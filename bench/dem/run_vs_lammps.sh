@@ -5,7 +5,7 @@
 # example-script kn, kt = 2/7 kn unused), e_n = 0.9 (gamma_n for the lightest pair), dt = 0.01 t_col,
 # skin 0.1, W = 3 periodic channel (periodic along z too), compressed packing prepared by sedwave
 # and handed to both codes as the same LAMMPS data file (with the same small random velocities).
-# LAMMPS runs pair gran/hooke (xmu = 0), fix nve/sphere. Both codes run with the same newton
+# LAMMPS runs pair gran/hooke (xmu = 0), fix nve/sphere (bench/dem/in.thesis.lmp). Both codes run with the same newton
 # setting: NEWTON=on (default; each pair across a periodic face or rank boundary computed once, the
 # reaction sent back) or NEWTON=off (computed on both sides, the thesis's LAMMPS setting).
 #
@@ -31,27 +31,11 @@ read -r KN GAMMA_N DT < <("$WORK/dem_bench" params)
 # the ratio.
 steps_for() { case $1 in 2000) echo 20000 ;; 10000) echo 4000 ;; *) echo 1000 ;; esac; }
 
-lammps_ns() {  # data file, steps, ranks -> ns per grain-step
+lammps_ns() {  # data file, steps, ranks, grains -> ns per grain-step
   local data=$1 steps=$2 ranks=$3 n=$4
-  cat > "$WORK/in.bench" <<LMP
-units lj
-atom_style sphere
-atom_modify map array
-boundary p p p
-newton $NEWTON
-comm_modify vel yes
-read_data $data
-pair_style gran/hooke $KN NULL $GAMMA_N 0.0 0.0 0
-pair_coeff * *
-neighbor 0.1 bin
-neigh_modify delay 0 every 1 check yes
-fix 1 all nve/sphere
-timestep $DT
-thermo 100000
-run $(( steps / 10 < 200 ? steps / 10 : 200 ))
-run $steps
-LMP
-  mpirun -np "$ranks" --oversubscribe lmp -in "$WORK/in.bench" -log none -screen "$WORK/lmp.out" >/dev/null
+  mpirun -np "$ranks" --oversubscribe lmp -in "$ROOT/bench/dem/in.thesis.lmp" -log none -screen "$WORK/lmp.out" \
+    -var data "$data" -var kn "$KN" -var gamma_n "$GAMMA_N" -var dt "$DT" -var newton "$NEWTON" \
+    -var warm $(( steps / 10 < 200 ? steps / 10 : 200 )) -var steps "$steps" >/dev/null
   awk -v n="$n" '/^Loop time/ {t=$4; s=$9} END {printf "%.2f", 1e9*t/(n*s)}' "$WORK/lmp.out"
 }
 

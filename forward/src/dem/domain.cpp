@@ -7,30 +7,30 @@
 #include <stdexcept>
 #include <string>
 
+#include "sedwave/forward/parallel/collectives.hpp"
+
 namespace sedwave::forward::dem {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Sends per-destination vectors of trivially copyable records with one all-to-all; returns what
-/// arrived, ordered by source rank (deterministic).
+/// arrived, ordered by source rank (deterministic). Counted in records, not bytes.
 template <typename T>
 std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outgoing) {
-  const int size = static_cast<int>(outgoing.size());
-  std::vector<int> send_counts(size), recv_counts(size), send_displs(size), recv_displs(size);
-  for (int r = 0; r < size; ++r) send_counts[r] = static_cast<int>(outgoing[r].size() * sizeof(T));
+  const parallel::RecordType<T> record;
+  const std::size_t size = outgoing.size();
+  std::vector<int> send_counts(size), recv_counts(size);
+  for (std::size_t r = 0; r < size; ++r) send_counts[r] = parallel::mpi_count(outgoing[r].size());
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
-  std::exclusive_scan(send_counts.begin(), send_counts.end(), send_displs.begin(), 0);
-  std::exclusive_scan(recv_counts.begin(), recv_counts.end(), recv_displs.begin(), 0);
-  std::vector<char> send(static_cast<std::size_t>(send_displs.back() + send_counts.back()));
-  for (int r = 0; r < size; ++r)
-    if (!outgoing[r].empty())
-      std::copy_n(reinterpret_cast<const char*>(outgoing[r].data()), send_counts[r],
-                  send.data() + send_displs[r]);
-  const std::size_t recv_bytes = static_cast<std::size_t>(recv_displs.back() + recv_counts.back());
-  std::vector<T> incoming(recv_bytes / sizeof(T));
-  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), MPI_BYTE, incoming.data(),
-                recv_counts.data(), recv_displs.data(), MPI_BYTE, comm);
+  const std::vector<int> send_displs = parallel::displacements(send_counts);
+  const std::vector<int> recv_displs = parallel::displacements(recv_counts);
+  std::vector<T> send(static_cast<std::size_t>(send_displs.back()) + outgoing.back().size());
+  for (std::size_t r = 0; r < size; ++r)
+    std::copy(outgoing[r].begin(), outgoing[r].end(), send.begin() + send_displs[r]);
+  std::vector<T> incoming(static_cast<std::size_t>(recv_displs.back()) + static_cast<std::size_t>(recv_counts.back()));
+  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), record.get(), incoming.data(),
+                recv_counts.data(), recv_displs.data(), record.get(), comm);
   return incoming;
 }
 
@@ -163,6 +163,8 @@ void Domain::migrate(GrainArrays& g, std::vector<HistoryEntry>& history) {
       if (b != departing.end() && (a == departing.end() || b->second != a->second))
         history_out[b->second].push_back(e);
     }
+  for (int r = 0; r < size_; ++r)
+    rebuild_bytes_sent_ += grains_out[r].size() * sizeof(Grain) + history_out[r].size() * sizeof(HistoryEntry);
   g.keep_local(keep);
   for (const Grain& grain : all_to_all(comm_, grains_out)) g.push_local(grain);
   const std::vector<HistoryEntry> arrived = all_to_all(comm_, history_out);
@@ -197,41 +199,89 @@ void Domain::image_swaps(GrainArrays& g, int axis, double cutoff) {
   }
 }
 
-void Domain::neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candidates, double cutoff) {
+namespace {
+
+/// What a neighbouring slab needs of a grain to hold it as a ghost: 104 bytes rather than the 152 of
+/// a whole Grain (no force, no torque, which a ghost starts without).
+struct GhostRecord {
+  std::int64_t id;
+  std::int32_t group;
+  std::int32_t body;
+  double radius;
+  double mass;
+  Vec3 position;
+  Vec3 velocity;
+  Vec3 angular_velocity;
+};
+
+static_assert(sizeof(GhostRecord) == 104 && sizeof(Grain) == 152, "docs/dem.md quotes both sizes");
+
+Grain ghost_from(const GhostRecord& r) {
+  Grain g;
+  g.id = r.id;
+  g.group = r.group;
+  g.body = r.body;
+  g.radius = r.radius;
+  g.mass = r.mass;
+  g.position = r.position;
+  g.velocity = r.velocity;
+  g.angular_velocity = r.angular_velocity;
+  return g;
+}
+
+constexpr int kGhostBuildTag = 12;
+
+}  // namespace
+
+void Domain::neighbour_swaps(GrainArrays& g, std::size_t n_candidates, double cutoff) {
   const bool periodic = box_.periodic[2];
-  Swap s;
   const int below = rank_ > 0 ? rank_ - 1 : (periodic ? size_ - 1 : MPI_PROC_NULL);
   const int above = rank_ < size_ - 1 ? rank_ + 1 : (periodic ? 0 : MPI_PROC_NULL);
-  s.send_to = downwards ? below : above;
-  s.recv_from = downwards ? above : below;
-  if (downwards && rank_ == 0 && periodic) s.shift.z = box_.length(2);
-  if (!downwards && rank_ == size_ - 1 && periodic) s.shift.z = -box_.length(2);
-  if (s.send_to != MPI_PROC_NULL)
-    for (std::size_t i = 0; i < n_candidates; ++i) {
-      const double z = g.position[i].z;
-      if (downwards ? z < slab_lo() + cutoff : z >= slab_hi() - cutoff)
-        s.send.push_back(static_cast<std::int32_t>(i));
+  const parallel::RecordType<GhostRecord> record;
+  // Both directions are posted before either is received; each receive learns its length from the
+  // message itself (probe), so no count travels ahead of the records.
+  std::vector<GhostRecord> out[2];
+  MPI_Request sent[2];
+  const std::size_t first_swap = swaps_.size();
+  for (const int side : {0, 1}) {
+    const bool downwards = side == 0;
+    Swap s;
+    s.send_to = downwards ? below : above;
+    s.recv_from = downwards ? above : below;
+    if (downwards && rank_ == 0 && periodic) s.shift.z = box_.length(2);
+    if (!downwards && rank_ == size_ - 1 && periodic) s.shift.z = -box_.length(2);
+    if (s.send_to != MPI_PROC_NULL)
+      for (std::size_t i = 0; i < n_candidates; ++i) {
+        const double z = g.position[i].z;
+        if (downwards ? z < slab_lo() + cutoff : z >= slab_hi() - cutoff) s.send.push_back(static_cast<std::int32_t>(i));
+      }
+    out[side].reserve(s.send.size());
+    for (const std::int32_t i : s.send) {
+      const auto k = static_cast<std::size_t>(i);
+      out[side].push_back({g.id[k], g.group[k], g.body[k], g.radius[k], g.mass[k], g.position[k] + s.shift,
+                           g.velocity[k], g.rotation() ? g.angular_velocity[k] : Vec3{}});
     }
-  std::vector<Grain> out;
-  out.reserve(s.send.size());
-  for (const std::int32_t i : s.send) {
-    out.push_back(g.grain(static_cast<std::size_t>(i)));
-    out.back().position += s.shift;
+    if (s.send_to != MPI_PROC_NULL) rebuild_bytes_sent_ += out[side].size() * sizeof(GhostRecord);
+    MPI_Isend(out[side].data(), parallel::mpi_count(out[side].size()), record.get(), s.send_to, kGhostBuildTag + side,
+              comm_, &sent[side]);
+    swaps_.push_back(std::move(s));
   }
-  int n_out = static_cast<int>(out.size()), n_in = 0;
-  MPI_Sendrecv(&n_out, 1, MPI_INT, s.send_to, 11, &n_in, 1, MPI_INT, s.recv_from, 11, comm_,
-               MPI_STATUS_IGNORE);
-  std::vector<Grain> in(static_cast<std::size_t>(n_in));
-  MPI_Sendrecv(out.data(), n_out * static_cast<int>(sizeof(Grain)), MPI_BYTE, s.send_to, 12, in.data(),
-               n_in * static_cast<int>(sizeof(Grain)), MPI_BYTE, s.recv_from, 12, comm_,
-               MPI_STATUS_IGNORE);
-  s.recv_first = g.n_total();
-  s.recv_count = in.size();
-  for (const Grain& ghost : in) {
-    ghost_sources_.push_back({static_cast<std::int32_t>(g.n_total()), Vec3{}});
-    g.push_ghost(ghost);
+  for (const int side : {0, 1}) {
+    Swap& s = swaps_[first_swap + static_cast<std::size_t>(side)];
+    MPI_Status status;
+    MPI_Probe(s.recv_from, kGhostBuildTag + side, comm_, &status);
+    int count = 0;
+    MPI_Get_count(&status, record.get(), &count);
+    std::vector<GhostRecord> in(static_cast<std::size_t>(count));
+    MPI_Recv(in.data(), count, record.get(), s.recv_from, kGhostBuildTag + side, comm_, MPI_STATUS_IGNORE);
+    s.recv_first = g.n_total();
+    s.recv_count = in.size();
+    for (const GhostRecord& r : in) {
+      ghost_sources_.push_back({static_cast<std::int32_t>(g.n_total()), Vec3{}});
+      g.push_ghost(ghost_from(r));
+    }
   }
-  swaps_.push_back(std::move(s));
+  MPI_Waitall(2, sent, MPI_STATUSES_IGNORE);
 }
 
 void Domain::build_ghosts(GrainArrays& g, double cutoff) {
@@ -247,9 +297,7 @@ void Domain::build_ghosts(GrainArrays& g, double cutoff) {
   for (int r = 1; r < size_; ++r)
     if (boundaries_[r + 1] - boundaries_[r] < cutoff && r + 1 < size_)
       throw std::runtime_error("Domain: slab " + std::to_string(r) + " is thinner than the ghost cutoff");
-  const std::size_t candidates = g.n_total();  // locals and x/y images, not z ghosts
-  neighbour_swap(g, true, candidates, cutoff);
-  neighbour_swap(g, false, candidates, cutoff);
+  neighbour_swaps(g, g.n_total(), cutoff);  // candidates: locals and x/y images, not z ghosts
 }
 
 void Domain::clear_forces(GrainArrays& g) const {
@@ -262,18 +310,37 @@ void Domain::clear_forces(GrainArrays& g) const {
     if (!is_image(s, rank_)) clear(s.recv_first, s.recv_count);
 }
 
-void Domain::update_ghosts(GrainArrays& g) {
+// Message tags: one per swap, so that two swaps between the same pair of ranks (two ranks along a
+// periodic z) cannot take each other's messages.
+constexpr int kGhostTag = 100;
+constexpr int kForceTag = 100000;
+
+void Domain::post(std::vector<double>& send, int to, std::vector<double>& receive, int from, int tag) {
+  requests_.emplace_back();
+  MPI_Irecv(receive.data(), parallel::mpi_count(receive.size()), MPI_DOUBLE, from, tag, comm_, &requests_.back());
+  requests_.emplace_back();
+  MPI_Isend(send.data(), parallel::mpi_count(send.size()), MPI_DOUBLE, to, tag, comm_, &requests_.back());
+  if (to != MPI_PROC_NULL) halo_bytes_sent_ += send.size() * sizeof(double);
+}
+
+void Domain::wait_for_messages() {
+  MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+  requests_.clear();
+}
+
+void Domain::start_ghost_update(const GrainArrays& g) {
+  if (!requests_.empty()) throw std::logic_error("Domain: a halo exchange is already under way");
   const bool spin = g.rotation();
   const std::size_t per = spin ? 9 : 6;
-  ghost_bytes_ = 0;
-  for (const Swap& s : swaps_) {
+  for (std::size_t n = 0; n < swaps_.size(); ++n) {
+    Swap& s = swaps_[n];
     if (is_image(s, rank_)) continue;  // read through ghost_sources instead
-    send_buffer_.resize(s.send.size() * per);
+    s.send_values.resize(s.send.size() * per);
     for (std::size_t k = 0; k < s.send.size(); ++k) {
       // A sent image is read from its source: the image itself is not refreshed.
       const GhostSource from = source_of(g, static_cast<std::size_t>(s.send[k]));
       const auto i = static_cast<std::size_t>(from.index);
-      double* out = send_buffer_.data() + k * per;
+      double* out = s.send_values.data() + k * per;
       const Vec3 p = g.position[i] + from.shift + s.shift;
       const Vec3& v = g.velocity[i];
       out[0] = p.x; out[1] = p.y; out[2] = p.z;
@@ -283,13 +350,19 @@ void Domain::update_ghosts(GrainArrays& g) {
         out[6] = w.x; out[7] = w.y; out[8] = w.z;
       }
     }
-    recv_buffer_.resize(s.recv_count * per);
-    MPI_Sendrecv(send_buffer_.data(), static_cast<int>(send_buffer_.size()), MPI_DOUBLE, s.send_to, 13,
-                 recv_buffer_.data(), static_cast<int>(recv_buffer_.size()), MPI_DOUBLE, s.recv_from, 13,
-                 comm_, MPI_STATUS_IGNORE);
-    ghost_bytes_ += (send_buffer_.size() + recv_buffer_.size()) * sizeof(double);
+    s.recv_values.resize(s.recv_count * per);
+    post(s.send_values, s.send_to, s.recv_values, s.recv_from, kGhostTag + static_cast<int>(n));
+  }
+}
+
+void Domain::finish_ghost_update(GrainArrays& g) {
+  wait_for_messages();
+  const bool spin = g.rotation();
+  const std::size_t per = spin ? 9 : 6;
+  for (const Swap& s : swaps_) {
+    if (is_image(s, rank_)) continue;
     for (std::size_t k = 0; k < s.recv_count; ++k) {
-      const double* in = recv_buffer_.data() + k * per;
+      const double* in = s.recv_values.data() + k * per;
       const std::size_t j = s.recv_first + k;
       g.position[j] = {in[0], in[1], in[2]};
       g.velocity[j] = {in[3], in[4], in[5]};
@@ -298,18 +371,22 @@ void Domain::update_ghosts(GrainArrays& g) {
   }
 }
 
-void Domain::reverse_forces(GrainArrays& g) {
+void Domain::update_ghosts(GrainArrays& g) {
+  start_ghost_update(g);
+  finish_ghost_update(g);
+}
+
+void Domain::start_reverse_forces(const GrainArrays& g) {
+  if (!requests_.empty()) throw std::logic_error("Domain: a halo exchange is already under way");
   const bool spin = g.rotation();
   const std::size_t per = spin ? 6 : 3;
-  // Periodic images made here collect nothing (the list applies their reactions to the source
-  // grains); a force returned for a grain that was sent as an image goes to its source.
-  for (auto swap = swaps_.rbegin(); swap != swaps_.rend(); ++swap) {
-    const Swap& s = *swap;
+  for (std::size_t n = 0; n < swaps_.size(); ++n) {
+    Swap& s = swaps_[n];
     if (is_image(s, rank_)) continue;
     // The ghosts received from recv_from return their forces to it; ours arrive from send_to.
-    send_buffer_.resize(s.recv_count * per);
+    s.recv_values.resize(s.recv_count * per);  // now the outgoing forces
     for (std::size_t k = 0; k < s.recv_count; ++k) {
-      double* out = send_buffer_.data() + k * per;
+      double* out = s.recv_values.data() + k * per;
       const Vec3& f = g.force[s.recv_first + k];
       out[0] = f.x; out[1] = f.y; out[2] = f.z;
       if (spin) {
@@ -317,18 +394,33 @@ void Domain::reverse_forces(GrainArrays& g) {
         out[3] = t.x; out[4] = t.y; out[5] = t.z;
       }
     }
-    recv_buffer_.resize(s.send.size() * per);
-    MPI_Sendrecv(send_buffer_.data(), static_cast<int>(send_buffer_.size()), MPI_DOUBLE, s.recv_from, 14,
-                 recv_buffer_.data(), static_cast<int>(recv_buffer_.size()), MPI_DOUBLE, s.send_to, 14,
-                 comm_, MPI_STATUS_IGNORE);
-    ghost_bytes_ += (send_buffer_.size() + recv_buffer_.size()) * sizeof(double);
+    s.send_values.resize(s.send.size() * per);  // now the returning forces
+    post(s.recv_values, s.recv_from, s.send_values, s.send_to, kForceTag + static_cast<int>(n));
+  }
+}
+
+void Domain::finish_reverse_forces(GrainArrays& g) {
+  wait_for_messages();
+  const bool spin = g.rotation();
+  const std::size_t per = spin ? 6 : 3;
+  // Periodic images made here collect nothing (the list applies their reactions to the source
+  // grains); a force returned for a grain that was sent as an image goes to its source. The swaps
+  // are summed in reverse order of their building, as they always were.
+  for (auto swap = swaps_.rbegin(); swap != swaps_.rend(); ++swap) {
+    const Swap& s = *swap;
+    if (is_image(s, rank_)) continue;
     for (std::size_t k = 0; k < s.send.size(); ++k) {
-      const double* in = recv_buffer_.data() + k * per;
+      const double* in = s.send_values.data() + k * per;
       const auto i = static_cast<std::size_t>(source_of(g, static_cast<std::size_t>(s.send[k])).index);
       g.force[i] += Vec3{in[0], in[1], in[2]};
       if (spin) g.torque[i] += Vec3{in[3], in[4], in[5]};
     }
   }
+}
+
+void Domain::reverse_forces(GrainArrays& g) {
+  start_reverse_forces(g);
+  finish_reverse_forces(g);
 }
 
 }  // namespace sedwave::forward::dem

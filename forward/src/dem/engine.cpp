@@ -101,7 +101,7 @@ Engine::Engine(MPI_Comm comm, EngineSettings settings, std::span<const Grain> gr
 
   domain_.partition_by_count(grains_, ghost_cutoff_);
   rebuild();
-  std::visit([&](const auto& m) { evaluate_forces(m, false); }, model_);
+  std::visit([&](const auto& m) { evaluate_forces(m, false, false); }, model_);
 }
 
 void Engine::update_global_grain_stats() {
@@ -166,12 +166,16 @@ void Engine::advance(const Model& model) {
     time_ += dt_;
     ++step_;
   }
+  // Without a rebuild the ghosts' new positions travel while the pairs among held grains are
+  // evaluated (evaluate_forces finishes the exchange).
+  bool ghosts_in_flight = false;
   if (rebuild_needed()) {
     ScopedTimer t(timings_.neighbor);
     rebuild();
   } else {
     ScopedTimer t(timings_.communication);
-    domain_.update_ghosts(grains_);
+    domain_.start_ghost_update(grains_);
+    ghosts_in_flight = true;
   }
   const std::int64_t interval = settings_.guard.check_interval;
   const bool watch = interval > 0 && step_ % interval == 0;
@@ -179,7 +183,7 @@ void Engine::advance(const Model& model) {
   {
     const auto start = Clock::now();
     const double communication_before = timings_.communication;
-    overlap = evaluate_forces(model, watch);
+    overlap = evaluate_forces(model, watch, ghosts_in_flight);
     // Communication inside (reverse forces, wall force sums) is counted as communication only.
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count() -
                            (timings_.communication - communication_before);
@@ -285,21 +289,36 @@ void Engine::rebuild() {
 }
 
 template <class Model>
-OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
+OverlapWatch Engine::evaluate_forces(const Model& model, bool watch, bool ghosts_in_flight) {
   GrainArrays& g = grains_;
   const std::size_t n = g.n_local();
   domain_.clear_forces(g);  // remote ghosts too: they collect reactions
   const PairTable<Model>& pairs = std::get<PairTable<Model>>(pair_table_);
-  const auto accumulate = [&](const auto& lubrication) {
-    using Lubrication = std::decay_t<decltype(lubrication)>;
-    return watch ? accumulate_contact_forces<Model, true, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication)
-                 : accumulate_contact_forces<Model, false, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication);
+  const auto accumulate = [&](PairSubset subset) {
+    const auto with = [&](const auto& lubrication) {
+      using Lubrication = std::decay_t<decltype(lubrication)>;
+      return watch ? accumulate_contact_forces<Model, true, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication, subset)
+                   : accumulate_contact_forces<Model, false, Lubrication>(model, g, list_, pairs, history_, dt_, lubrication, subset);
+    };
+    return lubricated() ? with(LubricationEvaluator(*settings_.fluid, films_)) : with(NoLubrication{});
   };
-  const OverlapWatch w =
-      lubricated() ? accumulate(LubricationEvaluator(*settings_.fluid, films_)) : accumulate(NoLubrication{});
+  OverlapWatch w;
+  if (ghosts_in_flight) {
+    w = accumulate(PairSubset::kHeld);
+    {
+      ScopedTimer t(timings_.communication);
+      domain_.finish_ghost_update(g);
+    }
+    const OverlapWatch remote = accumulate(PairSubset::kRemote);
+    if (remote.worst_ratio > w.worst_ratio) w = remote;
+  } else {
+    w = accumulate(PairSubset::kAll);
+  }
+  // Under newton on the reactions on ghosts travel home while the owned grains take their
+  // external forces (which involve no ghost).
   if (list_.newton()) {
     ScopedTimer t(timings_.communication);
-    domain_.reverse_forces(g);
+    domain_.start_reverse_forces(g);
   }
   const Vec3 gravity = settings_.gravity;
   const double drag = settings_.viscous_damping;
@@ -307,6 +326,10 @@ OverlapWatch Engine::evaluate_forces(const Model& model, bool watch) {
     for (std::size_t i = 0; i < n; ++i)
       if (g.body[i] == kFreeBody) g.force[i] += g.mass[i] * gravity - drag * g.velocity[i];
   if (settings_.fluid) apply_fluid_drag_and_buoyancy();
+  if (list_.newton()) {
+    ScopedTimer t(timings_.communication);
+    domain_.finish_reverse_forces(g);
+  }
   apply_body_forces();
   return w;
 }
@@ -338,7 +361,7 @@ void Engine::compute_forces() {
   if (rebuild_needed()) rebuild();
   else domain_.update_ghosts(grains_);
   const std::vector<Vec3> saved = history_;
-  std::visit([&](const auto& m) { evaluate_forces(m, false); }, model_);
+  std::visit([&](const auto& m) { evaluate_forces(m, false, false); }, model_);
   history_ = saved;
 }
 

@@ -79,6 +79,8 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
 
   row_begin_.assign(n_local + 1, 0);
   ghost_begin_.assign(n_local, 0);
+  remote_begin_.assign(n_local, 0);
+  remote_rows_.clear();
   partners_.clear();
   partners_.reserve(8 * n_local);
   shift_codes_.clear();
@@ -140,6 +142,14 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
       partners_.push_back(source.index);
       shift_codes_.push_back(code_of(source.shift));
     }
+    // Partners at or above n_local are ghosts received from other ranks (images resolve to local
+    // sources); they were built after every image, so they close the row.
+    const auto row = std::span<const std::int32_t>(partners_).subspan(ghost_begin_[i]);
+    const auto remote = std::find_if(row.begin(), row.end(), [&](std::int32_t j) { return static_cast<std::size_t>(j) >= n_local; });
+    if (std::any_of(remote, row.end(), [&](std::int32_t j) { return static_cast<std::size_t>(j) < n_local; }))
+      throw std::logic_error("NeighborList: a periodic image was built after a ghost from another rank");
+    remote_begin_[i] = ghost_begin_[i] + static_cast<std::uint32_t>(remote - row.begin());
+    if (remote != row.end()) remote_rows_.push_back(static_cast<std::uint32_t>(i));
   }
   if (partners_.size() > std::numeric_limits<std::uint32_t>::max())
     throw std::overflow_error("NeighborList: more than 2^32 pairs on one rank");
@@ -156,7 +166,8 @@ bool NeighborList::needs_rebuild(const GrainArrays& g) const {
 }
 
 std::size_t NeighborList::memory_bytes() const {
-  return row_begin_.capacity() * sizeof(std::uint32_t) + ghost_begin_.capacity() * sizeof(std::uint32_t) +
+  return (row_begin_.capacity() + ghost_begin_.capacity() + remote_begin_.capacity() + remote_rows_.capacity()) *
+             sizeof(std::uint32_t) +
          partners_.capacity() * sizeof(std::int32_t) + shift_codes_.capacity() + reference_.capacity() * sizeof(Vec3) +
          cell_start_.capacity() * sizeof(std::uint32_t) + cell_items_.capacity() * sizeof(std::int32_t) +
          cell_of_.capacity() * sizeof(std::uint32_t);

@@ -102,13 +102,16 @@ void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing
   std::uint64_t count = packing.grains.size();
   parallel::broadcast(world, std::span(&count, 1));
   parallel::broadcast(world, std::as_writable_bytes(std::span(&packing.box, 1)));
-  // Every rank takes part in the broadcast (simplest collective); non-leaders drop the copy again.
-  packing.grains.resize(count);
-  parallel::broadcast(world, std::as_writable_bytes(std::span(packing.grains)));
+  // Only the groups' leaders receive the grains (world's rank 0 is one): the other ranks never
+  // hold the packing, not even for the length of the broadcast.
+  const parallel::SubCommunicator leaders(world, leader);
   if (!leader) {
     packing.grains.clear();
     packing.grains.shrink_to_fit();
+    return;
   }
+  packing.grains.resize(count);
+  parallel::broadcast(leaders.get(), std::as_writable_bytes(std::span(packing.grains)));
 }
 
 }  // namespace sedwave::forward::experiment

@@ -69,12 +69,24 @@ class Domain {
   /// Refreshes the ghosts received from other ranks (positions, velocities, spins); periodic images
   /// made on this rank are left as built (read them through ghost_sources). Collective.
   void update_ghosts(GrainArrays& g);
+  /// update_ghosts() in two halves: start_ghost_update() packs what changed of every sent grain and
+  /// posts all messages (to both neighbours at once) without waiting; finish_ghost_update() waits
+  /// for them and writes the ghosts. Between the two, the ghosts received from other ranks hold old
+  /// values and nothing may start another exchange; the rest of the grains may be used.
+  void start_ghost_update(const GrainArrays& g);
+  void finish_ghost_update(GrainArrays& g);
   /// "Newton on": sends the forces (and torques) collected on ghosts received from other ranks back
   /// to their owners, which add them to the source grains (collective).
   void reverse_forces(GrainArrays& g);
+  /// reverse_forces() in two halves, as for the ghost update: the ghosts' forces are read when
+  /// starting, the owners' forces are added when finishing.
+  void start_reverse_forces(const GrainArrays& g);
+  void finish_reverse_forces(GrainArrays& g);
 
-  /// Communication volume of the last update_ghosts in bytes (for the timing report).
-  [[nodiscard]] std::size_t ghost_bytes() const { return ghost_bytes_; }
+  /// Bytes this rank has sent to other ranks since construction: by the per-step halo exchange
+  /// (ghost updates and returned forces), and when rebuilding (migration and new ghosts).
+  [[nodiscard]] std::uint64_t halo_bytes_sent() const { return halo_bytes_sent_; }
+  [[nodiscard]] std::uint64_t rebuild_bytes_sent() const { return rebuild_bytes_sent_; }
 
  private:
   struct Swap {
@@ -84,10 +96,17 @@ class Domain {
     int recv_from = MPI_PROC_NULL;
     std::size_t recv_first = 0;
     std::size_t recv_count = 0;
+    // Message buffers of the per-step exchange (kept between steps: no allocation per step).
+    std::vector<double> send_values;  // about the sent grains: their state out, their forces back
+    std::vector<double> recv_values;  // about the received ghosts: their state in, their forces out
   };
   void image_swaps(GrainArrays& g, int axis, double cutoff);
-  void neighbour_swap(GrainArrays& g, bool downwards, std::size_t n_candidates, double cutoff);
+  /// The z swaps with the slabs below and above (ghosts from the one above first, then below).
+  void neighbour_swaps(GrainArrays& g, std::size_t n_candidates, double cutoff);
   void clamp_thickness(double min_thickness);
+  /// Posts a non-blocking receive and send (counted in halo_bytes_sent) for wait_for_messages().
+  void post(std::vector<double>& send, int to, std::vector<double>& receive, int from, int tag);
+  void wait_for_messages();
   /// The grain whose data grain i mirrors on this rank, and the shift to add to its position.
   [[nodiscard]] GhostSource source_of(const GrainArrays& g, std::size_t i) const {
     if (i < g.n_local()) return {static_cast<std::int32_t>(i), Vec3{}};
@@ -102,9 +121,9 @@ class Domain {
   std::vector<double> boundaries_;
   std::vector<Swap> swaps_;
   std::vector<GhostSource> ghost_sources_;
-  std::vector<double> send_buffer_;
-  std::vector<double> recv_buffer_;
-  std::size_t ghost_bytes_ = 0;
+  std::vector<MPI_Request> requests_;  // the exchange under way
+  std::uint64_t halo_bytes_sent_ = 0;
+  std::uint64_t rebuild_bytes_sent_ = 0;
 };
 
 }  // namespace sedwave::forward::dem

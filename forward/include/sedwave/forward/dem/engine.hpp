@@ -179,7 +179,9 @@ class Engine {
 
  private:
   template <class Model> void advance(const Model& model);
-  template <class Model> OverlapWatch evaluate_forces(const Model& model, bool watch);
+  /// ghosts_in_flight: a ghost update was started (Domain::start_ghost_update) and is finished
+  /// here, after the pairs among held grains.
+  template <class Model> OverlapWatch evaluate_forces(const Model& model, bool watch, bool ghosts_in_flight);
   void drift_and_half_kick();
   void final_half_kick();
   void half_kick_spins();

@@ -3,10 +3,10 @@
 // writing a checkpoint or a packing file.
 #include <mpi.h>
 
-#include <numeric>
 #include <vector>
 
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
 
@@ -16,12 +16,14 @@ std::vector<T> gather_on_root(MPI_Comm comm, const std::vector<T>& local) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  const int bytes = static_cast<int>(local.size() * sizeof(T));
-  std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
-  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
-  std::vector<T> all(rank == 0 ? static_cast<std::size_t>(displs.back() + counts.back()) / sizeof(T) : 0);
-  MPI_Gatherv(local.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, comm);
+  // Counted in records, not bytes (a byte count overflows int at 1.4e7 grains).
+  const parallel::RecordType<T> record;
+  const int count = parallel::mpi_count(local.size());
+  std::vector<int> counts(static_cast<std::size_t>(size));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  const std::vector<int> displs = rank == 0 ? parallel::displacements(counts) : std::vector<int>(counts.size());
+  std::vector<T> all(rank == 0 ? static_cast<std::size_t>(displs.back()) + static_cast<std::size_t>(counts.back()) : 0);
+  MPI_Gatherv(local.data(), count, record.get(), all.data(), counts.data(), displs.data(), record.get(), 0, comm);
   return all;
 }
 

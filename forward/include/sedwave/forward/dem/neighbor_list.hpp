@@ -20,6 +20,10 @@
 // Periodic images made on this rank are found as ghost copies and then listed as their source grain
 // plus a shift (Domain::ghost_sources): partner k's position is position[partner] + shift(k). Under
 // "newton on" the reaction of such a pair lands on the source grain directly.
+//
+// Ghosts received from other ranks are the last ghosts built, so each row ends with its pairs with
+// them (from remote_begin(i)); remote_rows() lists the rows that have any. The engine evaluates the
+// other pairs while those ghosts' fresh positions are still on their way.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -47,6 +51,10 @@ class NeighborList {
   [[nodiscard]] std::uint32_t row_begin(std::size_t i) const { return row_begin_[i]; }
   [[nodiscard]] std::uint32_t ghost_begin(std::size_t i) const { return ghost_begin_[i]; }
   [[nodiscard]] std::uint32_t row_end(std::size_t i) const { return row_begin_[i + 1]; }
+  /// First pair of row i whose partner is a ghost received from another rank (row_end(i) if none).
+  [[nodiscard]] std::uint32_t remote_begin(std::size_t i) const { return remote_begin_[i]; }
+  /// The rows with at least one pair with a ghost received from another rank, ascending.
+  [[nodiscard]] std::span<const std::uint32_t> remote_rows() const { return remote_rows_; }
   [[nodiscard]] std::span<const std::int32_t> partners() const { return partners_; }
   /// Per pair, an index into shifts(): what to add to the partner's position (0: no shift).
   [[nodiscard]] std::span<const std::uint8_t> shift_codes() const { return shift_codes_; }
@@ -61,6 +69,8 @@ class NeighborList {
  private:
   std::vector<std::uint32_t> row_begin_;    // n_local + 1
   std::vector<std::uint32_t> ghost_begin_;  // n_local
+  std::vector<std::uint32_t> remote_begin_;  // n_local
+  std::vector<std::uint32_t> remote_rows_;
   std::vector<std::int32_t> partners_;
   std::vector<std::uint8_t> shift_codes_;
   std::vector<Vec3> shifts_{Vec3{}};  // distinct shifts, [0] = none
