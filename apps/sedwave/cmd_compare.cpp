@@ -76,8 +76,10 @@ void require_known(const std::vector<std::string>& items, const char* option,
 /// --models names each model once: an empty list or item, or one spec twice, is refused.
 void check_model_list(const std::string& option, const std::vector<std::string>& names) {
   if (names.empty()) throw UsageError("--models '" + option + "': name at least one model (sedwave models)");
+  if (option.front() == ',' || option.back() == ',' || option.find(",,") != std::string::npos) {
+    throw UsageError("--models '" + option + "': an empty model name");
+  }
   for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i].empty()) throw UsageError("--models '" + option + "': an empty model name");
     for (std::size_t j = 0; j < i; ++j) {
       if (names[i] == names[j]) {
         throw UsageError("--models '" + option + "' names '" + names[i] + "' twice: its rows would be identical");
@@ -308,7 +310,6 @@ Command add_compare_command(CLI::App& app) {
     const std::vector<std::string> model_names = split(o->models, ',');
     check_model_list(o->models, model_names);
     check_outputs(output_files(out, model_names), inputs, "compare");
-    const io::OutputLock lock(out, "--out");
     const inversion::ReadOptions read{o->water_speed, std::nullopt};
     inversion::ObservationSet data;
     for (const std::string& f : o->files) data.append(inversion::read_observation_csv(f, read));
@@ -317,6 +318,7 @@ Command add_compare_command(CLI::App& app) {
     require_known(o->priors, "--prior", models);
     require_known(o->shared.set_values, "--set", models);
     check_fits(o->fits, model_names);
+    const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
     std::vector<Row> rows;
     for (const std::string& spec : model_names) {
       std::fprintf(stderr, "sedwave compare: %s ...\n", spec.c_str());

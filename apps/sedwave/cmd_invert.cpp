@@ -274,8 +274,6 @@ Command add_invert_command(CLI::App& app) {
             }
             const std::filesystem::path out(o->out);
             check_outputs(output_files(out), input_files(*o), "invert");
-            const io::OutputLock lock(out, "--out");
-            io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not half of its own
             const inversion::ObservationSet data = read_all(*o);
             const auto model = make_model(o->model);
             std::vector<std::string> site_notes, site_priors;
@@ -289,6 +287,8 @@ Command add_invert_command(CLI::App& app) {
             std::vector<inversion::Prior> priors = inversion::default_priors(parameters);
             inversion::apply_priors(parameters, site_priors, "site file " + o->model.site, priors);
             inversion::apply_priors(parameters, o->priors, "command line", priors);
+            const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
+            io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not half of its own
             if (data.observations.size() >= kProgressObservations) {
               const auto started = std::chrono::steady_clock::now();
               options.progress = [started](const std::string& stage) {

@@ -230,16 +230,19 @@ OutputLock::OutputLock(const fs::path& directory, const std::string& option) {
   const fs::path file = directory / ".sedwave.lock";
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
   if (fd_ < 0) throw std::runtime_error(option + " " + directory.string() + ": cannot lock: " + system_error_text());
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    const bool busy = errno == EWOULDBLOCK;
+  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+  int status = -1;
+  if (errno == EWOULDBLOCK) {
+    std::fprintf(stderr, "sedwave: %s %s: another sedwave run is writing there; waiting for it to finish\n",
+                 option.c_str(), directory.c_str());
+    do {
+      status = ::flock(fd_, LOCK_EX);
+    } while (status != 0 && errno == EINTR);
+  }
+  if (status != 0) {
     const std::string why = system_error_text();
     ::close(fd_);
     fd_ = -1;
-    if (busy) {
-      throw std::runtime_error(option + " " + directory.string() +
-                               ": another sedwave run is writing there; wait for it to finish or choose another " +
-                               option);
-    }
     throw std::runtime_error(option + " " + directory.string() + ": cannot lock: " + why);
   }
 }

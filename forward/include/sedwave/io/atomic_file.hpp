@@ -77,8 +77,9 @@ class DeferredCommits {
 };
 
 /// An exclusive lock on an output directory (a file `.sedwave.lock` in it, flock(2)): two runs
-/// writing to one --out would interleave their outputs. Throws std::runtime_error naming `option`
-/// and the directory when another process holds it; released on destruction or process exit.
+/// writing to one --out would interleave their outputs. When another process holds it, says so on
+/// stderr (naming `option` and the directory) and waits for it; released on destruction or process
+/// exit (a killed run never leaves it held). Throws std::runtime_error if the lock cannot be taken.
 class OutputLock {
  public:
   OutputLock(const std::filesystem::path& directory, const std::string& option);
