@@ -19,11 +19,12 @@
 namespace sedwave::app {
 namespace {
 
-/// Flags synthetic sound speeds outside what a sediment can have (inversion/plausibility.hpp, c0):
-/// parameters far from any sediment (a kappa 10^6 times too stiff) make speeds no data would show.
+/// Flags synthetic sound speeds outside what any sediment can have (inversion/plausibility.hpp,
+/// sound_speed): parameters far from any sediment (a kappa 10^6 times too stiff) make speeds no
+/// data would show.
 /// Returns whether any was flagged.
 bool flag_implausible_speeds(const inversion::ObservationSet& set) {
-  const inversion::PlausibleRange& range = *inversion::plausible_range("c0");
+  const inversion::PlausibleRange& range = *inversion::plausible_range("sound_speed");
   std::size_t outside = 0, speeds = 0;
   const inversion::Observation* worst = nullptr;
   for (const inversion::Observation& ob : set.observations) {
@@ -35,9 +36,10 @@ bool flag_implausible_speeds(const inversion::ObservationSet& set) {
     if (!worst || !(distance(ob.value) <= distance(worst->value))) worst = &ob;
   }
   if (outside == 0) return false;
-  std::printf("! %zu of %zu sound speeds lie outside [%g, %g] m/s, %s; the farthest: %.4g m/s at %.4g Hz. These "
-              "parameters do not describe a seabed sediment (check their units)\n",
-              outside, speeds, range.lower, range.upper, range.basis, worst->value, worst->frequency_hz);
+  std::printf("! %zu of %zu sound speeds lie outside [%g, %g] m/s (%s); the farthest: %.4g m/s at %.4g Hz: "
+              "likely %s\n",
+              outside, speeds, range.lower, range.upper, range.basis, worst->value, worst->frequency_hz,
+              worst->value < range.lower ? range.below_cause : range.above_cause);
   return true;
 }
 

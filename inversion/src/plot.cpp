@@ -493,14 +493,18 @@ CornerAxis corner_axis(const std::vector<double>& draws) {
   return a;
 }
 
-/// Readable ticks: about three round values (two significant digits) spread over the axis.
+/// Readable ticks: three round values spread over the axis, with the fewest significant digits
+/// (from two) that keep each within 5 % of the axis of where it belongs.
 std::string corner_tics(const CornerAxis& a) {
   std::ostringstream t;
   t << "(";
   for (int k = 0; k < 3; ++k) {
-    const double v = a.value(a.lo + (a.hi - a.lo) * (0.15 + 0.35 * k));
+    const double at = a.lo + (a.hi - a.lo) * (0.15 + 0.35 * k);
     char label[32];
-    std::snprintf(label, sizeof label, "%.2g", v);
+    for (int digits = 2; digits <= 6; ++digits) {
+      std::snprintf(label, sizeof label, "%.*g", digits, a.value(at));
+      if (std::abs(a.coordinate(std::strtod(label, nullptr)) - at) < 0.05 * (a.hi - a.lo)) break;
+    }
     t << (k ? ", " : "") << "'" << label << "' " << std::strtod(label, nullptr);
   }
   return t.str() + ")";
@@ -598,7 +602,9 @@ std::string corner_body(const CornerFiles& files, const std::string& density_fil
   const bool marked = files.best_fit.size() == names.size();
   std::ostringstream g;
   // The contours first, into datablocks (gnuplot's contouring works on splot's grid).
-  g << "set encoding utf8\nset datafile separator whitespace\nset contour base\nunset surface\nset view map\n";
+  // reset: the body runs twice (PNG, SVG), and the last panel's ranges and log axes must not reach
+  // the second run's contouring (terminal and output survive a reset).
+  g << "reset\nset encoding utf8\nset datafile separator whitespace\nset contour base\nunset surface\nset view map\n";
   for (int pair = 0; pair < static_cast<int>(levels.size()); ++pair) {
     for (int l = 0; l < 2; ++l) {
       g << "set cntrparam levels discrete " << levels[static_cast<std::size_t>(pair)][static_cast<std::size_t>(l)]
@@ -645,8 +651,8 @@ std::string corner_body(const CornerFiles& files, const std::string& density_fil
           << files.best_fit[static_cast<std::size_t>(row)] << " nohead lc rgb '" << kMisfitColour << "' lw 1.2\n";
       }
       g << "plot " << density << " index " << draws_block << " using " << col + 1 << ":" << row + 1
-        << " with dots lc rgb '#b0b0b0', $c" << pair << "_1 using 1:2 with lines lw 1.2 lc rgb '" << kBandColour
-        << "', $c" << pair << "_0 using 1:2 with lines lw 1.8 lc rgb '" << kCurveColour << "'";
+        << " with dots lc rgb '#b0b0b0', $c" << pair << "_1 using 1:2 with lines lw 1.2 lc rgb '#6baed6'"
+        << ", $c" << pair << "_0 using 1:2 with lines lw 1.8 lc rgb '" << kCurveColour << "'";
       if (marked) {
         g << ", '+' using (" << files.best_fit[static_cast<std::size_t>(col)] << "):(" << files.best_fit[static_cast<std::size_t>(row)]
           << ") every ::0::0 with points pt 7 ps 0.9 lc rgb '" << kMisfitColour << "'";

@@ -222,6 +222,7 @@ void DeferredCommits::commit_all() {
     kept[i].first.clear();  // renamed: nothing to remove
   }
   kept.clear();
+  deferred().active = false;  // what the run writes after (its plots, from these files) lands at once
 }
 
 OutputLock::OutputLock(const fs::path& directory, const std::string& option) {

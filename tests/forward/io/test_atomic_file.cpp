@@ -164,10 +164,12 @@ TEST_F(AtomicFileTest, DeferredCommitsLandTogetherOrNotAtAll) {
     write(file("a.csv"), "a2\n");
     write(file("b.csv"), "b2\n");
     run.commit_all();
+    write(file("c.csv"), "c2\n");  // after commit_all: at once (a plot drawn from the files in place)
+    EXPECT_EQ(read(file("c.csv")), "c2\n");
   }
   EXPECT_EQ(read(file("a.csv")), "a2\n");
   EXPECT_EQ(read(file("b.csv")), "b2\n");
-  EXPECT_EQ(entries(), 2u);
+  EXPECT_EQ(entries(), 3u);
 }
 
 TEST_F(AtomicFileTest, OneWriterPerOutputDirectory) {

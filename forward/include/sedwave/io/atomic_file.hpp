@@ -72,7 +72,8 @@ class DeferredCommits {
   DeferredCommits(const DeferredCommits&) = delete;
   DeferredCommits& operator=(const DeferredCommits&) = delete;
   ~DeferredCommits();
-  /// Renames every kept temporary over its target; throws std::runtime_error naming the first that fails.
+  /// Renames every kept temporary over its target, in order, and ends the deferral: later commits
+  /// rename at once. Throws std::runtime_error naming the first that fails.
   void commit_all();
 };
 
