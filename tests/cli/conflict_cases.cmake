@@ -58,3 +58,12 @@ sedwave_cli_case(conflict.models_lists_saturated_once 0 "^  pore_size +m "
   models saturated-lattice)
 add_test(NAME cli.conflict.models_lists_saturated_frame_once
   COMMAND sh -c "test \"$($<TARGET_FILE:sedwave> models | grep -c '^saturated-lattice:')\" = 1")
+add_test(NAME cli.conflict.show_flags_impossible_ok_points
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/show_flags_impossible_points.sh $<TARGET_FILE:sedwave>
+          ${PROJECT_SOURCE_DIR}/data/tables/thesis_w3_small.h5)
+# The corner plot is drawn (from the files the run has put in place) where gnuplot is installed.
+find_program(GNUPLOT_PROGRAM gnuplot)
+if(GNUPLOT_PROGRAM)
+  sedwave_cli_case(conflict.posterior_corner_plot_drawn 3 "plot written to .*posterior_corner.png"
+    invert ${OBS} --model edfm --method posterior --steps 400 --out ${CLI_OUT}/conflict_corner)
+endif()
