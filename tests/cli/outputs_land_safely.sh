@@ -46,6 +46,9 @@ for out in "$dir/h5pipe" /dev/null; do
   [ "$code" -ne 0 ] && [ "$code" -lt 128 ] || fail "table --out $out: exit $code"
   grep -q "HDF5 files must be seekable" "$dir/log" || fail "table --out $out: $(cat "$dir/log")"
 done
+"$sedwave" dem "$scene_data/dem_two_grains.data" --steps 10 --kn 1000 --checkpoint "$dir/h5pipe" --every 5 \
+  > "$dir/log" 2>&1 && fail "dem --checkpoint FIFO exited 0"
+grep -q -- "--checkpoint: cannot write HDF5 to .*h5pipe: it is a FIFO" "$dir/log" || fail "dem --checkpoint: $(cat "$dir/log")"
 [ -p "$dir/h5pipe" ] || fail "the FIFO given to an HDF5 output was replaced"
 [ -c /dev/null ] || fail "/dev/null is no longer a character device"
 ls "$dir" | grep -q corrupt && fail "a FIFO was moved aside as a damaged table"
