@@ -264,9 +264,10 @@ std::map<std::string, std::string> checkpoint_inputs(const DemOptions& o) {
 void check_dem_paths(const DemOptions& o) {
   std::vector<OutputPath> outputs;
   using io::OutputFormat;
-  for (const auto& [option, path, format] :
-       {std::tuple{"--checkpoint", &o.checkpoint, OutputFormat::seekable}, std::tuple{"--dump", &o.dump, OutputFormat::text},
-        std::tuple{"--h5md", &o.h5md, OutputFormat::seekable}, std::tuple{"--final", &o.final_state, OutputFormat::text}}) {
+  for (const auto& [option, path, format] : {std::tuple{"--checkpoint", &o.checkpoint, OutputFormat::seekable},
+                                             std::tuple{"--dump", &o.dump, OutputFormat::text},
+                                             std::tuple{"--h5md", &o.h5md, OutputFormat::seekable},
+                                             std::tuple{"--final", &o.final_state, OutputFormat::text}}) {
     if (!path->empty()) outputs.push_back({option, *path, format});
   }
   check_outputs(outputs, {o.data}, "dem");

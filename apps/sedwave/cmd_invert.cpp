@@ -205,7 +205,8 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   std::vector<OutputPath> outputs;
   for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg",
                            "posterior_samples.csv", "posterior_samples.h5", "posterior_marginals.csv",
-                           "posterior_corner.gp", "posterior_corner.png", "posterior_corner.svg", "posterior_corner_density.dat",
+                           "posterior_corner.gp", "posterior_corner.png", "posterior_corner.svg",
+                           "posterior_corner_density.dat",
                            "posterior_predictive.csv", "posterior_residuals.csv", "posterior_predictive.gp",
                            "posterior_predictive.png", "posterior_predictive.svg"}) {
     const bool hdf5 = std::filesystem::path(name).extension() == ".h5";
@@ -217,7 +218,9 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
 /// The corner plot's files, with the best fit of the sampled parameters marked.
 inversion::CornerFiles corner_files(const inversion::FitResult& result, const std::vector<std::string>& names) {
   inversion::CornerFiles files;
-  for (const std::string& name : names) files.best_fit.push_back(result.fitted.spec[result.fitted.index_of(name)].value);
+  for (const std::string& name : names) {
+    files.best_fit.push_back(result.fitted.spec[result.fitted.index_of(name)].value);
+  }
   return files;
 }
 
@@ -240,9 +243,11 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--prior", o->priors,
                   "NAME=KIND:A,B, KIND uniform | log-uniform | normal | log-normal (A,B: bounds, mean and sd, or median "
                   "and sd of ln) [SI]; default log-uniform over the search bounds (repeatable; --method posterior)");
-  auto* walkers = cmd->add_option("--walkers", o->posterior.walkers, "posterior: ensemble walkers (0: max(4 x free, 16))")
+  auto* walkers = cmd->add_option("--walkers", o->posterior.walkers,
+                                  "posterior: ensemble walkers (0: max(4 x free, 16))")
       ->capture_default_str()->check(CLI::Range(0, 100000));
-  auto* steps = cmd->add_option("--steps", o->posterior.steps, "posterior: ensemble updates, the first half discarded as burn-in")
+  auto* steps = cmd->add_option("--steps", o->posterior.steps,
+                                "posterior: ensemble updates, the first half discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
   add_threads_option(*cmd, o->threads);
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();

@@ -208,7 +208,9 @@ void refuse_repeated_parameters(const ModelOptions& o) {
   direct(o.gamma, "gamma", "--gamma", values);
   direct(o.restitution, "e_n", "--en", values);
   direct(o.density, "rho_s", "--density", values);
-  for (const std::string& item : o.set_values) values.emplace_back(name_and_value(item, "--set").first, "--set '" + item + "'");
+  for (const std::string& item : o.set_values) {
+    values.emplace_back(name_and_value(item, "--set").first, "--set '" + item + "'");
+  }
   direct(!o.kappa_bounds.empty(), "kappa", "--kappa-bounds", bounds);
   direct(!o.diameter_bounds.empty(), "d", "--d-bounds", bounds);
   direct(!o.gamma_bounds.empty(), "gamma", "--gamma-bounds", bounds);
@@ -235,7 +237,9 @@ void refuse_bounds_on_fixed(const ModelOptions& o, const inversion::FitParameter
   if (!o.diameter_bounds.empty()) refuse_if_fixed("d", "--d-bounds");
   if (!o.gamma_bounds.empty()) refuse_if_fixed("gamma", "--gamma-bounds");
   if (!o.restitution_bounds.empty()) refuse_if_fixed("e_n", "--en-bounds");
-  for (const std::string& item : o.set_bounds) refuse_if_fixed(name_and_value(item, "--bounds").first, "--bounds '" + item + "'");
+  for (const std::string& item : o.set_bounds) {
+    refuse_if_fixed(name_and_value(item, "--bounds").first, "--bounds '" + item + "'");
+  }
 }
 
 }  // namespace

@@ -456,7 +456,9 @@ std::vector<std::vector<double>> read_draws(const std::filesystem::path& file, s
   while (std::getline(in, line)) {
     std::stringstream fields(line);
     std::string field;
-    for (std::size_t c = 0; c < columns && std::getline(fields, field, ','); ++c) draws[c].push_back(std::strtod(field.c_str(), nullptr));
+    for (std::size_t c = 0; c < columns && std::getline(fields, field, ','); ++c) {
+      draws[c].push_back(std::strtod(field.c_str(), nullptr));
+    }
   }
   return draws;
 }
@@ -467,11 +469,13 @@ struct CornerAxis {
   double lo = 0.0, hi = 1.0;  ///< binned coordinate (ln value on a log axis)
   [[nodiscard]] double coordinate(double x) const { return log ? std::log(x) : x; }
   [[nodiscard]] double value(double c) const { return log ? std::exp(c) : c; }
-  [[nodiscard]] int bin(double x) const {
+  [[nodiscard]] std::size_t bin(double x) const {
     const double f = (coordinate(x) - lo) / (hi - lo);
-    return std::clamp(static_cast<int>(f * kCornerBins), 0, kCornerBins - 1);
+    return static_cast<std::size_t>(std::clamp(static_cast<int>(f * kCornerBins), 0, kCornerBins - 1));
   }
-  [[nodiscard]] double centre(int b) const { return value(lo + (hi - lo) * (b + 0.5) / kCornerBins); }
+  [[nodiscard]] double centre(std::size_t b) const {
+    return value(lo + (hi - lo) * (static_cast<double>(b) + 0.5) / kCornerBins);
+  }
 };
 
 CornerAxis corner_axis(const std::vector<double>& draws) {
@@ -510,11 +514,15 @@ std::string corner_tics(const CornerAxis& a) {
   return t.str() + ")";
 }
 
+/// A kCornerBins x kCornerBins histogram, bin (i, j) at i * kCornerBins + j.
+using Histogram2 = std::vector<double>;
+
 /// 3x3 smoothing of a histogram (weights 1-2-1 in each direction), as corner.py smooths before
 /// contouring: single bins' noise would otherwise fray the contours.
-std::vector<double> smoothed(const std::vector<double>& h) {
-  std::vector<double> out(h.size(), 0.0);
+Histogram2 smoothed(const Histogram2& h) {
+  Histogram2 out(h.size(), 0.0);
   const int n = kCornerBins;
+  const auto at = [n](int i, int j) { return static_cast<std::size_t>(i * n + j); };
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       double sum = 0.0, weight = 0.0;
@@ -522,11 +530,11 @@ std::vector<double> smoothed(const std::vector<double>& h) {
         for (int dj = -1; dj <= 1; ++dj) {
           if (i + di < 0 || i + di >= n || j + dj < 0 || j + dj >= n) continue;
           const double w = (di == 0 ? 2.0 : 1.0) * (dj == 0 ? 2.0 : 1.0);
-          sum += w * h[static_cast<std::size_t>((i + di) * n + j + dj)];
+          sum += w * h[at(i + di, j + dj)];
           weight += w;
         }
       }
-      out[static_cast<std::size_t>(i * n + j)] = sum / weight;
+      out[at(i, j)] = sum / weight;
     }
   }
   return out;
@@ -545,32 +553,33 @@ double level_holding(std::vector<double> density, double mass) {
   return density.empty() ? 0.0 : density.back();
 }
 
+/// The smoothed joint histogram of parameters x and y.
+Histogram2 joint_histogram(const std::vector<double>& xs, const std::vector<double>& ys, const CornerAxis& ax,
+                           const CornerAxis& ay) {
+  const auto n = static_cast<std::size_t>(kCornerBins);
+  Histogram2 h(n * n, 0.0);
+  for (std::size_t k = 0; k < std::min(xs.size(), ys.size()); ++k) h[ax.bin(xs[k]) * n + ay.bin(ys[k])] += 1.0;
+  return smoothed(h);
+}
+
 /// Writes STEM_density.dat: for each pair (row > col) a grid block "x y density" (gnuplot index
 /// = pair number), then a block of every fourth draw (one column per parameter), then for each
 /// parameter a block "value density" of its marginal. Returns the two contour levels of each pair.
 std::vector<std::array<double, 2>> write_corner_density(const std::filesystem::path& file,
                                                         const std::vector<std::vector<double>>& draws,
                                                         const std::vector<CornerAxis>& axes) {
-  const int k = static_cast<int>(draws.size());
+  const std::size_t k = draws.size(), n = static_cast<std::size_t>(kCornerBins);
   std::vector<std::array<double, 2>> levels;
   io::write_text_atomically(file, [&](std::ostream& out) {
-    out << "# corner plot densities (sedwave): per pair x y density on a " << kCornerBins << "x" << kCornerBins
-        << " grid of ln values, then per parameter value density; SI units\n";
-    for (int row = 1; row < k; ++row) {
-      for (int col = 0; col < row; ++col) {
-        std::vector<double> h(static_cast<std::size_t>(kCornerBins * kCornerBins), 0.0);
-        const auto& xs = draws[static_cast<std::size_t>(col)];
-        const auto& ys = draws[static_cast<std::size_t>(row)];
-        for (std::size_t n = 0; n < std::min(xs.size(), ys.size()); ++n) {
-          h[static_cast<std::size_t>(axes[static_cast<std::size_t>(col)].bin(xs[n]) * kCornerBins +
-                                     axes[static_cast<std::size_t>(row)].bin(ys[n]))] += 1.0;
-        }
-        h = smoothed(h);
+    out << "# corner plot densities (sedwave): per pair x y density on a " << n << "x" << n
+        << " grid of ln values, then every fourth draw, then per parameter value density; SI units\n";
+    for (std::size_t row = 1; row < k; ++row) {
+      for (std::size_t col = 0; col < row; ++col) {
+        const Histogram2 h = joint_histogram(draws[col], draws[row], axes[col], axes[row]);
         levels.push_back({level_holding(h, kCornerLevels[0]), level_holding(h, kCornerLevels[1])});
-        for (int i = 0; i < kCornerBins; ++i) {
-          for (int j = 0; j < kCornerBins; ++j) {
-            out << axes[static_cast<std::size_t>(col)].centre(i) << " " << axes[static_cast<std::size_t>(row)].centre(j)
-                << " " << h[static_cast<std::size_t>(i * kCornerBins + j)] << "\n";
+        for (std::size_t i = 0; i < n; ++i) {
+          for (std::size_t j = 0; j < n; ++j) {
+            out << axes[col].centre(i) << " " << axes[row].centre(j) << " " << h[i * n + j] << "\n";
           }
           out << "\n";
         }
@@ -578,38 +587,45 @@ std::vector<std::array<double, 2>> write_corner_density(const std::filesystem::p
       }
     }
     // Every fourth draw, all columns (the pairs' scatter; gnuplot reads one separator per script).
-    for (std::size_t n = 0; n < (k > 0 ? draws[0].size() : 0); n += 4) {
-      for (int p = 0; p < k; ++p) out << (p ? " " : "") << draws[static_cast<std::size_t>(p)][n];
+    for (std::size_t d = 0; d < (k > 0 ? draws[0].size() : 0); d += 4) {
+      for (std::size_t p = 0; p < k; ++p) out << (p ? " " : "") << draws[p][d];
       out << "\n";
     }
     out << "\n\n";
-    for (int p = 0; p < k; ++p) {
-      std::vector<double> h(static_cast<std::size_t>(kCornerBins), 0.0);
-      for (double x : draws[static_cast<std::size_t>(p)]) h[static_cast<std::size_t>(axes[static_cast<std::size_t>(p)].bin(x))] += 1.0;
-      for (int b = 0; b < kCornerBins; ++b) out << axes[static_cast<std::size_t>(p)].centre(b) << " " << h[static_cast<std::size_t>(b)] << "\n";
+    for (std::size_t p = 0; p < k; ++p) {
+      std::vector<double> h(n, 0.0);
+      for (double x : draws[p]) h[axes[p].bin(x)] += 1.0;
+      for (std::size_t b = 0; b < n; ++b) out << axes[p].centre(b) << " " << h[b] << "\n";
       out << "\n\n";
     }
   });
   return levels;
 }
 
+/// One panel's axis: range, scale, round ticks, and its label where the panel is on the edge.
+void corner_axis_commands(std::ostream& g, char which, const CornerAxis& a, const std::string& label) {
+  g << "set " << which << "tics " << corner_tics(a) << (which == 'x' ? " rotate by 30 right" : " format '% h'")
+    << "\nset " << which << "range [" << a.value(a.lo) << ":" << a.value(a.hi) << "]\n"
+    << (a.log ? std::string("set logscale ") + which + "\n" : std::string()) << "set " << which << "label "
+    << gnuplot_string(label) << " font ',9' noenhanced\n";
+}
+
 std::string corner_body(const CornerFiles& files, const std::string& density_file, const std::vector<std::string>& names,
                         const std::vector<std::string>& units, const std::vector<CornerAxis>& axes,
                         const std::vector<std::array<double, 2>>& levels) {
   const std::string density = gnuplot_string(density_file);
-  const std::size_t draws_block = levels.size(), marginal_block = levels.size() + 1;
-  const int k = static_cast<int>(names.size());
-  const bool marked = files.best_fit.size() == names.size();
+  const std::size_t k = names.size(), draws_block = levels.size(), marginal_block = levels.size() + 1;
+  const bool marked = files.best_fit.size() == k;
+  const auto label = [&](std::size_t p) { return names[p] + " [" + units[p] + "]"; };
   std::ostringstream g;
-  // The contours first, into datablocks (gnuplot's contouring works on splot's grid).
   // reset: the body runs twice (PNG, SVG), and the last panel's ranges and log axes must not reach
-  // the second run's contouring (terminal and output survive a reset).
+  // the second run's contouring (terminal and output survive a reset). The contours go first, into
+  // datablocks: gnuplot contours splot's grid.
   g << "reset\nset encoding utf8\nset datafile separator whitespace\nset contour base\nunset surface\nset view map\n";
-  for (int pair = 0; pair < static_cast<int>(levels.size()); ++pair) {
-    for (int l = 0; l < 2; ++l) {
-      g << "set cntrparam levels discrete " << levels[static_cast<std::size_t>(pair)][static_cast<std::size_t>(l)]
-        << "\nset table $c" << pair << "_" << l << "\nsplot " << density << " index " << pair
-        << " using 1:2:3 with lines\nunset table\n";
+  for (std::size_t pair = 0; pair < levels.size(); ++pair) {
+    for (std::size_t l = 0; l < 2; ++l) {
+      g << "set cntrparam levels discrete " << levels[pair][l] << "\nset table $c" << pair << "_" << l << "\nsplot "
+        << density << " index " << pair << " using 1:2:3 with lines\nunset table\n";
     }
   }
   g << "unset contour\nset surface\nset key off\nset tics font ',8'\n"
@@ -617,44 +633,35 @@ std::string corner_body(const CornerFiles& files, const std::string& density_fil
     << gnuplot_string(files.title + ": marginals, pairs with 68 % and 95 % contours" +
                       (marked ? ", best fit in red" : std::string()))
     << " font ',12' noenhanced\n";
-  int pair = 0;
-  for (int row = 0; row < k; ++row) {
-    for (int col = 0; col < k; ++col) {
-      const CornerAxis& ax = axes[static_cast<std::size_t>(col)];
-      const CornerAxis& ay = axes[static_cast<std::size_t>(row)];
-      g << "unset label\nunset arrow\nunset logscale\nset xtics " << corner_tics(ax)
-        << " rotate by 30 right\nset xrange [" << ax.value(ax.lo) << ":" << ax.value(ax.hi) << "]\n"
-        << (ax.log ? "set logscale x\n" : "") << "set xlabel "
-        << (row == k - 1 ? gnuplot_string(names[static_cast<std::size_t>(col)] + " [" + units[static_cast<std::size_t>(col)] + "]") : "''")
-        << " font ',9' noenhanced\nset ylabel "
-        << (col == 0 && row > 0 ? gnuplot_string(names[static_cast<std::size_t>(row)] + " [" + units[static_cast<std::size_t>(row)] + "]") : "''")
-        << " font ',9' noenhanced\n";
+  const std::string mark_style = std::string(" nohead lc rgb '") + kMisfitColour + "' lw 1.2\n";
+  std::size_t pair = 0;
+  for (std::size_t row = 0; row < k; ++row) {
+    for (std::size_t col = 0; col < k; ++col) {
       if (col > row) {
         g << "set multiplot next\n";
         continue;
       }
-      const auto mark_x = [&] {
-        if (marked) g << "set arrow from first " << files.best_fit[static_cast<std::size_t>(col)] << ", graph 0 to first "
-                      << files.best_fit[static_cast<std::size_t>(col)] << ", graph 1 nohead lc rgb '" << kMisfitColour << "' lw 1.2\n";
-      };
-      mark_x();
+      g << "unset label\nunset arrow\nunset logscale\n";
+      corner_axis_commands(g, 'x', axes[col], row == k - 1 ? label(col) : "");
+      if (marked) {
+        g << "set arrow from first " << files.best_fit[col] << ", graph 0 to first " << files.best_fit[col]
+          << ", graph 1" << mark_style;
+      }
       if (col == row) {
-        g << "set ytics auto format ''\nset autoscale y\n"
-          << "plot " << density << " index " << marginal_block + static_cast<std::size_t>(col)
-          << " using 1:2 with histeps lw 1.5 lc rgb '" << kCurveColour << "'\n";
+        g << "set ytics auto format ''\nset autoscale y\nset ylabel ''\nplot " << density << " index "
+          << marginal_block + col << " using 1:2 with histeps lw 1.5 lc rgb '" << kCurveColour << "'\n";
         continue;
       }
-      g << "set ytics " << corner_tics(ay) << " format '% h'\nset yrange [" << ay.value(ay.lo) << ":" << ay.value(ay.hi) << "]\n"
-        << (ay.log ? "set logscale y\n" : "");
+      corner_axis_commands(g, 'y', axes[row], col == 0 ? label(row) : "");
       if (marked) {
-        g << "set arrow from graph 0, first " << files.best_fit[static_cast<std::size_t>(row)] << " to graph 1, first "
-          << files.best_fit[static_cast<std::size_t>(row)] << " nohead lc rgb '" << kMisfitColour << "' lw 1.2\n";
+        g << "set arrow from graph 0, first " << files.best_fit[row] << " to graph 1, first " << files.best_fit[row]
+          << mark_style;
       }
       g << "plot " << density << " index " << draws_block << " using " << col + 1 << ":" << row + 1
-        << " with dots lc rgb '#b0b0b0', $c" << pair << "_1 using 1:2 with lines lw 1.2 lc rgb '#6baed6'"
-        << ", $c" << pair << "_0 using 1:2 with lines lw 1.8 lc rgb '" << kCurveColour << "'";
+        << " with dots lc rgb '#b0b0b0', $c" << pair << "_1 using 1:2 with lines lw 1.2 lc rgb '#6baed6', $c" << pair
+        << "_0 using 1:2 with lines lw 1.8 lc rgb '" << kCurveColour << "'";
       if (marked) {
-        g << ", '+' using (" << files.best_fit[static_cast<std::size_t>(col)] << "):(" << files.best_fit[static_cast<std::size_t>(row)]
+        g << ", '+' using (" << files.best_fit[col] << "):(" << files.best_fit[row]
           << ") every ::0::0 with points pt 7 ps 0.9 lc rgb '" << kMisfitColour << "'";
       }
       g << "\n";

@@ -366,7 +366,9 @@ void require_writable_location(const fs::path& path, const std::string& option, 
     throw std::invalid_argument(option + " " + e.what());
   }
   if (resolved.kind == OutputKind::stream) {
-    if (format == OutputFormat::seekable) throw std::invalid_argument(option + ": " + unseekable(path, resolved, "HDF5").what());
+    if (format == OutputFormat::seekable) {
+      throw std::invalid_argument(option + ": " + unseekable(path, resolved, "HDF5").what());
+    }
     return;  // written in place: nothing is created beside it
   }
   const fs::path& file = resolved.path;
