@@ -448,9 +448,14 @@ static std::string steadiness_warning(const AcousticResult& r, std::span<const S
     const ProbeWindow& w = r.windows[k];
     if (w.periods < 4) continue;
     const double half = (w.periods / 2) * timing.period;
+    const LockIn first = lock_in(signals[k], r.omega_hat, {w.window.begin, w.window.begin + half}, Drift::linear);
+    const LockIn second = lock_in(signals[k], r.omega_hat, {w.window.end - half, w.window.end}, Drift::linear);
+    // A half-window can hold no signal where the whole one barely does (a heavily damped wave): no
+    // phase to compare there, so that layer sits out of the comparison.
+    if (!(first.amplitude > 0.0) || !(second.amplitude > 0.0)) continue;
     z.push_back(r.layer_z[k]);
-    early.push_back(lock_in(signals[k], r.omega_hat, {w.window.begin, w.window.begin + half}, Drift::linear));
-    late.push_back(lock_in(signals[k], r.omega_hat, {w.window.end - half, w.window.end}, Drift::linear));
+    early.push_back(first);
+    late.push_back(second);
   }
   if (z.size() < 3) return {};
   const PropagationFit a = fit_attenuation_and_wavenumber(z, early, r.omega_hat, r.fit.k, ProbeWeights::uniform);
@@ -612,8 +617,10 @@ void run_announced(dem::Engine& engine, std::int64_t steps, const DriveSettings&
   parallel::max(comm, std::span<double, 1>(&seconds, 1));  // the slowest rank sets the pace
   const double expected = seconds * static_cast<double>(steps) / static_cast<double>(std::max<std::int64_t>(probe, 1));
   if (d.log && parallel::rank(comm) == 0 && expected > kAnnouncedRunSeconds) {
+    char took[32];
+    std::snprintf(took, sizeof took, "%.3g", seconds);
     *d.log << "drive: " << steps << " steps of " << engine.n_global() << " grains; the first " << probe << " took "
-           << seconds << " s, so about " << static_cast<long long>(std::ceil(expected)) << " s in all"
+           << took << " s, so about " << static_cast<long long>(std::ceil(expected)) << " s in all"
            << (d.steady_extensions > 0 ? " (up to " + std::to_string(d.steady_extensions + 1) +
                                              " times that if its windows are not steady)"
                                        : std::string())
