@@ -74,6 +74,42 @@ void require_known(const std::vector<std::string>& items, const char* option,
   }
 }
 
+/// --models names each model once: an empty list or item, or one spec twice, is refused.
+void check_model_list(const std::string& option, const std::vector<std::string>& names) {
+  if (names.empty()) throw UsageError("--models '" + option + "': name at least one model (sedwave models)");
+  if (option.front() == ',' || option.back() == ',' || option.find(",,") != std::string::npos) {
+    throw UsageError("--models '" + option + "': an empty model name");
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (names[i] == names[j]) {
+        throw UsageError("--models '" + option + "' names '" + names[i] + "' twice: its rows would be identical");
+      }
+    }
+  }
+}
+
+/// Each --fit MODEL=a,b names one of --models, a non-empty list, and no model twice.
+void check_fits(const std::vector<std::string>& fits, const std::vector<std::string>& model_names) {
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const std::string& f = fits[i];
+    if (f.find('=') == std::string::npos) throw UsageError("--fit '" + f + "': expected MODEL=a,b,c");
+    if (std::find(model_names.begin(), model_names.end(), name_of(f)) == model_names.end()) {
+      throw UsageError("--fit '" + f + "': '" + name_of(f) + "' is not one of --models");
+    }
+    if (f.back() == '=') {
+      throw UsageError("--fit '" + f + "': an empty list names no parameter (leave --fit out for the model's "
+                       "typical set)");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (name_of(fits[j]) == name_of(f)) {
+        throw UsageError("--fit '" + fits[j] + "' and --fit '" + f + "' both choose the free parameters of " +
+                         name_of(f) + ": give one");
+      }
+    }
+  }
+}
+
 /// One model's comparison, filled in by jobs (job_queue.hpp): its fit, then its evidence under the
 /// priors and under the priors widened x10, then its posterior band. Each job writes only its own
 /// fields, and each sampler has its own seeded random stream: the results do not depend on how many
@@ -225,7 +261,8 @@ std::string model_file(const std::string& stem, std::size_t position, const std:
 std::vector<OutputPath> output_files(const std::filesystem::path& out, const std::vector<std::string>& models) {
   std::vector<OutputPath> outputs;
   for (const char* name : {"compare.json", "predictive_residuals.csv", "predictive.gp", "predictive.png",
-                           "predictive.svg", "corner_best.gp", "corner_best.png", "corner_best.svg"}) {
+                           "predictive.svg", "corner_best.gp", "corner_best.png", "corner_best.svg",
+                           "corner_best_density.dat"}) {
     outputs.push_back({"--out", out / name});
   }
   for (std::size_t i = 0; i < models.size(); ++i) {
@@ -235,9 +272,9 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out, const std
   return outputs;
 }
 
-/// Every model's posterior band over the data, as files and one plot.
-void write_bands(const std::filesystem::path& out, const std::vector<std::string>& specs, const std::vector<Row>& rows,
-                 const inversion::ObservationSet& data, bool plot) {
+/// Every model's posterior band over the data, as files; returns them for the plot.
+std::vector<inversion::BandFile> write_bands(const std::filesystem::path& out, const std::vector<std::string>& specs,
+                                             const std::vector<Row>& rows, const inversion::ObservationSet& data) {
   std::vector<inversion::PredictiveBand> bands;
   std::vector<inversion::BandFile> files;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -248,7 +285,12 @@ void write_bands(const std::filesystem::path& out, const std::vector<std::string
   inversion::write_predictive_residuals_csv(out / "predictive_residuals.csv", rows.front().fit, bands,
                                             data.water_sound_speed);
   std::printf("posterior bands: %s/predictive_*.csv, samples: %s/samples_*.csv\n", out.c_str(), out.c_str());
-  if (!plot) return;
+  return files;
+}
+
+/// The bands of every model in one plot (read from the files write_bands wrote).
+void plot_bands(const std::filesystem::path& out, const std::vector<inversion::BandFile>& files,
+                const std::vector<Row>& rows, const inversion::ObservationSet& data) {
   std::printf("%s\n", inversion::draw_predictive_plot(out, "predictive", "sedwave compare: posterior bands",
                                                       data.water_sound_speed.has_value(), rows.front().fit, files,
                                                       "predictive_residuals.csv")
@@ -265,19 +307,24 @@ std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(con
   return {names, units};
 }
 
-/// Each model's posterior draws (the evidence run's beta = 1 ensemble), and the corner plot of the
-/// model ranked first.
+/// Each model's posterior draws (the evidence run's beta = 1 ensemble).
 void write_samples(const std::filesystem::path& out, const std::vector<std::string>& specs,
-                   const std::vector<Row>& rows, bool plot) {
+                   const std::vector<Row>& rows) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto [names, units] = sample_columns(rows[i]);
     inversion::write_samples_csv(out / model_file("samples", i, specs[i]), rows[i].evidence.samples, names, units);
   }
-  if (!plot) return;
+}
+
+/// The corner plot of the model ranked first (read from its samples file).
+void plot_best_corner(const std::filesystem::path& out, const std::vector<std::string>& specs,
+                      const std::vector<Row>& rows) {
   const auto best = static_cast<std::size_t>(ranking(rows, false).front());
   const auto [names, units] = sample_columns(rows[best]);
+  std::vector<double> best_fit;
+  for (int i : rows[best].fit.fitted.free_indices()) best_fit.push_back(rows[best].fit.fitted.spec[i].value);
   const inversion::CornerFiles files{model_file("samples", best, specs[best]), "corner_best",
-                                     "posterior of " + rows[best].model + " (ranked first)"};
+                                     "posterior of " + rows[best].model + " (ranked first)", best_fit};
   std::printf("%s\n", inversion::draw_corner_plot(out, names, units, files).message.c_str());
 }
 
@@ -312,6 +359,7 @@ Command add_compare_command(CLI::App& app) {
     std::vector<std::filesystem::path> inputs(o->files.begin(), o->files.end());
     if (!o->shared.site.empty()) inputs.emplace_back(o->shared.site);
     const std::vector<std::string> model_names = split(o->models, ',');
+    check_model_list(o->models, model_names);
     check_outputs(output_files(out, model_names), inputs, "compare");
     const inversion::ReadOptions read{o->water_speed, std::nullopt};
     inversion::ObservationSet data;
@@ -320,11 +368,8 @@ Command add_compare_command(CLI::App& app) {
     for (const std::string& spec : model_names) models.push_back(sediment::make_sediment_model(spec));
     require_known(o->priors, "--prior", models);
     require_known(o->shared.set_values, "--set", models);
-    for (const std::string& f : o->fits) {
-      if (std::find(model_names.begin(), model_names.end(), name_of(f)) == model_names.end()) {
-        throw UsageError("--fit '" + f + "': '" + name_of(f) + "' is not one of --models");
-      }
-    }
+    check_fits(o->fits, model_names);
+    const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
     std::vector<ModelRun> runs;
     for (const std::string& spec : model_names) runs.push_back(prepare(spec, *o));
     run_all(runs, *o, data, threads_to_use(o->threads));
@@ -337,10 +382,18 @@ Command add_compare_command(CLI::App& app) {
       for (const std::string& p : row.priors) std::printf("  prior %s\n", p.c_str());
     }
     print_table(rows);
-    io::write_text_atomically(out / "compare.json", [&](std::ostream& s) { s << report(rows).dump(2) << "\n"; });
-    std::printf("report: %s/compare.json\n", o->out.c_str());
-    write_bands(out, model_names, rows, data, o->plot);
-    write_samples(out, model_names, rows, o->plot);
+    {
+      io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not part of its own
+      io::write_text_atomically(out / "compare.json", [&](std::ostream& s) { s << report(rows).dump(2) << "\n"; });
+      std::printf("report: %s/compare.json\n", o->out.c_str());
+      const std::vector<inversion::BandFile> band_files = write_bands(out, model_names, rows, data);
+      write_samples(out, model_names, rows);
+      outputs.commit_all();
+      if (o->plot) {
+        plot_bands(out, band_files, rows, data);
+        plot_best_corner(out, model_names, rows);
+      }
+    }
     const bool all_converged = std::all_of(rows.begin(), rows.end(), [](const Row& r) {
       return r.evidence.converged && r.widened.converged;
     });

@@ -16,6 +16,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -262,9 +263,12 @@ std::map<std::string, std::string> checkpoint_inputs(const DemOptions& o) {
 /// any step.
 void check_dem_paths(const DemOptions& o) {
   std::vector<OutputPath> outputs;
-  for (const auto& [option, path] : {std::pair{"--checkpoint", &o.checkpoint}, std::pair{"--dump", &o.dump},
-                                     std::pair{"--h5md", &o.h5md}, std::pair{"--final", &o.final_state}}) {
-    if (!path->empty()) outputs.push_back({option, *path});
+  using io::OutputFormat;
+  for (const auto& [option, path, format] : {std::tuple{"--checkpoint", &o.checkpoint, OutputFormat::seekable},
+                                             std::tuple{"--dump", &o.dump, OutputFormat::text},
+                                             std::tuple{"--h5md", &o.h5md, OutputFormat::seekable},
+                                             std::tuple{"--final", &o.final_state, OutputFormat::text}}) {
+    if (!path->empty()) outputs.push_back({option, *path, format});
   }
   check_outputs(outputs, {o.data}, "dem");
 }

@@ -148,14 +148,14 @@ void print_single_grains(const forward::channel::SingleGrainProbes& p, bool sinu
 /// Every file the run writes and reads (ensembles: one packing per member), checked before any work.
 void check_forward_paths(const ForwardOptions& o, const experiment::ChannelScene& scene) {
   const int members = scene.engine == experiment::EngineKind::linear ? scene.linear.ensemble : 1;
-  std::vector<OutputPath> outputs{{"--out", o.out}};
+  std::vector<OutputPath> outputs{{"--out", o.out, io::OutputFormat::seekable}};
   std::vector<std::filesystem::path> inputs{o.scene};
   if (scene.import_lammps_data) inputs.push_back(*scene.import_lammps_data);
   for (int k = 0; k < members; ++k) {
     if (!o.packing_in.empty()) inputs.emplace_back(experiment::member_path(o.packing_in, k));
     if (o.packing_out.empty()) continue;
     std::filesystem::path packing = experiment::member_path(o.packing_out, k);
-    outputs.push_back({"--packing-out", packing});
+    outputs.push_back({"--packing-out", packing, io::OutputFormat::seekable});
     outputs.push_back({"--packing-out", packing.replace_extension(".data")});  // its LAMMPS twin
   }
   check_outputs(outputs, inputs, "forward");
@@ -174,6 +174,7 @@ int run_forward(const ForwardOptions& o) {
   if (o.gamma_hat) scene.drive.gamma_hat = *o.gamma_hat;
   const bool talk = mpi.rank() == 0 && !o.quiet;
   scene.preparation.log = talk ? &std::cout : nullptr;
+  scene.drive.log = scene.preparation.log;
   if (scene.engine == experiment::EngineKind::linear) return run_linear(o, scene, mpi, talk);
 
   const experiment::ScenePacking packing =

@@ -212,11 +212,22 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   for (const char* name : {"fit.json", "curves.csv", "observations.csv", "fit.gp", "fit.png", "fit.svg",
                            "posterior_samples.csv", "posterior_samples.h5", "posterior_marginals.csv",
                            "posterior_corner.gp", "posterior_corner.png", "posterior_corner.svg",
+                           "posterior_corner_density.dat",
                            "posterior_predictive.csv", "posterior_residuals.csv", "posterior_predictive.gp",
                            "posterior_predictive.png", "posterior_predictive.svg"}) {
-    outputs.push_back({"--out", out / name});
+    const bool hdf5 = std::filesystem::path(name).extension() == ".h5";
+    outputs.push_back({"--out", out / name, hdf5 ? io::OutputFormat::seekable : io::OutputFormat::text});
   }
   return outputs;
+}
+
+/// The corner plot's files, with the best fit of the sampled parameters marked.
+inversion::CornerFiles corner_files(const inversion::FitResult& result, const std::vector<std::string>& names) {
+  inversion::CornerFiles files;
+  for (const std::string& name : names) {
+    files.best_fit.push_back(result.fitted.spec[result.fitted.index_of(name)].value);
+  }
+  return files;
 }
 
 }  // namespace
@@ -238,9 +249,11 @@ Command add_invert_command(CLI::App& app) {
   cmd->add_option("--prior", o->priors,
                   "NAME=KIND:A,B, KIND uniform | log-uniform | normal | log-normal (A,B: bounds, mean and sd, or median "
                   "and sd of ln) [SI]; default log-uniform over the search bounds (repeatable; --method posterior)");
-  cmd->add_option("--walkers", o->posterior.walkers, "posterior: ensemble walkers (0: max(4 x free, 16))")
+  auto* walkers = cmd->add_option("--walkers", o->posterior.walkers,
+                                  "posterior: ensemble walkers (0: max(4 x free, 16))")
       ->capture_default_str()->check(CLI::Range(0, 100000));
-  cmd->add_option("--steps", o->posterior.steps, "posterior: ensemble updates, the first half discarded as burn-in")
+  auto* steps = cmd->add_option("--steps", o->posterior.steps,
+                                "posterior: ensemble updates, the first half discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
   add_threads_option(*cmd, o->threads,
                      "posterior: threads that share each half-ensemble's evaluations (they meet at every "
@@ -265,7 +278,13 @@ Command add_invert_command(CLI::App& app) {
                 "skip the likelihood profiles (most of a fit's time on large files); determination then rests on "
                 "the linearised sigmas alone");
 
-  return {cmd, [o]() {
+  return {cmd, [o, walkers, steps]() {
+            for (const CLI::Option* sampler : {walkers, steps}) {
+              if (sampler->count() > 0 && o->method != "posterior") {
+                throw UsageError(sampler->get_name() + " is for --method posterior; --method " + o->method +
+                                 " does not sample");
+              }
+            }
             const std::filesystem::path out(o->out);
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
@@ -281,6 +300,8 @@ Command add_invert_command(CLI::App& app) {
             std::vector<inversion::Prior> priors = inversion::default_priors(parameters);
             inversion::apply_priors(parameters, site_priors, "site file " + o->model.site, priors);
             inversion::apply_priors(parameters, o->priors, "command line", priors);
+            const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
+            io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not half of its own
             if (data.observations.size() >= kProgressObservations) {
               const auto started = std::chrono::steady_clock::now();
               options.progress = [started](const std::string& stage) {
@@ -324,6 +345,7 @@ Command add_invert_command(CLI::App& app) {
             }
             inversion::write_curves_csv(out / "curves.csv", curves, data.water_sound_speed);
             inversion::write_observations_table(out / "observations.csv", data, result);
+            outputs.commit_all();  // the plots read them
             inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
             if (o->plot) {
               const bool chain = o->model.model == "lattice" || o->model.model == "continuum";
@@ -335,7 +357,9 @@ Command add_invert_command(CLI::App& app) {
               print_posterior(*sampled, o->out);
               if (o->plot) {
                 std::printf("  %s\n",
-                            inversion::draw_corner_plot(out, sampled->sample_names, sampled->sample_units).message.c_str());
+                            inversion::draw_corner_plot(out, sampled->sample_names, sampled->sample_units,
+                                                        corner_files(result, sampled->sample_names))
+                                .message.c_str());
                 std::printf("  %s\n", inversion::draw_predictive_plot(
                                            out, "posterior_predictive", "sedwave posterior band: " + result.model,
                                            data.water_sound_speed.has_value(), result,

@@ -32,7 +32,9 @@ Command add_merge_command(CLI::App& app) {
       inputs.emplace_back(member);
       inputs.push_back(forward::table::TableFile::journal_path(member));
     }
-    check_outputs({{"--out", o->out}, {"--out", forward::table::TableFile::journal_path(o->out)}}, inputs, "merge");
+    const auto hdf5 = io::OutputFormat::seekable;
+    check_outputs({{"--out", o->out, hdf5}, {"--out", forward::table::TableFile::journal_path(o->out), hdf5}}, inputs,
+                  "merge");
     std::vector<forward::table::DispersionTable> tables;
     for (const std::string& path : o->members) tables.push_back(forward::table::read_table(path));
     const forward::table::DispersionTable merged = forward::experiment::merge_member_tables(tables, o->members);

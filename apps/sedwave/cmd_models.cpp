@@ -20,7 +20,7 @@ Command add_models_command(CLI::App& app) {
                                                 : name->c_str());
     const auto models = name->empty() ? sediment::model_examples()
                                       : std::vector<std::shared_ptr<const sediment::SedimentModel>>{
-                                            sediment::make_sediment_model(*name)};
+                                            sediment::make_sediment_model(*name, {sediment::DampingForm::Gamma, true})};
     for (const auto& m : models) {
       std::printf("\n%s: %s\n", m->name().c_str(), m->summary().c_str());
       std::printf("  fitted unless --fit says otherwise: %s\n", sediment::typical_free_parameters(*m).c_str());
@@ -30,6 +30,10 @@ Command add_models_command(CLI::App& app) {
         std::snprintf(range, sizeof range, "[%.3g, %.3g]", p.lower, p.upper);
         std::printf("  %-14s %-8s %12.4g  %-25s %s\n", p.name.c_str(), p.unit.c_str(), p.default_value, range,
                     p.meaning.c_str());
+      }
+      if (m->name().starts_with("saturated-")) {
+        std::printf("  (permeability and pore_size follow from d and porosity by Kozeny-Carman unless --set, --fit "
+                    "or --bounds names either)\n");
       }
     }
     return kExitOk;

@@ -1,6 +1,7 @@
 // `sedwave show`: a dispersion table as text, for reading and comparing tables without HDF5 tools:
 // its provenance, then one CSV row per grid point (dimensionless values, as stored).
 #include <charconv>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -23,6 +24,21 @@ std::string csv_quoted(const std::string& text) {
   std::string out;
   for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out;
+}
+
+/// What is wrong with a point stored as ok, or nothing: every value must be finite, the attenuation
+/// and the sigmas non-negative, the speed positive.
+std::string implausible(const forward::table::PointResult& p) {
+  const auto bad = [](const char* name, double x, bool positive) -> std::string {
+    if (!std::isfinite(x)) return std::string(name) + " = " + shortest(x);
+    if (positive ? !(x > 0.0) : x < 0.0) return std::string(name) + " = " + shortest(x) + (positive ? " <= 0" : " < 0");
+    return {};
+  };
+  for (const std::string& why : {bad("alpha_hat", p.alpha_hat, false), bad("sigma_alpha_hat", p.sigma_alpha_hat, false),
+                                 bad("c_hat", p.c_hat, true), bad("sigma_c_hat", p.sigma_c_hat, false)}) {
+    if (!why.empty()) return why;
+  }
+  return {};
 }
 
 }  // namespace
@@ -48,9 +64,17 @@ Command add_show_command(CLI::App& app) {
     }
     std::cout << "omega_hat,gamma_hat,status,alpha_hat,sigma_alpha_hat,c_hat,sigma_c_hat"
               << (o->values_only ? "" : ",wall_seconds") << ",reason\n";
+    std::size_t flagged = 0;
     for (std::size_t g = 0; g < t.n_gamma(); ++g) {
       for (std::size_t w = 0; w < t.n_omega(); ++w) {
         const forward::table::PointResult& p = t.at(g, w);
+        if (p.status == forward::table::PointStatus::ok) {
+          if (const std::string why = implausible(p); !why.empty()) {
+            ++flagged;
+            std::cerr << "sedwave show: ! point omega_hat " << shortest(t.grid().omega_hat[w]) << ", gamma_hat "
+                      << shortest(t.grid().gamma_hat[g]) << " is stored as ok but " << why << "\n";
+          }
+        }
         std::cout << shortest(t.grid().omega_hat[w]) << ',' << shortest(t.grid().gamma_hat[g]) << ','
                   << forward::table::to_string(p.status) << ',' << shortest(p.alpha_hat) << ','
                   << shortest(p.sigma_alpha_hat) << ',' << shortest(p.c_hat) << ',' << shortest(p.sigma_c_hat);
@@ -58,7 +82,12 @@ Command add_show_command(CLI::App& app) {
         std::cout << ",\"" << csv_quoted(p.reason) << "\"\n";
       }
     }
-    return 0;
+    if (flagged > 0) {
+      std::cerr << "sedwave show: ! " << flagged << " point(s) stored as ok hold impossible values (above); "
+                << "do not use them\n";
+      return kExitIncomplete;
+    }
+    return kExitOk;
   }};
 }
 

@@ -13,9 +13,37 @@
 #include "model_options.hpp"
 #include "output_paths.hpp"
 #include "sedwave/sediment/catalog.hpp"
+#include "sedwave/inversion/plausibility.hpp"
 #include "sedwave/inversion/synthetic.hpp"
 
 namespace sedwave::app {
+namespace {
+
+/// Flags synthetic sound speeds outside what any sediment can have (inversion/plausibility.hpp,
+/// sound_speed): parameters far from any sediment (a kappa 10^6 times too stiff) make speeds no
+/// data would show.
+/// Returns whether any was flagged.
+bool flag_implausible_speeds(const inversion::ObservationSet& set) {
+  const inversion::PlausibleRange& range = *inversion::plausible_range("sound_speed");
+  std::size_t outside = 0, speeds = 0;
+  const inversion::Observation* worst = nullptr;
+  for (const inversion::Observation& ob : set.observations) {
+    if (ob.quantity != inversion::Quantity::SoundSpeed) continue;
+    ++speeds;
+    if (ob.value >= range.lower && ob.value <= range.upper) continue;
+    ++outside;
+    const auto distance = [&](double c) { return c < range.lower ? range.lower / c : c / range.upper; };
+    if (!worst || !(distance(ob.value) <= distance(worst->value))) worst = &ob;
+  }
+  if (outside == 0) return false;
+  std::printf("! %zu of %zu sound speeds lie outside [%g, %g] m/s (%s); the farthest: %.4g m/s at %.4g Hz: "
+              "likely %s\n",
+              outside, speeds, range.lower, range.upper, range.basis, worst->value, worst->frequency_hz,
+              worst->value < range.lower ? range.below_cause : range.above_cause);
+  return true;
+}
+
+}  // namespace
 
 Command add_synthesize_command(CLI::App& app) {
   struct Options {
@@ -82,7 +110,7 @@ Command add_synthesize_command(CLI::App& app) {
                                       "synthetic_model: " + model->name(), truth_line.str(), noise_line});
     std::printf("%s: %zu observations from %s, %g-%g Hz\n", o->out.c_str(), set.observations.size(),
                 model->name().c_str(), o->design.lowest_hz, o->design.highest_hz);
-    return 0;
+    return flag_implausible_speeds(set) ? kExitIncomplete : kExitOk;
   }};
 }
 

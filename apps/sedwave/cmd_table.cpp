@@ -43,7 +43,8 @@ experiment::TableEngine table_engine(const std::string& name) {
 /// The table, its journal and packings that do not exist yet are written; the grid, the scene and
 /// existing packings are read. All checked before any work.
 void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, const experiment::ChannelScene& scene) {
-  std::vector<OutputPath> outputs{{"--out", o.out}, {"--out", table::TableFile::journal_path(o.out)}};
+  std::vector<OutputPath> outputs{{"--out", o.out, io::OutputFormat::seekable},
+                                  {"--out", table::TableFile::journal_path(o.out), io::OutputFormat::seekable}};
   std::vector<std::filesystem::path> inputs{grid.path, grid.scene_path};
   if (scene.import_lammps_data) inputs.push_back(*scene.import_lammps_data);
   for (int k = 0; !o.packing.empty() && k < scene.linear.ensemble; ++k) {
@@ -51,7 +52,7 @@ void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, 
     if (std::filesystem::exists(packing)) {
       inputs.push_back(packing);
     } else {
-      outputs.push_back({"--packing", packing});
+      outputs.push_back({"--packing", packing, io::OutputFormat::seekable});
       outputs.push_back({"--packing", packing.replace_extension(".data")});  // its LAMMPS twin
     }
   }

@@ -184,10 +184,69 @@ void apply_site_inputs(const ModelOptions& o, const std::set<std::string>& given
   }
 }
 
+/// One parameter given through two options (--set kappa= twice, --kappa with --set kappa=, --bounds
+/// twice, --kappa-bounds with --bounds kappa=) would keep one of the values silently: refused, naming
+/// both options.
+void refuse_repeated_parameters(const ModelOptions& o) {
+  const auto check = [](std::vector<std::pair<std::string, std::string>> given, const char* verb) {
+    for (std::size_t i = 0; i < given.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (given[i].first == given[j].first) {
+          throw UsageError(given[j].second + " and " + given[i].second + " both " + verb + " " + given[i].first +
+                           ": give one");
+        }
+      }
+    }
+  };
+  std::vector<std::pair<std::string, std::string>> values, bounds;  // (parameter, option as given)
+  const auto direct = [](const auto& value, const char* name, const char* option,
+                         std::vector<std::pair<std::string, std::string>>& into) {
+    if (value) into.emplace_back(name, option);
+  };
+  direct(o.kappa, "kappa", "--kappa", values);
+  direct(o.diameter, "d", "--d", values);
+  direct(o.gamma, "gamma", "--gamma", values);
+  direct(o.restitution, "e_n", "--en", values);
+  direct(o.density, "rho_s", "--density", values);
+  for (const std::string& item : o.set_values) {
+    values.emplace_back(name_and_value(item, "--set").first, "--set '" + item + "'");
+  }
+  direct(!o.kappa_bounds.empty(), "kappa", "--kappa-bounds", bounds);
+  direct(!o.diameter_bounds.empty(), "d", "--d-bounds", bounds);
+  direct(!o.gamma_bounds.empty(), "gamma", "--gamma-bounds", bounds);
+  direct(!o.restitution_bounds.empty(), "e_n", "--en-bounds", bounds);
+  for (const std::string& item : o.set_bounds) {
+    bounds.emplace_back(name_and_value(item, "--bounds").first, "--bounds '" + item + "'");
+  }
+  check(values, "set");
+  check(bounds, "bound");
+}
+
+/// Search bounds move only a free parameter: on a fixed one they would be ignored.
+void refuse_bounds_on_fixed(const ModelOptions& o, const inversion::FitParameters& p) {
+  const auto refuse_if_fixed = [&](const std::string& name, const std::string& option) {
+    for (const auto& s : p.spec) {
+      if (s.name == name && !s.free) {
+        throw UsageError(option + " bounds " + name + ", which is fixed (--fit " +
+                         (o.fit.empty() ? std::string("default: the model's typical set") : "'" + o.fit + "'") +
+                         "): name it in --fit, or drop the bounds");
+      }
+    }
+  };
+  if (!o.kappa_bounds.empty()) refuse_if_fixed("kappa", "--kappa-bounds");
+  if (!o.diameter_bounds.empty()) refuse_if_fixed("d", "--d-bounds");
+  if (!o.gamma_bounds.empty()) refuse_if_fixed("gamma", "--gamma-bounds");
+  if (!o.restitution_bounds.empty()) refuse_if_fixed("e_n", "--en-bounds");
+  for (const std::string& item : o.set_bounds) {
+    refuse_if_fixed(name_and_value(item, "--bounds").first, "--bounds '" + item + "'");
+  }
+}
+
 }  // namespace
 
 inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::SedimentModel& model, ModelUse use,
                                          std::vector<std::string>* site_notes, std::vector<std::string>* site_priors) {
+  refuse_repeated_parameters(o);
   inversion::FitParameters p(model.parameters());
   if (use == ModelUse::Fit) {
     p.set_free_from_list(!o.fit.empty() ? o.fit : sediment::typical_free_parameters(model));
@@ -236,6 +295,7 @@ inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::
     spec.lower = number_in(text.substr(0, comma), item, "--bounds");
     spec.upper = number_in(text.substr(comma + 1), item, "--bounds");
   }
+  if (use == ModelUse::Fit) refuse_bounds_on_fixed(o, p);
   for (int i = 0; i < p.size(); ++i) check_physical(p.spec[i], model.parameters()[i], model.name());
   p.validate();
   return p;
@@ -253,7 +313,8 @@ void add_model_options(CLI::App& cmd, ModelOptions& o, ModelUse use) {
   if (fit) {
     cmd.add_option("--fit", o.fit,
                    "free parameters, comma-separated (others fixed); default: the model's typical set (kappa,d,gamma "
-                   "for grain contacts, gamma|en for the damping; sedwave models)");
+                   "for grain contacts, gamma|en for the damping; sedwave models)")
+        ->check(non_empty_list());
   }
   cmd.add_option("--set", o.set_values, "NAME=VALUE: a parameter's value [SI]" + role + " (repeatable)");
   cmd.add_option("--kappa", o.kappa, "contact stiffness [N/m]" + role)->check(finite_positive());

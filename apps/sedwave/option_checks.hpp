@@ -35,6 +35,15 @@ inline CLI::Validator finite_in(double lower, double upper = std::numeric_limits
       "FINITE");
 }
 
+/// A non-empty list: `--fit ''` names no parameter, which is not the same as leaving --fit out.
+inline CLI::Validator non_empty_list() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "an empty list names no parameter (leave the option out for the default)" : "";
+      },
+      "LIST");
+}
+
 /// A finite number > 0.
 inline CLI::Validator finite_positive() {
   return finite_in(std::numeric_limits<double>::denorm_min());

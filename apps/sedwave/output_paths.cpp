@@ -22,7 +22,7 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
       }
     }
   }
-  for (const OutputPath& out : outputs) io::require_writable_location(out.path, out.option);
+  for (const OutputPath& out : outputs) io::require_writable_location(out.path, out.option, out.format);
 }
 
 }  // namespace sedwave::app

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/io/atomic_file.hpp"
+
 namespace sedwave::app {
 
 /// A mistake in the command line found after parsing (an output naming an input): exit code
@@ -15,10 +17,12 @@ class UsageError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// One output of a command: the option that names it ("--out") and the file.
+/// One output of a command: the option that names it ("--out"), the file, and whether its format
+/// must seek (HDF5: refused on a device or FIFO, which a text output is written to in place).
 struct OutputPath {
   std::string option;
   std::filesystem::path path;
+  io::OutputFormat format = io::OutputFormat::text;
 };
 
 /// Throws UsageError if an output names an input or another output, and std::invalid_argument if

@@ -12,7 +12,7 @@ double quartz_hertz_kappa(double diameter, double pressure) {
 }
 
 const PlausibleRange* plausible_range(const std::string& quantity) {
-  static const std::array<std::pair<const char*, PlausibleRange>, 6> kRanges{{
+  static const std::array<std::pair<const char*, PlausibleRange>, 7> kRanges{{
       {"d",
        {1e-6, 6.4e-2, "clay (1 um) to pebble gravel (64 mm)",
         "a grain size below clay: the fit slid along a direction the data do not see (d trades with kappa and "
@@ -34,6 +34,12 @@ const PlausibleRange* plausible_range(const std::string& quantity) {
         "a dashpot beyond any contact: attenuation in the wrong unit, or loss the model puts in the contacts "
         "that belongs elsewhere"}},
       {"e_n", {1e-6, 1.0, "restitution of a binary collision, (0, 1]", "", ""}},
+      {"sound_speed",
+       {100.0, 2.0e4, "any seabed sediment at any frequency: gassy muds (about 100 m/s) to the P-wave speed of dense "
+                      "rock-forming minerals (below 2e4 m/s)",
+        "slower than any sediment: a sound speed in the wrong unit (km/s, or a ratio read as m/s)?",
+        "faster than any mineral: parameters in the wrong unit (a kappa or d off by powers of ten?), or the model "
+        "evaluated far beyond its range"}},
       {"porosity",
        {0.25, 0.9, "marine sediments, from poorly sorted sands to clays (Hamilton 1980: sands 0.37-0.47, clays to 0.85)",
         "denser than any unconsolidated sediment: the model puts too much stiffness or mass in the mixture",

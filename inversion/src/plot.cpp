@@ -3,10 +3,12 @@
 #include "sedwave/io/atomic_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -417,47 +419,253 @@ PlotOutcome run_gnuplot(const std::filesystem::path& dir, const std::string& ste
     return {false, "plot skipped: gnuplot not found (apt-get install gnuplot-nox); script left in " +
                        (dir / script_name).string()};
   }
-  io::AtomicFile png(dir / (stem + ".png")), svg(dir / (stem + ".svg"));
-  const std::string command = "cd " + shell_quote(dir.string()) + " && gnuplot -e " +
-                              shell_quote("png_file='" + png.temporary().filename().string() + "'; svg_file='" +
-                                          svg.temporary().filename().string() + "'") +
-                              " " + shell_quote(script_name) + " > gnuplot.log 2>&1";
-  if (std::system(command.c_str()) != 0) {
-    return {false, "plot skipped: gnuplot failed, see " + (dir / "gnuplot.log").string()};
+  try {
+    io::AtomicFile png(dir / (stem + ".png")), svg(dir / (stem + ".svg"));
+    const std::string command = "cd " + shell_quote(dir.string()) + " && gnuplot -e " +
+                                shell_quote("png_file='" + png.temporary().filename().string() + "'; svg_file='" +
+                                            svg.temporary().filename().string() + "'") +
+                                " " + shell_quote(script_name) + " > gnuplot.log 2>&1";
+    if (std::system(command.c_str()) != 0) {
+      return {false, "plot skipped: gnuplot failed, see " + (dir / "gnuplot.log").string()};
+    }
+    png.commit();
+    svg.commit();
+  } catch (const std::exception& e) {
+    return {false, std::string("plot skipped: ") + e.what()};
   }
-  png.commit();
-  svg.commit();
   return {true, "plot written to " + (dir / (stem + ".png")).string() + " and " + stem + ".svg"};
 }
 
-/// The corner plot: the marginal of each parameter on the diagonal (histogram of ln value), each
-/// pair's joint draws below it, all read from `samples_file` (two header lines, a column per name).
-std::string corner_body(const std::string& title, const std::string& samples_file, const std::vector<std::string>& names,
-                        const std::vector<std::string>& units) {
-  const std::string file = gnuplot_string(samples_file);
-  const int k = static_cast<int>(names.size());
+// ---- The corner plot ------------------------------------------------------------------------------
+// As corner.py draws one (Foreman-Mackey 2016, JOSS 1, 24): physical values on log axes (the
+// parameters span decades), each marginal on the diagonal, each pair's draws below it with the
+// contours of the smallest regions holding 68 % and 95 % of the draws (a 2D histogram in ln space,
+// smoothed over neighbouring bins), and the best fit marked. The histograms are computed here and
+// written to STEM_density.dat; gnuplot contours them (set contour) and draws the panels.
+
+constexpr int kCornerBins = 30;
+constexpr double kCornerLevels[2] = {0.68, 0.95};
+
+/// The draws of a samples file (two header lines, one column per parameter, SI values).
+std::vector<std::vector<double>> read_draws(const std::filesystem::path& file, std::size_t columns) {
+  std::vector<std::vector<double>> draws(columns);
+  std::ifstream in(file);
+  std::string line;
+  for (int skipped = 0; skipped < 2 && std::getline(in, line); ++skipped) {
+  }
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::string field;
+    for (std::size_t c = 0; c < columns && std::getline(fields, field, ','); ++c) {
+      draws[c].push_back(std::strtod(field.c_str(), nullptr));
+    }
+  }
+  return draws;
+}
+
+/// One parameter's axis: log when every draw is positive (ln of the value is binned), else linear.
+struct CornerAxis {
+  bool log = true;
+  double lo = 0.0, hi = 1.0;  ///< binned coordinate (ln value on a log axis)
+  [[nodiscard]] double coordinate(double x) const { return log ? std::log(x) : x; }
+  [[nodiscard]] double value(double c) const { return log ? std::exp(c) : c; }
+  [[nodiscard]] std::size_t bin(double x) const {
+    const double f = (coordinate(x) - lo) / (hi - lo);
+    return static_cast<std::size_t>(std::clamp(static_cast<int>(f * kCornerBins), 0, kCornerBins - 1));
+  }
+  [[nodiscard]] double centre(std::size_t b) const {
+    return value(lo + (hi - lo) * (static_cast<double>(b) + 0.5) / kCornerBins);
+  }
+};
+
+CornerAxis corner_axis(const std::vector<double>& draws) {
+  CornerAxis a;
+  a.log = !draws.empty() && std::all_of(draws.begin(), draws.end(), [](double x) { return x > 0.0 && std::isfinite(x); });
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double x : draws) {
+    if (!std::isfinite(a.coordinate(x))) continue;
+    lo = std::min(lo, a.coordinate(x));
+    hi = std::max(hi, a.coordinate(x));
+  }
+  if (!(hi > lo)) {  // one value (or none): a band around it
+    const double mid = std::isfinite(lo) ? lo : 0.0, half = std::max(1e-6, 1e-3 * std::abs(mid));
+    lo = mid - half;
+    hi = mid + half;
+  }
+  a.lo = lo;
+  a.hi = hi;
+  return a;
+}
+
+/// Readable ticks: three round values spread over the axis, with the fewest significant digits
+/// (from two) that keep each within 5 % of the axis of where it belongs.
+std::string corner_tics(const CornerAxis& a) {
+  std::ostringstream t;
+  t << "(";
+  for (int k = 0; k < 3; ++k) {
+    const double at = a.lo + (a.hi - a.lo) * (0.15 + 0.35 * k);
+    char label[32];
+    for (int digits = 2; digits <= 6; ++digits) {
+      std::snprintf(label, sizeof label, "%.*g", digits, a.value(at));
+      if (std::abs(a.coordinate(std::strtod(label, nullptr)) - at) < 0.05 * (a.hi - a.lo)) break;
+    }
+    t << (k ? ", " : "") << "'" << label << "' " << std::strtod(label, nullptr);
+  }
+  return t.str() + ")";
+}
+
+/// A kCornerBins x kCornerBins histogram, bin (i, j) at i * kCornerBins + j.
+using Histogram2 = std::vector<double>;
+
+/// 3x3 smoothing of a histogram (weights 1-2-1 in each direction), as corner.py smooths before
+/// contouring: single bins' noise would otherwise fray the contours.
+Histogram2 smoothed(const Histogram2& h) {
+  Histogram2 out(h.size(), 0.0);
+  const int n = kCornerBins;
+  const auto at = [n](int i, int j) { return static_cast<std::size_t>(i * n + j); };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      double sum = 0.0, weight = 0.0;
+      for (int di = -1; di <= 1; ++di) {
+        for (int dj = -1; dj <= 1; ++dj) {
+          if (i + di < 0 || i + di >= n || j + dj < 0 || j + dj >= n) continue;
+          const double w = (di == 0 ? 2.0 : 1.0) * (dj == 0 ? 2.0 : 1.0);
+          sum += w * h[at(i + di, j + dj)];
+          weight += w;
+        }
+      }
+      out[at(i, j)] = sum / weight;
+    }
+  }
+  return out;
+}
+
+/// The density above which the bins hold `mass` of the total (highest bins first).
+double level_holding(std::vector<double> density, double mass) {
+  std::sort(density.begin(), density.end(), std::greater<>());
+  double total = 0.0;
+  for (double d : density) total += d;
+  double cumulative = 0.0;
+  for (double d : density) {
+    cumulative += d;
+    if (cumulative >= mass * total) return d;
+  }
+  return density.empty() ? 0.0 : density.back();
+}
+
+/// The smoothed joint histogram of parameters x and y.
+Histogram2 joint_histogram(const std::vector<double>& xs, const std::vector<double>& ys, const CornerAxis& ax,
+                           const CornerAxis& ay) {
+  const auto n = static_cast<std::size_t>(kCornerBins);
+  Histogram2 h(n * n, 0.0);
+  for (std::size_t k = 0; k < std::min(xs.size(), ys.size()); ++k) h[ax.bin(xs[k]) * n + ay.bin(ys[k])] += 1.0;
+  return smoothed(h);
+}
+
+/// Writes STEM_density.dat: for each pair (row > col) a grid block "x y density" (gnuplot index
+/// = pair number), then a block of every fourth draw (one column per parameter), then for each
+/// parameter a block "value density" of its marginal. Returns the two contour levels of each pair.
+std::vector<std::array<double, 2>> write_corner_density(const std::filesystem::path& file,
+                                                        const std::vector<std::vector<double>>& draws,
+                                                        const std::vector<CornerAxis>& axes) {
+  const std::size_t k = draws.size(), n = static_cast<std::size_t>(kCornerBins);
+  std::vector<std::array<double, 2>> levels;
+  io::write_text_atomically(file, [&](std::ostream& out) {
+    out << "# corner plot densities (sedwave): per pair x y density on a " << n << "x" << n
+        << " grid of ln values, then every fourth draw, then per parameter value density; SI units\n";
+    for (std::size_t row = 1; row < k; ++row) {
+      for (std::size_t col = 0; col < row; ++col) {
+        const Histogram2 h = joint_histogram(draws[col], draws[row], axes[col], axes[row]);
+        levels.push_back({level_holding(h, kCornerLevels[0]), level_holding(h, kCornerLevels[1])});
+        for (std::size_t i = 0; i < n; ++i) {
+          for (std::size_t j = 0; j < n; ++j) {
+            out << axes[col].centre(i) << " " << axes[row].centre(j) << " " << h[i * n + j] << "\n";
+          }
+          out << "\n";
+        }
+        out << "\n";
+      }
+    }
+    // Every fourth draw, all columns (the pairs' scatter; gnuplot reads one separator per script).
+    for (std::size_t d = 0; d < (k > 0 ? draws[0].size() : 0); d += 4) {
+      for (std::size_t p = 0; p < k; ++p) out << (p ? " " : "") << draws[p][d];
+      out << "\n";
+    }
+    out << "\n\n";
+    for (std::size_t p = 0; p < k; ++p) {
+      std::vector<double> h(n, 0.0);
+      for (double x : draws[p]) h[axes[p].bin(x)] += 1.0;
+      for (std::size_t b = 0; b < n; ++b) out << axes[p].centre(b) << " " << h[b] << "\n";
+      out << "\n\n";
+    }
+  });
+  return levels;
+}
+
+/// One panel's axis: range, scale, round ticks, and its label where the panel is on the edge.
+void corner_axis_commands(std::ostream& g, char which, const CornerAxis& a, const std::string& label) {
+  g << "set " << which << "tics " << corner_tics(a) << (which == 'x' ? " rotate by 30 right" : " format '% h'")
+    << "\nset " << which << "range [" << a.value(a.lo) << ":" << a.value(a.hi) << "]\n"
+    << (a.log ? std::string("set logscale ") + which + "\n" : std::string()) << "set " << which << "label "
+    << gnuplot_string(label) << " font ',9' noenhanced\n";
+}
+
+std::string corner_body(const CornerFiles& files, const std::string& density_file, const std::vector<std::string>& names,
+                        const std::vector<std::string>& units, const std::vector<CornerAxis>& axes,
+                        const std::vector<std::array<double, 2>>& levels) {
+  const std::string density = gnuplot_string(density_file);
+  const std::size_t k = names.size(), draws_block = levels.size(), marginal_block = levels.size() + 1;
+  const bool marked = files.best_fit.size() == k;
+  const auto label = [&](std::size_t p) { return names[p] + " [" + units[p] + "]"; };
   std::ostringstream g;
-  g << "set encoding utf8\nset datafile separator ','\nset key off\nset tics font ',8'\n"
+  // reset: the body runs twice (PNG, SVG), and the last panel's ranges and log axes must not reach
+  // the second run's contouring (terminal and output survive a reset). The contours go first, into
+  // datablocks: gnuplot contours splot's grid.
+  g << "reset\nset encoding utf8\nset datafile separator whitespace\nset contour base\nunset surface\nset view map\n";
+  for (std::size_t pair = 0; pair < levels.size(); ++pair) {
+    for (std::size_t l = 0; l < 2; ++l) {
+      g << "set cntrparam levels discrete " << levels[pair][l] << "\nset table $c" << pair << "_" << l << "\nsplot "
+        << density << " index " << pair << " using 1:2:3 with lines\nunset table\n";
+    }
+  }
+  g << "unset contour\nset surface\nset key off\nset tics font ',8'\n"
     << "set multiplot layout " << k << "," << k << " title "
-    << gnuplot_string(title + ": marginals (diagonal) and pairs, ln of SI values") << " font ',12' noenhanced\n";
-  for (int row = 0; row < k; ++row) {
-    for (int col = 0; col < k; ++col) {
-      const std::string x = "(log(column(" + std::to_string(col + 1) + ")))";
-      const std::string y = "(log(column(" + std::to_string(row + 1) + ")))";
-      g << "unset label\nset xlabel " << (row == k - 1 ? gnuplot_string("ln " + names[col] + " [" + units[col] + "]") : "''")
-        << " font ',9'\nset ylabel "
-        << (col == 0 && row > 0 ? gnuplot_string("ln " + names[row] + " [" + units[row] + "]") : "''") << " font ',9'\n";
+    << gnuplot_string(files.title + ": marginals, pairs with 68 % and 95 % contours" +
+                      (marked ? ", best fit in red" : std::string()))
+    << " font ',12' noenhanced\n";
+  const std::string mark_style = std::string(" nohead lc rgb '") + kMisfitColour + "' lw 1.2\n";
+  std::size_t pair = 0;
+  for (std::size_t row = 0; row < k; ++row) {
+    for (std::size_t col = 0; col < k; ++col) {
       if (col > row) {
         g << "set multiplot next\n";
-      } else if (col == row) {
-        g << "binwidth = 0\nstats " << file << " skip 2 using " << x << " nooutput\n"
-          << "binwidth = (STATS_max - STATS_min) / 30\n"
-          << "plot " << file << " skip 2 using (binwidth * floor(" << x << " / binwidth)):(1.0) "
-          << "smooth frequency with boxes fs solid 0.5 lc rgb '" << kDataColour << "'\n";
-      } else {
-        g << "plot " << file << " skip 2 every 4 using " << x << ":" << y << " with dots lc rgb '"
-          << kDataColour << "'\n";
+        continue;
       }
+      g << "unset label\nunset arrow\nunset logscale\n";
+      corner_axis_commands(g, 'x', axes[col], row == k - 1 ? label(col) : "");
+      if (marked) {
+        g << "set arrow from first " << files.best_fit[col] << ", graph 0 to first " << files.best_fit[col]
+          << ", graph 1" << mark_style;
+      }
+      if (col == row) {
+        g << "set ytics auto format ''\nset autoscale y\nset ylabel ''\nplot " << density << " index "
+          << marginal_block + col << " using 1:2 with histeps lw 1.5 lc rgb '" << kCurveColour << "'\n";
+        continue;
+      }
+      corner_axis_commands(g, 'y', axes[row], col == 0 ? label(row) : "");
+      if (marked) {
+        g << "set arrow from graph 0, first " << files.best_fit[row] << " to graph 1, first " << files.best_fit[row]
+          << mark_style;
+      }
+      g << "plot " << density << " index " << draws_block << " using " << col + 1 << ":" << row + 1
+        << " with dots lc rgb '#b0b0b0', $c" << pair << "_1 using 1:2 with lines lw 1.2 lc rgb '#6baed6', $c" << pair
+        << "_0 using 1:2 with lines lw 1.8 lc rgb '" << kCurveColour << "'";
+      if (marked) {
+        g << ", '+' using (" << files.best_fit[col] << "):(" << files.best_fit[row]
+          << ") every ::0::0 with points pt 7 ps 0.9 lc rgb '" << kMisfitColour << "'";
+      }
+      g << "\n";
+      ++pair;
     }
   }
   g << "unset multiplot\n";
@@ -473,7 +681,17 @@ PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& t
 
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
                              const std::vector<std::string>& units, const CornerFiles& files) {
-  return run_gnuplot(dir, files.stem, "1000,1000", corner_body(files.title, files.samples, names, units));
+  const std::string density_file = files.stem + "_density.dat";
+  std::vector<std::array<double, 2>> levels;
+  std::vector<CornerAxis> axes;
+  try {
+    const std::vector<std::vector<double>> draws = read_draws(dir / files.samples, names.size());
+    for (const auto& column : draws) axes.push_back(corner_axis(column));
+    levels = write_corner_density(dir / density_file, draws, axes);
+  } catch (const std::exception& e) {
+    return {false, std::string("plot skipped: ") + e.what()};
+  }
+  return run_gnuplot(dir, files.stem, "1000,1000", corner_body(files, density_file, names, units, axes, levels));
 }
 
 PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,

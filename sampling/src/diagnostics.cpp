@@ -205,7 +205,12 @@ Convergence assess_convergence(const Diagnostics& d, const ConvergenceCriteria& 
       std::max(criteria.min_ess * worst_tau / d.walkers, criteria.min_steps_per_tau * worst_tau);
   for (Eigen::Index i = 0; i < d.rhat.size(); ++i) {
     const std::string name = "parameter " + std::to_string(i);
-    if (!(d.rhat(i) < criteria.max_rhat)) {
+    if (!std::isfinite(d.rhat(i))) {
+      // Too few kept draws per half-chain, or walkers that never moved: no between/within variance.
+      verdict.converged = false;
+      advice << name << ": R-hat cannot be computed from " << d.kept_steps
+             << " kept steps (too few, or the walkers did not move): run more steps.\n";
+    } else if (!(d.rhat(i) < criteria.max_rhat)) {
       verdict.converged = false;
       advice << name << ": R-hat " << format_number(d.rhat(i), 4) << " >= " << criteria.max_rhat
              << ": the walkers disagree. Run more steps (R-hat - 1 falls roughly as tau / steps); if some "

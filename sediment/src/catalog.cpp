@@ -58,8 +58,9 @@ std::vector<std::string> sediment_model_names() {
 }
 
 std::vector<std::shared_ptr<const SedimentModel>> model_examples() {
-  return {make_sediment_model("lattice"), make_sediment_model("saturated-lattice"),
-          make_sediment_model("saturated-lattice", {DampingForm::Gamma, true}), make_sediment_model("biot-stoll"),
+  // The saturated frame once, in the form that lists permeability and pore_size (which --set accepts).
+  return {make_sediment_model("lattice"), make_sediment_model("saturated-lattice", {DampingForm::Gamma, true}),
+          make_sediment_model("biot-stoll"),
           make_sediment_model("edfm"), make_sediment_model("grain-shearing"), make_sediment_model("vgs-lambda")};
 }
 

@@ -47,8 +47,8 @@ sedwave_cli_case(scene.width_below_largest_grain 1 [=[width_below_largest_grain\
 sedwave_cli_case(scene.size_min_above_mean 1 [=[size_min_above_mean\.toml:24: key 'geometry.sizes.min': must not exceed mean]=] forward ${SCENE_DATA}/size_min_above_mean.toml --out ${SCENE_OUT}/size_min_above_mean.h5)
 
 # ---- Pore fluid ([fluid], sedwave forward; --fluid-*, sedwave dem) -------------------------------------
-sedwave_cli_case(scene.fluid.zero_viscosity 1 [=[fluid_zero_viscosity\.toml:71: key 'fluid\.viscosity' = 0: accepted range \(0, inf\) mu_hat = mu d / sqrt\(kappa m\)]=] forward ${SCENE_DATA}/fluid_zero_viscosity.toml --out ${SCENE_OUT}/fluid.h5)
-sedwave_cli_case(scene.fluid.negative_viscosity 1 [=[fluid_negative_viscosity\.toml:71: key 'fluid\.viscosity' = -1e-05: accepted range \(0, inf\)]=] forward ${SCENE_DATA}/fluid_negative_viscosity.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.zero_viscosity 1 [=[fluid_zero_viscosity\.toml:71: key 'fluid\.viscosity' = 0: accepted range \(0, 0\.1\] mu_hat = mu d / sqrt\(kappa m\)]=] forward ${SCENE_DATA}/fluid_zero_viscosity.toml --out ${SCENE_OUT}/fluid.h5)
+sedwave_cli_case(scene.fluid.negative_viscosity 1 [=[fluid_negative_viscosity\.toml:71: key 'fluid\.viscosity' = -1e-05: accepted range \(0, 0\.1\]]=] forward ${SCENE_DATA}/fluid_negative_viscosity.toml --out ${SCENE_OUT}/fluid.h5)
 sedwave_cli_case(scene.fluid.roughness_above_cutoff 1 [=[fluid_roughness_above_cutoff\.toml:73: key 'fluid\.cutoff': must exceed roughness \(0\.1\): accepted range \(0\.1, 1\] d]=] forward ${SCENE_DATA}/fluid_roughness_above_cutoff.toml --out ${SCENE_OUT}/fluid.h5)
 sedwave_cli_case(scene.fluid.unknown_key 1 [=[fluid_unknown_key\.toml:74: key 'fluid\.density': unknown key]=] forward ${SCENE_DATA}/fluid_unknown_key.toml --out ${SCENE_OUT}/fluid.h5)
 sedwave_cli_case(scene.fluid.missing_cutoff 1 [=[fluid_missing_cutoff\.toml:70: key 'fluid\.cutoff': missing \(required\)]=] forward ${SCENE_DATA}/fluid_missing_cutoff.toml --out ${SCENE_OUT}/fluid.h5)

@@ -126,8 +126,9 @@ TEST_F(FitPlotTest, ScriptDrawsResidualPanelsMarksMissesAndStatesTheFit) {
   }
 }
 
-// The corner plot of k parameters: k histograms on the diagonal, k(k-1)/2 pair panels below, every
-// column of the samples file used; with gnuplot installed the figure is drawn.
+// The corner plot of k parameters: k histograms on the diagonal, k(k-1)/2 pair panels below with
+// their 68 % and 95 % contours, physical values on log axes, the best fit marked; with gnuplot
+// installed the figure is drawn.
 TEST(CornerPlot, DrawsEveryMarginalAndEveryPair) {
   const fs::path dir = fs::temp_directory_path() / ("sedwave_corner_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -136,14 +137,50 @@ TEST(CornerPlot, DrawsEveryMarginalAndEveryPair) {
     samples << "# test samples\nkappa,d,gamma\n";
     std::mt19937_64 rng(1);
     std::normal_distribution<double> n(0.0, 0.3);
-    for (int i = 0; i < 400; ++i) samples << 1e6 * std::exp(n(rng)) << ',' << 3e-4 * std::exp(n(rng)) << ',' << 5.0 * std::exp(n(rng)) << '\n';
+    for (int i = 0; i < 4000; ++i) {
+      samples << 1e6 * std::exp(n(rng)) << ',' << 3e-4 * std::exp(n(rng)) << ',' << 5.0 * std::exp(n(rng)) << '\n';
+    }
   }
-  const PlotOutcome outcome = draw_corner_plot(dir, {"kappa", "d", "gamma"}, {"N/m", "m", "kg/s"});
+  CornerFiles files;
+  files.best_fit = {1e6, 3e-4, 5.0};
+  const PlotOutcome outcome = draw_corner_plot(dir, {"kappa", "d", "gamma"}, {"N/m", "m", "kg/s"}, files);
   const std::string script = read_text(dir / "posterior_corner.gp");
   EXPECT_NE(script.find("layout 3,3"), std::string::npos);
-  EXPECT_EQ(count(script, "smooth frequency with boxes"), 2u * 3u);  // PNG and SVG
+  EXPECT_EQ(count(script, "with histeps"), 2u * 3u);  // PNG and SVG
   EXPECT_EQ(count(script, "with dots"), 2u * 3u);
-  for (const char* column : {"column(1)", "column(2)", "column(3)"}) EXPECT_NE(script.find(column), std::string::npos);
+  EXPECT_EQ(count(script, "set cntrparam levels discrete"), 2u * 3u * 2u);  // 3 pairs, 68 % and 95 %
+  EXPECT_EQ(count(script, "set logscale x"), 2u * 6u);                      // every panel, SI values
+  EXPECT_EQ(count(script, "with points pt 7"), 2u * 3u);                   // the best fit in each pair
+  for (const char* column : {"using 1:2 ", "using 1:3 ", "using 2:3 "}) EXPECT_NE(script.find(column), std::string::npos);
+  // The two levels of the first pair: the bins above the 68 % level hold 68 % of the density (and
+  // not much more: the next bin down would cross it), those above the 95 % level 95 %.
+  std::vector<double> levels;
+  for (std::size_t at = script.find("levels discrete "); at != std::string::npos && levels.size() < 2;
+       at = script.find("levels discrete ", at + 1)) {
+    levels.push_back(std::strtod(script.c_str() + at + 16, nullptr));
+  }
+  ASSERT_EQ(levels.size(), 2u);
+  EXPECT_GT(levels[0], levels[1]);
+  std::ifstream density(dir / "posterior_corner_density.dat");
+  std::string line;
+  std::getline(density, line);  // the header
+  std::vector<double> bins;
+  while (bins.size() < 900 && std::getline(density, line)) {
+    if (line.empty()) continue;
+    double x = 0, y = 0, h = 0;
+    std::istringstream(line) >> x >> y >> h;
+    EXPECT_GT(x, 0.0);  // SI values, not their logarithms
+    bins.push_back(h);
+  }
+  ASSERT_EQ(bins.size(), 900u);
+  double total = 0, above68 = 0, above95 = 0;
+  for (double h : bins) {
+    total += h;
+    if (h >= levels[0]) above68 += h;
+    if (h >= levels[1]) above95 += h;
+  }
+  EXPECT_NEAR(above68 / total, 0.68, 0.03);
+  EXPECT_NEAR(above95 / total, 0.95, 0.02);
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
     EXPECT_TRUE(outcome.drawn) << outcome.message;
     EXPECT_GT(fs::file_size(dir / "posterior_corner.png"), 1000u);

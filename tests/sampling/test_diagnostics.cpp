@@ -128,5 +128,19 @@ TEST(Diagnostics, ShortRunAdviceSaysHowManySteps) {
   }
 }
 
+// Walkers that all sit at one value (a parameter the sampler never moved): R-hat has no variance to
+// compare (0/0), and the advice says so instead of printing "R-hat nan".
+TEST(Diagnostics, StuckWalkersGetWordsNotNan) {
+  std::vector<Eigen::MatrixXd> walkers;
+  for (int k = 0; k < 8; ++k) walkers.emplace_back(Eigen::MatrixXd::Constant(200, 1, 1.0));
+  const Diagnostics diagnostics = diagnose(walkers, 0.0);
+  const Convergence verdict = assess_convergence(diagnostics);
+  EXPECT_FALSE(verdict.converged);
+  EXPECT_EQ(verdict.advice.find("R-hat nan"), std::string::npos) << verdict.advice;
+  EXPECT_EQ(verdict.advice.find("R-hat -nan"), std::string::npos) << verdict.advice;
+  EXPECT_FALSE(std::isfinite(diagnostics.rhat(0)));  // the case this test is about
+  EXPECT_NE(verdict.advice.find("R-hat cannot be computed"), std::string::npos) << verdict.advice;
+}
+
 }  // namespace
 }  // namespace sedwave::sampling

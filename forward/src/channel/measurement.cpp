@@ -207,7 +207,8 @@ PropagationFit fit_attenuation_and_wavenumber(std::span<const double> z, std::sp
 std::vector<std::size_t> probes_above_noise(std::span<const LockIn> probes, double min_snr) {
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < probes.size(); ++i) {
-    if (probes[i].amplitude >= min_snr * probes[i].sigma_amplitude) kept.push_back(i);
+    // > 0 too: a layer the wave never reached has amplitude 0 and (no noise either) error 0.
+    if (probes[i].amplitude > 0.0 && probes[i].amplitude >= min_snr * probes[i].sigma_amplitude) kept.push_back(i);
   }
   return kept;
 }

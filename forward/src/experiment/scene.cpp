@@ -190,11 +190,20 @@ void read_linear(Section s, linear::LinearSettings& l) {
   s.finish();
 }
 
+/// The largest mu_hat a scene accepts (see read_fluid).
+constexpr double kMaxViscosity = 0.1;
+
 /// [fluid]: a still pore fluid during the drive, in the packing's dimensionless groups
 /// (docs/fluid.md). Absent: dry.
 std::optional<dem::FluidSpec> read_fluid(Section s) {
   dem::FluidSpec f;
-  f.viscosity = number_value_required(s, "viscosity", Range::positive("mu_hat = mu d / sqrt(kappa m)"));
+  // mu_hat grows as mu / d (docs/fluid.md): water around gravel to clay is 4e-7 to 1e-3, glycerol (1400 x
+  // water) around silt 0.08. Beyond 0.1 the film's dashpot dwarfs any contact's and shrinks the stable
+  // time step with it: minutes of steps for a fluid no sediment holds.
+  f.viscosity = number_value_required(s, "viscosity",
+                                      Range::above(0.0, kMaxViscosity,
+                                                   "mu_hat = mu d / sqrt(kappa m); water around sand is 5e-6 to "
+                                                   "6e-5, glycerol around silt 0.08 (docs/fluid.md)"));
   f.roughness = number_value_required(s, "roughness", Range::positive(kDiameters + ": the smallest lubrication gap"));
   f.cutoff = number_value_required(s, "cutoff", Range::above(0.0, 1.0, kDiameters + ": no lubrication beyond this gap"));
   if (!(f.cutoff > f.roughness)) {

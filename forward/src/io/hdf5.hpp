@@ -61,9 +61,11 @@ template <> inline hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; 
 template <> inline hid_t native_type<std::int32_t>() { return H5T_NATIVE_INT32; }
 
 inline Handle create_file(const std::string& path) {
+  io::require_seekable_output(path, "HDF5");
   return {H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + path};
 }
 inline Handle open_file(const std::string& path, bool writable = false) {
+  if (writable) io::require_seekable_output(path, "HDF5");
   return {H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
           "open " + path};
 }
@@ -92,6 +94,7 @@ class QuietErrors {
 /// library and crashes it when it shuts down, so disk errors are met by plain stream writes instead.
 template <class Fill>
 void write_file_atomically(const std::filesystem::path& path, Fill&& fill) {
+  io::require_seekable_output(path, "HDF5");  // before any work: a device or FIFO is refused
   std::vector<char> image;
   {
     Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access properties");
@@ -107,7 +110,8 @@ void write_file_atomically(const std::filesystem::path& path, Fill&& fill) {
       throw std::runtime_error("HDF5: cannot copy the image of " + path.string());
     file.close_checked("close " + path.string());
   }
-  io::write_text_atomically(path, [&](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); });
+  io::write_seekable_atomically(
+      path, [&](std::ostream& out) { out.write(image.data(), static_cast<std::streamsize>(image.size())); }, "HDF5");
 }
 inline Handle create_group(hid_t parent, const std::string& name) {
   return {H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,

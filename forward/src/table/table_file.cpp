@@ -335,6 +335,7 @@ std::filesystem::path TableFile::journal_path(const std::filesystem::path& table
 }
 
 TableFile TableFile::create(const std::filesystem::path& path, const TableGrid& grid, TableMetadata metadata) {
+  io::require_seekable_output(path, "HDF5");
   for (const std::filesystem::path& existing : {path, journal_path(path)}) {
     if (std::filesystem::exists(existing)) {
       throw std::runtime_error("cannot create table " + path.string() + ": " + existing.string() +
@@ -356,6 +357,8 @@ TableFile TableFile::open(const std::filesystem::path& path) {
 
 TableFile TableFile::resume_or_create(const std::filesystem::path& path, const TableGrid& grid,
                                       const TableMetadata& metadata, bool allow_changed_inputs) {
+  // Before anything is opened: a device or FIFO is neither read as a damaged table nor moved aside.
+  io::require_seekable_output(path, "HDF5");
   // The journal lock first: a file that fails to open because another live writer holds it must
   // not be mistaken for a damaged one.
   Journal journal(journal_path(path));

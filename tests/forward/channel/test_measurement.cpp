@@ -179,6 +179,19 @@ TEST(Propagation, NoisyRecordsWithinReportedErrors) {
   EXPECT_LT(fit.chi2_per_dof_amplitude, 3.0);
 }
 
+// A layer the wave never reached records exact zeros: amplitude 0 with lock-in error 0 is not a
+// probe above the noise (0 >= 10 x 0), and fitting ln 0 would fail.
+TEST(Propagation, ALayerWithoutSignalDoesNotCarryTheWave) {
+  std::vector<LockIn> probes(4);
+  probes[0].amplitude = 1.0;
+  probes[0].sigma_amplitude = 1e-3;
+  probes[1].amplitude = 0.5;
+  probes[1].sigma_amplitude = 1e-3;
+  // probes[2], probes[3]: all zero
+  const std::vector<std::size_t> carrying = probes_above_noise(probes);
+  EXPECT_EQ(carrying, (std::vector<std::size_t>{0, 1}));
+}
+
 TEST(Propagation, ProbesBeyondTheNoiseFloorAreLeftOut) {
   // A strongly attenuated wave (amplitude e^-0.9 per probe) under noise 1e-6. The lock-in error is
   // noise sqrt(2 / samples) = 3e-8 (2286 samples), so the wave falls below 10 errors at

@@ -16,6 +16,9 @@
 //   gamma_hat                 1e-3 .. 1e3: from nearly elastic contacts (e_n = 0.998) to the heavy
 //                             overdamping that sediment attenuation needs in the chain model.
 //   e_n                       (0, 1].
+//   sound_speed               100 .. 2e4 m/s at any frequency (synthetic data): no sediment is slower
+//                             than a gassy mud or faster than the minerals it is made of; a
+//                             dispersive model may exceed c0's range at high frequency, not this.
 //   porosity                  0.25 .. 0.9: marine sediments (Hamilton 1980, JASA 68, 1313: sands
 //                             0.37-0.47, silts and clays up to 0.85); and for sand-sized grains
 //                             (d >= 62.5 um, Wentworth) at most 0.6, since a sand that loose does
@@ -46,7 +49,8 @@ struct PlausibleRange {
   const char* above_cause;  ///< likely cause of a value above it
 };
 
-/// The range of a reported quantity by name (d, c0, kappa_over_hertz, gamma_hat, e_n, porosity), or nullptr.
+/// The range of a reported quantity by name (d, c0, kappa_over_hertz, gamma_hat, e_n, porosity,
+/// sound_speed), or nullptr.
 [[nodiscard]] const PlausibleRange* plausible_range(const std::string& quantity);
 
 /// Largest porosity of a sand (d >= 62.5 um) that the joint check accepts.

@@ -29,11 +29,14 @@ struct CornerFiles {
   std::string samples = "posterior_samples.csv";
   std::string stem = "posterior_corner";
   std::string title = "posterior";
+  std::vector<double> best_fit;  ///< marked on every panel, one value per column (empty: none)
 };
 
-/// The posterior's corner plot (columns `names` with `units` of the samples file): each
-/// parameter's marginal on the diagonal, each pair's draws below. Never throws for a missing or
-/// failing gnuplot.
+/// The posterior's corner plot (columns `names` with `units` of the samples file), as corner.py
+/// draws it: physical values on log axes with a few round ticks, each parameter's marginal on the
+/// diagonal, each pair's draws below with the contours of the smallest regions holding 68 % and
+/// 95 % of them, and the best fit marked. Also writes DIR/STEM_density.dat (the histograms the
+/// script contours). Never throws for a missing or failing gnuplot.
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,
                              const std::vector<std::string>& units, const CornerFiles& files = {});
 

@@ -15,6 +15,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <span>
 #include <string>
@@ -97,7 +98,13 @@ struct DriveSettings {
   /// (fluid_in_packing_units); absent: dry. The packing itself is prepared dry: viscous forces
   /// vanish at rest, so the static state is the same.
   std::optional<dem::FluidSpec> fluid;
+  /// Where rank 0 says, before a run longer than kAnnouncedRunSeconds, how many steps it takes and
+  /// how long they will last at the rate its first steps measured; nullptr: silent.
+  std::ostream* log = nullptr;
 };
+
+/// Expected wall time [s] above which a drive announces its length (DriveSettings::log).
+inline constexpr double kAnnouncedRunSeconds = 10.0;
 
 /// alpha_hat and c_hat at one frequency of a broadband (pulse) run.
 struct SpectralResult {

@@ -106,7 +106,8 @@ enum class ProbeWeights {
 /// Probes whose lock-in amplitude is at least this many times its standard error carry the wave.
 inline constexpr double kMinSignalToNoise = 10.0;
 
-/// Indices of the probes that carry the wave: amplitude at least min_snr times its lock-in error.
+/// Indices of the probes that carry the wave: amplitude above zero and at least min_snr times its
+/// lock-in error.
 /// Where a strongly attenuated wave has decayed into the noise floor, ln A of the noise would flatten
 /// the fitted decay (|noise| does not decay); a layer at a speckle node of a disordered packing is
 /// left out alone, the layers behind it stay.
