@@ -103,6 +103,9 @@ Row compare_one(const std::string& spec, const CompareOptions& o, const inversio
   }
   inversion::EvidenceOptions evidence = o.evidence;
   evidence.threads = threads_to_use(o.threads);
+  evidence.progress = [spec](const std::string& line) {
+    std::fprintf(stderr, "sedwave compare: %s: %s\n", spec.c_str(), line.c_str());
+  };
   row.evidence = inversion::model_evidence(data, *model, row.fit, priors, fit_options, evidence);
   row.widened = inversion::model_evidence(data, *model, row.fit, inversion::widened(priors, 10.0), fit_options, evidence);
   row.band = inversion::predictive_band(row.model, *model, row.fit, row.evidence.samples,
@@ -249,7 +252,9 @@ Command add_compare_command(CLI::App& app) {
       ->check(finite_in(100.0, 10000.0));
   cmd->add_option("--temperatures", o->evidence.temperatures, "tempering ladder length")->capture_default_str()
       ->check(CLI::Range(4, 64));
-  cmd->add_option("--steps", o->evidence.steps, "ensemble updates per temperature, the first half burn-in")
+  cmd->add_option("--steps", o->evidence.steps,
+                  "the most ensemble updates per temperature; the run stops once ln Z's standard error is below "
+                  "0.1 and the posterior ensemble has converged, the first half burn-in")
       ->capture_default_str()->check(CLI::Range(100, 10000000));
   cmd->add_option("--seed", o->evidence.seed, "seed of the samplers")->capture_default_str();
   add_threads_option(*cmd, o->threads);
