@@ -158,7 +158,11 @@ nlohmann::json report(const std::vector<Row>& rows) {
     const auto ev = [](const inversion::ModelEvidence& e) {
       return nlohmann::json{{"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
                             {"predictive_p", e.predictive_p}, {"converged", e.converged},
-                            {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds}};
+                            {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds},
+                            {"steps", e.steps}, {"temperatures", e.temperatures},
+                            {"max_temperature", e.max_temperature},
+                            {"thermodynamic_integration", e.thermodynamic_integration},
+                            {"stone_overlap", e.stone_overlap}};
     };
     j.push_back({{"model", row.model}, {"free", row.free}, {"chi2", row.fit.chi2}, {"dof", row.fit.dof},
                  {"aic", row.fit.aic}, {"bic", row.fit.bic}, {"priors", row.priors}, {"evidence", ev(row.evidence)},

@@ -48,9 +48,12 @@ constexpr int kStartHalvings = 40;
 
 /// The walkers' start: a ball around the best fit, per parameter a tenth of its linearised sigma
 /// where the fit determined it, else a tenth of the prior's 68 % width, kept inside the bounds.
+/// For a tempered rung at beta < 1 the ball is 10 / sqrt(beta) times wider (at most the prior's
+/// width): the width of L^beta where L is Gaussian, so the rung starts near its own distribution.
 std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best, const std::vector<Prior>& priors,
                                            const Theta& theta, const sampling::EnsembleOptions& options,
-                                           const std::function<bool(const Eigen::VectorXd&)>& inside) {
+                                           const std::function<bool(const Eigen::VectorXd&)>& inside,
+                                           double beta = 1.0) {
   const auto k = static_cast<Eigen::Index>(s.free.size());
   Eigen::VectorXd centre(k), spread(k);
   for (Eigen::Index j = 0; j < k; ++j) {
@@ -59,7 +62,9 @@ std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best
     const PriorQuantiles q = prior_quantiles(priors[static_cast<std::size_t>(i)]);
     const double prior_half_width = 0.5 * (q.p84 - q.p16);
     centre(j) = theta[i];
-    spread(j) = 0.1 * (r.determined && r.log_sigma > 0.0 ? std::min(r.log_sigma, prior_half_width) : prior_half_width);
+    const double scale = beta < 1.0 ? 1.0 / std::sqrt(beta) : 0.1;
+    spread(j) = std::min(scale * (r.determined && r.log_sigma > 0.0 ? r.log_sigma : prior_half_width),
+                         beta < 1.0 ? prior_half_width : 0.1 * prior_half_width);
   }
   std::vector<Eigen::VectorXd> walkers = sampling::start_ball(centre, spread, options);
   for (Eigen::VectorXd& w : walkers) {
@@ -177,8 +182,9 @@ constexpr std::uint64_t kPriorStream = 0x5DEECE66DULL;
 constexpr int kPilotDraws = 256;
 /// Prior draws tried for one start walker of a hot rung before it starts at the best fit instead.
 constexpr int kStartDraws = 1000;
-/// The evidence's error is not checked before this many updates (the first half burn-in).
-constexpr int kMinEvidenceSteps = 500;
+/// The evidence's error is not trusted before this many updates (the first half, burn-in, lets
+/// every rung forget its start).
+constexpr int kMinEvidenceSteps = 1000;
 /// Seconds of silence before a sampling run reports its progress, and between its lines.
 constexpr double kProgressSeconds = 2.0;
 
@@ -273,13 +279,13 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   tempering.ensemble.check_every = options.check_every;
 
   // Rungs where the best fit is not yet e^dim likelier than a typical prior draw start from prior
-  // draws; colder ones around the best fit, where their mass is.
-  const std::vector<Eigen::VectorXd> ball =
-      start_walkers(s, best, priors, theta, tempering.ensemble, [&](const Eigen::VectorXd& x) {
-        return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
-      });
+  // draws; colder ones around the best fit, as wide as L^beta there.
+  const auto inside = [&](const Eigen::VectorXd& x) {
+    return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
+  };
   std::vector<std::vector<Eigen::VectorXd>> starts;
   for (const double beta : tempering.betas) {
+    const std::vector<Eigen::VectorXd> ball = start_walkers(s, best, priors, theta, tempering.ensemble, inside, beta);
     if (beta * gap >= static_cast<double>(k)) {
       starts.push_back(ball);
       continue;

@@ -255,6 +255,12 @@ TEST(Ensemble, RunsUntilConverged) {
   for (Eigen::Index i = 0; i < 3; ++i) {
     EXPECT_NEAR(sampled(i), mean(i), kStandardErrors * std::sqrt(covariance(i, i) / diagnostics.ess(i)));
   }
+  // The stop depends on the samples only: on 2 threads the run stops at the same step, bit for bit.
+  options.threads = 2;
+  const EnsembleRun threaded =
+      sample(gaussian_log_density(mean, covariance), start_ball(mean, Eigen::Vector3d::Constant(0.01), options), options);
+  EXPECT_EQ(threaded.steps, run.steps);
+  for (std::size_t k = 0; k < run.chains.size(); ++k) EXPECT_EQ(threaded.chains[k], run.chains[k]);
 }
 
 TEST(Ensemble, RefusesBadOptionsSayingWhatToChange) {
