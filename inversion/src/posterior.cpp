@@ -309,10 +309,17 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
     const sampling::Diagnostics d = sampling::diagnose(run.levels[0]);
     convergence = sampling::assess_convergence(d);
     const double kept = run.steps - sampling::burn_in_steps(tempering.ensemble, run.steps);
-    const bool error_ok = evidence.uncertainty <= options.target_uncertainty &&
-                          kept >= sampling::ConvergenceCriteria{}.min_steps_per_tau * evidence.autocorrelation_time;
+    // Every rung must have mixed, not only the posterior's: the slowest rung's ln L (walkers that
+    // creep along a ridge the prior bounds) and the ladder's series each over >= 50 tau.
+    double slowest = evidence.autocorrelation_time;
+    for (const std::vector<Eigen::VectorXd>& rung : run.log_likelihood) {
+      const double tau = sampling::autocorrelation_time(rung);
+      if (std::isfinite(tau)) slowest = std::max(slowest, tau);
+    }
+    const double per_tau = sampling::ConvergenceCriteria{}.min_steps_per_tau;
+    const bool error_ok = evidence.uncertainty <= options.target_uncertainty && kept >= per_tau * slowest;
     const double wanted = std::max({steps_needed(d), run.steps * std::pow(evidence.uncertainty / options.target_uncertainty, 2),
-                                    2.0 * sampling::ConvergenceCriteria{}.min_steps_per_tau * evidence.autocorrelation_time});
+                                    2.0 * per_tau * slowest});
     report(run.steps, options.steps, wanted,
            format("ln Z %.2f +- %.2f (target %.2f)", evidence.log_evidence, evidence.uncertainty,
                   options.target_uncertainty));
