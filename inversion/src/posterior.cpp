@@ -309,12 +309,18 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
     const sampling::Diagnostics d = sampling::diagnose(run.levels[0]);
     convergence = sampling::assess_convergence(d);
     const double kept = run.steps - sampling::burn_in_steps(tempering.ensemble, run.steps);
-    // Every rung must have mixed, not only the posterior's: the slowest rung's ln L (walkers that
-    // creep along a ridge the prior bounds) and the ladder's series each over >= 50 tau.
+    // Every rung must have mixed, not only the posterior's: each rung's parameters and ln L, and
+    // the ladder's series, over >= 50 tau (walkers that creep along a ridge leave ln L nearly
+    // unchanged but the rung's estimate still depends on where they started).
     double slowest = evidence.autocorrelation_time;
-    for (const std::vector<Eigen::VectorXd>& rung : run.log_likelihood) {
-      const double tau = sampling::autocorrelation_time(rung);
-      if (std::isfinite(tau)) slowest = std::max(slowest, tau);
+    for (std::size_t t = 0; t < run.levels.size(); ++t) {
+      std::vector<double> taus{sampling::autocorrelation_time(run.log_likelihood[t])};
+      for (int i = 0; i < static_cast<int>(k); ++i) {
+        taus.push_back(sampling::autocorrelation_time(sampling::parameter_chains(run.levels[t].chains, i)));
+      }
+      for (const double tau : taus) {
+        if (std::isfinite(tau)) slowest = std::max(slowest, tau);
+      }
     }
     const double per_tau = sampling::ConvergenceCriteria{}.min_steps_per_tau;
     const bool error_ok = evidence.uncertainty <= options.target_uncertainty && kept >= per_tau * slowest;
