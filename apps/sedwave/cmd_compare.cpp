@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -168,6 +169,13 @@ void fit_model(ModelRun& run, const CompareOptions& o, const inversion::Observat
   }
 }
 
+/// An evidence run's progress lines on stderr, named by model and run (two run side by side).
+std::function<void(const std::string&)> progress_of(const std::string& spec, const char* run) {
+  return [spec, run](const std::string& line) {
+    std::fprintf(stderr, "sedwave compare: %s: %s: %s\n", spec.c_str(), run, line.c_str());
+  };
+}
+
 /// Queues every model's jobs; `threads` run them, and threads beyond the two evidence runs per
 /// model share each sampler's evaluations.
 void run_all(std::vector<ModelRun>& runs, const CompareOptions& o, const inversion::ObservationSet& data,
@@ -178,13 +186,15 @@ void run_all(std::vector<ModelRun>& runs, const CompareOptions& o, const inversi
   for (ModelRun& run : runs) {
     queue.add([&run, &o, &data, evidence](JobQueue& next) {
       fit_model(run, o, data);
-      next.add([&run, &data, evidence](JobQueue&) {
+      next.add([&run, &data, evidence](JobQueue&) mutable {
         std::fprintf(stderr, "sedwave compare: %s: evidence, priors widened x10 ...\n", run.spec.c_str());
+        evidence.progress = progress_of(run.spec, "evidence, priors widened x10");
         run.row.widened = inversion::model_evidence(data, *run.model, run.row.fit, inversion::widened(run.priors, 10.0),
                                                     kFitOptions, evidence);
       });
-      next.add([&run, &data, evidence](JobQueue& after) {
+      next.add([&run, &data, evidence](JobQueue& after) mutable {
         std::fprintf(stderr, "sedwave compare: %s: evidence ...\n", run.spec.c_str());
+        evidence.progress = progress_of(run.spec, "evidence");
         run.row.evidence = inversion::model_evidence(data, *run.model, run.row.fit, run.priors, kFitOptions, evidence);
         after.add([&run, &data](JobQueue&) {
           run.row.band = inversion::predictive_band(run.row.model, *run.model, run.row.fit, run.row.evidence.samples,
@@ -241,7 +251,11 @@ nlohmann::json report(const std::vector<Row>& rows) {
     const auto ev = [](const inversion::ModelEvidence& e) {
       return nlohmann::json{{"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
                             {"predictive_p", e.predictive_p}, {"converged", e.converged},
-                            {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds}};
+                            {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds},
+                            {"steps", e.steps}, {"temperatures", e.temperatures},
+                            {"max_temperature", e.max_temperature},
+                            {"thermodynamic_integration", e.thermodynamic_integration},
+                            {"stone_overlap", e.stone_overlap}};
     };
     j.push_back({{"model", row.model}, {"free", row.free}, {"chi2", row.fit.chi2}, {"dof", row.fit.dof},
                  {"aic", row.fit.aic}, {"bic", row.fit.bic}, {"priors", row.priors}, {"evidence", ev(row.evidence)},
@@ -346,7 +360,9 @@ Command add_compare_command(CLI::App& app) {
       ->check(finite_in(100.0, 10000.0));
   cmd->add_option("--temperatures", o->evidence.temperatures, "tempering ladder length")->capture_default_str()
       ->check(CLI::Range(4, 64));
-  cmd->add_option("--steps", o->evidence.steps, "ensemble updates per temperature, the first half burn-in")
+  cmd->add_option("--steps", o->evidence.steps,
+                  "the most ensemble updates per temperature; the run stops once ln Z's standard error is below "
+                  "0.1 and the posterior ensemble has converged, the first half burn-in")
       ->capture_default_str()->check(CLI::Range(100, 10000000));
   cmd->add_option("--seed", o->evidence.seed, "seed of the samplers")->capture_default_str();
   add_threads_option(*cmd, o->threads,

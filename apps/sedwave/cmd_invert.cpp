@@ -171,8 +171,8 @@ std::string prior_note(const inversion::PosteriorQuantity& q) {
 }
 
 void print_posterior(const inversion::PosteriorResult& p, const std::string& out) {
-  std::printf("\nposterior (%d walkers x %d steps, first half burn-in; acceptance %.2f; %.1f s):\n", p.walkers, p.steps,
-              p.acceptance, p.wall_seconds);
+  std::printf("\nposterior (%d walkers x %d steps of at most %d, first half burn-in; acceptance %.2f; %.1f s):\n",
+              p.walkers, p.steps, p.steps_cap, p.acceptance, p.wall_seconds);
   std::printf("  priors:\n");
   for (const std::string& line : p.priors) std::printf("    %s\n", line.c_str());
   std::printf("  %-16s %-6s %11s  %-23s  %-23s %6s %7s\n", "quantity", "unit", "median", "68% credible",
@@ -185,7 +185,7 @@ void print_posterior(const inversion::PosteriorResult& p, const std::string& out
   for (const auto& q : p.parameters) row(q);
   for (const auto& q : p.combinations) row(q);
   if (p.converged) {
-    std::printf("  converged (split R-hat and effective sample sizes within their thresholds)\n");
+    std::printf("  converged (kept steps >= 50 autocorrelation times, effective sample sizes >= 400, walkers agree)\n");
   } else {
     std::printf("  NOT CONVERGED: %s\n", p.advice.c_str());
   }
@@ -253,7 +253,8 @@ Command add_invert_command(CLI::App& app) {
                                   "posterior: ensemble walkers (0: max(4 x free, 16))")
       ->capture_default_str()->check(CLI::Range(0, 100000));
   auto* steps = cmd->add_option("--steps", o->posterior.steps,
-                                "posterior: ensemble updates, the first half discarded as burn-in")
+                                "posterior: the most ensemble updates; the run stops once converged, the first half "
+                                "discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
   add_threads_option(*cmd, o->threads,
                      "posterior: threads that share each half-ensemble's evaluations (they meet at every "
@@ -316,6 +317,9 @@ Command add_invert_command(CLI::App& app) {
             if (posterior) {
               inversion::PosteriorOptions posterior_options = o->posterior;
               posterior_options.threads = threads_to_use(o->threads);
+              posterior_options.progress = [](const std::string& line) {
+                std::fprintf(stderr, "sedwave invert: posterior: %s\n", line.c_str());
+              };
               sampled = inversion::sample_posterior(data, *model, result, priors, options, posterior_options);
               report["posterior"] = inversion::posterior_report(*sampled);
               inversion::write_posterior_samples_csv(out / "posterior_samples.csv", *sampled);

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "fit_problem.hpp"
 #include "prior_control.hpp"
@@ -45,9 +49,12 @@ constexpr int kStartHalvings = 40;
 
 /// The walkers' start: a ball around the best fit, per parameter a tenth of its linearised sigma
 /// where the fit determined it, else a tenth of the prior's 68 % width, kept inside the bounds.
+/// For a tempered rung at beta < 1 the ball is 10 / sqrt(beta) times wider (at most the prior's
+/// width): the width of L^beta where L is Gaussian, so the rung starts near its own distribution.
 std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best, const std::vector<Prior>& priors,
                                            const Theta& theta, const sampling::EnsembleOptions& options,
-                                           const std::function<bool(const Eigen::VectorXd&)>& inside) {
+                                           const std::function<bool(const Eigen::VectorXd&)>& inside,
+                                           double beta = 1.0) {
   const auto k = static_cast<Eigen::Index>(s.free.size());
   Eigen::VectorXd centre(k), spread(k);
   for (Eigen::Index j = 0; j < k; ++j) {
@@ -56,7 +63,9 @@ std::vector<Eigen::VectorXd> start_walkers(const Setup& s, const FitResult& best
     const PriorQuantiles q = prior_quantiles(priors[static_cast<std::size_t>(i)]);
     const double prior_half_width = 0.5 * (q.p84 - q.p16);
     centre(j) = theta[i];
-    spread(j) = 0.1 * (r.determined && r.log_sigma > 0.0 ? std::min(r.log_sigma, prior_half_width) : prior_half_width);
+    const double scale = beta < 1.0 ? 1.0 / std::sqrt(beta) : 0.1;
+    spread(j) = std::min(scale * (r.determined && r.log_sigma > 0.0 ? r.log_sigma : prior_half_width),
+                         beta < 1.0 ? prior_half_width : 0.1 * prior_half_width);
   }
   std::vector<Eigen::VectorXd> walkers = sampling::start_ball(centre, spread, options);
   for (Eigen::VectorXd& w : walkers) {
@@ -136,7 +145,112 @@ void require_prior_covers(const Setup& s, const std::vector<Prior>& priors, cons
   }
 }
 
+/// A draw from N(mean, sd^2) truncated to [lo, hi]: by the normal itself while that lands inside
+/// often enough, else by a flat proposal on [lo, hi] under the density's maximum there. Both are
+/// exact rejection samplers, so the draw follows the truncated normal whichever one ends.
+double truncated_normal_draw(double mean, double sd, double lo, double hi, sampling::RandomStream& random) {
+  for (int attempt = 0; attempt < 64; ++attempt) {
+    const double x = mean + sd * random.normal();
+    if (x >= lo && x <= hi) return x;
+  }
+  const double mode = std::clamp(mean, lo, hi);
+  for (int attempt = 0; attempt < 1000000; ++attempt) {
+    const double x = lo + (hi - lo) * random.uniform();
+    const double log_ratio = (std::pow((mode - mean) / sd, 2) - std::pow((x - mean) / sd, 2)) / 2.0;
+    if (std::log(random.uniform()) < log_ratio) return x;
+  }
+  throw std::invalid_argument("a normal prior truncated to its bounds has almost no mass there: widen the bounds "
+                              "or move the prior");
+}
+
+/// One draw of theta = ln(value) from a prior, exactly as Prior::log_density_theta defines it.
+double draw_prior_theta(const Prior& p, sampling::RandomStream& random) {
+  const bool flat = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
+  const double lo = std::max(p.lower, flat ? p.a : p.lower), hi = std::min(p.upper, flat ? p.b : p.upper);
+  switch (p.kind) {
+    case PriorKind::Uniform: return std::log(lo + (hi - lo) * random.uniform());
+    case PriorKind::LogUniform: return std::log(lo) + std::log(hi / lo) * random.uniform();
+    case PriorKind::Normal: return std::log(truncated_normal_draw(p.a, p.b, lo, hi, random));
+    default: return truncated_normal_draw(std::log(p.a), p.b, std::log(lo), std::log(hi), random);
+  }
+}
+
+/// Independent draws of the free ln-parameters from their priors.
+Eigen::VectorXd draw_free_from_priors(const Setup& s, const std::vector<Prior>& priors, sampling::RandomStream& random) {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(s.free.size()));
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    x(j) = draw_prior_theta(priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])], random);
+  }
+  return x;
+}
+
+/// Prior draws, the pilot of the ladder and the hot rungs' start, from a stream of their own.
+constexpr std::uint64_t kPriorStream = 0x5DEECE66DULL;
+/// Prior draws that measure how far below the best fit the prior's likelihoods lie.
+constexpr int kPilotDraws = 256;
+/// Prior draws tried for one start walker of a hot rung before it starts at the best fit instead.
+constexpr int kStartDraws = 1000;
+/// The evidence's error is not trusted before this many updates (the first half, burn-in, lets
+/// every rung forget its start).
+constexpr int kMinEvidenceSteps = 1000;
+/// Seconds of silence before a sampling run reports its progress, and between its lines.
+constexpr double kProgressSeconds = 2.0;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Updates a converging run still needs, from its diagnostics: a kept half of at least 50 tau and
+/// an ESS of 400 for the slowest quantity (2 x kept, since the first half is burn-in).
+double steps_needed(const sampling::Diagnostics& d, const sampling::ConvergenceCriteria& c = {}) {
+  const double tau = d.autocorrelation_time.maxCoeff();
+  return 2.0 * std::max(c.min_steps_per_tau * tau, c.min_ess * tau / d.walkers);
+}
+
+std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+  char line[256];
+  std::snprintf(line, sizeof line, pattern, a, b, c, d);
+  return line;
+}
+
+/// Reports a run's progress every kProgressSeconds once it has run that long.
+class ProgressReporter {
+ public:
+  explicit ProgressReporter(std::function<void(const std::string&)> sink) : sink_(std::move(sink)) {}
+  void operator()(int steps, int cap, double steps_wanted, const std::string& state) {
+    const double elapsed = seconds_since(started_);
+    if (!sink_ || elapsed < kProgressSeconds || elapsed - last_ < kProgressSeconds) return;
+    last_ = elapsed;
+    const double wanted = std::min(static_cast<double>(cap), std::max(steps_wanted, static_cast<double>(steps)));
+    const double left = (wanted - steps) * elapsed / steps;
+    sink_(format("%.0f of at most %.0f steps, %.0f s; ", steps, cap, elapsed) + state +
+          format("; about %.0f steps and %.0f s to go", wanted - steps, left));
+  }
+
+ private:
+  std::function<void(const std::string&)> sink_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  double last_ = 0.0;
+};
+
 }  // namespace
+
+sampling::PriorAndLikelihood evidence_integrand(const ObservationSet& data, const sediment::SedimentModel& model,
+                                               const FitResult& best, const std::vector<Prior>& priors,
+                                               const FitOptions& fit_options) {
+  const auto s = std::make_shared<const Setup>(detail::make_setup(data, model, best.fitted, fit_options));
+  const auto shared_priors = std::make_shared<const std::vector<Prior>>(priors);
+  const Theta theta = best.fitted.log_values();
+  require_prior_covers(*s, priors, theta);
+  return {[s, shared_priors, theta](const Eigen::VectorXd& x) {
+            return log_prior(s->parameters, *shared_priors, with_free(*s, theta, x));
+          },
+          [s, theta](const Eigen::VectorXd& x) {
+            const double chi2 = detail::chi2_at(*s, with_free(*s, theta, x));
+            return std::isfinite(chi2) ? -0.5 * chi2 : -std::numeric_limits<double>::infinity();
+          },
+          [s, shared_priors](sampling::RandomStream& random) { return draw_free_from_priors(*s, *shared_priors, random); }};
+}
 
 ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
                              const std::vector<Prior>& priors, const FitOptions& fit_options,
@@ -144,26 +258,90 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   const auto started = std::chrono::steady_clock::now();
   const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
   const Theta theta = best.fitted.log_values();
+  const auto k = static_cast<Eigen::Index>(s.free.size());
   require_prior_covers(s, priors, theta);
-  const sampling::PriorAndLikelihood density{
-      [&](const Eigen::VectorXd& x) { return log_prior(s.parameters, priors, with_free(s, theta, x)); },
-      [&](const Eigen::VectorXd& x) {
-        const double chi2 = detail::chi2_at(s, with_free(s, theta, x));
-        return std::isfinite(chi2) ? -0.5 * chi2 : -std::numeric_limits<double>::infinity();
-      }};
+  const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, priors, fit_options);
+
+  // The ladder reaches down to where the prior's typical draws are within e^1 of the best fit in
+  // L^beta_min: then the last stone, prior draws weighted by L^beta_min, has no dominant few.
+  sampling::RandomStream prior_random(options.seed ^ kPriorStream);
+  std::vector<double> pilot;
+  for (int i = 0; i < kPilotDraws; ++i) pilot.push_back(density.log_likelihood(density.draw_prior(prior_random)));
+  std::nth_element(pilot.begin(), pilot.begin() + kPilotDraws / 2, pilot.end());
+  const double best_log_l = -0.5 * detail::chi2_at(s, theta);
+  const double gap = std::isfinite(pilot[kPilotDraws / 2]) ? best_log_l - pilot[kPilotDraws / 2]
+                                                             : std::numeric_limits<double>::infinity();
+  double max_temperature = options.max_temperature;
+  int temperatures = options.temperatures;
+  if (gap > max_temperature) {
+    max_temperature = std::isfinite(gap) ? gap : 1e3 * options.max_temperature;
+    temperatures = static_cast<int>(std::ceil((options.temperatures - 1) * std::log(max_temperature) /
+                                              std::log(options.max_temperature))) + 1;
+  }
   sampling::TemperingOptions tempering;
-  tempering.betas = sampling::geometric_ladder(options.temperatures, options.max_temperature);
+  tempering.betas = sampling::evidence_ladder(temperatures, max_temperature);
   tempering.ensemble.walkers = options.walkers;
   tempering.ensemble.steps = options.steps;
   tempering.ensemble.seed = options.seed;
   tempering.ensemble.threads = options.threads;
-  // Hot temperatures roam the prior: start them in the same small ball; the swaps spread them.
-  const sampling::TemperedRun run =
-      sampling::sample_tempered(density, start_walkers(s, best, priors, theta, tempering.ensemble, [&](const Eigen::VectorXd& x) {
-        return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
-      }), tempering);
-  const sampling::Evidence evidence = sampling::thermodynamic_evidence(run);
-  const sampling::Convergence convergence = sampling::assess_convergence(sampling::diagnose(run.levels[0]));
+  tempering.ensemble.check_every = options.check_every;
+
+  // Rungs where the best fit is not yet e^dim likelier than a typical prior draw start from prior
+  // draws; colder ones around the best fit, as wide as L^beta there.
+  const auto inside = [&](const Eigen::VectorXd& x) {
+    return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
+  };
+  std::vector<std::vector<Eigen::VectorXd>> starts;
+  for (const double beta : tempering.betas) {
+    const std::vector<Eigen::VectorXd> ball = start_walkers(s, best, priors, theta, tempering.ensemble, inside, beta);
+    if (beta * gap >= static_cast<double>(k)) {
+      starts.push_back(ball);
+      continue;
+    }
+    std::vector<Eigen::VectorXd> walkers;
+    for (const Eigen::VectorXd& fallback : ball) {
+      Eigen::VectorXd x = density.draw_prior(prior_random);
+      for (int tries = 1; beta > 0.0 && !std::isfinite(density.log_likelihood(x)); ++tries) {
+        x = tries < kStartDraws ? density.draw_prior(prior_random) : fallback;
+      }
+      walkers.push_back(x);
+    }
+    starts.push_back(walkers);
+  }
+
+  ProgressReporter report(options.progress);
+  sampling::Evidence evidence;
+  sampling::Convergence convergence;
+  const auto judge = [&](const sampling::TemperedRun& run) {
+    evidence = sampling::thermodynamic_evidence(run);
+    const sampling::Diagnostics d = sampling::diagnose(run.levels[0]);
+    convergence = sampling::assess_convergence(d);
+    const double kept = run.steps - sampling::burn_in_steps(tempering.ensemble, run.steps);
+    // Every rung must have mixed, not only the posterior's: each rung's parameters and ln L, and
+    // the ladder's series, over >= 50 tau (walkers that creep along a ridge leave ln L nearly
+    // unchanged but the rung's estimate still depends on where they started).
+    double slowest = evidence.autocorrelation_time;
+    for (std::size_t t = 0; t < run.levels.size(); ++t) {
+      std::vector<double> taus{sampling::autocorrelation_time(run.log_likelihood[t])};
+      for (int i = 0; i < static_cast<int>(k); ++i) {
+        taus.push_back(sampling::autocorrelation_time(sampling::parameter_chains(run.levels[t].chains, i)));
+      }
+      for (const double tau : taus) {
+        if (std::isfinite(tau)) slowest = std::max(slowest, tau);
+      }
+    }
+    const double per_tau = sampling::ConvergenceCriteria{}.min_steps_per_tau;
+    const bool error_ok = evidence.uncertainty <= options.target_uncertainty && kept >= per_tau * slowest;
+    const double wanted = std::max({steps_needed(d), run.steps * std::pow(evidence.uncertainty / options.target_uncertainty, 2),
+                                    2.0 * per_tau * slowest});
+    report(run.steps, options.steps, wanted,
+           format("ln Z %.2f +- %.2f (target %.2f)", evidence.log_evidence, evidence.uncertainty,
+                  options.target_uncertainty));
+    return error_ok && convergence.converged && run.steps >= kMinEvidenceSteps;
+  };
+  tempering.stop = judge;
+  const sampling::TemperedRun run = sampling::sample_tempered(density, starts, tempering);
+  const bool done = judge(run);
   // Posterior-predictive p of chi^2: replicated data at a draw theta have chi^2 ~ chi^2_n exactly
   // (Gaussian whitened residuals), so p = mean over draws of Q(n/2, chi^2(theta)/2).
   const double n = static_cast<double>(s.observations.size());
@@ -178,13 +356,25 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   ModelEvidence e;
   e.log_evidence = evidence.log_evidence;
   e.uncertainty = evidence.uncertainty;
+  e.thermodynamic_integration = evidence.thermodynamic_integration;
+  e.stone_overlap = evidence.stone_overlap;
+  e.temperatures = static_cast<int>(tempering.betas.size());
+  e.max_temperature = max_temperature;
+  e.steps = run.steps;
   e.predictive_p = draws > 0 ? p_sum / draws : 0.0;
   e.acceptance = run.levels[0].acceptance;
-  e.converged = convergence.converged;
-  e.advice = convergence.advice;
-  e.evaluations = run.evaluations;
+  e.converged = done;
+  if (!done) {
+    e.advice = format("stopped at the cap of %.0f steps per temperature with ln Z +- %.3f (target %.3f)", run.steps,
+                      evidence.uncertainty, options.target_uncertainty) +
+               (convergence.converged ? std::string(" and a converged posterior ensemble")
+                                      : "; the posterior ensemble: " + convergence.advice);
+  } else {
+    e.advice = convergence.advice;
+  }
+  e.evaluations = run.evaluations + kPilotDraws;
   e.samples = sampling::pooled_samples(run.levels[0].chains).array().exp().matrix();
-  e.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  e.wall_seconds = seconds_since(started);
   return e;
 }
 
@@ -235,6 +425,15 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   ensemble.burn_in = options.burn_in;
   ensemble.seed = options.seed;
   ensemble.threads = options.threads;
+  ensemble.check_every = options.check_every;
+  ProgressReporter report(options.progress);
+  ensemble.stop = [&](const sampling::EnsembleRun& so_far) {
+    const sampling::Diagnostics d = sampling::diagnose(so_far);
+    report(so_far.steps, options.steps, steps_needed(d),
+           format("largest autocorrelation time %.1f steps, smallest ESS %.0f", d.autocorrelation_time.maxCoeff(),
+                  d.ess.minCoeff()));
+    return sampling::assess_convergence(d).converged;
+  };
   const sampling::EnsembleRun run =
       sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble, [&](const Eigen::VectorXd& x) {
         return std::isfinite(log_posterior(x));
@@ -244,11 +443,15 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
 
   PosteriorResult result;
   result.walkers = static_cast<int>(run.chains.size());
-  result.steps = options.steps;
+  result.steps = run.steps;
+  result.steps_cap = options.steps;
   result.evaluations = run.evaluations;
   result.acceptance = run.acceptance;
   result.converged = convergence.converged;
-  result.advice = convergence.advice;
+  result.advice = convergence.converged || options.check_every == 0
+                      ? convergence.advice
+                      : "stopped at the cap of " + std::to_string(run.steps) +
+                            " steps (--steps) before converging: " + convergence.advice;
   const Eigen::MatrixXd pooled = sampling::pooled_samples(run.chains);  // ln values
   result.correlation = sampling::correlation_matrix(pooled);
   result.samples = pooled.array().exp().matrix();
@@ -300,6 +503,7 @@ nlohmann::json posterior_report(const PosteriorResult& p) {
   j["sampler"] = {{"algorithm", "affine-invariant ensemble, stretch move (Goodman & Weare 2010)"},
                   {"walkers", p.walkers},
                   {"steps", p.steps},
+                  {"steps_cap", p.steps_cap},
                   {"burn_in", "first half"},
                   {"acceptance", p.acceptance},
                   {"evaluations", p.evaluations},

@@ -173,6 +173,21 @@ double autocorrelation_time(const std::vector<Eigen::VectorXd>& chains, double w
   return tau;
 }
 
+double initial_sequence_autocorrelation_time(const Eigen::VectorXd& series) {
+  check_chains({series}, 2);
+  const Eigen::VectorXd rho = autocorrelation_function(series);
+  if (rho.size() == 0) return kNaN;
+  double sum = 0.0;
+  double previous = std::numeric_limits<double>::infinity();
+  for (Eigen::Index lag = 0; lag + 1 < rho.size(); lag += 2) {
+    const double pair = std::min(rho(lag) + rho(lag + 1), previous);
+    if (!(pair > 0.0)) break;
+    sum += pair;
+    previous = pair;
+  }
+  return std::max(-1.0 + 2.0 * sum, 1.0 / std::log10(static_cast<double>(series.size())));
+}
+
 Diagnostics diagnose(const std::vector<Eigen::MatrixXd>& chains, double acceptance) {
   if (chains.empty()) throw std::invalid_argument("no chains to diagnose");
   const auto dim = static_cast<int>(chains.front().cols());
@@ -212,7 +227,7 @@ Convergence assess_convergence(const Diagnostics& d, const ConvergenceCriteria& 
              << " kept steps (too few, or the walkers did not move): run more steps.\n";
     } else if (!(d.rhat(i) < criteria.max_rhat)) {
       verdict.converged = false;
-      advice << name << ": R-hat " << format_number(d.rhat(i), 4) << " >= " << criteria.max_rhat
+      advice << name << ": R-hat across walkers " << format_number(d.rhat(i), 4) << " >= " << criteria.max_rhat
              << ": the walkers disagree. Run more steps (R-hat - 1 falls roughly as tau / steps); if some "
                 "walkers stay apart however long the run, the posterior is multimodal: start every walker in "
                 "one mode, or use parallel tempering.\n";
@@ -230,21 +245,21 @@ Convergence assess_convergence(const Diagnostics& d, const ConvergenceCriteria& 
     }
   }
   if (!verdict.converged && std::isfinite(kept_needed)) {
-    advice << "Suggestion: at least " << static_cast<long>(std::ceil(kept_needed)) << " kept steps with "
-           << d.walkers << " walkers (steps = " << static_cast<long>(std::ceil(2.0 * kept_needed))
-           << " with the default burn-in of half), more if R-hat stays high.\n";
+    advice << "Got " << d.kept_steps << " kept steps; at the current tau at least "
+           << static_cast<long>(std::ceil(kept_needed)) << " kept steps with " << d.walkers << " walkers (steps = "
+           << static_cast<long>(std::ceil(2.0 * kept_needed))
+           << " with the default burn-in of half) are needed, more if R-hat stays high.\n";
   }
-  if (d.acceptance < criteria.min_acceptance || d.acceptance > criteria.max_acceptance) {
-    advice << "Acceptance fraction " << format_number(d.acceptance) << " outside [" << criteria.min_acceptance
-           << ", " << criteria.max_acceptance << "]: "
-           << (d.acceptance < criteria.min_acceptance
-                   ? "lower the stretch scale (e.g. 1.5), or look for walkers stuck in a poor region or mode.\n"
-                   : "raise the stretch scale (e.g. 3).\n");
+  if (d.acceptance < criteria.min_acceptance) {
+    advice << "Acceptance fraction " << format_number(d.acceptance) << " < " << criteria.min_acceptance
+           << ": walkers may be stuck in a poor region or mode, or the posterior is a curved ridge; a smaller "
+              "stretch scale (e.g. 1.5) accepts more, but judge a change by tau (the ESS per evaluation), not "
+              "by the acceptance.\n";
   }
   if (verdict.converged) {
-    advice << "converged: R-hat < " << criteria.max_rhat << " and ESS >= " << criteria.min_ess
-           << " for every parameter (smallest ESS " << format_number(d.ess.minCoeff()) << ", largest tau "
-           << format_number(worst_tau) << " steps).\n";
+    advice << "converged: kept steps >= " << criteria.min_steps_per_tau << " tau and ESS >= " << criteria.min_ess
+           << " for every parameter, walkers agree (R-hat < " << criteria.max_rhat << "; smallest ESS "
+           << format_number(d.ess.minCoeff()) << ", largest tau " << format_number(worst_tau) << " steps).\n";
   }
   verdict.advice = advice.str();
   return verdict;

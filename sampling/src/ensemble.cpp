@@ -14,23 +14,22 @@ namespace {
 // gets the same moves as one who uses start_ball.
 constexpr std::uint64_t kStartStreamOffset = 0x9E3779B97F4A7C15ULL;
 
-struct KeptSamples {
-  std::vector<Eigen::MatrixXd> chains;
-  std::vector<Eigen::VectorXd> log_density;
-};
-
-KeptSamples allocate_kept(int walkers, int kept, Eigen::Index dim) {
-  KeptSamples kept_samples;
-  kept_samples.chains.assign(static_cast<std::size_t>(walkers), Eigen::MatrixXd(kept, dim));
-  kept_samples.log_density.assign(static_cast<std::size_t>(walkers), Eigen::VectorXd(kept));
-  return kept_samples;
-}
-
-void record(const detail::Ensemble& ensemble, int row, KeptSamples& kept) {
-  for (std::size_t k = 0; k < ensemble.positions.size(); ++k) {
-    kept.chains[k].row(row) = ensemble.positions[k].transpose();
-    kept.log_density[k](row) = ensemble.parts[k].log_prior;
+// The run so far as sample() returns it: the last steps_run - burn-in updates of every walker.
+EnsembleRun kept_run(const detail::History& history, const detail::Ensemble& ensemble, int burn_in,
+                     int evaluations) {
+  EnsembleRun run;
+  run.chains = history.chains(burn_in);
+  run.log_density = history.log_density(burn_in);
+  const auto walkers = static_cast<Eigen::Index>(ensemble.accepted.size());
+  run.walker_acceptance.resize(walkers);
+  for (Eigen::Index k = 0; k < walkers; ++k) {
+    run.walker_acceptance(k) =
+        static_cast<double>(ensemble.accepted[static_cast<std::size_t>(k)]) / static_cast<double>(history.steps());
   }
+  run.acceptance = run.walker_acceptance.mean();
+  run.evaluations = evaluations;
+  run.steps = history.steps();
+  return run;
 }
 
 }  // namespace
@@ -44,7 +43,10 @@ int walker_count(const EnsembleOptions& options, int dim) {
   return options.walkers == 0 ? default_walkers(dim) : options.walkers;
 }
 
-int burn_in_steps(const EnsembleOptions& options) { return options.burn_in == -1 ? options.steps / 2 : options.burn_in; }
+int burn_in_steps(const EnsembleOptions& options, int steps_run) {
+  if (steps_run < 0) steps_run = options.steps;
+  return options.burn_in == -1 ? steps_run / 2 : options.burn_in;
+}
 
 std::vector<Eigen::VectorXd> start_ball(const Eigen::VectorXd& centre, const Eigen::VectorXd& spread,
                                         const EnsembleOptions& options) {
@@ -63,30 +65,23 @@ EnsembleRun sample(const LogDensity& log_density, const std::vector<Eigen::Vecto
   if (start_walkers.empty()) throw std::invalid_argument("no start walkers: give walker_count(options, dim) of them");
   const int dim = static_cast<int>(start_walkers.front().size());
   const int walkers = walker_count(options, dim);
-  const int burn_in = burn_in_steps(options);
-  detail::check_run_options(walkers, dim, options.steps, burn_in, options.stretch, options.threads);
+  detail::check_run_options(walkers, dim, options.steps, burn_in_steps(options), options.stretch, options.threads);
 
   detail::CountingEvaluator evaluate(
       [&log_density](const Eigen::VectorXd& x) { return detail::LogParts{log_density(x), 0.0}; }, options.threads);
+  detail::check_adaptive_options(options.check_every, static_cast<bool>(options.stop), options.burn_in);
   detail::Ensemble ensemble = detail::start_ensemble(start_walkers, walkers, 1.0, evaluate);
   RandomStream random(options.seed);
-  KeptSamples kept = allocate_kept(walkers, options.steps - burn_in, dim);
-  for (int step = 0; step < options.steps; ++step) {
+  detail::History history(walkers, dim);
+  for (int step = 1; step <= options.steps; ++step) {
     detail::stretch_update(ensemble, 1.0, options.stretch, random, evaluate);
-    if (step >= burn_in) record(ensemble, step - burn_in, kept);
+    history.record(ensemble, 1.0);
+    if (options.check_every > 0 && step % options.check_every == 0 && step < options.steps &&
+        options.stop(kept_run(history, ensemble, burn_in_steps(options, step), evaluate.evaluations()))) {
+      break;
+    }
   }
-
-  EnsembleRun run;
-  run.chains = std::move(kept.chains);
-  run.log_density = std::move(kept.log_density);
-  run.walker_acceptance.resize(walkers);
-  for (int k = 0; k < walkers; ++k) {
-    run.walker_acceptance(k) =
-        static_cast<double>(ensemble.accepted[static_cast<std::size_t>(k)]) / static_cast<double>(options.steps);
-  }
-  run.acceptance = run.walker_acceptance.mean();
-  run.evaluations = evaluate.evaluations();
-  return run;
+  return kept_run(history, ensemble, burn_in_steps(options, history.steps()), evaluate.evaluations());
 }
 
 }  // namespace sedwave::sampling

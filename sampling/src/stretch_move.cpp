@@ -222,6 +222,56 @@ void stretch_update_all(const std::vector<Ensemble*>& ensembles, const std::vect
   update_halves(second_halves, 1, evaluate);
 }
 
+void History::record(const Ensemble& ensemble, double beta) {
+  for (std::size_t k = 0; k < ensemble.positions.size(); ++k) {
+    const Eigen::VectorXd& x = ensemble.positions[k];
+    positions_[k].insert(positions_[k].end(), x.data(), x.data() + x.size());
+    log_density_[k].push_back(tempered_log_density(ensemble.parts[k], beta));
+    log_likelihood_[k].push_back(ensemble.parts[k].log_likelihood);
+  }
+  ++steps_;
+}
+
+std::vector<Eigen::MatrixXd> History::chains(int first) const {
+  std::vector<Eigen::MatrixXd> out;
+  const Eigen::Index rows = steps_ - first;
+  for (const std::vector<double>& walker : positions_) {
+    out.emplace_back(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        walker.data() + first * dim_, rows, dim_));
+  }
+  return out;
+}
+
+namespace {
+std::vector<Eigen::VectorXd> tail_rows(const std::vector<std::vector<double>>& series, int first, int steps) {
+  std::vector<Eigen::VectorXd> out;
+  for (const std::vector<double>& walker : series) {
+    out.emplace_back(Eigen::Map<const Eigen::VectorXd>(walker.data() + first, steps - first));
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<Eigen::VectorXd> History::log_density(int first) const { return tail_rows(log_density_, first, steps_); }
+std::vector<Eigen::VectorXd> History::log_likelihood(int first) const {
+  return tail_rows(log_likelihood_, first, steps_);
+}
+
+void check_adaptive_options(int check_every, bool has_stop, int burn_in) {
+  if (check_every < 0) {
+    throw std::invalid_argument("check_every = " + std::to_string(check_every) +
+                                ": use 0 (a fixed number of steps) or the updates between convergence checks");
+  }
+  if (check_every > 0 && !has_stop) {
+    throw std::invalid_argument("check_every > 0 needs a stop test to ask");
+  }
+  if (check_every > 0 && burn_in != -1) {
+    throw std::invalid_argument("burn_in = " + std::to_string(burn_in) +
+                                " with an adaptive run length: the burn-in is then the first half of the run; "
+                                "leave burn_in at -1");
+  }
+}
+
 void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch, int threads) {
   if (threads < 1) {
     throw std::invalid_argument("threads = " + std::to_string(threads) + ": use at least 1 thread");

@@ -67,7 +67,30 @@ void stretch_update(Ensemble& ensemble, double beta, double stretch, RandomStrea
 void stretch_update_all(const std::vector<Ensemble*>& ensembles, const std::vector<double>& betas, double stretch,
                         RandomStream& random, CountingEvaluator& evaluate);
 
+/// Every update's state of one ensemble, kept so that a run whose length adapts can drop the first
+/// half of whatever it has run as burn-in.
+class History {
+ public:
+  History(int walkers, Eigen::Index dim) : dim_(dim), positions_(static_cast<std::size_t>(walkers)),
+        log_density_(positions_.size()), log_likelihood_(positions_.size()) {}
+  void record(const Ensemble& ensemble, double beta);
+  [[nodiscard]] int steps() const { return steps_; }
+  /// Per walker: the rows [first, steps()) as a steps x dim matrix, and the same rows of ln p and ln L.
+  [[nodiscard]] std::vector<Eigen::MatrixXd> chains(int first) const;
+  [[nodiscard]] std::vector<Eigen::VectorXd> log_density(int first) const;
+  [[nodiscard]] std::vector<Eigen::VectorXd> log_likelihood(int first) const;
+
+ private:
+  Eigen::Index dim_;
+  int steps_ = 0;
+  std::vector<std::vector<double>> positions_;
+  std::vector<std::vector<double>> log_density_;
+  std::vector<std::vector<double>> log_likelihood_;
+};
+
 /// Checks the options shared by both samplers; std::invalid_argument names what to change.
 void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch, int threads);
+/// Checks the adaptive-length options (check_every >= 0; with check_every > 0 a stop test and burn_in = -1).
+void check_adaptive_options(int check_every, bool has_stop, int burn_in);
 
 }  // namespace sedwave::sampling::detail

@@ -116,14 +116,16 @@ TEST(Diagnostics, WellMixedChainsConverge) {
   EXPECT_NE(verdict.advice.find("converged"), std::string::npos);
 }
 
-// Too short a run: the advice asks for more steps and says how many.
+// Too short a run: the advice asks for more steps, says how far it got and how many it needs; a very
+// low acceptance is remarked on.
 TEST(Diagnostics, ShortRunAdviceSaysHowManySteps) {
   RandomStream random(18);
   std::vector<Eigen::MatrixXd> walkers;
   for (int k = 0; k < 16; ++k) walkers.emplace_back(ar1_series(100, 0.95, random));
-  const Convergence verdict = assess_convergence(diagnose(walkers, 0.1));
+  const Convergence verdict = assess_convergence(diagnose(walkers, 0.05));
   EXPECT_FALSE(verdict.converged);
-  for (const char* part : {"effective sample size", "more steps", "kept steps with 16 walkers", "stretch"}) {
+  for (const char* part : {"effective sample size", "more steps", "Got 100 kept steps", "kept steps with 16 walkers",
+                           "stuck"}) {
     EXPECT_NE(verdict.advice.find(part), std::string::npos) << part << " not in: " << verdict.advice;
   }
 }

@@ -227,6 +227,42 @@ TEST(Ensemble, NeverAsksAboutNonFinitePoints) {
   EXPECT_TRUE(pooled_samples(run.chains).allFinite());
 }
 
+// A run length that adapts to the target: checked every 250 steps, it stops at the first check where
+// the kept half (the burn-in is the first half) passes the convergence criteria, well before its cap,
+// and the draws then have the target's moments.
+TEST(Ensemble, RunsUntilConverged) {
+  const Eigen::Vector3d mean(1.0, -2.0, 0.5);
+  const Eigen::Matrix3d covariance = Eigen::Vector3d(1.0, 4.0, 0.25).asDiagonal();
+  EnsembleOptions options;
+  options.steps = 50000;
+  options.check_every = 250;
+  int checks = 0;
+  options.stop = [&checks](const EnsembleRun& so_far) {
+    ++checks;
+    EXPECT_EQ(so_far.chains.front().rows(), so_far.steps - so_far.steps / 2);
+    return assess_convergence(diagnose(so_far)).converged;
+  };
+  const EnsembleRun run =
+      sample(gaussian_log_density(mean, covariance), start_ball(mean, Eigen::Vector3d::Constant(0.01), options), options);
+  const Diagnostics diagnostics = diagnose(run);
+  std::cout << "  converged after " << run.steps << " steps (" << checks << " checks); largest tau "
+            << diagnostics.autocorrelation_time.maxCoeff() << ", acceptance " << run.acceptance << '\n';
+  EXPECT_TRUE(assess_convergence(diagnostics).converged);
+  EXPECT_LT(run.steps, options.steps);
+  EXPECT_EQ(run.steps % 250, 0);
+  EXPECT_EQ(checks, run.steps / 250);
+  const Eigen::Vector3d sampled = pooled_samples(run.chains).colwise().mean().transpose();
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    EXPECT_NEAR(sampled(i), mean(i), kStandardErrors * std::sqrt(covariance(i, i) / diagnostics.ess(i)));
+  }
+  // The stop depends on the samples only: on 2 threads the run stops at the same step, bit for bit.
+  options.threads = 2;
+  const EnsembleRun threaded =
+      sample(gaussian_log_density(mean, covariance), start_ball(mean, Eigen::Vector3d::Constant(0.01), options), options);
+  EXPECT_EQ(threaded.steps, run.steps);
+  for (std::size_t k = 0; k < run.chains.size(); ++k) EXPECT_EQ(threaded.chains[k], run.chains[k]);
+}
+
 TEST(Ensemble, RefusesBadOptionsSayingWhatToChange) {
   const LogDensity density = gaussian_log_density(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
   EnsembleOptions options;
@@ -242,6 +278,14 @@ TEST(Ensemble, RefusesBadOptionsSayingWhatToChange) {
   no_kept.steps = 100;
   no_kept.burn_in = 100;
   expect_refusal<std::invalid_argument>([&] { (void)sample(density, start, no_kept); }, {"steps = 100", "exceed"});
+  EnsembleOptions no_stop = options;
+  no_stop.check_every = 100;
+  expect_refusal<std::invalid_argument>([&] { (void)sample(density, start, no_stop); }, {"check_every", "stop"});
+  EnsembleOptions fixed_burn_in = no_stop;
+  fixed_burn_in.stop = [](const EnsembleRun&) { return true; };
+  fixed_burn_in.burn_in = 50;
+  expect_refusal<std::invalid_argument>([&] { (void)sample(density, start, fixed_burn_in); },
+                                        {"burn_in = 50", "first half"});
   EnsembleOptions no_stretch = options;
   no_stretch.stretch = 1.0;
   expect_refusal<std::invalid_argument>([&] { (void)sample(density, start, no_stretch); }, {"stretch", "> 1"});

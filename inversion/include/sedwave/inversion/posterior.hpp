@@ -10,21 +10,31 @@
 // advice, and whether the prior rather than the data made each interval.
 #include <Eigen/Dense>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/priors.hpp"
+#include "sedwave/sampling/tempering.hpp"
 
 namespace sedwave::inversion {
 
 struct PosteriorOptions {
   int walkers = 0;        ///< 0: max(4 x free parameters, 16), even
-  int steps = 2000;       ///< per walker, burn-in included
-  int burn_in = -1;       ///< -1: the first half
+  /// The cap on ensemble updates per walker, burn-in included. The run stops earlier, once
+  /// converged: every check_every updates the kept half is diagnosed, and the run ends when every
+  /// quantity has kept steps >= 50 autocorrelation times, ESS >= 400 and walkers that agree (R-hat
+  /// < 1.05); the first half of the updates run is burn-in. "NOT CONVERGED" only at the cap.
+  int steps = 20000;
+  int burn_in = -1;       ///< -1: the first half; another value needs check_every = 0
   unsigned seed = 20090501;
   int threads = 1;        ///< share the model evaluations; the samples do not depend on it
+  int check_every = 250;  ///< 0: run exactly `steps` updates
+  /// Given a progress line (steps run, autocorrelation time, estimated time left) about every 2 s
+  /// once the run has lasted 2 s; null: silent.
+  std::function<void(const std::string&)> progress = nullptr;
 };
 
 struct PosteriorQuantity {
@@ -54,7 +64,8 @@ struct PosteriorResult {
   double acceptance = 0.0;
   bool converged = false;
   std::string advice;                           ///< what to change when not converged
-  int walkers = 0, steps = 0, evaluations = 0;
+  int walkers = 0, steps = 0, evaluations = 0;  ///< steps: updates run, burn-in (the first half) included
+  int steps_cap = 0;                             ///< the most the run was allowed
   double wall_seconds = 0.0;
 };
 
@@ -65,18 +76,25 @@ struct PosteriorResult {
                                                const FitResult& best, const std::vector<Prior>& priors,
                                                const FitOptions& fit_options, const PosteriorOptions& options);
 
-/// How the evidence is computed: parallel tempering over a geometric ladder of inverse temperatures
-/// from 1 to 1/max_temperature (sampling/tempering.hpp), then thermodynamic integration.
+/// How the evidence is computed: parallel tempering over a ladder of inverse temperatures from 1,
+/// evenly spaced in ln beta down to 1/max_temperature, and beta = 0 (the prior, sampled by
+/// independent draws) (sampling/tempering.hpp); then stepping stones. Hot temperatures start from
+/// prior draws, cold ones around the best fit. The run length adapts: every check_every steps the
+/// evidence's standard error and the beta = 1 ensemble are checked, and the run ends once the error
+/// is at most target_uncertainty and the posterior ensemble has converged, or at `steps`.
 struct EvidenceOptions {
-  int temperatures = 32;  ///< 16 leaves a discretisation error of ~5 in ln Z on field data, 32 ~0.3
+  int temperatures = 32;  ///< rungs from beta = 1 to 1/max_temperature, more where that is extended
+  /// The ladder reaches at least this far; further where the prior's draws have ln L below the best
+  /// fit's by more (beta_min (ln L_best - median ln L over the prior) <= 1 keeps the last stone's
+  /// weights comparable), with the same number of rungs per decade.
   double max_temperature = 1e6;
   int walkers = 0;     ///< per temperature; 0: max(4 x free parameters, 16)
-  /// Per temperature, the first half burn-in. On field data the beta = 1 ensemble's autocorrelation
-  /// time is ~2 steps, so 250 kept steps of 16 walkers give an ESS ~2000 (400 needed), and ln Z
-  /// moves by less than its own uncertainty (~0.2-0.4, mostly the ladder's) against 1500 steps.
-  int steps = 500;
+  int steps = 4000;    ///< the cap on updates per temperature, the first half burn-in
   unsigned seed = 20090501;
   int threads = 1;     ///< share the model evaluations; the result does not depend on it
+  double target_uncertainty = 0.1;  ///< standard error of ln Z to reach
+  int check_every = 250;            ///< 0: run exactly `steps`
+  std::function<void(const std::string&)> progress = nullptr;  ///< as PosteriorOptions::progress
 };
 
 struct ModelEvidence {
@@ -84,12 +102,19 @@ struct ModelEvidence {
   /// likelihood exp(-chi^2/2): up to a constant that is the same for every model fitted to the same
   /// data (the Gaussian normalisation of the data's sigmas), so differences between models are exact.
   double log_evidence = 0.0;
-  double uncertainty = 0.0;  ///< discretisation and Monte Carlo, in quadrature
+  double uncertainty = 0.0;  ///< standard error (Monte Carlo; stepping stones have no discretisation error)
+  double thermodynamic_integration = 0.0;  ///< cross-check by thermodynamic integration over the same ladder
+  double stone_overlap = 0.0;  ///< smallest effective fraction of a stone's weights (sampling::Evidence)
+  int temperatures = 0;        ///< rungs of the ladder, beta = 0 included
+  double max_temperature = 0.0;
+  int steps = 0;               ///< updates run per temperature, the first half burn-in
   /// Posterior-predictive p-value of chi^2: the chance that data replicated from the posterior fit
   /// worse than the observed data (small: the model does not describe the data).
   double predictive_p = 0.0;
   double acceptance = 0.0;   ///< of the beta = 1 ensemble
-  bool converged = false;    ///< the beta = 1 ensemble passed the convergence criteria
+  /// The beta = 1 ensemble passed the convergence criteria and the standard error of ln Z reached
+  /// the target; else the cap ended the run, and advice says how far it got.
+  bool converged = false;
   std::string advice;
   int evaluations = 0;
   double wall_seconds = 0.0;
@@ -103,6 +128,16 @@ struct ModelEvidence {
 [[nodiscard]] ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
                                            const FitResult& best, const std::vector<Prior>& priors,
                                            const FitOptions& fit_options, const EvidenceOptions& options);
+
+/// The evidence's integrand over the free ln-parameters x (in the order of best.fitted's free
+/// indices, other parameters at the best fit): ln prior(x) (normalised, Prior::log_density_theta),
+/// ln L(x) = -chi^2(x)/2, and independent draws from the priors. What model_evidence integrates;
+/// public so that a check can integrate it another way (e.g. by quadrature). The functions refer
+/// to `model`, which must outlive them.
+[[nodiscard]] sampling::PriorAndLikelihood evidence_integrand(const ObservationSet& data,
+                                                              const sediment::SedimentModel& model,
+                                                              const FitResult& best, const std::vector<Prior>& priors,
+                                                              const FitOptions& fit_options);
 
 /// Each prior made `factor` times wider: the sd (normal) or sd of ln (log-normal) times factor; a
 /// flat prior's range times factor about its centre (in ln for log-uniform); all still cut to the

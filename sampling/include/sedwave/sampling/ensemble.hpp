@@ -18,15 +18,23 @@ namespace sedwave::sampling {
 /// throws std::domain_error).
 using LogDensity = std::function<double(const Eigen::VectorXd&)>;
 
+struct EnsembleRun;
+
 struct EnsembleOptions {
   int walkers = 0;        ///< ensemble size, even and >= 2 dim; 0: default_walkers(dim)
-  int steps = 2000;       ///< ensemble updates in all, burn-in included
-  int burn_in = -1;       ///< updates discarded at the start; -1: steps / 2
+  int steps = 2000;       ///< ensemble updates in all, burn-in included (the cap when check_every > 0)
+  int burn_in = -1;       ///< updates discarded at the start; -1: the first half of the updates run
   double stretch = 2.0;   ///< a in g(z) ~ 1/sqrt(z) on [1/a, a] (GW10 eq. 9); a = 2 as GW10 and FM13
   std::uint64_t seed = 1; ///< the same seed gives the same samples
   /// Threads that share each half-ensemble's density evaluations (OpenMP). The samples do not
   /// depend on it; the density must then be safe to call concurrently.
   int threads = 1;
+  /// A run length that adapts: with check_every > 0, after every check_every updates the run so far
+  /// (its first half dropped as burn-in) is handed to `stop`, and the run ends when it returns true,
+  /// or after `steps` updates, which is then the cap. Needs burn_in = -1. The decision depends on
+  /// the samples only, so the run is the same for any thread count.
+  int check_every = 0;
+  std::function<bool(const EnsembleRun&)> stop;
 };
 
 struct EnsembleRun {
@@ -35,14 +43,15 @@ struct EnsembleRun {
   Eigen::VectorXd walker_acceptance;         ///< per walker: accepted fraction of all its proposals
   double acceptance = 0.0;                   ///< mean of walker_acceptance
   int evaluations = 0;                       ///< calls of the log density, start walkers included
+  int steps = 0;                             ///< updates run, burn-in included
 };
 
 /// max(4 dim, 16), made even: twice GW10's minimum and enough that the two halves span the space.
 [[nodiscard]] int default_walkers(int dim);
 /// The ensemble size these options give in `dim` dimensions.
 [[nodiscard]] int walker_count(const EnsembleOptions& options, int dim);
-/// The burn-in these options give.
-[[nodiscard]] int burn_in_steps(const EnsembleOptions& options);
+/// The burn-in these options give after `steps_run` updates (options.steps by default).
+[[nodiscard]] int burn_in_steps(const EnsembleOptions& options, int steps_run = -1);
 
 /// walker_count(options, dim) start points centre + spread * N(0, I), from options.seed (a
 /// stream separate from the sampler's). Points outside the density's support are the caller's to
