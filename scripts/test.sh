@@ -15,7 +15,7 @@ if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
   SAN_DIR="${BUILD_DIR}-sanitize"
   SAN_TARGETS=(test_theory test_io test_sediment test_inversion test_channel_table test_dem test_linear sedwave)
   # -O1 with line tables only (-g1): the sanitizers' reports keep function, file and line, and each
-  # file compiles in about 45 % of the CPU time that -O2 -g takes (docs/performance.md, "The test command").
+  # file compiles in 40-50 % of the CPU time that -O2 -g takes (docs/performance.md, "The test command").
   SAN_GENERATOR=(-G "$SEDWAVE_GENERATOR")
   [ -f "$SAN_DIR/CMakeCache.txt" ] && SAN_GENERATOR=()
   cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" "${SAN_GENERATOR[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
