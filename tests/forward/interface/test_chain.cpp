@@ -11,29 +11,16 @@
 
 #include "sedwave/forward/interface/granular_plate.hpp"
 #include "sedwave/forward/units.hpp"
+#include "steel_beads.hpp"
 
 namespace {
 
 using namespace sedwave::forward::interface;
+using namespace sedwave::forward::interface::test;
 using sedwave::forward::plate::EdgeCondition;
 using sedwave::forward::plate::ElasticPlate;
 using sedwave::forward::plate::PlateEdges;
 using sedwave::forward::plate::PlateMaterial;
-
-const GrainMaterial steel{200e9, 0.3};
-constexpr double steel_density = 7850.0;
-constexpr double bead_radius = 2.5e-3;
-
-std::vector<Grain> chain(int n) {
-  HexPacking p;
-  p.rows = 1;
-  p.columns = n;
-  p.radius = bead_radius;
-  p.density = steel_density;
-  p.lift = 1.0;
-  p.orientation = HexOrientation::rows_perpendicular;
-  return make_hex_packing(p);
-}
 
 double hertz_k() {  // k_h = (4/3) E* sqrt(R*) of two beads
   const double e_star = sedwave::forward::hertz_effective_modulus(steel.youngs_modulus, steel.poisson_ratio,

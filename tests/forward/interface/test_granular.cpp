@@ -1,7 +1,6 @@
 // The 2D granular medium and its contact with the plate: Hertz impacts against Johnson's closed forms,
-// the Coulomb-tanh law's limits, energy conservation and balance, a Hertz chain against an
-// independent Dormand-Prince integration, Nesterenko's solitary-wave speed, and the convergence of
-// the adaptive step.
+// the Coulomb-tanh law's limits, energy conservation and balance, the convergence of the adaptive
+// step, and a precompressed chain (the 1D chain against Dormand-Prince: test_chain.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,32 +15,16 @@
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
 #include "sedwave/forward/interface/granular_plate.hpp"
 #include "sedwave/forward/units.hpp"
+#include "steel_beads.hpp"
 
 namespace {
 
 using namespace sedwave::forward::interface;
+using namespace sedwave::forward::interface::test;
 using sedwave::forward::plate::EdgeCondition;
 using sedwave::forward::plate::ElasticPlate;
 using sedwave::forward::plate::PlateEdges;
 using sedwave::forward::plate::PlateMaterial;
-
-// Steel beads of 5 mm on aluminium (docs/interface.md, "Choices").
-const GrainMaterial steel{200e9, 0.3};
-constexpr double steel_density = 7850.0;
-constexpr double bead_radius = 2.5e-3;
-const PlateMaterial aluminium{70e9, 0.33, 2700.0, 5e-3};
-
-// A straight chain of n touching beads along y (the first at the bottom), at rest.
-std::vector<Grain> chain(int n, double lift = 1.0) {
-  HexPacking p;
-  p.rows = 1;
-  p.columns = n;
-  p.radius = bead_radius;
-  p.density = steel_density;
-  p.lift = lift;
-  p.orientation = HexOrientation::rows_perpendicular;
-  return make_hex_packing(p);
-}
 
 // The integral 2 int_0^1 dx / sqrt(1 - x^(5/2)) = (4/5) B(2/5, 1/2): the undamped Hertz collision lasts
 // this times delta_max / v (Johnson 1985, Contact Mechanics, sec. 11.1, eq. 11.24).
@@ -148,11 +131,7 @@ struct Scene {
   double input;
 };
 Scene small_scene(const InterfaceContacts& contacts, double tolerance, EdgeCondition sides) {
-  HexPacking p;
-  p.rows = 3;
-  p.columns = 4;
-  p.radius = bead_radius;
-  p.density = steel_density;
+  HexPacking p = steel_beads(3, 4);
   p.gap = 1e-6;
   p.x_offset = 2e-3;
   p.lift = 1e-6;
@@ -245,11 +224,7 @@ namespace {
 TEST(Precompression, RelaxedChainPassesItsLoadToThePlateAndKeepsTheBalance) {
   // Two chains of four beads standing on the plate, loaded at the top. (Coulomb-tanh has no static
   // friction, so a hexagonal packing without side walls creeps sideways under a static load.)
-  HexPacking p;
-  p.rows = 1;
-  p.columns = 4;
-  p.radius = bead_radius;
-  p.density = steel_density;
+  HexPacking p = steel_beads(1, 4);
   p.x_offset = 4e-3;
   p.orientation = HexOrientation::rows_perpendicular;
   auto grains = make_hex_packing(p);

@@ -1,0 +1,33 @@
+#pragma once
+// The interface tests' granules: steel beads of 5 mm on aluminium (docs/interface.md, "Choices").
+#include <vector>
+
+#include "sedwave/forward/interface/granular_plate.hpp"
+
+namespace sedwave::forward::interface::test {
+
+inline const GrainMaterial steel{200e9, 0.3};
+inline constexpr double steel_density = 7850.0;
+inline constexpr double bead_radius = 2.5e-3;
+inline const plate::PlateMaterial aluminium{70e9, 0.33, 2700.0, 5e-3};
+
+/// A packing of rows x columns steel beads; the caller sets gap, offset, lift and orientation.
+inline HexPacking steel_beads(int rows, int columns) {
+  HexPacking p;
+  p.rows = rows;
+  p.columns = columns;
+  p.radius = bead_radius;
+  p.density = steel_density;
+  return p;
+}
+
+/// A straight chain of n touching beads along y (the first at the bottom), at rest, `lift` above
+/// the plate.
+inline std::vector<Grain> chain(int n, double lift = 1.0) {
+  HexPacking p = steel_beads(1, n);
+  p.lift = lift;
+  p.orientation = HexOrientation::rows_perpendicular;
+  return make_hex_packing(p);
+}
+
+}  // namespace sedwave::forward::interface::test
