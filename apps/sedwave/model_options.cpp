@@ -1,5 +1,6 @@
 #include "model_options.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <cstdio>
@@ -184,11 +185,30 @@ void apply_site_inputs(const ModelOptions& o, const std::set<std::string>& given
   }
 }
 
+/// The options that name one parameter each: its value and, for the contact's parameters, its
+/// search bounds (an empty bounds option: the parameter has none).
+struct Shorthand {
+  const char* parameter;
+  const std::optional<double>& value;
+  const char* value_option;
+  const std::vector<double>& bounds;
+  const char* bounds_option;
+};
+
+std::array<Shorthand, 5> shorthands(const ModelOptions& o) {
+  static const std::vector<double> kNoBounds;
+  return {{{"kappa", o.kappa, "--kappa", o.kappa_bounds, "--kappa-bounds"},
+           {"d", o.diameter, "--d", o.diameter_bounds, "--d-bounds"},
+           {"gamma", o.gamma, "--gamma", o.gamma_bounds, "--gamma-bounds"},
+           {"e_n", o.restitution, "--en", o.restitution_bounds, "--en-bounds"},
+           {"rho_s", o.density, "--density", kNoBounds, ""}}};
+}
+
 /// One parameter given through two options (--set kappa= twice, --kappa with --set kappa=, --bounds
 /// twice, --kappa-bounds with --bounds kappa=) would keep one of the values silently: refused, naming
 /// both options.
 void refuse_repeated_parameters(const ModelOptions& o) {
-  const auto check = [](std::vector<std::pair<std::string, std::string>> given, const char* verb) {
+  const auto check = [](const std::vector<std::pair<std::string, std::string>>& given, const char* verb) {
     for (std::size_t i = 0; i < given.size(); ++i) {
       for (std::size_t j = 0; j < i; ++j) {
         if (given[i].first == given[j].first) {
@@ -199,22 +219,15 @@ void refuse_repeated_parameters(const ModelOptions& o) {
     }
   };
   std::vector<std::pair<std::string, std::string>> values, bounds;  // (parameter, option as given)
-  const auto direct = [](const auto& value, const char* name, const char* option,
-                         std::vector<std::pair<std::string, std::string>>& into) {
-    if (value) into.emplace_back(name, option);
-  };
-  direct(o.kappa, "kappa", "--kappa", values);
-  direct(o.diameter, "d", "--d", values);
-  direct(o.gamma, "gamma", "--gamma", values);
-  direct(o.restitution, "e_n", "--en", values);
-  direct(o.density, "rho_s", "--density", values);
+  for (const Shorthand& h : shorthands(o)) {
+    if (h.value) values.emplace_back(h.parameter, h.value_option);
+  }
   for (const std::string& item : o.set_values) {
     values.emplace_back(name_and_value(item, "--set").first, "--set '" + item + "'");
   }
-  direct(!o.kappa_bounds.empty(), "kappa", "--kappa-bounds", bounds);
-  direct(!o.diameter_bounds.empty(), "d", "--d-bounds", bounds);
-  direct(!o.gamma_bounds.empty(), "gamma", "--gamma-bounds", bounds);
-  direct(!o.restitution_bounds.empty(), "e_n", "--en-bounds", bounds);
+  for (const Shorthand& h : shorthands(o)) {
+    if (!h.bounds.empty()) bounds.emplace_back(h.parameter, h.bounds_option);
+  }
   for (const std::string& item : o.set_bounds) {
     bounds.emplace_back(name_and_value(item, "--bounds").first, "--bounds '" + item + "'");
   }
@@ -233,10 +246,9 @@ void refuse_bounds_on_fixed(const ModelOptions& o, const inversion::FitParameter
       }
     }
   };
-  if (!o.kappa_bounds.empty()) refuse_if_fixed("kappa", "--kappa-bounds");
-  if (!o.diameter_bounds.empty()) refuse_if_fixed("d", "--d-bounds");
-  if (!o.gamma_bounds.empty()) refuse_if_fixed("gamma", "--gamma-bounds");
-  if (!o.restitution_bounds.empty()) refuse_if_fixed("e_n", "--en-bounds");
+  for (const Shorthand& h : shorthands(o)) {
+    if (!h.bounds.empty()) refuse_if_fixed(h.parameter, h.bounds_option);
+  }
   for (const std::string& item : o.set_bounds) {
     refuse_if_fixed(name_and_value(item, "--bounds").first, "--bounds '" + item + "'");
   }
@@ -258,13 +270,9 @@ inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::
       throw UsageError(std::string(option) + ": " + e.what() + " in model '" + model.name() + "'");
     }
   };
-  if (o.kappa || !o.kappa_bounds.empty()) apply_value(named("kappa", "--kappa"), o.kappa, o.kappa_bounds);
-  if (o.diameter || !o.diameter_bounds.empty()) apply_value(named("d", "--d"), o.diameter, o.diameter_bounds);
-  if (o.gamma || !o.gamma_bounds.empty()) apply_value(named("gamma", "--gamma"), o.gamma, o.gamma_bounds);
-  if (o.restitution || !o.restitution_bounds.empty()) {
-    apply_value(named("e_n", "--en"), o.restitution, o.restitution_bounds);
+  for (const Shorthand& h : shorthands(o)) {
+    if (h.value || !h.bounds.empty()) apply_value(named(h.parameter, h.value_option), h.value, h.bounds);
   }
-  if (o.density) apply_value(named("rho_s", "--density"), o.density, {});
   std::set<std::string> given;  // parameters whose value the command line gives directly
   if (o.kappa) given.insert("kappa");
   if (o.diameter) given.insert("d");
