@@ -169,11 +169,17 @@ void fit_model(ModelRun& run, const CompareOptions& o, const inversion::Observat
   }
 }
 
-/// An evidence run's progress lines on stderr, named by model and run (two run side by side).
-std::function<void(const std::string&)> progress_of(const std::string& spec, const char* run) {
-  return [spec, run](const std::string& line) {
-    std::fprintf(stderr, "sedwave compare: %s: %s: %s\n", spec.c_str(), run, line.c_str());
+/// One evidence run of a fitted model under `priors`; it announces itself and reports its progress
+/// on stderr under `label` (two runs of a model go side by side).
+inversion::ModelEvidence evidence_of(const ModelRun& run, const inversion::ObservationSet& data,
+                                     const std::vector<inversion::Prior>& priors, inversion::EvidenceOptions options,
+                                     const char* label) {
+  std::fprintf(stderr, "sedwave compare: %s: %s ...\n", run.spec.c_str(), label);
+  const std::string spec = run.spec;
+  options.progress = [spec, label](const std::string& line) {
+    std::fprintf(stderr, "sedwave compare: %s: %s: %s\n", spec.c_str(), label, line.c_str());
   };
+  return inversion::model_evidence(data, *run.model, run.row.fit, priors, kFitOptions, options);
 }
 
 /// Queues every model's jobs; `threads` run them, and threads beyond the two evidence runs per
@@ -186,16 +192,12 @@ void run_all(std::vector<ModelRun>& runs, const CompareOptions& o, const inversi
   for (ModelRun& run : runs) {
     queue.add([&run, &o, &data, evidence](JobQueue& next) {
       fit_model(run, o, data);
-      next.add([&run, &data, evidence](JobQueue&) mutable {
-        std::fprintf(stderr, "sedwave compare: %s: evidence, priors widened x10 ...\n", run.spec.c_str());
-        evidence.progress = progress_of(run.spec, "evidence, priors widened x10");
-        run.row.widened = inversion::model_evidence(data, *run.model, run.row.fit, inversion::widened(run.priors, 10.0),
-                                                    kFitOptions, evidence);
+      next.add([&run, &data, evidence](JobQueue&) {
+        run.row.widened =
+            evidence_of(run, data, inversion::widened(run.priors, 10.0), evidence, "evidence, priors widened x10");
       });
-      next.add([&run, &data, evidence](JobQueue& after) mutable {
-        std::fprintf(stderr, "sedwave compare: %s: evidence ...\n", run.spec.c_str());
-        evidence.progress = progress_of(run.spec, "evidence");
-        run.row.evidence = inversion::model_evidence(data, *run.model, run.row.fit, run.priors, kFitOptions, evidence);
+      next.add([&run, &data, evidence](JobQueue& after) {
+        run.row.evidence = evidence_of(run, data, run.priors, evidence, "evidence");
         after.add([&run, &data](JobQueue&) {
           run.row.band = inversion::predictive_band(run.row.model, *run.model, run.row.fit, run.row.evidence.samples,
                                                     inversion::curve_frequencies(data));
