@@ -145,41 +145,11 @@ void require_prior_covers(const Setup& s, const std::vector<Prior>& priors, cons
   }
 }
 
-/// A draw from N(mean, sd^2) truncated to [lo, hi]: by the normal itself while that lands inside
-/// often enough, else by a flat proposal on [lo, hi] under the density's maximum there. Both are
-/// exact rejection samplers, so the draw follows the truncated normal whichever one ends.
-double truncated_normal_draw(double mean, double sd, double lo, double hi, sampling::RandomStream& random) {
-  for (int attempt = 0; attempt < 64; ++attempt) {
-    const double x = mean + sd * random.normal();
-    if (x >= lo && x <= hi) return x;
-  }
-  const double mode = std::clamp(mean, lo, hi);
-  for (int attempt = 0; attempt < 1000000; ++attempt) {
-    const double x = lo + (hi - lo) * random.uniform();
-    const double log_ratio = (std::pow((mode - mean) / sd, 2) - std::pow((x - mean) / sd, 2)) / 2.0;
-    if (std::log(random.uniform()) < log_ratio) return x;
-  }
-  throw std::invalid_argument("a normal prior truncated to its bounds has almost no mass there: widen the bounds "
-                              "or move the prior");
-}
-
-/// One draw of theta = ln(value) from a prior, exactly as Prior::log_density_theta defines it.
-double draw_prior_theta(const Prior& p, sampling::RandomStream& random) {
-  const bool flat = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
-  const double lo = std::max(p.lower, flat ? p.a : p.lower), hi = std::min(p.upper, flat ? p.b : p.upper);
-  switch (p.kind) {
-    case PriorKind::Uniform: return std::log(lo + (hi - lo) * random.uniform());
-    case PriorKind::LogUniform: return std::log(lo) + std::log(hi / lo) * random.uniform();
-    case PriorKind::Normal: return std::log(truncated_normal_draw(p.a, p.b, lo, hi, random));
-    default: return truncated_normal_draw(std::log(p.a), p.b, std::log(lo), std::log(hi), random);
-  }
-}
-
 /// Independent draws of the free ln-parameters from their priors.
 Eigen::VectorXd draw_free_from_priors(const Setup& s, const std::vector<Prior>& priors, sampling::RandomStream& random) {
   Eigen::VectorXd x(static_cast<Eigen::Index>(s.free.size()));
   for (Eigen::Index j = 0; j < x.size(); ++j) {
-    x(j) = draw_prior_theta(priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])], random);
+    x(j) = priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])].draw_theta(random);
   }
   return x;
 }

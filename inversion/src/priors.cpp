@@ -1,5 +1,6 @@
 #include "sedwave/inversion/priors.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -23,6 +24,24 @@ double truncated_normal_log_density(double x, double mean, double sd, double lo,
   return -0.5 * z * z - std::log(sd * std::sqrt(2.0 * std::numbers::pi)) - std::log(mass);
 }
 
+/// A draw from N(mean, sd^2) truncated to [lo, hi]: by the normal itself while that lands inside
+/// often enough, else by a flat proposal on [lo, hi] under the density's maximum there. Both are
+/// exact rejection samplers, so the draw follows the truncated normal whichever one ends.
+double truncated_normal_draw(double mean, double sd, double lo, double hi, sampling::RandomStream& random) {
+  for (int attempt = 0; attempt < 64; ++attempt) {
+    const double x = mean + sd * random.normal();
+    if (x >= lo && x <= hi) return x;
+  }
+  const double mode = std::clamp(mean, lo, hi);
+  for (int attempt = 0; attempt < 1000000; ++attempt) {
+    const double x = lo + (hi - lo) * random.uniform();
+    const double log_ratio = (std::pow((mode - mean) / sd, 2) - std::pow((x - mean) / sd, 2)) / 2.0;
+    if (std::log(random.uniform()) < log_ratio) return x;
+  }
+  throw std::invalid_argument("a normal prior truncated to its bounds has almost no mass there: widen the bounds "
+                              "or move the prior");
+}
+
 std::string number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", x);
@@ -31,10 +50,14 @@ std::string number(double x) {
 
 }  // namespace
 
+std::pair<double, double> Prior::support() const {
+  const bool flat = kind == PriorKind::Uniform || kind == PriorKind::LogUniform;
+  return {std::max(lower, flat ? a : lower), std::min(upper, flat ? b : upper)};
+}
+
 double Prior::log_density_theta(double theta) const {
   const double value = std::exp(theta);
-  const double lo = std::max(lower, kind == PriorKind::Uniform || kind == PriorKind::LogUniform ? a : lower);
-  const double hi = std::min(upper, kind == PriorKind::Uniform || kind == PriorKind::LogUniform ? b : upper);
+  const auto [lo, hi] = support();
   // The support is tested in theta, where the fit's values live: exp(ln(bound)) may round to just
   // outside the bound, and a best fit on its bound must stay inside the prior.
   if (!(theta >= std::log(lo) && theta <= std::log(hi))) return kMinusInfinity;
@@ -43,6 +66,16 @@ double Prior::log_density_theta(double theta) const {
     case PriorKind::LogUniform: return -std::log(std::log(hi / lo));
     case PriorKind::Normal: return truncated_normal_log_density(value, a, b, lo, hi) + theta;
     default: return truncated_normal_log_density(theta, std::log(a), b, std::log(lo), std::log(hi));
+  }
+}
+
+double Prior::draw_theta(sampling::RandomStream& random) const {
+  const auto [lo, hi] = support();
+  switch (kind) {
+    case PriorKind::Uniform: return std::log(lo + (hi - lo) * random.uniform());
+    case PriorKind::LogUniform: return std::log(lo) + std::log(hi / lo) * random.uniform();
+    case PriorKind::Normal: return std::log(truncated_normal_draw(a, b, lo, hi, random));
+    default: return truncated_normal_draw(std::log(a), b, std::log(lo), std::log(hi), random);
   }
 }
 

@@ -13,9 +13,11 @@
 // p(theta) = p(value) * value (the Jacobian of value = e^theta). Densities are normalised over the
 // search bounds, so a log evidence can use them.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sedwave/inversion/parameters.hpp"
+#include "sedwave/sampling/random_stream.hpp"
 
 namespace sedwave::inversion {
 
@@ -31,6 +33,10 @@ struct Prior {
 
   /// ln p(theta) at theta = ln(value), normalised over [lower, upper]; -inf outside the support.
   [[nodiscard]] double log_density_theta(double theta) const;
+  /// One independent draw of theta = ln(value) from exactly that density (rejection sampling).
+  [[nodiscard]] double draw_theta(sampling::RandomStream& random) const;
+  /// Where the density is non-zero [unit]: the search bounds, narrowed by a flat prior's own ends.
+  [[nodiscard]] std::pair<double, double> support() const;
   /// One line, e.g. "log-normal(median 8.2e4 N/m, sd_ln 0.5) on [1e3, 1e7] (command line)".
   [[nodiscard]] std::string describe(const std::string& unit) const;
 };
