@@ -16,6 +16,7 @@
 #include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
@@ -80,8 +81,7 @@ void require_same_inputs(const std::map<std::string, std::string>& recorded,
 
 void Engine::write_checkpoint(const std::string& path) {
   const std::vector<Grain> all = gather_grains(*this);
-  const std::vector<HistoryEntry> history = gather_on_root(domain_.comm(), contact_history());
-  int status = 0;
+  const std::vector<HistoryEntry> history = parallel::gather_on_root(domain_.comm(), contact_history());
   std::string error;
   if (domain_.rank() == 0) {
     try {
@@ -142,12 +142,12 @@ void Engine::write_checkpoint(const std::string& path) {
         h5::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
       });
     } catch (const std::exception& e) {
-      status = 1;
       error = e.what();
+      if (error.empty()) error = "write failed on rank 0";
     }
   }
-  MPI_Bcast(&status, 1, MPI_INT, 0, domain_.comm());
-  if (status != 0) throw std::runtime_error("DEM checkpoint: " + (error.empty() ? "write failed on rank 0" : error));
+  parallel::broadcast(domain_.comm(), error);  // every rank throws rank 0's error
+  if (!error.empty()) throw std::runtime_error("DEM checkpoint: " + error);
 }
 
 void Engine::restore_checkpoint(const std::string& path) {

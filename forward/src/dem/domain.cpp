@@ -14,31 +14,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Sends per-destination vectors of trivially copyable records with one all-to-all; returns what
-/// arrived, ordered by source rank (deterministic). Counted in records, not bytes.
-template <typename T>
-std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outgoing) {
-  const parallel::RecordType<T> record;
-  const std::size_t size = outgoing.size();
-  std::vector<int> send_counts(size), recv_counts(size);
-  for (std::size_t r = 0; r < size; ++r) send_counts[r] = parallel::mpi_count(outgoing[r].size());
-  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
-  const std::vector<int> send_displs = parallel::displacements(send_counts);
-  const std::vector<int> recv_displs = parallel::displacements(recv_counts);
-  std::vector<T> send(static_cast<std::size_t>(send_displs.back()) + outgoing.back().size());
-  for (std::size_t r = 0; r < size; ++r)
-    std::copy(outgoing[r].begin(), outgoing[r].end(), send.begin() + send_displs[r]);
-  std::vector<T> incoming(static_cast<std::size_t>(recv_displs.back()) + static_cast<std::size_t>(recv_counts.back()));
-  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), record.get(), incoming.data(),
-                recv_counts.data(), recv_displs.data(), record.get(), comm);
-  return incoming;
-}
-
 }  // namespace
 
 Domain::Domain(MPI_Comm comm, const Box& box) : comm_(comm), box_(box) {
-  MPI_Comm_rank(comm_, &rank_);
-  MPI_Comm_size(comm_, &size_);
+  rank_ = parallel::rank(comm_);
+  size_ = parallel::size(comm_);
   std::vector<double> b(static_cast<std::size_t>(size_) + 1);
   for (int r = 0; r <= size_; ++r) b[r] = box.lo.z + box.length(2) * r / size_;
   set_boundaries(std::move(b));
@@ -80,8 +60,8 @@ void Domain::partition_by_count(const GrainArrays& g, double min_thickness) {
     lo = std::min(lo, g.position[i].z);
     hi = std::max(hi, g.position[i].z);
   }
-  MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm_);
-  MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  lo = parallel::min(comm_, lo);
+  hi = parallel::max(comm_, hi);
   if (box_.periodic[2]) {
     lo = box_.lo.z;
     hi = box_.hi.z;
@@ -91,7 +71,7 @@ void Domain::partition_by_count(const GrainArrays& g, double min_thickness) {
   const double width = std::max(hi - lo, 1e-300) / bins;
   for (std::size_t i = 0; i < g.n_local(); ++i)
     histogram[std::clamp(static_cast<int>((g.position[i].z - lo) / width), 0, bins - 1)] += 1.0;
-  MPI_Allreduce(MPI_IN_PLACE, histogram.data(), bins, MPI_DOUBLE, MPI_SUM, comm_);
+  parallel::sum(comm_, std::span(histogram));
   const double total = std::accumulate(histogram.begin(), histogram.end(), 0.0);
   std::vector<double> b(boundaries_);
   double cumulative = 0.0;
@@ -107,8 +87,7 @@ void Domain::partition_by_count(const GrainArrays& g, double min_thickness) {
 
 void Domain::balance(double my_work, const GrainArrays& g, double min_thickness) {
   if (size_ == 1) return;
-  std::vector<double> work(static_cast<std::size_t>(size_));
-  MPI_Allgather(&my_work, 1, MPI_DOUBLE, work.data(), 1, MPI_DOUBLE, comm_);
+  const std::vector<double> work = parallel::all_gather(comm_, my_work);
   // Work is assumed uniform within each slab; open end slabs are cut at the grains' extent.
   double lo = boundaries_.front(), hi = boundaries_.back();
   if (!box_.periodic[2]) {
@@ -117,8 +96,8 @@ void Domain::balance(double my_work, const GrainArrays& g, double min_thickness)
       z_lo = std::min(z_lo, g.position[i].z);
       z_hi = std::max(z_hi, g.position[i].z);
     }
-    MPI_Allreduce(&z_lo, &lo, 1, MPI_DOUBLE, MPI_MIN, comm_);
-    MPI_Allreduce(&z_hi, &hi, 1, MPI_DOUBLE, MPI_MAX, comm_);
+    lo = parallel::min(comm_, z_lo);
+    hi = parallel::max(comm_, z_hi);
   }
   std::vector<double> edge(boundaries_);
   edge.front() = std::min(lo, edge[1]);
@@ -166,8 +145,8 @@ void Domain::migrate(GrainArrays& g, std::vector<HistoryEntry>& history) {
   for (int r = 0; r < size_; ++r)
     rebuild_bytes_sent_ += grains_out[r].size() * sizeof(Grain) + history_out[r].size() * sizeof(HistoryEntry);
   g.keep_local(keep);
-  for (const Grain& grain : all_to_all(comm_, grains_out)) g.push_local(grain);
-  const std::vector<HistoryEntry> arrived = all_to_all(comm_, history_out);
+  for (const Grain& grain : parallel::all_to_all(comm_, grains_out)) g.push_local(grain);
+  const std::vector<HistoryEntry> arrived = parallel::all_to_all(comm_, history_out);
   history.insert(history.end(), arrived.begin(), arrived.end());
 }
 

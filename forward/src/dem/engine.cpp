@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "sedwave/forward/parallel/collectives.hpp"
+
 namespace sedwave::forward::dem {
 namespace {
 
@@ -25,16 +27,14 @@ class ScopedTimer {
   Clock::time_point start_;
 };
 
-double sum_over_ranks(MPI_Comm comm, double local) {
-  double total = 0.0;
-  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return total;
-}
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "a Vec3 is summed over ranks as three doubles");
+
+/// The components of vectors, as one span of doubles for the collectives.
+std::span<double> components(std::span<Vec3> v) { return {reinterpret_cast<double*>(v.data()), 3 * v.size()}; }
 
 Vec3 sum_over_ranks(MPI_Comm comm, Vec3 local) {
-  Vec3 total;
-  MPI_Allreduce(&local.x, &total.x, 3, MPI_DOUBLE, MPI_SUM, comm);
-  return total;
+  parallel::sum(comm, components(std::span(&local, 1)));
+  return local;
 }
 
 /// Moment of inertia of a solid sphere, inverted: 1 / (2/5 m r^2) = 2.5 (1/m) / r^2.
@@ -118,9 +118,9 @@ void Engine::update_global_grain_stats() {
     sums[1] += 2.0 * grains_.radius[i];
   }
   const MPI_Comm comm = domain_.comm();
-  MPI_Allreduce(MPI_IN_PLACE, mins, 3, MPI_DOUBLE, MPI_MIN, comm);
-  MPI_Allreduce(MPI_IN_PLACE, maxs, 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
+  parallel::min(comm, std::span(mins));
+  parallel::max(comm, std::span(maxs));
+  parallel::sum(comm, std::span(sums));
   if (sums[0] == 0.0) throw std::invalid_argument("DEM: the scene has no grains");
   n_global_ = static_cast<std::int64_t>(sums[0]);
   min_radius_ = mins[0];
@@ -249,12 +249,10 @@ void Engine::half_kick_spins() {
 }
 
 bool Engine::rebuild_needed() {
-  int needed = force_rebuild_ || !list_valid_ || list_.needs_rebuild(grains_) ? 1 : 0;
-  if (domain_.size() > 1) {
-    ScopedTimer t(timings_.communication);
-    MPI_Allreduce(MPI_IN_PLACE, &needed, 1, MPI_INT, MPI_LOR, domain_.comm());
-  }
-  return needed != 0;
+  const bool needed = force_rebuild_ || !list_valid_ || list_.needs_rebuild(grains_);
+  if (domain_.size() == 1) return needed;
+  ScopedTimer t(timings_.communication);
+  return parallel::any(domain_.comm(), needed);
 }
 
 void Engine::rebuild() {
@@ -351,8 +349,7 @@ void Engine::apply_body_forces() {
     if (grains_.body[i] != kFreeBody) totals[static_cast<std::size_t>(grains_.body[i] - 1)] += grains_.force[i];
   if (domain_.size() > 1) {
     ScopedTimer t(timings_.communication);
-    MPI_Allreduce(MPI_IN_PLACE, totals.data(), static_cast<int>(3 * totals.size()), MPI_DOUBLE, MPI_SUM,
-                  domain_.comm());
+    parallel::sum(domain_.comm(), components(totals));
   }
   for (std::size_t b = 0; b < bodies_.size(); ++b) bodies_[b].set_contact_force(totals[b]);
 }
@@ -440,14 +437,10 @@ void Engine::guard_check(const OverlapWatch& watch) {
   last_kinetic_energy_ = ke;
 
   const std::string message = why.str();
-  int first_failing = message.empty() ? domain_.size() : domain_.rank();
-  MPI_Allreduce(MPI_IN_PLACE, &first_failing, 1, MPI_INT, MPI_MIN, domain_.comm());
+  const int first_failing = parallel::min(domain_.comm(), message.empty() ? domain_.size() : domain_.rank());
   if (first_failing == domain_.size()) return;
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, first_failing, domain_.comm());
   std::string shared = message;
-  shared.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(shared.data(), length, MPI_CHAR, first_failing, domain_.comm());
+  parallel::broadcast(domain_.comm(), shared, first_failing);
   throw GuardError(shared);
 }
 
@@ -461,7 +454,7 @@ double Engine::kinetic_energy() const {
     e += 0.5 * g.mass[i] * norm2(g.velocity[i]);
     if (g.rotation()) e += 0.2 * g.mass[i] * g.radius[i] * g.radius[i] * norm2(g.angular_velocity[i]);
   }
-  return sum_over_ranks(domain_.comm(), e);
+  return parallel::sum(domain_.comm(), e);
 }
 
 double Engine::elastic_energy() const {
@@ -484,7 +477,7 @@ double Engine::elastic_energy() const {
           }
       },
       model_);
-  return sum_over_ranks(domain_.comm(), e);
+  return parallel::sum(domain_.comm(), e);
 }
 
 Vec3 Engine::linear_momentum() const {
@@ -539,7 +532,8 @@ void Engine::report_progress(std::int64_t done, std::int64_t total, bool final) 
     return;
   }
   Timings worst = timings_;
-  MPI_Allreduce(MPI_IN_PLACE, &worst.force, 5, MPI_DOUBLE, MPI_MAX, domain_.comm());
+  static_assert(sizeof(Timings) == 5 * sizeof(double), "the timings are reduced as five doubles");
+  parallel::max(domain_.comm(), std::span(&worst.force, 5));
   if (domain_.rank() != 0) return;
   const double all = std::max(worst.total(), 1e-300);
   auto row = [&](const char* name, double s) {

@@ -8,6 +8,7 @@
 
 #include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
@@ -127,10 +128,7 @@ void write_rows(hid_t all, const Engine& engine, hsize_t first_row) {
 void H5mdWriter::write(const Engine& engine) {
   const Domain& domain = engine.domain();
   const MPI_Comm comm = domain.comm();
-  const auto n_local = static_cast<std::int64_t>(engine.n_local());
-  std::int64_t first_row = 0;
-  MPI_Exscan(&n_local, &first_row, 1, MPI_INT64_T, MPI_SUM, comm);
-  if (domain.rank() == 0) first_row = 0;  // MPI_Exscan leaves rank 0's result undefined
+  const auto first_row = parallel::exclusive_prefix_sum(comm, static_cast<std::int64_t>(engine.n_local()));
 
   // Ranks write in turn (a token passed along carries the status so far), so no rank ever holds
   // all grains; rank 0 goes first and adds the frame's row to every series.

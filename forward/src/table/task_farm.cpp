@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/forward/table/table_file.hpp"
 
 namespace sedwave::forward::table {
@@ -27,18 +28,6 @@ constexpr int kResultTag = 1;
 /// a few milliseconds of latency cost nothing.
 constexpr auto kPollInterval = std::chrono::milliseconds(2);
 constexpr int kProbeAttempts = 1000;
-
-int rank_of(MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  return rank;
-}
-
-int size_of(MPI_Comm comm) {
-  int size = 0;
-  MPI_Comm_size(comm, &size);
-  return size;
-}
 
 /// Waits for a non-blocking operation without spinning.
 void wait_sleeping(MPI_Request& request) {
@@ -105,9 +94,9 @@ PointMessage unpack(const std::vector<char>& bytes) {
 class WorkCounter {
  public:
   explicit WorkCounter(MPI_Comm comm) : comm_(comm) {
-    const MPI_Aint bytes = rank_of(comm) == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0;
+    const MPI_Aint bytes = parallel::rank(comm) == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0;
     MPI_Win_allocate(bytes, sizeof(std::int64_t), MPI_INFO_NULL, comm, &base_, &window_);
-    if (rank_of(comm) == 0) {
+    if (parallel::rank(comm) == 0) {
       const std::int64_t zero = 0;
       MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window_);
       MPI_Put(&zero, 1, MPI_INT64_T, 0, 0, 1, MPI_INT64_T, window_);
@@ -226,7 +215,7 @@ std::vector<GridIndex> open_and_share_todo(MPI_Comm farm, const std::filesystem:
                                            const FarmSettings& settings, std::optional<TableFile>& file) {
   std::vector<std::uint64_t> flat;
   std::string error;
-  if (rank_of(farm) == 0) {
+  if (parallel::rank(farm) == 0) {
     try {
       file.emplace(TableFile::resume_or_create(table_path, grid, metadata, settings.allow_changed_inputs));
       const DispersionTable& table = file->table();
@@ -243,13 +232,9 @@ std::vector<GridIndex> open_and_share_todo(MPI_Comm farm, const std::filesystem:
     }
   }
   // Rank 0's failure must stop every rank, not leave them waiting in the next collective.
-  std::uint64_t sizes[2] = {flat.size(), error.size()};
-  MPI_Bcast(sizes, 2, MPI_UINT64_T, 0, farm);
-  error.resize(sizes[1]);
-  MPI_Bcast(error.data(), static_cast<int>(sizes[1]), MPI_CHAR, 0, farm);
+  parallel::broadcast(farm, error);
   if (!error.empty()) throw std::runtime_error(error);
-  flat.resize(sizes[0]);
-  MPI_Bcast(flat.data(), static_cast<int>(sizes[0]), MPI_UINT64_T, 0, farm);
+  parallel::broadcast(farm, flat);
   std::vector<GridIndex> todo;
   for (std::uint64_t f : flat) todo.push_back({f / grid.omega_hat.size(), f % grid.omega_hat.size()});
   return todo;
@@ -273,8 +258,8 @@ PointResult compute_timed(const PointFunction& compute, MPI_Comm group, double o
 FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path, const TableGrid& grid,
                          const TableMetadata& metadata, const PointFunction& compute, const FarmSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  if (settings.ranks_per_point < 1 || size_of(world) % settings.ranks_per_point != 0) {
-    throw std::invalid_argument("task farm: " + std::to_string(size_of(world)) + " ranks cannot form groups of " +
+  if (settings.ranks_per_point < 1 || parallel::size(world) % settings.ranks_per_point != 0) {
+    throw std::invalid_argument("task farm: " + std::to_string(parallel::size(world)) + " ranks cannot form groups of " +
                                 "ranks_per_point = " + std::to_string(settings.ranks_per_point) +
                                 " (use a multiple of it with mpirun -np)");
   }
@@ -284,7 +269,7 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
   MPI_Comm farm_handle = MPI_COMM_NULL;
   MPI_Comm_dup(world, &farm_handle);
   const OwnedComm farm(farm_handle);
-  const int rank = rank_of(farm.get());
+  const int rank = parallel::rank(farm.get());
 
   FarmReport report;
   report.points = grid.size();
@@ -295,7 +280,7 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
   MPI_Comm group_handle = MPI_COMM_NULL;
   MPI_Comm_split(farm.get(), rank / settings.ranks_per_point, rank, &group_handle);
   const OwnedComm group(group_handle);
-  const bool leader = rank_of(group.get()) == 0;
+  const bool leader = parallel::rank(group.get()) == 0;
   const auto group_index = static_cast<std::int32_t>(rank / settings.ranks_per_point);
 
   std::optional<Writer> writer;
@@ -304,7 +289,7 @@ FarmReport run_task_farm(MPI_Comm world, const std::filesystem::path& table_path
     WorkCounter counter(farm.get());
     for (;;) {
       std::int64_t next = leader ? counter.next() : 0;
-      MPI_Bcast(&next, 1, MPI_INT64_T, 0, group.get());
+      parallel::broadcast(group.get(), next);
       if (next >= static_cast<std::int64_t>(todo.size())) break;
       const GridIndex p = todo[static_cast<std::size_t>(next)];
       const PointMessage m{static_cast<std::uint64_t>(next), group_index,

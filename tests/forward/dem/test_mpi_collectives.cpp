@@ -1,12 +1,15 @@
-// Counts beyond what one MPI call takes (run with mpirun -np 4): spans longer than the largest
-// count per call go in pieces, records are counted as records (not bytes), and a count that does
-// not fit an int is refused rather than wrapped. Small piece sizes stand in for 2^31 - 1.
+// The typed collectives (run with mpirun -np 4). Counts beyond what one MPI call takes: spans
+// longer than the largest count per call go in pieces, gathers in windows, records are counted as
+// records (not bytes), and a count that does not fit an int is refused rather than wrapped. Small
+// piece and window sizes stand in for 2^31 - 1.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <climits>
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "sedwave/forward/dem/gather.hpp"
@@ -65,20 +68,78 @@ TEST(Collectives, GatherCountsGrainRecordsInRankOrder) {
     mine[k].position = {double(r), double(k), -1.0};
     mine[k].torque = {0.5, double(r), double(k)};  // the record's last bytes
   }
-  const std::vector<dem::Grain> all = dem::gather_on_root(MPI_COMM_WORLD, mine);
-  if (r != 0) {
-    EXPECT_TRUE(all.empty());
-    return;
-  }
-  ASSERT_EQ(all.size(), static_cast<std::size_t>(n * (n + 1) / 2));
-  std::size_t at = 0;
-  for (int from = 0; from < n; ++from)
-    for (int k = 0; k <= from; ++k, ++at) {
-      EXPECT_EQ(all[at].id, 100 * from + k);
-      EXPECT_EQ(all[at].position.y, double(k));
-      EXPECT_EQ(all[at].torque.y, double(from));
-      EXPECT_EQ(all[at].torque.z, double(k));
+  // Windows smaller than the total stand in for a gather beyond 2^31 - 1 records: a window may
+  // start or end inside one rank's records, or hold none of a rank's.
+  for (const std::size_t window : {std::size_t{1}, std::size_t{2}, std::size_t{4}, kMaxMpiCount}) {
+    const std::vector<dem::Grain> all = gather_on_root(MPI_COMM_WORLD, mine, window);
+    if (r != 0) {
+      EXPECT_TRUE(all.empty());
+      continue;
     }
+    ASSERT_EQ(all.size(), static_cast<std::size_t>(n * (n + 1) / 2));
+    std::size_t at = 0;
+    for (int from = 0; from < n; ++from)
+      for (int k = 0; k <= from; ++k, ++at) {
+        EXPECT_EQ(all[at].id, 100 * from + k) << "window " << window;
+        EXPECT_EQ(all[at].position.y, double(k));
+        EXPECT_EQ(all[at].torque.y, double(from));
+        EXPECT_EQ(all[at].torque.z, double(k));
+      }
+  }
+}
+
+TEST(Collectives, GatherWithEmptyRanksAndWindowsOfEveryRankBoundary) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  // Odd ranks hold nothing; even ranks hold 3 values each.
+  std::vector<std::int64_t> mine(r % 2 == 0 ? 3 : 0);
+  std::iota(mine.begin(), mine.end(), std::int64_t{10} * r);
+  std::vector<std::int64_t> expected;
+  for (int from = 0; from < n; from += 2)
+    for (std::int64_t k = 0; k < 3; ++k) expected.push_back(10 * from + k);
+  for (std::size_t window = 1; window <= expected.size() + 1; ++window) {
+    const std::vector<std::int64_t> all = gather_on_root(MPI_COMM_WORLD, mine, window);
+    if (r == 0) EXPECT_EQ(all, expected) << "window " << window;
+    else EXPECT_TRUE(all.empty());
+  }
+}
+
+TEST(Collectives, MinMaxAnyPrefixSumAndAllGatherOfOneValue) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  EXPECT_EQ(min(MPI_COMM_WORLD, 5.0 + r), 5.0);
+  EXPECT_EQ(max(MPI_COMM_WORLD, 5.0 + r), 5.0 + (n - 1));
+  EXPECT_FALSE(any(MPI_COMM_WORLD, false));
+  EXPECT_TRUE(any(MPI_COMM_WORLD, r == n - 1));  // true on one rank only
+  EXPECT_EQ(exclusive_prefix_sum(MPI_COMM_WORLD, std::int64_t{r + 1}), std::int64_t{r} * (r + 1) / 2);
+  const std::vector<double> all = all_gather(MPI_COMM_WORLD, 0.5 * r);
+  ASSERT_EQ(all.size(), static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) EXPECT_EQ(all[static_cast<std::size_t>(k)], 0.5 * k);
+}
+
+TEST(Collectives, BroadcastOfStringsAndVectorsCarriesTheRootsLength) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  const int root = n - 1;
+  std::string text = r == root ? std::string("from the last rank") : std::string(100, 'x');
+  broadcast(MPI_COMM_WORLD, text, root);
+  EXPECT_EQ(text, "from the last rank");
+  std::string empty = r == 0 ? std::string() : std::string("not empty");
+  broadcast(MPI_COMM_WORLD, empty);
+  EXPECT_TRUE(empty.empty());
+  std::vector<std::uint64_t> values = r == 0 ? std::vector<std::uint64_t>{1, 2, 3, 4, 5} : std::vector<std::uint64_t>{};
+  broadcast(MPI_COMM_WORLD, values, 0, 2);  // in pieces of two
+  EXPECT_EQ(values, (std::vector<std::uint64_t>{1, 2, 3, 4, 5}));
+}
+
+TEST(Collectives, AllToAllDeliversRecordsBySourceRank) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  // Rank r sends `to` copies of (r, to) to rank `to`.
+  std::vector<std::vector<std::array<std::int32_t, 2>>> out(static_cast<std::size_t>(n));
+  for (int to = 0; to < n; ++to) out[static_cast<std::size_t>(to)].assign(static_cast<std::size_t>(to), {r, to});
+  const auto in = all_to_all(MPI_COMM_WORLD, out);
+  ASSERT_EQ(in.size(), static_cast<std::size_t>(n * r));
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    EXPECT_EQ(in[k][0], static_cast<std::int32_t>(k) / r);  // by source rank, in order
+    EXPECT_EQ(in[k][1], r);
+  }
 }
 
 }  // namespace

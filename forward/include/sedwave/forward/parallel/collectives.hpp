@@ -6,11 +6,14 @@
 // The scene side (channel/) uses these instead of raw MPI calls; MPI itself stays in the DEM
 // domain, the task farm and the applications.
 //
-// MPI counts are int: a span longer than 2^31 - 1 elements (a broadcast packing of 1.4e7 grains as
-// bytes) is sent in pieces, so no length wraps around.
+// MPI counts are int, and Open MPI 4.1 has no MPI-4 large-count calls (MPI_Bcast_c and kin): a span
+// longer than 2^31 - 1 elements (a broadcast packing of 1.4e7 grains as bytes) is sent in pieces,
+// a gather beyond 2^31 - 1 records goes in windows, and any other count that does not fit an int
+// is refused (std::overflow_error) rather than wrapped.
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cstddef>
 #include <cstdint>
@@ -88,6 +91,12 @@ void in_pieces(std::size_t n, std::size_t max_count, Piece piece) {
   } while (first < n);
 }
 
+/// The part of [first, first + count) that falls in the window [lo, hi), as (offset, length).
+inline std::array<std::size_t, 2> overlap(std::size_t first, std::size_t count, std::size_t lo, std::size_t hi) {
+  const std::size_t begin = std::clamp(first, lo, hi), end = std::clamp(first + count, lo, hi);
+  return {begin, end - begin};
+}
+
 template <typename T, std::size_t N>
 void all_reduce(MPI_Comm comm, std::span<T, N> values, MPI_Op op, std::size_t max_count) {
   in_pieces(values.size(), max_count, [&](std::size_t first, int count) {
@@ -149,6 +158,39 @@ template <typename T>
   sum(comm, std::span<T, 1>(&value, 1));
   return value;
 }
+template <typename T>
+[[nodiscard]] T min(MPI_Comm comm, T value) {
+  min(comm, std::span<T, 1>(&value, 1));
+  return value;
+}
+template <typename T>
+[[nodiscard]] T max(MPI_Comm comm, T value) {
+  max(comm, std::span<T, 1>(&value, 1));
+  return value;
+}
+
+/// Whether `value` is true on any rank of `comm` (collective).
+[[nodiscard]] inline bool any(MPI_Comm comm, bool value) {
+  int v = value ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, comm);
+  return v != 0;
+}
+
+/// The sum of `value` over the ranks before this one (0 on rank 0; collective).
+template <typename T>
+[[nodiscard]] T exclusive_prefix_sum(MPI_Comm comm, T value) {
+  T before{};
+  MPI_Exscan(&value, &before, 1, datatype<T>(), MPI_SUM, comm);
+  return rank(comm) == 0 ? T{} : before;  // MPI_Exscan leaves rank 0's result undefined
+}
+
+/// Every rank's `value`, in rank order, on every rank (collective).
+template <typename T>
+[[nodiscard]] std::vector<T> all_gather(MPI_Comm comm, T value) {
+  std::vector<T> all(static_cast<std::size_t>(size(comm)));
+  MPI_Allgather(&value, 1, datatype<T>(), all.data(), 1, datatype<T>(), comm);
+  return all;
+}
 
 /// `values` as `root` holds them, on every rank of `comm` (collective; the sizes must agree).
 template <typename T, std::size_t N>
@@ -156,6 +198,78 @@ void broadcast(MPI_Comm comm, std::span<T, N> values, int root = 0, std::size_t 
   detail::in_pieces(values.size(), max_count, [&](std::size_t first, int count) {
     MPI_Bcast(values.data() + first, count, datatype<T>(), root, comm);
   });
+}
+
+/// One value as `root` holds it, on every rank of `comm` (collective).
+template <typename T>
+void broadcast(MPI_Comm comm, T& value, int root = 0) requires std::is_arithmetic_v<T> {
+  broadcast(comm, std::span<T, 1>(&value, 1), root);
+}
+
+/// A vector (length and contents) as `root` holds it, on every rank of `comm` (collective).
+template <typename T>
+void broadcast(MPI_Comm comm, std::vector<T>& values, int root = 0, std::size_t max_count = kMaxMpiCount) {
+  std::uint64_t length = values.size();
+  broadcast(comm, length, root);
+  values.resize(static_cast<std::size_t>(length));
+  broadcast(comm, std::span(values), root, max_count);
+}
+
+/// A string as `root` holds it, on every rank of `comm` (collective).
+inline void broadcast(MPI_Comm comm, std::string& text, int root = 0) {
+  std::uint64_t length = text.size();
+  broadcast(comm, length, root);
+  text.resize(static_cast<std::size_t>(length));
+  broadcast(comm, std::span(text.data(), text.size()), root);
+}
+
+/// Trivially copyable records from every rank on rank 0, in rank order (empty elsewhere;
+/// collective). Counted in records, not bytes; a total beyond `max_count` records goes in windows
+/// of the rank-ordered sequence, each one MPI_Gatherv whose counts and displacements fit an int.
+template <typename T>
+std::vector<T> gather_on_root(MPI_Comm comm, const std::vector<T>& local, std::size_t max_count = kMaxMpiCount) {
+  const RecordType<T> record;
+  const std::vector<std::uint64_t> counts = all_gather(comm, std::uint64_t{local.size()});
+  std::vector<std::size_t> first(counts.size() + 1, 0);  // where each rank's records start
+  for (std::size_t r = 0; r < counts.size(); ++r) first[r + 1] = first[r] + static_cast<std::size_t>(counts[r]);
+  const std::size_t total = first.back();
+  const bool root = rank(comm) == 0;
+  const auto me = static_cast<std::size_t>(rank(comm));
+  std::vector<T> all(root ? total : 0);
+  std::vector<int> window_counts(counts.size()), window_displs(counts.size());
+  detail::in_pieces(total, max_count, [&](std::size_t lo, int length) {
+    const std::size_t hi = lo + static_cast<std::size_t>(length);
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      const auto [at, n] = detail::overlap(first[r], static_cast<std::size_t>(counts[r]), lo, hi);
+      window_counts[r] = mpi_count(n);
+      window_displs[r] = mpi_count(at - lo);
+    }
+    const auto [mine, n_mine] = detail::overlap(first[me], local.size(), lo, hi);
+    const T* send = n_mine > 0 ? local.data() + (mine - first[me]) : local.data();
+    MPI_Gatherv(send, mpi_count(n_mine), record.get(), root ? all.data() + lo : nullptr,
+                window_counts.data(), window_displs.data(), record.get(), 0, comm);
+  });
+  return all;
+}
+
+/// Sends per-destination vectors of trivially copyable records with one all-to-all; returns what
+/// arrived, ordered by source rank (deterministic; collective). Counted in records, not bytes; a
+/// total beyond 2^31 - 1 records on one rank is refused (std::overflow_error).
+template <typename T>
+std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outgoing) {
+  const RecordType<T> record;
+  const std::size_t n = outgoing.size();
+  std::vector<int> send_counts(n), recv_counts(n);
+  for (std::size_t r = 0; r < n; ++r) send_counts[r] = mpi_count(outgoing[r].size());
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  const std::vector<int> send_displs = displacements(send_counts);
+  const std::vector<int> recv_displs = displacements(recv_counts);
+  std::vector<T> send(static_cast<std::size_t>(send_displs.back()) + outgoing.back().size());
+  for (std::size_t r = 0; r < n; ++r) std::copy(outgoing[r].begin(), outgoing[r].end(), send.begin() + send_displs[r]);
+  std::vector<T> incoming(static_cast<std::size_t>(recv_displs.back()) + static_cast<std::size_t>(recv_counts.back()));
+  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), record.get(), incoming.data(),
+                recv_counts.data(), recv_displs.data(), record.get(), comm);
+  return incoming;
 }
 
 }  // namespace sedwave::forward::parallel
