@@ -130,27 +130,19 @@ void H5mdWriter::write(const Engine& engine) {
   const MPI_Comm comm = domain.comm();
   const auto first_row = parallel::exclusive_prefix_sum(comm, static_cast<std::int64_t>(engine.n_local()));
 
-  // Ranks write in turn (a token passed along carries the status so far), so no rank ever holds
-  // all grains; rank 0 goes first and adds the frame's row to every series.
-  int failed = 0;
-  std::string error;
-  if (domain.rank() > 0) MPI_Recv(&failed, 1, MPI_INT, domain.rank() - 1, 22, comm, MPI_STATUS_IGNORE);
-  if (failed == 0) {
-    try {
+  // Ranks write in turn, so no rank ever holds all grains; rank 0 goes first and adds the frame's
+  // row to every series.
+  try {
+    parallel::in_turn(comm, [&] {
       if (domain.rank() == 0 && !started_) create_layout(path_, engine);
       h5::Handle file = h5::open_file(path_, true);
       h5::Handle all = h5::open_group(file, kParticles);
       if (domain.rank() == 0) begin_frame(all, engine);
       write_rows(all, engine, static_cast<hsize_t>(first_row));
-    } catch (const std::exception& e) {
-      failed = 1;
-      error = e.what();
-    }
+    });
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("H5MD trajectory " + path_ + ": " + e.what());
   }
-  if (domain.rank() + 1 < domain.size()) MPI_Send(&failed, 1, MPI_INT, domain.rank() + 1, 22, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm);
-  if (failed != 0)
-    throw std::runtime_error("H5MD trajectory " + path_ + ": " + (error.empty() ? "write failed on another rank" : error));
   started_ = true;
 }
 

@@ -1,7 +1,5 @@
 #include "sedwave/forward/dem/lammps_io.hpp"
 
-#include <mpi.h>
-
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -15,6 +13,7 @@
 #include <unordered_set>
 
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/forward/units.hpp"
 #include "sedwave/io/atomic_file.hpp"
 
@@ -313,10 +312,8 @@ std::size_t truncate_lammps_dump(const std::string& path, std::int64_t last_step
 void LammpsDumpWriter::write(const Engine& engine) {
   const Domain& domain = engine.domain();
   const GrainArrays& g = engine.grains();
-  // Rank by rank in turn (a token passed along), so no rank ever holds all grains.
-  int token = 0;
-  if (domain.rank() > 0) MPI_Recv(&token, 1, MPI_INT, domain.rank() - 1, 21, domain.comm(), MPI_STATUS_IGNORE);
-  {
+  // Rank by rank in turn, so no rank ever holds all grains; a rank that cannot write stops all.
+  parallel::in_turn(domain.comm(), [&] {
     std::ofstream out(path_, started_ || domain.rank() > 0 ? std::ios::app : std::ios::trunc);
     if (!out) throw std::runtime_error(path_ + ": cannot write");
     out << std::setprecision(kFullPrecision);
@@ -333,9 +330,8 @@ void LammpsDumpWriter::write(const Engine& engine) {
       out << g.id[i] << ' ' << g.group[i] << ' ' << g.radius[i] << ' ' << g.position[i].x << ' '
           << g.position[i].y << ' ' << g.position[i].z << ' ' << g.velocity[i].x << ' ' << g.velocity[i].y
           << ' ' << g.velocity[i].z << '\n';
-  }
-  if (domain.rank() + 1 < domain.size()) MPI_Send(&token, 1, MPI_INT, domain.rank() + 1, 21, domain.comm());
-  MPI_Barrier(domain.comm());
+    if (!out.flush()) throw std::runtime_error(path_ + ": cannot write");
+  });
   started_ = true;
 }
 

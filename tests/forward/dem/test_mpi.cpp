@@ -194,5 +194,37 @@ TEST(Trajectories, FourRanksWriteEveryGrainOnceBitExact) {
   std::filesystem::remove(dump);
 }
 
+// A trajectory file that cannot be opened (its path is a directory): rank 0's turn fails, and
+// every rank throws the same error rather than waiting for a token that never comes.
+TEST(Trajectories, AnUnwritableFileFailsOnEveryRankWithOneMessage) {
+  const std::string directory = testing::temp_path("dem_mpi_unwritable", MPI_COMM_WORLD);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) std::filesystem::create_directories(directory);
+  MPI_Barrier(MPI_COMM_WORLD);
+  Box box;
+  std::vector<Grain> all = tall_column(2, 12, 0.01, box, 7);
+  Engine engine(MPI_COMM_WORLD, scene_settings(true, box, true), rank == 0 ? all : std::vector<Grain>{});
+  H5mdWriter h5md_writer(directory);
+  LammpsDumpWriter dump_writer(directory);
+  const auto message_of = [](const auto& write) {
+    try {
+      write();
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (const std::string& message : {message_of([&] { dump_writer.write(engine); }),
+                                     message_of([&] { h5md_writer.write(engine); })}) {
+    EXPECT_NE(message.find(directory), std::string::npos) << message;
+    std::string from_rank_0 = message;
+    parallel::broadcast(MPI_COMM_WORLD, from_rank_0);
+    EXPECT_EQ(message, from_rank_0);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0) std::filesystem::remove_all(directory);
+}
+
 }  // namespace
 }  // namespace sedwave::forward::dem

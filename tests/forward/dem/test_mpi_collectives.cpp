@@ -3,10 +3,14 @@
 // records (not bytes), and a count that does not fit an int is refused rather than wrapped. Small
 // piece and window sizes stand in for 2^31 - 1.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <climits>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -140,6 +144,37 @@ TEST(Collectives, AllToAllDeliversRecordsBySourceRank) {
     EXPECT_EQ(in[k][0], static_cast<std::int32_t>(k) / r);  // by source rank, in order
     EXPECT_EQ(in[k][1], r);
   }
+}
+
+// Turns run in rank order, one at a time; a failing turn is passed along, so every rank throws the
+// failing rank's message and no later rank runs or waits forever.
+TEST(Collectives, TurnsRunInRankOrderAndAFailureReachesEveryRank) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  // Each turn appends its rank to one file: the file lists the ranks in order, each once.
+  std::string path = (std::filesystem::temp_directory_path() / ("sedwave_turns_" + std::to_string(::getpid()))).string();
+  broadcast(MPI_COMM_WORLD, path);
+  in_turn(MPI_COMM_WORLD, [&] { std::ofstream(path, r == 0 ? std::ios::trunc : std::ios::app) << r << ' '; });
+  if (r == 0) {
+    std::ifstream in(path);
+    std::vector<int> order{std::istream_iterator<int>(in), std::istream_iterator<int>()};
+    std::vector<int> expected(static_cast<std::size_t>(n));
+    std::iota(expected.begin(), expected.end(), 0);
+    EXPECT_EQ(order, expected);
+    std::filesystem::remove(path);
+  }
+
+  const int failing = n > 1 ? 1 : 0;
+  bool ran = false;
+  try {
+    in_turn(MPI_COMM_WORLD, [&] {
+      ran = true;
+      if (r == failing) throw std::runtime_error("rank " + std::to_string(r) + " cannot open its output");
+    });
+    ADD_FAILURE() << "rank " << r << " did not throw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), ("rank " + std::to_string(failing) + " cannot open its output").c_str());
+  }
+  EXPECT_EQ(ran, r <= failing) << "rank " << r;  // the ranks after the failing one skip their turn
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <array>
 #include <climits>
 #include <cstddef>
+#include <exception>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -270,6 +271,34 @@ std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outg
   MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), record.get(), incoming.data(),
                 recv_counts.data(), recv_displs.data(), record.get(), comm);
   return incoming;
+}
+
+/// Runs `turn` on every rank of `comm` one after another in rank order (rank 0 first), each rank
+/// starting once the one before has finished: ranks writing their own part of one file in turn, so
+/// that no rank holds everything (collective). A token passed along carries the failure so far: once
+/// a rank's turn throws, the ranks after it skip theirs, and every rank then throws
+/// std::runtime_error with the first failing rank's message (no rank is left waiting for a token).
+template <class Turn>
+void in_turn(MPI_Comm comm, Turn turn) {
+  constexpr int kTokenTag = 0x7070;
+  const int me = rank(comm), n = size(comm);
+  int failed = 0;
+  std::string error;
+  if (me > 0) MPI_Recv(&failed, 1, MPI_INT, me - 1, kTokenTag, comm, MPI_STATUS_IGNORE);
+  if (failed == 0) {
+    try {
+      turn();
+    } catch (const std::exception& e) {
+      failed = 1;
+      error = e.what();
+      if (error.empty()) error = "failed on rank " + std::to_string(me);
+    }
+  }
+  if (me + 1 < n) MPI_Send(&failed, 1, MPI_INT, me + 1, kTokenTag, comm);
+  const int first_failing = min(comm, error.empty() ? n : me);
+  if (first_failing == n) return;
+  broadcast(comm, error, first_failing);
+  throw std::runtime_error(error);
 }
 
 }  // namespace sedwave::forward::parallel
