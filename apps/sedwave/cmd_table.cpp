@@ -35,11 +35,6 @@ struct TableOptions {
   bool allow_changed_inputs = false;
 };
 
-experiment::TableEngine table_engine(const std::string& name) {
-  if (name == "time_domain") return experiment::TableEngine::time_domain;
-  return name == "linear" ? experiment::TableEngine::linear : experiment::TableEngine::long_wavelength;
-}
-
 /// The table, its journal and packings that do not exist yet are written; the grid, the scene and
 /// existing packings are read. All checked before any work.
 void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, const experiment::ChannelScene& scene) {
@@ -61,12 +56,12 @@ void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, 
 
 /// The options a run of this scene can honour; throws std::invalid_argument for the others.
 void check_table_options(const TableOptions& o, const table::TableGridFile& grid, const experiment::ChannelScene& scene,
-                         experiment::TableEngine engine, const MpiSession& mpi) {
+                         experiment::EngineKind engine, const MpiSession& mpi) {
   if (mpi.size() % grid.ranks_per_point != 0) {
     throw std::invalid_argument(o.grid_file + ": ranks_per_point = " + std::to_string(grid.ranks_per_point) +
                                 " does not divide the " + std::to_string(mpi.size()) + " MPI ranks");
   }
-  if (o.member >= 0 && engine != experiment::TableEngine::linear) {
+  if (o.member >= 0 && engine != experiment::EngineKind::linear) {
     throw std::invalid_argument("--member is for the driven linear engine (--engine linear, or engine = \"linear\" "
                                 "in the scene)");
   }
@@ -102,7 +97,7 @@ Command add_table_command(CLI::App& app) {
   cmd->add_option("--engine", o->engine,
                   "override the scene's engine: time_domain (DEM), linear (linear response) or long_wavelength "
                   "(the packing's omega_hat -> 0 limit at fixed omega_hat*gamma_hat, for field frequencies)")
-      ->check(CLI::IsMember({"time_domain", "linear", "long_wavelength"}));
+      ->check(CLI::IsMember(experiment::engine_names()));
   cmd->add_option("--member", o->member,
                   "with --engine linear: compute ensemble member K alone (seed + K, packing FILE.member<K>) into a "
                   "member table, for ensembles too large for one process; combine the members with sedwave merge")
@@ -117,9 +112,8 @@ Command add_table_command(CLI::App& app) {
     // Every rank reads both files: they are small, and errors then stop all ranks alike.
     const table::TableGridFile grid = table::read_grid_file(o->grid_file);
     experiment::ChannelScene scene = experiment::read_scene(grid.scene_path);
-    if (!o->engine.empty()) experiment::use_table_engine(scene, table_engine(o->engine));
-    const experiment::TableEngine engine =
-        o->engine.empty() ? experiment::table_engine_of(scene) : table_engine(o->engine);
+    if (!o->engine.empty()) experiment::use_table_engine(scene, experiment::engine_named(o->engine));
+    const experiment::EngineKind engine = scene.engine;
     check_table_options(*o, grid, scene, engine, mpi);
     check_table_paths(*o, grid, scene);
     const bool talk = mpi.rank() == 0 && !o->quiet;

@@ -53,6 +53,8 @@ sedwave_cli_case(scene.fluid.roughness_above_cutoff 1 [=[fluid_roughness_above_c
 sedwave_cli_case(scene.fluid.unknown_key 1 [=[fluid_unknown_key\.toml:74: key 'fluid\.density': unknown key]=] forward ${SCENE_DATA}/fluid_unknown_key.toml --out ${SCENE_OUT}/fluid.h5)
 sedwave_cli_case(scene.fluid.missing_cutoff 1 [=[fluid_missing_cutoff\.toml:70: key 'fluid\.cutoff': missing \(required\)]=] forward ${SCENE_DATA}/fluid_missing_cutoff.toml --out ${SCENE_OUT}/fluid.h5)
 sedwave_cli_case(scene.fluid.porosity_without_its_drag 1 [=[fluid_porosity_without_its_drag\.toml:75: key 'fluid\.porosity': is read by drag = "richardson_zaki" only]=] forward ${SCENE_DATA}/fluid_porosity_without_its_drag.toml --out ${SCENE_OUT}/fluid.h5)
+# The long-wavelength limit computes tables only: a scene (and so `sedwave forward`) names a driven engine.
+sedwave_cli_case(scene.forward.long_wavelength_refused 1 [=[long_wavelength_engine\.toml:4: key 'engine': must be one of linear, time_domain]=] forward ${SCENE_DATA}/long_wavelength_engine.toml --out ${SCENE_OUT}/long_wavelength_engine.h5)
 sedwave_cli_case(scene.fluid.long_wavelength_refused 1 [=[fluid_table_scene\.toml: the long-wavelength limit is not defined with a pore fluid]=] table ${SCENE_DATA}/fluid_table_grid.toml --engine long_wavelength --out ${SCENE_OUT}/fluid_lw.h5)
 set(DEM_COLUMN ${PROJECT_SOURCE_DIR}/tests/forward/dem/data/fcc_column.data)
 sedwave_cli_case(scene.fluid.dem_negative_viscosity 2 [=[--fluid-viscosity: value -1 not in the accepted range \(0, inf\)]=] dem ${DEM_COLUMN} --steps 0 --kn 1000 --quiet --fluid-viscosity -1 --fluid-roughness 0.001 --fluid-cutoff 0.1)

@@ -228,8 +228,7 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
   Section top(root, "", origin);
   top.allow_only({"title", "engine", "geometry", "contact", "preparation", "drive", "linear", "fluid"});
   top.text("title", "");
-  scene.engine = top.choice("engine", "time_domain", {"time_domain", "linear"}) == "linear" ? EngineKind::linear
-                                                                                           : EngineKind::time_domain;
+  scene.engine = engine_named(top.choice("engine", "time_domain", {"time_domain", "linear"}));  // the driven engines
   read_geometry(top.sub("geometry"), scene, base);
   read_contact(top.sub("contact"), scene.contact);
   read_preparation(top.sub("preparation"), scene.preparation);

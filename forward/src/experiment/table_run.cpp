@@ -19,9 +19,9 @@ namespace {
 std::string engine_tag(const ChannelScene& scene, const TableRun& run) {
   if (run.member >= 0) return member_engine_tag(run.member, scene.linear.ensemble);
   switch (run.engine) {
-    case TableEngine::time_domain: return "sedwave-dem";
-    case TableEngine::linear: return "sedwave-linear";
-    case TableEngine::long_wavelength: return "sedwave-long-wavelength";
+    case EngineKind::time_domain: return "sedwave-dem";
+    case EngineKind::linear: return "sedwave-linear";
+    case EngineKind::long_wavelength: return "sedwave-long-wavelength";
   }
   throw std::logic_error("unknown table engine");
 }
@@ -83,7 +83,7 @@ table::FarmReport fill_linear(const table::TableGridFile& grid, const ChannelSce
     provenance += (k > first ? "; " : "") + packing.provenance;
   }
   const table::PointFunction point =
-      run.engine == TableEngine::long_wavelength ? long_wavelength_point_function(members, scene.drive.axis)
+      run.engine == EngineKind::long_wavelength ? long_wavelength_point_function(members, scene.drive.axis)
       : run.member >= 0                          ? member_point_function(members.front(), scene.drive)
                                                  : linear_point_function(members, scene.drive);
   // A member table records its one packing; merging member tables combines them as here.
@@ -95,31 +95,26 @@ table::FarmReport fill_linear(const table::TableGridFile& grid, const ChannelSce
 
 }  // namespace
 
-TableEngine table_engine_of(const ChannelScene& scene) {
-  return scene.engine == EngineKind::linear ? TableEngine::linear : TableEngine::time_domain;
-}
-
-void use_table_engine(ChannelScene& scene, TableEngine engine) {
-  scene.engine = engine == TableEngine::time_domain ? EngineKind::time_domain : EngineKind::linear;
-  if (engine == TableEngine::long_wavelength && scene.drive.fluid) {
+void use_table_engine(ChannelScene& scene, EngineKind engine) {
+  scene.engine = engine;
+  if (engine == EngineKind::long_wavelength && scene.drive.fluid) {
     // Refused before any packing is prepared: every point would fail (linear/long_wavelength.hpp).
     throw std::invalid_argument(scene.path.string() + ": the long-wavelength limit is not defined with a pore fluid "
                                 "([fluid]: its dashpots do not scale with gamma_hat); use --engine linear");
   }
-  if (engine != TableEngine::linear) return;
-  if (const std::string refusal = engine_refusal(scene.engine, scene.drive); !refusal.empty()) {
+  if (const std::string refusal = engine_refusal(engine, scene.drive); !refusal.empty()) {
     throw std::invalid_argument(scene.path.string() + ": the linear engine cannot run this scene: [drive] " + refusal);
   }
 }
 
-int ranks_per_point(const table::TableGridFile& grid, TableEngine engine) {
-  return engine == TableEngine::time_domain ? grid.ranks_per_point : 1;
+int ranks_per_point(const table::TableGridFile& grid, EngineKind engine) {
+  return engine == EngineKind::time_domain ? grid.ranks_per_point : 1;
 }
 
 table::FarmReport fill_table(const table::TableGridFile& grid, const ChannelScene& scene, const TableRun& run,
                              table::FarmSettings farm) {
   farm.ranks_per_point = ranks_per_point(grid, run.engine);
-  if (run.engine == TableEngine::time_domain) return fill_time_domain(grid, scene, run, farm);
+  if (run.engine == EngineKind::time_domain) return fill_time_domain(grid, scene, run, farm);
   return fill_linear(grid, scene, run, farm);
 }
 

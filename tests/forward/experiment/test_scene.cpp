@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <variant>
 #include <string>
 #include <vector>
@@ -34,6 +35,16 @@ TEST(Scene, ShippedLinearExampleParses) {
   EXPECT_DOUBLE_EQ(s.linear.refuse_state_changes, 0.1);
   EXPECT_EQ(read_scene(std::string(SEDWAVE_SOURCE_DIR) + "/data/scenes/thesis_w3.toml").engine,
             EngineKind::time_domain);
+}
+
+TEST(Scene, EveryEngineNameNamesItsOwnEngine) {
+  const std::vector<std::string>& names = engine_names();
+  ASSERT_EQ(names.size(), 3u);
+  for (std::size_t k = 0; k < names.size(); ++k) EXPECT_EQ(engine_named(names[k]), static_cast<EngineKind>(k));
+  EXPECT_EQ(engine_named("long_wavelength"), EngineKind::long_wavelength);
+  EXPECT_THROW((void)engine_named("longwavelength"), std::invalid_argument);
+  // A scene names an engine that drives its packing; the long-wavelength limit is for tables.
+  EXPECT_THROW((void)parse_scene("engine = \"long_wavelength\"\n", "x.toml"), SceneError);
 }
 
 TEST(Scene, ContactSelectsEveryKindOfPart) {

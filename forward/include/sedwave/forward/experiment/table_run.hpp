@@ -15,24 +15,17 @@
 
 namespace sedwave::forward::experiment {
 
-/// What computes a table's points: the driven engines (EngineKind), or the linear engine's
-/// packings in their long-wavelength limit (linear/long_wavelength.hpp), which solves a
-/// quasi-static problem and so reads neither the drive's signal nor its far end.
-enum class TableEngine { time_domain, linear, long_wavelength };
-
-/// The table engine a scene asks for.
-[[nodiscard]] TableEngine table_engine_of(const ChannelScene& scene);
-
-/// Runs `scene` with `engine` instead of its own (an override from the command line). Throws
-/// std::invalid_argument naming the scene when that engine cannot drive the scene's drive.
-void use_table_engine(ChannelScene& scene, TableEngine engine);
+/// Runs `scene` with `engine` instead of its own (an override from the command line; any engine,
+/// the long-wavelength limit included). Throws std::invalid_argument naming the scene when that
+/// engine cannot run the scene.
+void use_table_engine(ChannelScene& scene, EngineKind engine);
 
 struct TableRun {
   std::filesystem::path table;  ///< the table file, created or resumed
   /// Packing file (member k: member_path): reused where it exists, else the prepared packing is
   /// saved there so that a restart skips the preparation; empty: prepare, save nothing.
   std::string packing;
-  TableEngine engine = TableEngine::time_domain;
+  EngineKind engine = EngineKind::time_domain;
   int member = -1;              ///< >= 0: this linear ensemble member alone (a member table)
   std::ostream* log = nullptr;       ///< preparation progress (rank 0), or nullptr
   std::ostream* warnings = nullptr;  ///< what the table cannot say itself (rank 0), or nullptr
@@ -40,7 +33,7 @@ struct TableRun {
 
 /// The ranks that compute one point together: the grid's for the time-domain engine, 1 for the
 /// linear ones (their solves are serial; every rank holds every member).
-[[nodiscard]] int ranks_per_point(const table::TableGridFile& grid, TableEngine engine);
+[[nodiscard]] int ranks_per_point(const table::TableGridFile& grid, EngineKind engine);
 
 /// Fills (or resumes) run.table on `grid` from `scene` with `farm` (its ranks_per_point is
 /// replaced by ranks_per_point(grid, run.engine)). Collective over MPI_COMM_WORLD.
