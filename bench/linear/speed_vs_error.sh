@@ -6,7 +6,7 @@
 # prepared here first. The time-domain DEM runs on the first packing of the two smaller sizes for 10
 # and 40 drive periods. The reference is the five N = 10^4 channels (directly prepared, unlike the
 # stacked ones, whose disorder repeats every cell). Prints the table and draws error against wall
-# time, log-log, into docs/images/speed_vs_error.{png,svg} (docs/performance.md). About 6 minutes
+# time, log-log, into docs/images/speed_vs_error.{png,svg} (docs/performance.md). Several minutes
 # on one core, 12 GB of memory.
 #
 #   bench/linear/speed_vs_error.sh [BUILD_DIR] [OUT_DIR]
