@@ -12,8 +12,8 @@ namespace sedwave::app {
 namespace {
 
 using Error = std::invalid_argument;
-using forward::toml_io::Range;
-using Table = forward::toml_io::Table<Error>;
+using io::Range;
+using Table = io::Table<Error>;
 
 constexpr double kQuartzDensity = 2650.0;  // for the depth's effective stress when the model has none
 constexpr double kSeaWaterDensity = 1025.0;
@@ -28,7 +28,7 @@ std::string number(double x) {
 
 SiteFile read_site_file(const std::filesystem::path& path) {
   const std::string origin = path.string();
-  const toml::value root = forward::toml_io::parse<Error>(forward::toml_io::read_text<Error>(path, "site file"), origin);
+  const toml::value root = io::parse<Error>(io::read_text<Error>(path, "site file"), origin);
   Table top(root, "", origin);
   top.allow_only({"grain_size", "porosity", "depth", "water", "restitution"});
   SiteFile site{origin, {}};
@@ -56,7 +56,7 @@ SiteFile read_site_file(const std::filesystem::path& path) {
     const double z = t.number_value(metres, t.name("metres"), Range::above(0.0, 1000.0, "m"));
     const double sd = t.number_value(t.at("kappa_sd_ln"), t.name("kappa_sd_ln"), Range::above(0.0, 10.0));
     if (!diameter) {
-      throw Error(forward::toml_io::where(metres, origin) +
+      throw Error(io::where(metres, origin) +
                   ": key 'depth.metres': the Hertz stiffness needs the grain size: give [grain_size] too");
     }
     const double pressure = sediment::sand_pressure_at_depth(z, porosity, kQuartzDensity, kSeaWaterDensity);
@@ -79,7 +79,7 @@ SiteFile read_site_file(const std::filesystem::path& path) {
     const double lo = t.number_value(t.at("lower"), t.name("lower"), Range::above(0.0, 1.0));
     const toml::value& upper = t.at("upper");
     const double hi = t.number_value(upper, t.name("upper"), Range::above(0.0, 1.0));
-    if (!(hi > lo)) throw Error(forward::toml_io::where(upper, origin) + ": key 'restitution.upper': must exceed lower");
+    if (!(hi > lo)) throw Error(io::where(upper, origin) + ": key 'restitution.upper': must exceed lower");
     site.entries.push_back({"e_n", "uniform:" + number(lo) + "," + number(hi), 0.5 * (lo + hi)});
   }
   return site;

@@ -13,7 +13,7 @@
 #include <map>
 #include <string>
 
-#include "../io/hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
@@ -45,15 +45,15 @@ std::vector<double> vectors(const std::vector<Grain>& grains, Vec3 Grain::*field
 /// The run's inputs as a checkpoint recorded them (empty when it recorded none).
 std::map<std::string, std::string> recorded_inputs(hid_t file) {
   std::map<std::string, std::string> inputs;
-  if (!h5::exists(file, "inputs")) return inputs;
-  h5::Handle group(H5Gopen2(file, "inputs", H5P_DEFAULT), H5Gclose, "open /inputs");
+  if (!io::exists(file, "inputs")) return inputs;
+  io::Handle group(H5Gopen2(file, "inputs", H5P_DEFAULT), H5Gclose, "open /inputs");
   std::vector<std::string> names;
   const auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
     static_cast<std::vector<std::string>*>(out)->emplace_back(name);
     return 0;
   };
-  h5::check(H5Aiterate2(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), "list /inputs");
-  for (const std::string& name : names) inputs[name] = h5::read_string_attribute(group, name);
+  io::check(H5Aiterate2(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), "list /inputs");
+  for (const std::string& name : names) inputs[name] = io::read_string_attribute(group, name);
   return inputs;
 }
 
@@ -86,35 +86,35 @@ void Engine::write_checkpoint(const std::string& path) {
   if (domain_.rank() == 0) {
     try {
       // A reader (or a restart after SIGKILL) sees the old or the new file, never half of one.
-      h5::write_file_atomically(path, [&](const h5::Handle& file) {
-        h5::write_string_attribute(file, "format", "sedwave-dem-checkpoint");
-        h5::write_attribute(file, "version", kCheckpointVersion);
-        h5::write_attribute(file, "step", step_);
-        h5::write_attribute(file, "time", time_);
-        h5::write_attribute(file, "dt", dt_);
-        h5::write_attribute(file, "ranks", static_cast<std::int32_t>(domain_.size()));
-        h5::write_attribute(file, "rebuilds", rebuilds_);
-        h5::write_string_attribute(file, "user_state", user_state_);
-        h5::write_string_attribute(file, "contact_model", describe(settings_.contact));
-        h5::Handle inputs = h5::create_group(file, "inputs");
-        for (const auto& [name, value] : settings_.checkpoint.inputs) h5::write_string_attribute(inputs, name, value);
+      io::write_file_atomically(path, [&](const io::Handle& file) {
+        io::write_string_attribute(file, "format", "sedwave-dem-checkpoint");
+        io::write_attribute(file, "version", kCheckpointVersion);
+        io::write_attribute(file, "step", step_);
+        io::write_attribute(file, "time", time_);
+        io::write_attribute(file, "dt", dt_);
+        io::write_attribute(file, "ranks", static_cast<std::int32_t>(domain_.size()));
+        io::write_attribute(file, "rebuilds", rebuilds_);
+        io::write_string_attribute(file, "user_state", user_state_);
+        io::write_string_attribute(file, "contact_model", describe(settings_.contact));
+        io::Handle inputs = io::create_group(file, "inputs");
+        for (const auto& [name, value] : settings_.checkpoint.inputs) io::write_string_attribute(inputs, name, value);
 
-        h5::Handle g = h5::create_group(file, "grains");
+        io::Handle g = io::create_group(file, "grains");
         const std::size_t n = all.size();
-        h5::write(g, "id", column<std::int64_t>(all, [](const Grain& x) { return x.id; }).data(), n);
-        h5::write(g, "group", column<std::int32_t>(all, [](const Grain& x) { return x.group; }).data(), n);
-        h5::write(g, "body", column<std::int32_t>(all, [](const Grain& x) { return x.body; }).data(), n);
-        h5::write(g, "radius", column<double>(all, [](const Grain& x) { return x.radius; }).data(), n);
-        h5::write(g, "mass", column<double>(all, [](const Grain& x) { return x.mass; }).data(), n);
-        h5::write(g, "position", vectors(all, &Grain::position).data(), n, 3);
-        h5::write(g, "velocity", vectors(all, &Grain::velocity).data(), n, 3);
-        h5::write(g, "force", vectors(all, &Grain::force).data(), n, 3);
+        io::write(g, "id", column<std::int64_t>(all, [](const Grain& x) { return x.id; }).data(), n);
+        io::write(g, "group", column<std::int32_t>(all, [](const Grain& x) { return x.group; }).data(), n);
+        io::write(g, "body", column<std::int32_t>(all, [](const Grain& x) { return x.body; }).data(), n);
+        io::write(g, "radius", column<double>(all, [](const Grain& x) { return x.radius; }).data(), n);
+        io::write(g, "mass", column<double>(all, [](const Grain& x) { return x.mass; }).data(), n);
+        io::write(g, "position", vectors(all, &Grain::position).data(), n, 3);
+        io::write(g, "velocity", vectors(all, &Grain::velocity).data(), n, 3);
+        io::write(g, "force", vectors(all, &Grain::force).data(), n, 3);
         if (grains_.rotation()) {
-          h5::write(g, "angular_velocity", vectors(all, &Grain::angular_velocity).data(), n, 3);
-          h5::write(g, "torque", vectors(all, &Grain::torque).data(), n, 3);
+          io::write(g, "angular_velocity", vectors(all, &Grain::angular_velocity).data(), n, 3);
+          io::write(g, "torque", vectors(all, &Grain::torque).data(), n, 3);
         }
 
-        h5::Handle h = h5::create_group(file, "history");
+        io::Handle h = io::create_group(file, "history");
         std::vector<std::int64_t> a, b;
         std::vector<double> shear;
         for (const HistoryEntry& e : history) {
@@ -122,11 +122,11 @@ void Engine::write_checkpoint(const std::string& path) {
           b.push_back(e.b);
           shear.insert(shear.end(), {e.shear.x, e.shear.y, e.shear.z});
         }
-        h5::write(h, "a", a.data(), a.size());
-        h5::write(h, "b", b.data(), b.size());
-        h5::write(h, "shear", shear.data(), a.size(), 3);
+        io::write(h, "a", a.data(), a.size());
+        io::write(h, "b", b.data(), b.size());
+        io::write(h, "shear", shear.data(), a.size(), 3);
 
-        h5::Handle bodies = h5::create_group(file, "bodies");
+        io::Handle bodies = io::create_group(file, "bodies");
         std::vector<double> u, v, f;
         for (const RigidBody& body : bodies_) {
           for (const Vec3* x : {&body.displacement(), &body.velocity(), &body.contact_force()}) {
@@ -134,12 +134,12 @@ void Engine::write_checkpoint(const std::string& path) {
             out.insert(out.end(), {x->x, x->y, x->z});
           }
         }
-        h5::write(bodies, "displacement", u.data(), bodies_.size(), 3);
-        h5::write(bodies, "velocity", v.data(), bodies_.size(), 3);
-        h5::write(bodies, "contact_force", f.data(), bodies_.size(), 3);
+        io::write(bodies, "displacement", u.data(), bodies_.size(), 3);
+        io::write(bodies, "velocity", v.data(), bodies_.size(), 3);
+        io::write(bodies, "contact_force", f.data(), bodies_.size(), 3);
 
-        h5::Handle d = h5::create_group(file, "domain");
-        h5::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
+        io::Handle d = io::create_group(file, "domain");
+        io::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
       });
     } catch (const std::exception& e) {
       error = e.what();
@@ -151,64 +151,64 @@ void Engine::write_checkpoint(const std::string& path) {
 }
 
 void Engine::restore_checkpoint(const std::string& path) {
-  h5::Handle file = h5::open_file(path);
-  if (h5::read_string_attribute(file, "format") != "sedwave-dem-checkpoint")
+  io::Handle file = io::open_file(path);
+  if (io::read_string_attribute(file, "format") != "sedwave-dem-checkpoint")
     throw std::runtime_error("DEM restart: " + path + " is not a sedwave DEM checkpoint");
-  if (h5::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
+  if (io::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
     throw std::runtime_error("DEM restart: unsupported checkpoint version in " + path);
   if (!settings_.checkpoint.allow_changed_inputs)
     require_same_inputs(recorded_inputs(file), settings_.checkpoint.inputs, path);
   // The laws decide which state exists (spins, history): a checkpoint only continues the same kind.
-  const std::string model = h5::read_string_attribute(file, "contact_model");
+  const std::string model = io::read_string_attribute(file, "contact_model");
   if (model != describe(settings_.contact))
     throw std::runtime_error("DEM restart: " + path + " was written with contact model " + model +
                              ", the scene uses " + describe(settings_.contact));
-  step_ = h5::read_attribute<std::int64_t>(file, "step");
-  time_ = h5::read_attribute<double>(file, "time");
-  dt_ = h5::read_attribute<double>(file, "dt");
-  rebuilds_ = h5::read_attribute<std::int64_t>(file, "rebuilds");
-  user_state_ = h5::read_string_attribute(file, "user_state");
-  const int ranks = h5::read_attribute<std::int32_t>(file, "ranks");
+  step_ = io::read_attribute<std::int64_t>(file, "step");
+  time_ = io::read_attribute<double>(file, "time");
+  dt_ = io::read_attribute<double>(file, "dt");
+  rebuilds_ = io::read_attribute<std::int64_t>(file, "rebuilds");
+  user_state_ = io::read_string_attribute(file, "user_state");
+  const int ranks = io::read_attribute<std::int32_t>(file, "ranks");
 
-  h5::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
+  io::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
   const bool same_layout = ranks == domain_.size();
   if (same_layout) {
-    domain_.set_boundaries(h5::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
+    domain_.set_boundaries(io::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
   }
 
-  h5::Handle bodies(H5Gopen2(file, "bodies", H5P_DEFAULT), H5Gclose, "open /bodies");
-  if (h5::rows(bodies, "displacement") != bodies_.size())
+  io::Handle bodies(H5Gopen2(file, "bodies", H5P_DEFAULT), H5Gclose, "open /bodies");
+  if (io::rows(bodies, "displacement") != bodies_.size())
     throw std::runtime_error("DEM restart: the scene has a different number of rigid bodies than " + path);
-  const auto u = h5::read_rows<double>(bodies, "displacement", 0, bodies_.size(), 3);
-  const auto v = h5::read_rows<double>(bodies, "velocity", 0, bodies_.size(), 3);
-  const auto f = h5::read_rows<double>(bodies, "contact_force", 0, bodies_.size(), 3);
+  const auto u = io::read_rows<double>(bodies, "displacement", 0, bodies_.size(), 3);
+  const auto v = io::read_rows<double>(bodies, "velocity", 0, bodies_.size(), 3);
+  const auto f = io::read_rows<double>(bodies, "contact_force", 0, bodies_.size(), 3);
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
                        {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
 
   // Grains, in file order, each rank keeping its own (by slab, or by row range before repartition).
-  h5::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
-  const std::size_t n = h5::rows(g, "id");
+  io::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
+  const std::size_t n = io::rows(g, "id");
   const bool spins = grains_.rotation();
-  if (spins && !h5::exists(g, "angular_velocity"))
+  if (spins && !io::exists(g, "angular_velocity"))
     throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
   grains_ = GrainArrays(spins);
   const auto r = static_cast<std::size_t>(domain_.rank());
   const auto p = static_cast<std::size_t>(domain_.size());
   for (std::size_t first = 0; first < n; first += kReadChunk) {
     const std::size_t count = std::min(kReadChunk, n - first);
-    const auto id = h5::read_rows<std::int64_t>(g, "id", first, count);
-    const auto group = h5::read_rows<std::int32_t>(g, "group", first, count);
-    const auto body = h5::read_rows<std::int32_t>(g, "body", first, count);
-    const auto radius = h5::read_rows<double>(g, "radius", first, count);
-    const auto mass = h5::read_rows<double>(g, "mass", first, count);
-    const auto x = h5::read_rows<double>(g, "position", first, count, 3);
-    const auto vel = h5::read_rows<double>(g, "velocity", first, count, 3);
-    const auto force = h5::read_rows<double>(g, "force", first, count, 3);
+    const auto id = io::read_rows<std::int64_t>(g, "id", first, count);
+    const auto group = io::read_rows<std::int32_t>(g, "group", first, count);
+    const auto body = io::read_rows<std::int32_t>(g, "body", first, count);
+    const auto radius = io::read_rows<double>(g, "radius", first, count);
+    const auto mass = io::read_rows<double>(g, "mass", first, count);
+    const auto x = io::read_rows<double>(g, "position", first, count, 3);
+    const auto vel = io::read_rows<double>(g, "velocity", first, count, 3);
+    const auto force = io::read_rows<double>(g, "force", first, count, 3);
     std::vector<double> w, torque;
     if (spins) {
-      w = h5::read_rows<double>(g, "angular_velocity", first, count, 3);
-      torque = h5::read_rows<double>(g, "torque", first, count, 3);
+      w = io::read_rows<double>(g, "angular_velocity", first, count, 3);
+      torque = io::read_rows<double>(g, "torque", first, count, 3);
     }
     for (std::size_t k = 0; k < count; ++k) {
       const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
@@ -230,13 +230,13 @@ void Engine::restore_checkpoint(const std::string& path) {
   if (needs_history(model_)) {
     std::unordered_map<std::int64_t, char> local_ids;
     for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
-    h5::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
-    const std::size_t m = h5::rows(h, "a");
+    io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
+    const std::size_t m = io::rows(h, "a");
     for (std::size_t first = 0; first < m; first += kReadChunk) {
       const std::size_t count = std::min(kReadChunk, m - first);
-      const auto a = h5::read_rows<std::int64_t>(h, "a", first, count);
-      const auto b = h5::read_rows<std::int64_t>(h, "b", first, count);
-      const auto s = h5::read_rows<double>(h, "shear", first, count, 3);
+      const auto a = io::read_rows<std::int64_t>(h, "a", first, count);
+      const auto b = io::read_rows<std::int64_t>(h, "b", first, count);
+      const auto s = io::read_rows<double>(h, "shear", first, count, 3);
       for (std::size_t k = 0; k < count; ++k)
         if (local_ids.contains(a[k]) || local_ids.contains(b[k]))
           pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "../io/hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/experiment/interface_spectrum.hpp"
 #include "sedwave/io/atomic_file.hpp"
 
@@ -195,9 +195,9 @@ namespace {
 template <typename T>
 void write_with_unit(hid_t parent, const std::string& name, const std::vector<T>& data, const std::string& unit,
                      std::size_t columns = 0) {
-  h5::write(parent, name, data.data(), columns ? data.size() / columns : data.size(), columns);
-  h5::Handle set = h5::open_dataset(parent, name);
-  h5::write_string_attribute(set, "unit", unit);
+  io::write(parent, name, data.data(), columns ? data.size() / columns : data.size(), columns);
+  io::Handle set = io::open_dataset(parent, name);
+  io::write_string_attribute(set, "unit", unit);
 }
 
 template <typename F>
@@ -216,17 +216,17 @@ std::vector<double> flatten(const std::vector<std::vector<double>>& rows) {
 }  // namespace
 
 void write_interface_run_file(const std::filesystem::path& path, const InterfaceScene& scene, const InterfaceRun& r) {
-  h5::write_file_atomically(path, [&](hid_t file) {
-    h5::write_string_attribute(file, "units", "SI: m, kg, s, N, J");
-    h5::write_string_dataset(file, "scene", scene.text);
-    h5::write_attribute(file, "input_energy", r.input_energy);
-    h5::write_attribute(file, "worst_energy_balance", r.worst_balance);
-    h5::write_attribute(file, "near_impact_share", r.near_impact_share);
-    h5::write_attribute(file, "max_plate_contact_radius", r.max_contact_radius);
-    h5::write_attribute(file, "element_size", r.element_size);
-    h5::write_attribute(file, "wall_seconds", r.seconds);
+  io::write_file_atomically(path, [&](hid_t file) {
+    io::write_string_attribute(file, "units", "SI: m, kg, s, N, J");
+    io::write_string_dataset(file, "scene", scene.text);
+    io::write_attribute(file, "input_energy", r.input_energy);
+    io::write_attribute(file, "worst_energy_balance", r.worst_balance);
+    io::write_attribute(file, "near_impact_share", r.near_impact_share);
+    io::write_attribute(file, "max_plate_contact_radius", r.max_contact_radius);
+    io::write_attribute(file, "element_size", r.element_size);
+    io::write_attribute(file, "wall_seconds", r.seconds);
     const auto& s = r.series;
-    h5::Handle ts = h5::create_group(file, "time_series");
+    io::Handle ts = io::create_group(file, "time_series");
     write_with_unit(ts, "time", s.time, "s");
     const auto e = [&](auto member) { return column(r, [&](std::size_t k) { return s.energies[k].*member; }); };
     using E = interface::Energies;
@@ -250,7 +250,7 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     write_with_unit(ts, "limit_hertz", column(r, [&](std::size_t k) { return s.limits[k].hertz; }), "s");
     write_with_unit(ts, "limit_friction", column(r, [&](std::size_t k) { return s.limits[k].friction; }), "s");
 
-    h5::Handle probes = h5::create_group(file, "probes");
+    io::Handle probes = io::create_group(file, "probes");
     std::vector<double> px, py;
     for (const int n : r.probe_nodes) {
       px.push_back(r.node_x[static_cast<std::size_t>(n)]);
@@ -261,11 +261,11 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     write_with_unit(probes, "speed", flatten(r.probe_velocity), "m/s", s.time.size());
     write_with_unit(probes, "arrival_time", r.arrival, "s");
 
-    h5::Handle line = h5::create_group(file, "line");
+    io::Handle line = io::create_group(file, "line");
     std::vector<double> lx;
     for (const int n : r.line_nodes) lx.push_back(r.node_x[static_cast<std::size_t>(n)]);
     write_with_unit(line, "x", lx, "m");
-    h5::write_attribute(line, "y", r.node_y[static_cast<std::size_t>(r.line_nodes.front())]);
+    io::write_attribute(line, "y", r.node_y[static_cast<std::size_t>(r.line_nodes.front())]);
     write_with_unit(line, "velocity_x", flatten(r.line_vx), "m/s", lx.size());
     write_with_unit(line, "velocity_y", flatten(r.line_vy), "m/s", lx.size());
     const WavenumberSpread spread = wavenumber_spread(r, scene.plate_material.density, scene.plate_material.thickness,
@@ -274,19 +274,19 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     write_with_unit(line, "energy_spectrum", flatten(spread.energy), "J/m", spread.k.size());
     write_with_unit(line, "line_energy", spread.line_energy, "J/m");
     write_with_unit(line, "k_variance", spread.variance, "rad^2/m^2");
-    h5::write_attribute(line, "k_variance_rate", spread.growth.slope);
-    h5::write_attribute(line, "k_variance_intercept", spread.growth.intercept);
-    h5::write_attribute(line, "k_variance_r_squared", spread.growth.r_squared);
-    h5::write_attribute(line, "fit_first_time", s.time[std::min(spread.first, s.time.size() - 1)]);
-    h5::write_attribute(line, "fit_last_time", s.time[std::min(spread.last, s.time.size()) - 1]);
+    io::write_attribute(line, "k_variance_rate", spread.growth.slope);
+    io::write_attribute(line, "k_variance_intercept", spread.growth.intercept);
+    io::write_attribute(line, "k_variance_r_squared", spread.growth.r_squared);
+    io::write_attribute(line, "fit_first_time", s.time[std::min(spread.first, s.time.size() - 1)]);
+    io::write_attribute(line, "fit_last_time", s.time[std::min(spread.last, s.time.size()) - 1]);
 
-    h5::Handle snap = h5::create_group(file, "snapshots");
+    io::Handle snap = io::create_group(file, "snapshots");
     write_with_unit(snap, "node_x", r.node_x, "m");
     write_with_unit(snap, "node_y", r.node_y, "m");
     write_with_unit(snap, "time", r.snapshot_time, "s");
     if (!r.snapshots.empty()) write_with_unit(snap, "displacement", flatten(r.snapshots), "m", r.snapshots.front().size());
 
-    h5::Handle grains = h5::create_group(file, "grains");
+    io::Handle grains = io::create_group(file, "grains");
     std::vector<double> gx, gy, gvx, gvy, spin, driven(r.final_grains.size(), 0.0);
     for (const auto& g : r.final_grains) {
       gx.push_back(g.x), gy.push_back(g.y), gvx.push_back(g.vx), gvy.push_back(g.vy), spin.push_back(g.spin);

@@ -9,8 +9,8 @@
 namespace sedwave::forward::experiment {
 namespace {
 
-using Section = toml_io::Table<InterfaceSceneError>;
-using Range = toml_io::Range;
+using Section = io::Table<InterfaceSceneError>;
+using Range = io::Range;
 
 plate::EdgeCondition edge(Section& s, const std::string& key, plate::EdgeCondition fallback) {
   const std::string names[] = {"free", "clamped", "absorbing"};
@@ -109,7 +109,7 @@ void read_recording(Section s, InterfaceScene& scene) {
   r.snapshots = s.integer<int>("snapshots", r.snapshots, Range::closed(0, 1000));
   if (s.has("probe_x")) {
     const toml::value& v = s.at("probe_x");
-    if (!v.is_array()) toml_io::fail<InterfaceSceneError>(v, s.name("probe_x"), "must be an array of abscissae [m]", s.origin());
+    if (!v.is_array()) io::fail<InterfaceSceneError>(v, s.name("probe_x"), "must be an array of abscissae [m]", s.origin());
     for (const auto& x : v.as_array()) {
       const double value = s.number_value(x, s.name("probe_x"), Range::closed(0.0, scene.mesh.length_x, "m"));
       r.probe_x.push_back(value);
@@ -140,14 +140,14 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
 }  // namespace
 
 InterfaceScene parse_interface_scene(const std::string& text, const std::string& origin) {
-  InterfaceScene scene = from_value(toml_io::parse<InterfaceSceneError>(text, origin), origin);
+  InterfaceScene scene = from_value(io::parse<InterfaceSceneError>(text, origin), origin);
   scene.text = text;
   scene.path = origin;
   return scene;
 }
 
 InterfaceScene read_interface_scene(const std::filesystem::path& path) {
-  return parse_interface_scene(toml_io::read_text<InterfaceSceneError>(path, "interface scene file"), path.string());
+  return parse_interface_scene(io::read_text<InterfaceSceneError>(path, "interface scene file"), path.string());
 }
 
 }  // namespace sedwave::forward::experiment

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "../io/hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 #include "run_file_parts.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 #include "sedwave/io/fingerprint.hpp"
@@ -16,11 +16,11 @@ namespace sedwave::forward::experiment {
 using namespace channel;  // the files hold the channel's packings and measurements
 
 void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
-  h5::write_file_atomically(path, [&](hid_t file) {
-    h5::write_string_attribute(file, "sedwave_version", kVersion);
-    h5::write_string_attribute(file, "scene", scene_text);
-    h5::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
-    h5::Handle grains = h5::create_group(file, "grains");
+  io::write_file_atomically(path, [&](hid_t file) {
+    io::write_string_attribute(file, "sedwave_version", kVersion);
+    io::write_string_attribute(file, "scene", scene_text);
+    io::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
+    io::Handle grains = io::create_group(file, "grains");
     std::vector<std::int64_t> id;
     std::vector<std::int32_t> group, body;
     std::vector<double> radius, mass, position;
@@ -32,18 +32,18 @@ void write_packing(const std::filesystem::path& path, const PreparedChannel& p, 
       mass.push_back(g.mass);
       position.insert(position.end(), {g.position.x, g.position.y, g.position.z});
     }
-    h5::write(grains, "id", id.data(), id.size());
-    h5::write(grains, "group", group.data(), group.size());
-    h5::write(grains, "body", body.data(), body.size());
-    h5::write(grains, "radius", radius.data(), radius.size());
-    h5::write(grains, "mass", mass.data(), mass.size());
-    h5::write(grains, "position", position.data(), id.size(), 3);
-    h5::Handle box = h5::create_group(file, "box");
+    io::write(grains, "id", id.data(), id.size());
+    io::write(grains, "group", group.data(), group.size());
+    io::write(grains, "body", body.data(), body.size());
+    io::write(grains, "radius", radius.data(), radius.size());
+    io::write(grains, "mass", mass.data(), mass.size());
+    io::write(grains, "position", position.data(), id.size(), 3);
+    io::Handle box = io::create_group(file, "box");
     const double bounds[6] = {p.box.lo.x, p.box.lo.y, p.box.lo.z, p.box.hi.x, p.box.hi.y, p.box.hi.z};
-    h5::write(box, "bounds", bounds, 2, 3);
+    io::write(box, "bounds", bounds, 2, 3);
     const std::int32_t periodic[3] = {p.box.periodic[0], p.box.periodic[1], p.box.periodic[2]};
-    h5::write(box, "periodic", periodic, 3);
-    h5::Handle stats = h5::create_group(file, "preparation");
+    io::write(box, "periodic", periodic, 3);
+    io::Handle stats = io::create_group(file, "preparation");
     write_stats(stats, p.report);
   });
   std::filesystem::path data = path;
@@ -70,15 +70,15 @@ std::string packing_fingerprint(const PreparedChannel& packing) {
 }
 
 PreparedChannel read_packing(const std::filesystem::path& path) {
-  h5::Handle file = h5::open_file(path.string());
-  h5::Handle grains = h5::open_group(file, "grains");
-  const std::size_t n = h5::rows(grains, "id");
-  const auto id = h5::read_rows<std::int64_t>(grains, "id", 0, n);
-  const auto group = h5::read_rows<std::int32_t>(grains, "group", 0, n);
-  const auto body = h5::read_rows<std::int32_t>(grains, "body", 0, n);
-  const auto radius = h5::read_rows<double>(grains, "radius", 0, n);
-  const auto mass = h5::read_rows<double>(grains, "mass", 0, n);
-  const auto position = h5::read_rows<double>(grains, "position", 0, n, 3);
+  io::Handle file = io::open_file(path.string());
+  io::Handle grains = io::open_group(file, "grains");
+  const std::size_t n = io::rows(grains, "id");
+  const auto id = io::read_rows<std::int64_t>(grains, "id", 0, n);
+  const auto group = io::read_rows<std::int32_t>(grains, "group", 0, n);
+  const auto body = io::read_rows<std::int32_t>(grains, "body", 0, n);
+  const auto radius = io::read_rows<double>(grains, "radius", 0, n);
+  const auto mass = io::read_rows<double>(grains, "mass", 0, n);
+  const auto position = io::read_rows<double>(grains, "position", 0, n, 3);
   PreparedChannel p;
   for (std::size_t i = 0; i < n; ++i) {
     dem::Grain g;
@@ -90,18 +90,18 @@ PreparedChannel read_packing(const std::filesystem::path& path) {
     g.position = {position[3 * i], position[3 * i + 1], position[3 * i + 2]};
     p.grains.push_back(g);
   }
-  h5::Handle box = h5::open_group(file, "box");
-  const auto bounds = h5::read_rows<double>(box, "bounds", 0, 2, 3);
-  const auto periodic = h5::read_rows<std::int32_t>(box, "periodic", 0, 3);
+  io::Handle box = io::open_group(file, "box");
+  const auto bounds = io::read_rows<double>(box, "bounds", 0, 2, 3);
+  const auto periodic = io::read_rows<std::int32_t>(box, "periodic", 0, 3);
   p.box.lo = {bounds[0], bounds[1], bounds[2]};
   p.box.hi = {bounds[3], bounds[4], bounds[5]};
   p.box.periodic = {periodic[0] != 0, periodic[1] != 0, periodic[2] != 0};
-  h5::Handle stats = h5::open_group(file, "preparation");
-  p.report.pressure = h5::read_attribute<double>(stats, "pressure");
-  p.report.converged = h5::read_attribute<std::int32_t>(stats, "converged") != 0;
-  p.report.residual_ratio = h5::read_attribute<double>(stats, "residual_ratio");
-  p.report.stats.packing_fraction = h5::read_attribute<double>(stats, "packing_fraction");
-  p.report.stats.coordination = h5::read_attribute<double>(stats, "coordination");
+  io::Handle stats = io::open_group(file, "preparation");
+  p.report.pressure = io::read_attribute<double>(stats, "pressure");
+  p.report.converged = io::read_attribute<std::int32_t>(stats, "converged") != 0;
+  p.report.residual_ratio = io::read_attribute<double>(stats, "residual_ratio");
+  p.report.stats.packing_fraction = io::read_attribute<double>(stats, "packing_fraction");
+  p.report.stats.coordination = io::read_attribute<double>(stats, "coordination");
   return p;
 }
 
@@ -110,12 +110,12 @@ namespace {
 /// A pulse run's results per frequency: one row each, columns as named datasets; the problems as
 /// one line per frequency (empty where measured).
 void write_spectrum(hid_t results, const std::vector<SpectralResult>& spectrum) {
-  h5::Handle group = h5::create_group(results, "spectrum");
+  io::Handle group = io::create_group(results, "spectrum");
   auto column = [&](const std::string& name, auto value, const std::string& unit) {
     std::vector<double> values;
     for (const SpectralResult& p : spectrum) values.push_back(value(p));
-    h5::write(group, name, values.data(), values.size());
-    h5::write_string_attribute(group, name + "_unit", unit);
+    io::write(group, name, values.data(), values.size());
+    io::write_string_attribute(group, name + "_unit", unit);
   };
   column("omega_hat", [](const SpectralResult& p) { return p.omega_hat; }, "1");
   column("alpha_hat", [](const SpectralResult& p) { return p.fit.alpha; }, "Np per d");
@@ -125,8 +125,8 @@ void write_spectrum(hid_t results, const std::vector<SpectralResult>& spectrum) 
   column("layers_used", [](const SpectralResult& p) { return static_cast<double>(p.layers_used); }, "1");
   std::string problems;
   for (const SpectralResult& p : spectrum) problems += p.problem + "\n";
-  h5::write_string_attribute(group, "problems", problems);
-  h5::write_string_attribute(group, "about",
+  io::write_string_attribute(group, "problems", problems);
+  io::write_string_attribute(group, "about",
                              "broadband (pulse) drive: alpha_hat and c_hat per frequency from the layer records' "
                              "Fourier transforms; a row with a non-empty line in 'problems' was not measured");
 }
@@ -137,23 +137,23 @@ void write_records(hid_t group, const std::string& name, const std::vector<std::
   std::vector<double> series;
   const std::size_t samples = records.empty() ? 0 : records.front().size();
   for (const auto& record : records) series.insert(series.end(), record.begin(), record.end());
-  h5::write(group, name, series.data(), records.size(), samples);
-  h5::write_string_attribute(group, name + "_unit", unit);
+  io::write(group, name, series.data(), records.size(), samples);
+  io::write_string_attribute(group, name + "_unit", unit);
 }
 
 }  // namespace
 
 void write_run_file(const std::filesystem::path& path, const ChannelScene& scene, const PreparationReport& preparation,
                     const AcousticResult& r) {
-  h5::write_file_atomically(path, [&](hid_t file) {
+  io::write_file_atomically(path, [&](hid_t file) {
     write_run_header(file, scene.text);
-    h5::Handle packing = h5::create_group(file, "packing");
+    io::Handle packing = io::create_group(file, "packing");
     write_stats(packing, preparation);
 
-    h5::Handle probes = h5::create_group(file, "probes");
-    h5::write(probes, "layer_z", r.layer_z.data(), r.layer_z.size());
-    h5::write_string_attribute(probes, "layer_z_unit", "d, from the driven wall's mean surface");
-    h5::write(probes, "layer_grains", r.layer_grains.data(), r.layer_grains.size());
+    io::Handle probes = io::create_group(file, "probes");
+    io::write(probes, "layer_z", r.layer_z.data(), r.layer_z.size());
+    io::write_string_attribute(probes, "layer_z_unit", "d, from the driven wall's mean surface");
+    io::write(probes, "layer_grains", r.layer_grains.data(), r.layer_grains.size());
     write_records(probes, "displacement", r.displacement, "d; mean over the layer, along the drive axis");
     number(probes, "sample_dt", r.sample_dt, "sqrt(m/kappa)");
     if (!r.windows.empty()) {
@@ -164,23 +164,23 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
         end.push_back(w.valid() ? w.window.end : 0.0);
         periods.push_back(w.valid() ? static_cast<double>(w.periods) : 0.0);
       }
-      h5::write(probes, "window_begin", begin.data(), begin.size());
-      h5::write(probes, "window_end", end.data(), end.size());
-      h5::write_string_attribute(probes, "window_unit", "sqrt(m/kappa), from the start of the drive");
-      h5::write(probes, "window_periods", periods.data(), periods.size());
-      h5::write_string_attribute(probes, "window_periods_unit", "whole drive periods in the lock-in window (0: none)");
+      io::write(probes, "window_begin", begin.data(), begin.size());
+      io::write(probes, "window_end", end.data(), end.size());
+      io::write_string_attribute(probes, "window_unit", "sqrt(m/kappa), from the start of the drive");
+      io::write(probes, "window_periods", periods.data(), periods.size());
+      io::write_string_attribute(probes, "window_periods_unit", "whole drive periods in the lock-in window (0: none)");
     }
     if (r.single_grains) {
       const SingleGrainProbes& p = *r.single_grains;
-      h5::Handle grains = h5::create_group(probes, "single_grains");
-      h5::write(grains, "id", p.id.data(), p.id.size());
-      h5::write_string_attribute(grains, "id_unit", "grain id, one per layer (-1: the layer holds no flow grain)");
-      h5::write(grains, "z", p.z.data(), p.z.size());
-      h5::write_string_attribute(grains, "z_unit", "d, from the driven wall's mean surface");
+      io::Handle grains = io::create_group(probes, "single_grains");
+      io::write(grains, "id", p.id.data(), p.id.size());
+      io::write_string_attribute(grains, "id_unit", "grain id, one per layer (-1: the layer holds no flow grain)");
+      io::write(grains, "z", p.z.data(), p.z.size());
+      io::write_string_attribute(grains, "z_unit", "d, from the driven wall's mean surface");
       write_records(grains, "displacement", p.displacement, "d; of the one grain, along the drive axis");
     }
 
-    h5::Handle results = h5::create_group(file, "results");
+    io::Handle results = io::create_group(file, "results");
     number(results, "omega_hat", r.omega_hat, "1");
     number(results, "gamma_hat", r.gamma_hat, "1");
     number(results, "amplitude", r.amplitude, "d");
@@ -195,20 +195,20 @@ void write_run_file(const std::filesystem::path& path, const ChannelScene& scene
     number(results, "omega", r.omega_hat / t0, "rad per scene time unit");
     number(results, "alpha", r.fit.alpha / r.mean_diameter, "Np per scene length unit");
     number(results, "c", r.fit.c * r.mean_diameter / t0, "scene length per scene time unit");
-    h5::write_attribute(results, "layers_used", static_cast<std::int32_t>(r.layers_used));
-    h5::write_attribute(results, "steps", r.steps);
-    h5::write_attribute(results, "extensions", static_cast<std::int32_t>(r.extensions));
+    io::write_attribute(results, "layers_used", static_cast<std::int32_t>(r.layers_used));
+    io::write_attribute(results, "steps", r.steps);
+    io::write_attribute(results, "extensions", static_cast<std::int32_t>(r.extensions));
     number(results, "wall_seconds", r.wall_seconds, "s");
-    h5::write_string_attribute(results, "problem", r.problem);
-    h5::write_string_attribute(results, "warning", r.warning);
+    io::write_string_attribute(results, "problem", r.problem);
+    io::write_string_attribute(results, "warning", r.warning);
     if (!r.spectrum.empty()) write_spectrum(results, r.spectrum);
     if (r.single_grains) {
       const SingleGrainProbes& p = *r.single_grains;
-      h5::Handle grains = h5::create_group(results, "single_grains");
+      io::Handle grains = io::create_group(results, "single_grains");
       write_fit(grains, p.fit);
-      h5::write_attribute(grains, "probes_used", static_cast<std::int32_t>(p.probes_used));
-      h5::write_string_attribute(grains, "problem", p.problem);
-      h5::write_string_attribute(grains, "about",
+      io::write_attribute(grains, "probes_used", static_cast<std::int32_t>(p.probes_used));
+      io::write_string_attribute(grains, "problem", p.problem);
+      io::write_string_attribute(grains, "about",
                                  "the same measurement from one grain per layer (/probes/single_grains) instead "
                                  "of the layer averages: the thesis's probes, for comparison");
       if (!p.spectrum.empty()) write_spectrum(grains, p.spectrum);

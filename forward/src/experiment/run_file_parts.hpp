@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "../io/hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/channel/measurement.hpp"
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/version.hpp"
@@ -18,16 +18,16 @@ using channel::PropagationFit;
 
 /// Root attributes of a run file (either engine): code version, scene text, units.
 inline void write_run_header(hid_t file, const std::string& scene_text) {
-  h5::write_string_attribute(file, "sedwave_version", kVersion);
-  h5::write_string_attribute(file, "scene", scene_text);
-  h5::write_string_attribute(file, "units",
+  io::write_string_attribute(file, "sedwave_version", kVersion);
+  io::write_string_attribute(file, "scene", scene_text);
+  io::write_string_attribute(file, "units",
                              "dimensionless: lengths in mean grain diameters d, times in sqrt(m/kappa) with m the "
                              "mass of a grain of diameter d and kappa the contact stiffness");
 }
 
 inline void number(hid_t parent, const std::string& name, double value, const std::string& unit) {
-  h5::write_attribute(parent, name, value);
-  h5::write_string_attribute(parent, name + "_unit", unit);
+  io::write_attribute(parent, name, value);
+  io::write_string_attribute(parent, name + "_unit", unit);
 }
 
 /// alpha_hat, c_hat and their standard errors from a steady-state fit over layers.
@@ -51,14 +51,14 @@ inline void write_stats(hid_t parent, const PreparationReport& r) {
   number(parent, "mean_overlap", s.mean_overlap, "d");
   number(parent, "max_overlap", s.max_overlap, "d");
   number(parent, "mean_contact_force", s.mean_contact_force, "force unit of the scene");
-  h5::write_attribute(parent, "contacts", s.contacts);
-  h5::write_attribute(parent, "converged", static_cast<std::int32_t>(r.converged));
-  h5::write_attribute(parent, "compression_steps", static_cast<std::int64_t>(r.compression_steps));
-  h5::write_attribute(parent, "relaxation_steps", static_cast<std::int64_t>(r.relaxation_steps));
-  h5::write_attribute(parent, "newton_iterations", static_cast<std::int32_t>(r.newton_iterations));
-  h5::write(parent, "overlap_histogram", s.overlap_histogram.data(), s.overlap_histogram.size());
-  h5::write(parent, "gap_histogram", s.gap_histogram.data(), s.gap_histogram.size());
-  h5::write_string_attribute(parent, "histogram_bins",
+  io::write_attribute(parent, "contacts", s.contacts);
+  io::write_attribute(parent, "converged", static_cast<std::int32_t>(r.converged));
+  io::write_attribute(parent, "compression_steps", static_cast<std::int64_t>(r.compression_steps));
+  io::write_attribute(parent, "relaxation_steps", static_cast<std::int64_t>(r.relaxation_steps));
+  io::write_attribute(parent, "newton_iterations", static_cast<std::int32_t>(r.newton_iterations));
+  io::write(parent, "overlap_histogram", s.overlap_histogram.data(), s.overlap_histogram.size());
+  io::write(parent, "gap_histogram", s.gap_histogram.data(), s.gap_histogram.size());
+  io::write_string_attribute(parent, "histogram_bins",
                              "bin k counts separations |s|/d in [1e-(k+1), 1e-k); the last bin also holds smaller");
 }
 

@@ -15,8 +15,8 @@ namespace {
 
 using namespace channel;  // a scene file is mostly the channel's settings
 
-using Section = toml_io::Table<SceneError>;
-using Range = toml_io::Range;
+using Section = io::Table<SceneError>;
+using Range = io::Range;
 
 // Accepted ranges (docs/scenes.md lists them). Bounds beyond the physically possible keep runs
 // affordable: a channel of more grains than kMaxGrains would not fit in memory.
@@ -46,11 +46,11 @@ void read_geometry(Section s, ChannelScene& scene, const std::filesystem::path& 
   g.sizes.sd = sizes.number("sd", g.sizes.sd, Range::non_negative(kDiameters));
   g.sizes.min = sizes.positive("min", g.sizes.min, kDiameters);
   g.sizes.max = sizes.positive("max", g.sizes.max, kDiameters);
-  if (!(g.sizes.min <= g.sizes.mean)) sizes.fail_key("min", "must not exceed mean (" + toml_io::shortest(g.sizes.mean) + ")");
-  if (!(g.sizes.mean <= g.sizes.max)) sizes.fail_key("max", "must not be below mean (" + toml_io::shortest(g.sizes.mean) + ")");
+  if (!(g.sizes.min <= g.sizes.mean)) sizes.fail_key("min", "must not exceed mean (" + io::shortest(g.sizes.mean) + ")");
+  if (!(g.sizes.mean <= g.sizes.max)) sizes.fail_key("max", "must not be below mean (" + io::shortest(g.sizes.mean) + ")");
   sizes.finish();
   if (!(g.width >= g.sizes.max)) {
-    s.fail_key("width", "must be at least the largest grain diameter (sizes.max = " + toml_io::shortest(g.sizes.max) + ")");
+    s.fail_key("width", "must be at least the largest grain diameter (sizes.max = " + io::shortest(g.sizes.max) + ")");
   }
   Section walls = s.sub("walls");
   g.wall_diameter = walls.positive("diameter", g.wall_diameter, kDiameters);
@@ -207,8 +207,8 @@ std::optional<dem::FluidSpec> read_fluid(Section s) {
   f.roughness = number_value_required(s, "roughness", Range::positive(kDiameters + ": the smallest lubrication gap"));
   f.cutoff = number_value_required(s, "cutoff", Range::above(0.0, 1.0, kDiameters + ": no lubrication beyond this gap"));
   if (!(f.cutoff > f.roughness)) {
-    s.fail_key("cutoff", "must exceed roughness (" + toml_io::shortest(f.roughness) + "): accepted range (" +
-                             toml_io::shortest(f.roughness) + ", 1] " + kDiameters);
+    s.fail_key("cutoff", "must exceed roughness (" + io::shortest(f.roughness) + "): accepted range (" +
+                             io::shortest(f.roughness) + ", 1] " + kDiameters);
   }
   f.lubrication = s.boolean("lubrication", f.lubrication);
   const std::vector<std::string> drag_laws = dem::drag_law_names();
@@ -262,14 +262,14 @@ ChannelScene from_value(const toml::value& root, const std::string& origin, cons
 
 ChannelScene parse_scene(const std::string& text, const std::string& origin) {
   ChannelScene scene =
-      from_value(toml_io::parse<SceneError>(text, origin), origin, std::filesystem::path(origin).parent_path());
+      from_value(io::parse<SceneError>(text, origin), origin, std::filesystem::path(origin).parent_path());
   scene.text = text;
   scene.path = origin;
   return scene;
 }
 
 ChannelScene read_scene(const std::filesystem::path& path) {
-  return parse_scene(toml_io::read_text<SceneError>(path, "scene file"), path.string());
+  return parse_scene(io::read_text<SceneError>(path, "scene file"), path.string());
 }
 
 }  // namespace sedwave::forward::experiment

@@ -11,15 +11,15 @@
 namespace sedwave::forward::table {
 namespace {
 
-using Keys = toml_io::Table<GridFileError>;
+using Keys = io::Table<GridFileError>;
 
 [[noreturn]] void fail(const toml::value& v, const std::string& key, const std::string& why, const std::string& origin) {
-  toml_io::fail<GridFileError>(v, key, why, origin);
+  io::fail<GridFileError>(v, key, why, origin);
 }
 
 /// An explicit list: positive numbers, strictly ascending (descending when `descending`).
 std::vector<double> number_list(const toml::value& v, const std::string& key, const Keys& keys, bool descending,
-                                const toml_io::Range& range = toml_io::Range::positive()) {
+                                const io::Range& range = io::Range::positive()) {
   if (!v.is_array()) fail(v, key, "must be a list of numbers", keys.origin());
   const toml::array& array = v.as_array();
   if (array.empty()) fail(v, key, "must not be empty", keys.origin());
@@ -45,7 +45,7 @@ std::vector<double> axis(const toml::value& v, const std::string& key, const Key
   const double to = range.required_positive("to");
   if (!(to > from)) fail(range.at("to"), range.name("to"), "must be greater than 'from'", parent.origin());
   // A table of more points than this would take years to fill with any engine.
-  const auto points = range.integer<std::size_t>("points", 0, toml_io::Range::closed(2, 100000, "points"));
+  const auto points = range.integer<std::size_t>("points", 0, io::Range::closed(2, 100000, "points"));
   if (points == 0) range.at("points");  // missing: throws naming the key
   return log_spaced(from, to, points);
 }
@@ -77,7 +77,7 @@ std::string TableGridFile::describe_axes() const {
 
 TableGridFile parse_grid_file(const std::string& text, const std::filesystem::path& origin) {
   const std::string origin_name = origin.string();
-  const toml::value root = toml_io::parse<GridFileError>(text, origin_name);
+  const toml::value root = io::parse<GridFileError>(text, origin_name);
   Keys top(root, "", origin_name);
   top.allow_only({"scene", "ranks_per_point", "omega_hat", "gamma_hat", "restitution"});
   TableGridFile file;
@@ -92,7 +92,7 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
          origin_name);
   }
 
-  file.ranks_per_point = top.integer("ranks_per_point", 1, toml_io::Range::closed(1, 1e6, "ranks"));
+  file.ranks_per_point = top.integer("ranks_per_point", 1, io::Range::closed(1, 1e6, "ranks"));
   file.grid.omega_hat = axis(top.at("omega_hat"), "omega_hat", top);
 
   if (top.has("gamma_hat") == top.has("restitution")) {
@@ -103,7 +103,7 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
     file.grid.gamma_hat = axis(top.at("gamma_hat"), "gamma_hat", top);
   } else {
     // Descending e_n gives ascending gamma_hat; e_n = 1 would be gamma_hat = 0, outside a log grid.
-    file.restitution = number_list(top.at("restitution"), "restitution", top, true, toml_io::Range::open(0.0, 1.0));
+    file.restitution = number_list(top.at("restitution"), "restitution", top, true, io::Range::open(0.0, 1.0));
     for (double e_n : file.restitution) file.grid.gamma_hat.push_back(gamma_hat_from_restitution(e_n));
   }
   file.grid.validate();
@@ -111,7 +111,7 @@ TableGridFile parse_grid_file(const std::string& text, const std::filesystem::pa
 }
 
 TableGridFile read_grid_file(const std::filesystem::path& path) {
-  return parse_grid_file(toml_io::read_text<GridFileError>(path, "grid file"), path);
+  return parse_grid_file(io::read_text<GridFileError>(path, "grid file"), path);
 }
 
 }  // namespace sedwave::forward::table

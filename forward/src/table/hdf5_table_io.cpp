@@ -8,9 +8,9 @@
 namespace sedwave::forward::table::h5 {
 namespace {
 
-using forward::h5::check;
-using forward::h5::string_type;
-using forward::h5::trimmed;
+using io::check;
+using io::string_type;
+using io::trimmed;
 
 Handle dataspace(std::size_t rows, std::size_t columns) {
   const std::array<hsize_t, 2> dims{rows, columns};

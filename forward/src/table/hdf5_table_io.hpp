@@ -4,7 +4,7 @@
 // that the table code reads as one vocabulary.
 #include <hdf5.h>
 
-#include "../io/hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 
 #include <cstdint>
 #include <string>
@@ -12,24 +12,24 @@
 
 namespace sedwave::forward::table::h5 {
 
-using forward::h5::create_group;
-using forward::h5::flush;
-using forward::h5::Handle;
-using forward::h5::has_attribute;
-using forward::h5::open_dataset;
-using forward::h5::open_file;
-using forward::h5::open_group;
-using forward::h5::QuietErrors;
-using forward::h5::read_attribute;
-using forward::h5::read_string_attribute;
-using forward::h5::read_string_dataset;
-using forward::h5::read_vector;
-using forward::h5::shape;
-using forward::h5::StringBytes;
-using forward::h5::write;
-using forward::h5::write_attribute;
-using forward::h5::write_string_attribute;
-using forward::h5::write_string_dataset;
+using io::create_group;
+using io::flush;
+using io::Handle;
+using io::has_attribute;
+using io::open_dataset;
+using io::open_file;
+using io::open_group;
+using io::QuietErrors;
+using io::read_attribute;
+using io::read_string_attribute;
+using io::read_string_dataset;
+using io::read_vector;
+using io::shape;
+using io::StringBytes;
+using io::write;
+using io::write_attribute;
+using io::write_string_attribute;
+using io::write_string_dataset;
 
 /// The kinds of 2D [rows][columns] dataset a table holds.
 enum class CellType { float64, status, text };

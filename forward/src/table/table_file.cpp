@@ -120,7 +120,7 @@ void write_point_status(const ResultDatasets& sets, GridIndex index, PointStatus
 /// Writes the complete file under a temporary name and renames it into place, so `path` never
 /// holds a half-created table.
 void write_complete_file(const std::filesystem::path& path, const DispersionTable& table) {
-  forward::h5::write_file_atomically(path, [&](const h5::Handle& file) {
+  io::write_file_atomically(path, [&](const h5::Handle& file) {
     write_layout(file, table);
     const ResultDatasets sets = open_results(file);
     for (std::size_t g = 0; g < table.n_gamma(); ++g) {

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <stdexcept>
 
-#include "hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 
 namespace sedwave::io {
 namespace {
@@ -28,16 +28,15 @@ void write_columns_hdf5(const std::filesystem::path& path,
                                   " values do not split into " + std::to_string(blocks) + " equal blocks");
     }
   }
-  namespace h5 = forward::h5;
-  h5::write_file_atomically(path, [&](hid_t file) {
-    for (const auto& [name, text] : attributes) h5::write_string_attribute(file, name, text);
+  io::write_file_atomically(path, [&](hid_t file) {
+    for (const auto& [name, text] : attributes) io::write_string_attribute(file, name, text);
     for (const NamedColumn& column : columns) {
       const std::size_t rows = blocks == 1 ? column.values.size() : blocks;
       const std::size_t inner = blocks == 1 ? 0 : column.values.size() / blocks;
-      h5::write(file, column.name, column.values.data(), rows, inner);
-      h5::Handle set(H5Dopen2(file, column.name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + column.name);
-      h5::write_string_attribute(set, "unit", column.unit);
-      h5::write_string_attribute(set, "meaning", column.meaning);
+      io::write(file, column.name, column.values.data(), rows, inner);
+      io::Handle set(H5Dopen2(file, column.name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + column.name);
+      io::write_string_attribute(set, "unit", column.unit);
+      io::write_string_attribute(set, "meaning", column.meaning);
     }
   });
 }

@@ -1,4 +1,4 @@
-// Outputs that land safely (forward/include/sedwave/io/atomic_file.hpp): symbolic links are written
+// Outputs that land safely (io/include/sedwave/io/atomic_file.hpp): symbolic links are written
 // through, devices and FIFOs are written in place (text) or refused (HDF5), only a regular file is
 // ever renamed over, temporaries are unique and the stale ones of dead processes are removed, a
 // run's outputs land together or not at all, and one output directory has one writer.

@@ -14,7 +14,7 @@
 
 #include "sedwave/io/atomic_file.hpp"
 
-namespace sedwave::forward::h5 {
+namespace sedwave::io {
 
 /// Owns one hid_t and closes it with the matching H5*close.
 class Handle {
@@ -338,4 +338,4 @@ std::vector<T> read_block(hid_t parent, const std::string& name, const Extent& s
   return out;
 }
 
-}  // namespace sedwave::forward::h5
+}  // namespace sedwave::io

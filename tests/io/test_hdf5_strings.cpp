@@ -1,4 +1,4 @@
-// The shared HDF5 layer's two layouts of a fixed-length string (forward/src/io/hdf5.hpp): packing,
+// The shared HDF5 layer's two layouts of a fixed-length string (io/include/sedwave/io/hdf5.hpp): packing,
 // run and checkpoint files store a string's bytes exactly, table files add a terminating NUL. Each
 // is read back whole by the one reader, whichever layout wrote it.
 #include <gtest/gtest.h>
@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "io/hdf5.hpp"
+#include "sedwave/io/hdf5.hpp"
 
-namespace sedwave::forward::h5 {
+namespace sedwave::io {
 namespace {
 
 /// A file that lives in memory only (HDF5's core driver without a backing store).
@@ -64,4 +64,4 @@ TEST(Hdf5Strings, ANumberIsNotReadAsAString) {
 }
 
 }  // namespace
-}  // namespace sedwave::forward::h5
+}  // namespace sedwave::io

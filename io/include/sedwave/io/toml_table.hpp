@@ -17,7 +17,7 @@
 #include <toml.hpp>
 #include <utility>
 
-namespace sedwave::forward::toml_io {
+namespace sedwave::io {
 
 /// The file toml11 read `v` from, or `origin` when it does not know (text parsed from a string).
 inline std::string file_of(const toml::value& v, const std::string& origin) {
@@ -234,4 +234,4 @@ class Table {
   std::set<std::string> used_;
 };
 
-}  // namespace sedwave::forward::toml_io
+}  // namespace sedwave::io
