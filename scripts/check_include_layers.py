@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
-"""Fails when the folders of forward/ include each other in a loop.
+"""Fails when the folders of forward/ include each other in a loop, or io/ includes any of them.
 
 Each folder of forward/ (dem, channel, linear, table, ...) is one layer: a layer may include the
 layers below it, never one above. Every source and header under forward/src/<folder>/ and
 forward/include/sedwave/forward/<folder>/ belongs to <folder>; files directly under forward/src/ and
-forward/include/sedwave/forward/ belong to the layer "forward"; forward/include/sedwave/io/ and
-forward/src/io/ to "io". An include names its folder by its path ("sedwave/forward/linear/x.hpp")
-or, for private headers, relative to the including file ("../io/hdf5.hpp").
+forward/include/sedwave/forward/ belong to the layer "forward". The top-level io/ (the project's
+files in and out, sedwave/io/...) is the layer "io", below all of forward/: it includes none of
+them. An include names its folder by its path ("sedwave/forward/linear/x.hpp", "sedwave/io/x.hpp")
+or, for private headers, relative to the including file ("../table/hdf5_table_io.hpp").
 
 Prints the folder graph (with the files behind each edge on request) and every loop found; the exit
-status is 1 when there is a loop.
+status is 1 when there is a loop or io/ includes a layer of forward/.
 """
 import argparse
 import pathlib
@@ -18,15 +19,17 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+[<"]([^>"]+)[>"]', re.MULTILINE)
 ROOT_LAYER = "forward"
+IO_LAYER = "io"
 
 
 def layer_of(path, forward):
-    """The layer of a file under forward/, or None for files outside the layers (CMake lists)."""
+    """The layer of a file under forward/ or io/, or None for files outside the layers (CMake lists)."""
+    io = forward.parent / "io"
+    if io in path.parents:
+        return IO_LAYER if path.suffix in {".hpp", ".cpp", ".h"} else None
     parts = path.relative_to(forward).parts
     if parts[:3] == ("include", "sedwave", "forward"):
         rest = parts[3:]
-    elif parts[:3] == ("include", "sedwave", "io"):
-        return "io"
     elif parts[0] == "src":
         rest = parts[1:]
     else:
@@ -40,17 +43,18 @@ def included_layer(name, including, forward):
         rest = name.split("/")[2:]
         return rest[0] if len(rest) > 1 else ROOT_LAYER
     if name.startswith("sedwave/io/"):
-        return "io"
+        return IO_LAYER
     local = (including.parent / name).resolve()
-    if local.is_file() and forward.resolve() in local.parents:
+    roots = (forward.resolve(), forward.resolve().parent / "io")
+    if local.is_file() and any(root in local.parents for root in roots):
         return layer_of(local, forward.resolve())
     return None
 
 
 def include_graph(forward):
-    """{layer: {included layer: [including files]}} over every C++ file of forward/."""
+    """{layer: {included layer: [including files]}} over every C++ file of forward/ and io/."""
     graph = {}
-    for path in sorted(forward.rglob("*")):
+    for path in sorted(list(forward.rglob("*")) + list((forward.parent / "io").rglob("*"))):
         if path.suffix not in {".hpp", ".cpp", ".h"}:
             continue
         source = layer_of(path, forward)
@@ -94,14 +98,18 @@ def main():
                 for name in sorted(set(files)):
                     print(f"    {target}: {name}")
     found = loops(graph)
+    above_io = graph.get(IO_LAYER, {})
+    for target, files in sorted(above_io.items()):
+        print(f"io includes {target} (io sits below forward/): {', '.join(sorted(set(files)))}")
     for loop in found:
         print("include loop: " + " -> ".join(loop + (loop[0],)))
         for a, b in zip(loop, loop[1:] + (loop[0],)):
             print(f"    {a} -> {b}: {', '.join(sorted(set(graph[a][b])))}")
     if found:
         print(f"{len(found)} include loop(s) between the folders of {args.forward}")
+    if found or above_io:
         return 1
-    print("no include loops between the folders of forward/")
+    print("no include loops between the folders of forward/; io/ includes none of them")
     return 0
 
 
