@@ -6,12 +6,17 @@
 //                angular_velocity, torque [N,3] when the model rotates grains
 //   /history     a, b [M] (smaller, larger global id), shear [M,3] (seen from a)
 //   /bodies      displacement, velocity, contact_force [B,3]
-//   /domain      boundaries [ranks+1]
-// Rank 0 gathers and writes (the only time one rank holds all grains); every rank reads in chunks
-// and keeps what it owns.
+//   /domain      boundaries [ranks+1]; grain_rows [ranks+1]: rank r wrote rows
+//                grain_rows[r] to grain_rows[r+1] of /grains
+// Rank 0 gathers and writes (the only time one rank holds all grains). On restart every rank reads
+// only its part: on the same number of ranks the rows it wrote, on another number an equal block
+// of rows (then the slabs are cut anew); each reads an equal block of /history and sends every
+// record to the ranks holding its grains.
+#include <array>
 #include <cstdio>
 #include <map>
 #include <string>
+#include <unordered_map>
 
 #include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
@@ -23,6 +28,90 @@ namespace {
 
 constexpr std::int32_t kCheckpointVersion = 1;
 constexpr std::size_t kReadChunk = 1 << 16;
+
+/// The part [first, first + count) of `n` rows that rank `r` of `p` reads: equal blocks in order.
+std::array<std::size_t, 2> block_of(std::size_t n, std::size_t r, std::size_t p) {
+  const std::size_t first = r * (n / p) + std::min(r, n % p);
+  return {first, n / p + (r < n % p ? 1 : 0)};
+}
+
+/// Rows [first, first + count) of /grains, as grains (read in chunks).
+std::vector<Grain> read_grains(hid_t g, std::size_t first, std::size_t count, bool spins) {
+  std::vector<Grain> out;
+  out.reserve(count);
+  for (std::size_t at = first; at < first + count; at += kReadChunk) {
+    const std::size_t m = std::min(kReadChunk, first + count - at);
+    const auto id = io::read_rows<std::int64_t>(g, "id", at, m);
+    const auto group = io::read_rows<std::int32_t>(g, "group", at, m);
+    const auto body = io::read_rows<std::int32_t>(g, "body", at, m);
+    const auto radius = io::read_rows<double>(g, "radius", at, m);
+    const auto mass = io::read_rows<double>(g, "mass", at, m);
+    const auto x = io::read_rows<double>(g, "position", at, m, 3);
+    const auto vel = io::read_rows<double>(g, "velocity", at, m, 3);
+    const auto force = io::read_rows<double>(g, "force", at, m, 3);
+    std::vector<double> w, torque;
+    if (spins) {
+      w = io::read_rows<double>(g, "angular_velocity", at, m, 3);
+      torque = io::read_rows<double>(g, "torque", at, m, 3);
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto vec = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
+      Grain grain{id[k], group[k], body[k], radius[k], mass[k], vec(x), vec(vel), {}, vec(force), {}};
+      if (spins) {
+        grain.angular_velocity = vec(w);
+        grain.torque = vec(torque);
+      }
+      out.push_back(grain);
+    }
+  }
+  return out;
+}
+
+/// Rows [first, first + count) of /history (read in chunks).
+std::vector<HistoryEntry> read_history(hid_t h, std::size_t first, std::size_t count) {
+  std::vector<HistoryEntry> out;
+  out.reserve(count);
+  for (std::size_t at = first; at < first + count; at += kReadChunk) {
+    const std::size_t m = std::min(kReadChunk, first + count - at);
+    const auto a = io::read_rows<std::int64_t>(h, "a", at, m);
+    const auto b = io::read_rows<std::int64_t>(h, "b", at, m);
+    const auto s = io::read_rows<double>(h, "shear", at, m, 3);
+    for (std::size_t k = 0; k < m; ++k) out.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+  }
+  return out;
+}
+
+/// Sends every history record to the ranks holding its grain a or b (collective). No rank learns
+/// where every grain is: rank id mod ranks keeps the holder of grain id (a directory spread over
+/// the ranks), and records travel through the directory of each of their grains. A rank holding
+/// both grains may receive a record twice; HistoryMap keeps one.
+std::vector<HistoryEntry> route_history(MPI_Comm comm, const GrainArrays& g, const std::vector<HistoryEntry>& read) {
+  const int me = parallel::rank(comm);
+  const auto p = static_cast<std::int64_t>(parallel::size(comm));
+  const auto directory = [p](std::int64_t id) { return static_cast<std::size_t>(((id % p) + p) % p); };
+  std::vector<std::vector<std::array<std::int64_t, 2>>> held(static_cast<std::size_t>(p));
+  for (std::size_t i = 0; i < g.n_local(); ++i) held[directory(g.id[i])].push_back({g.id[i], me});
+  std::unordered_map<std::int64_t, int> holder;
+  for (const auto& [id, rank] : parallel::all_to_all(comm, held)) holder.emplace(id, static_cast<int>(rank));
+
+  std::vector<std::vector<HistoryEntry>> ask(static_cast<std::size_t>(p));
+  for (const HistoryEntry& e : read) {
+    ask[directory(e.a)].push_back(e);
+    if (directory(e.b) != directory(e.a)) ask[directory(e.b)].push_back(e);
+  }
+  std::vector<std::vector<HistoryEntry>> deliver(static_cast<std::size_t>(p));
+  for (const HistoryEntry& e : parallel::all_to_all(comm, ask)) {
+    int first_holder = -1;
+    for (const std::int64_t id : {e.a, e.b}) {
+      if (directory(id) != static_cast<std::size_t>(me)) continue;
+      const auto it = holder.find(id);
+      if (it == holder.end() || it->second == first_holder) continue;
+      deliver[static_cast<std::size_t>(it->second)].push_back(e);
+      first_holder = it->second;
+    }
+  }
+  return parallel::all_to_all(comm, deliver);
+}
 
 template <typename T, typename F>
 std::vector<T> column(const std::vector<Grain>& grains, F field) {
@@ -80,6 +169,7 @@ void require_same_inputs(const std::map<std::string, std::string>& recorded,
 }  // namespace
 
 void Engine::write_checkpoint(const std::string& path) {
+  const std::vector<std::uint64_t> grain_counts = parallel::all_gather(domain_.comm(), std::uint64_t{n_local()});
   const std::vector<Grain> all = gather_grains(*this);
   const std::vector<HistoryEntry> history = parallel::gather_on_root(domain_.comm(), contact_history());
   std::string error;
@@ -140,6 +230,9 @@ void Engine::write_checkpoint(const std::string& path) {
 
         io::Handle d = io::create_group(file, "domain");
         io::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
+        std::vector<std::int64_t> grain_rows{0};  // gathered in rank order
+        for (const std::uint64_t c : grain_counts) grain_rows.push_back(grain_rows.back() + static_cast<std::int64_t>(c));
+        io::write(d, "grain_rows", grain_rows.data(), grain_rows.size());
       });
     } catch (const std::exception& e) {
       error = e.what();
@@ -186,61 +279,31 @@ void Engine::restore_checkpoint(const std::string& path) {
     bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
                        {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
 
-  // Grains, in file order, each rank keeping its own (by slab, or by row range before repartition).
+  // Grains: on the same ranks, the rows this rank wrote (older checkpoints without grain_rows:
+  // as on other ranks); on other ranks an equal block of rows, the slabs cut anew below.
   io::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
   const std::size_t n = io::rows(g, "id");
   const bool spins = grains_.rotation();
   if (spins && !io::exists(g, "angular_velocity"))
     throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
-  grains_ = GrainArrays(spins);
   const auto r = static_cast<std::size_t>(domain_.rank());
   const auto p = static_cast<std::size_t>(domain_.size());
-  for (std::size_t first = 0; first < n; first += kReadChunk) {
-    const std::size_t count = std::min(kReadChunk, n - first);
-    const auto id = io::read_rows<std::int64_t>(g, "id", first, count);
-    const auto group = io::read_rows<std::int32_t>(g, "group", first, count);
-    const auto body = io::read_rows<std::int32_t>(g, "body", first, count);
-    const auto radius = io::read_rows<double>(g, "radius", first, count);
-    const auto mass = io::read_rows<double>(g, "mass", first, count);
-    const auto x = io::read_rows<double>(g, "position", first, count, 3);
-    const auto vel = io::read_rows<double>(g, "velocity", first, count, 3);
-    const auto force = io::read_rows<double>(g, "force", first, count, 3);
-    std::vector<double> w, torque;
-    if (spins) {
-      w = io::read_rows<double>(g, "angular_velocity", first, count, 3);
-      torque = io::read_rows<double>(g, "torque", first, count, 3);
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
-      const Vec3 position = at(x);
-      const bool mine = same_layout ? domain_.owner(position.z) == domain_.rank()
-                                    : (first + k) * p / n == r;
-      if (!mine) continue;
-      Grain grain{id[k], group[k], body[k], radius[k], mass[k], position, at(vel), {}, at(force), {}};
-      if (spins) {
-        grain.angular_velocity = at(w);
-        grain.torque = at(torque);
-      }
-      grains_.push_local(grain);
-    }
+  std::array<std::size_t, 2> mine = block_of(n, r, p);
+  if (same_layout && io::exists(d, "grain_rows")) {
+    const auto rows = io::read_rows<std::int64_t>(d, "grain_rows", r, 2);
+    if (rows[0] < 0 || rows[1] < rows[0] || static_cast<std::size_t>(rows[1]) > n)
+      throw std::runtime_error("DEM restart: " + path + " has inconsistent /domain/grain_rows");
+    mine = {static_cast<std::size_t>(rows[0]), static_cast<std::size_t>(rows[1] - rows[0])};
   }
+  grains_ = GrainArrays(spins);
+  for (const Grain& grain : read_grains(g, mine[0], mine[1], spins)) grains_.push_local(grain);
 
-  // History records that involve a local grain (migration forwards the rest as grains move).
+  // History records go to the ranks holding their grains (migration forwards them as grains move).
   pending_history_.clear();
   if (needs_history(model_)) {
-    std::unordered_map<std::int64_t, char> local_ids;
-    for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
     io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
-    const std::size_t m = io::rows(h, "a");
-    for (std::size_t first = 0; first < m; first += kReadChunk) {
-      const std::size_t count = std::min(kReadChunk, m - first);
-      const auto a = io::read_rows<std::int64_t>(h, "a", first, count);
-      const auto b = io::read_rows<std::int64_t>(h, "b", first, count);
-      const auto s = io::read_rows<double>(h, "shear", first, count, 3);
-      for (std::size_t k = 0; k < count; ++k)
-        if (local_ids.contains(a[k]) || local_ids.contains(b[k]))
-          pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
-    }
+    const auto [first, count] = block_of(io::rows(h, "a"), r, p);
+    pending_history_ = route_history(domain_.comm(), grains_, read_history(h, first, count));
   }
   if (!same_layout) domain_.partition_by_count(grains_, ghost_cutoff_);
   list_valid_ = false;

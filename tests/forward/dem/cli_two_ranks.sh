@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # `sedwave dem` under mpirun -np 2: a run with checkpoint, LAMMPS dump, H5MD trajectory and final
 # state, then a --restart to a later step (the files are cut back to the checkpoint and appended).
-# Checks the multi-rank paths of the command (reading shares, rank-by-rank writers, restore).
+# Checks the multi-rank paths of the command (reading shares, rank-by-rank writers, restore), and
+# that the restarted run ends byte for byte as an uninterrupted one on the same 2 ranks (each rank
+# reads back the grains it wrote).
 #
 # Usage: cli_two_ranks.sh MPIEXEC SEDWAVE DATA_FILE WORK_DIR
 set -euo pipefail
@@ -26,4 +28,9 @@ frames=$(grep -c "ITEM: TIMESTEP" run.dump)
 [[ $frames -eq 11 ]] || { echo "FAIL: the dump has $frames frames, expected 11 (steps 0..1000)" >&2; exit 1; }
 atoms=$(awk 'NR == 3 {print $1}' final.data)
 [[ $atoms -eq 128 ]] || { echo "FAIL: final state has $atoms grains" >&2; exit 1; }
-echo "PASS: 2 ranks, restarted at step 600, 11 dump frames, 128 grains in the final state"
+straight=(dem "$data" --kn 1000 --restitution 0.7 --friction 0.5 --gravity 0,0,-1 --frozen 2
+          --checkpoint straight.h5 --every 300 --dump straight.dump --dump-every 100 --final straight.data --quiet)
+"$mpiexec" -np 2 --oversubscribe "$sedwave" "${straight[@]}" --steps 1000
+cmp final.data straight.data || { echo "FAIL: the restarted run ends elsewhere than the uninterrupted one" >&2; exit 1; }
+cmp run.dump straight.dump || { echo "FAIL: the restarted dump differs from the uninterrupted one" >&2; exit 1; }
+echo "PASS: 2 ranks, restarted at step 600, 11 dump frames, 128 grains in the final state, identical to an uninterrupted run"

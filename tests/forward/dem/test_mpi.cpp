@@ -10,6 +10,7 @@
 #include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/dem/h5md.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
@@ -192,6 +193,55 @@ TEST(Trajectories, FourRanksWriteEveryGrainOnceBitExact) {
   }
   std::filesystem::remove(h5md);
   std::filesystem::remove(dump);
+}
+
+// A checkpoint written on 2 ranks restarts on 3 (each reading its block of grains and of history
+// records, which travel to the ranks holding their grains) and continues as the 2-rank run does,
+// to the rank-equivalence tolerance; a lost or misrouted friction history would break it.
+TEST(Checkpoint, TwoRankCheckpointContinuesOnThreeRanks) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  ASSERT_GE(size, 3) << "run under mpirun -np 4";
+  const std::string path = testing::temp_path("dem_mpi_two_to_three.h5", MPI_COMM_WORLD);
+  constexpr std::int64_t steps = 200;
+  Box box;
+  const std::vector<Grain> all = tall_column(2, 12, 0.01, box, 11);
+  const EngineSettings settings = scene_settings(true, box, true);
+  const std::vector<Grain> none;
+
+  std::map<std::int64_t, Grain> straight, restarted;
+  std::size_t records_at_checkpoint = 0;
+  {
+    const parallel::SubCommunicator two(MPI_COMM_WORLD, rank < 2);
+    if (two.get() != MPI_COMM_NULL) {
+      Engine engine(two.get(), settings, rank == 0 ? all : none);
+      engine.run(steps);
+      records_at_checkpoint = parallel::sum(two.get(), engine.contact_history().size());
+      engine.write_checkpoint(path);
+      engine.run(steps);
+      for (const Grain& g : gather_grains(engine)) straight[g.id] = g;
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  {
+    const parallel::SubCommunicator three(MPI_COMM_WORLD, rank < 3);
+    if (three.get() != MPI_COMM_NULL) {
+      Engine engine(three.get(), settings, rank == 0 ? all : none);
+      engine.restore_checkpoint(path);
+      EXPECT_EQ(engine.step_count(), steps);
+      EXPECT_GT(engine.n_local(), 0u) << "rank " << rank << " read no grains";
+      engine.run(steps);
+      for (const Grain& g : gather_grains(engine)) restarted[g.id] = g;
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank != 0) return;
+  EXPECT_GT(records_at_checkpoint, 0u);  // friction history to carry over
+  ASSERT_EQ(straight.size(), all.size());
+  ASSERT_EQ(restarted.size(), all.size());
+  EXPECT_LT(max_difference(straight, restarted, box), kTolerance);
+  std::filesystem::remove(path);
 }
 
 // A trajectory file that cannot be opened (its path is a directory): rank 0's turn fails, and
