@@ -119,8 +119,7 @@ struct ModelRun {
   std::string spec;
   std::shared_ptr<const sediment::SedimentModel> model;
   inversion::FitParameters parameters;
-  std::vector<std::string> site_priors;
-  std::string site;
+  std::vector<inversion::SitePrior> site_priors;
   std::vector<inversion::Prior> priors;
   Row row;
 };
@@ -144,7 +143,6 @@ ModelRun prepare(const std::string& spec, const CompareOptions& o) {
   run.model = make_model(mo);
   std::vector<std::string> notes;
   run.parameters = make_parameters(mo, *run.model, ModelUse::Fit, &notes, &run.site_priors);
-  run.site = mo.site;
   return run;
 }
 
@@ -160,7 +158,7 @@ void fit_model(ModelRun& run, const CompareOptions& o, const inversion::Observat
     if (i >= 0 && run.parameters.spec[i].free) prior_items.push_back(item);
   }
   run.priors = inversion::default_priors(row.fit.fitted);
-  inversion::apply_priors(row.fit.fitted, run.site_priors, "site file " + run.site, run.priors);
+  inversion::apply_site_priors(row.fit.fitted, run.site_priors, run.priors);
   inversion::apply_priors(row.fit.fitted, prior_items, "command line", run.priors);
   for (int i : row.fit.fitted.free_indices()) {
     const auto& parameter = row.fit.fitted.spec[i];

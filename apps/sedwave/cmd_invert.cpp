@@ -290,7 +290,8 @@ Command add_invert_command(CLI::App& app) {
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
             const auto model = make_model(o->model);
-            std::vector<std::string> site_notes, site_priors;
+            std::vector<std::string> site_notes;
+            std::vector<inversion::SitePrior> site_priors;
             const inversion::FitParameters parameters =
                 make_parameters(o->model, *model, ModelUse::Fit, &site_notes, &site_priors);
             for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
@@ -299,7 +300,7 @@ Command add_invert_command(CLI::App& app) {
             options.method = inversion::parse_fit_method(posterior ? "global" : o->method);
             if (!o->priors.empty() && !posterior) throw UsageError("--prior is for --method posterior");
             std::vector<inversion::Prior> priors = inversion::default_priors(parameters);
-            inversion::apply_priors(parameters, site_priors, "site file " + o->model.site, priors);
+            inversion::apply_site_priors(parameters, site_priors, priors);
             inversion::apply_priors(parameters, o->priors, "command line", priors);
             const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
             io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not half of its own
