@@ -21,7 +21,7 @@
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/posterior.hpp"
-#include "sedwave/inversion/predictive.hpp"
+#include "sedwave/inversion/study.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
@@ -221,15 +221,6 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   return outputs;
 }
 
-/// The corner plot's files, with the best fit of the sampled parameters marked.
-inversion::CornerFiles corner_files(const inversion::FitResult& result, const std::vector<std::string>& names) {
-  inversion::CornerFiles files;
-  for (const std::string& name : names) {
-    files.best_fit.push_back(result.fitted.spec[result.fitted.index_of(name)].value);
-  }
-  return files;
-}
-
 }  // namespace
 
 Command add_invert_command(CLI::App& app) {
@@ -314,23 +305,16 @@ Command add_invert_command(CLI::App& app) {
             const inversion::FitResult result = inversion::fit(data, *model, parameters, options);
 
             nlohmann::json report = inversion::fit_report(result, data);
-            std::optional<inversion::PosteriorResult> sampled;
+            std::optional<inversion::PosteriorStudy> sampled;
             if (posterior) {
               inversion::PosteriorOptions posterior_options = o->posterior;
               posterior_options.threads = threads_to_use(o->threads);
               posterior_options.progress = [](const std::string& line) {
                 std::fprintf(stderr, "sedwave invert: posterior: %s\n", line.c_str());
               };
-              sampled = inversion::sample_posterior(data, *model, result, priors, options, posterior_options);
-              report["posterior"] = inversion::posterior_report(*sampled);
-              inversion::write_posterior_samples_csv(out / "posterior_samples.csv", *sampled);
-              inversion::write_posterior_samples_hdf5(out / "posterior_samples.h5", *sampled);
-              inversion::write_posterior_marginals_csv(out / "posterior_marginals.csv", *sampled);
-              const inversion::PredictiveBand band = inversion::predictive_band(
-                  result.model, *model, result, sampled->samples, inversion::curve_frequencies(data));
-              inversion::write_predictive_csv(out / "posterior_predictive.csv", band, data.water_sound_speed);
-              inversion::write_predictive_residuals_csv(out / "posterior_residuals.csv", result, {band},
-                                                        data.water_sound_speed);
+              sampled = inversion::posterior_study(data, *model, result, priors, options, posterior_options);
+              report["posterior"] = inversion::posterior_report(sampled->posterior);
+              inversion::write_posterior_study(out, *sampled, result, data);
             }
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
@@ -359,20 +343,14 @@ Command add_invert_command(CLI::App& app) {
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
             if (sampled) {
-              print_posterior(*sampled, o->out);
+              print_posterior(sampled->posterior, o->out);
               if (o->plot) {
-                std::printf("  %s\n",
-                            inversion::draw_corner_plot(out, sampled->sample_names, sampled->sample_units,
-                                                        corner_files(result, sampled->sample_names))
-                                .message.c_str());
-                std::printf("  %s\n", inversion::draw_predictive_plot(
-                                           out, "posterior_predictive", "sedwave posterior band: " + result.model,
-                                           data.water_sound_speed.has_value(), result,
-                                           {{result.model, "posterior_predictive.csv"}}, "posterior_residuals.csv")
-                                           .message.c_str());
+                for (const std::string& message : inversion::draw_posterior_plots(out, *sampled, result, data)) {
+                  std::printf("  %s\n", message.c_str());
+                }
               }
             }
-            const bool sampled_ok = !sampled || sampled->converged;
+            const bool sampled_ok = !sampled || sampled->posterior.converged;
             return result.converged && sampled_ok && result.flags.empty() ? kExitOk : kExitIncomplete;
           }};
 }
