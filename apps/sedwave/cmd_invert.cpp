@@ -326,14 +326,10 @@ Command add_invert_command(CLI::App& app) {
               }
             }
             io::write_text_atomically(out / "fit.json", [&](std::ostream& s) { s << report.dump(2) << "\n"; });
-            const std::vector<double> frequencies = inversion::curve_frequencies(data);
-            const std::vector<inversion::CurvePoint> curves = inversion::model_curves(result, *model, frequencies);
-            if (curves.size() < frequencies.size()) {
+            if (const std::size_t left_out = inversion::write_fit_files(out, result, *model, data); left_out > 0) {
               std::printf("note: the model curves leave out %zu of %zu frequencies, where %s does not answer\n",
-                          frequencies.size() - curves.size(), frequencies.size(), result.model.c_str());
+                          left_out, inversion::curve_frequencies(data).size(), result.model.c_str());
             }
-            inversion::write_curves_csv(out / "curves.csv", curves, data.water_sound_speed);
-            inversion::write_observations_table(out / "observations.csv", data, result);
             outputs.commit_all();  // the plots read them
             inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
             if (o->plot) {

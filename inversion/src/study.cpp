@@ -5,6 +5,15 @@
 
 namespace sedwave::inversion {
 
+std::size_t write_fit_files(const std::filesystem::path& dir, const FitResult& best,
+                            const sediment::SedimentModel& model, const ObservationSet& data) {
+  const std::vector<double> frequencies = curve_frequencies(data);
+  const std::vector<CurvePoint> curves = model_curves(best, model, frequencies);
+  write_curves_csv(dir / "curves.csv", curves, data.water_sound_speed);
+  write_observations_table(dir / "observations.csv", data, best);
+  return frequencies.size() - curves.size();
+}
+
 PosteriorStudy posterior_study(const ObservationSet& data, const sediment::SedimentModel& model,
                                const FitResult& best, const std::vector<Prior>& priors, const FitOptions& fit_options,
                                const PosteriorOptions& options) {

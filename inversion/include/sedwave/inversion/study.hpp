@@ -6,6 +6,7 @@
 //   const FitResult best = fit(data, model, parameters, options);
 //   const PosteriorStudy study = posterior_study(data, model, best, priors, options, {});
 //   write_posterior_study(out, study, best, data);
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,6 +18,12 @@
 #include "sedwave/inversion/priors.hpp"
 
 namespace sedwave::inversion {
+
+/// A fit's files in `dir`: curves.csv (the best fit's model over the data's band, curve_frequencies)
+/// and observations.csv (the data beside the fit). Returns how many of the curve's frequencies the
+/// model did not answer (left out of curves.csv).
+std::size_t write_fit_files(const std::filesystem::path& dir, const FitResult& best,
+                            const sediment::SedimentModel& model, const ObservationSet& data);
 
 struct PosteriorStudy {
   PosteriorResult posterior;
