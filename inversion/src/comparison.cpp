@@ -79,9 +79,15 @@ std::string widened_stage() {
 }  // namespace
 
 Candidate make_candidate(const std::string& spec, const Site& site) {
-  Candidate candidate;
+  Candidate candidate = make_candidate(sediment::make_sediment_model(spec), site);
   candidate.label = spec;
-  candidate.model = sediment::make_sediment_model(spec);
+  return candidate;
+}
+
+Candidate make_candidate(std::shared_ptr<const sediment::SedimentModel> model, const Site& site) {
+  Candidate candidate;
+  candidate.label = model->name();
+  candidate.model = std::move(model);
   candidate.parameters = FitParameters(candidate.model->parameters());
   candidate.parameters.set_free_from_list(sediment::typical_free_parameters(*candidate.model));
   Site for_any_model = site;

@@ -40,7 +40,10 @@ TEST(CompareModels, RanksTheModelThatMadeTheDataFirstWithOneCall) {
   site.porosity = SiteValue{0.42, "site.toml:2: key 'porosity.mean'"};
   site.porosity_sd = SiteValue{0.03, "site.toml:3: key 'porosity.sd'"};
   site.source = "site file site.toml";
-  const std::vector<Candidate> candidates{make_candidate("grain-shearing", site), make_candidate("edfm", site)};
+  // By name from the catalog, or from a model object the caller made (e.g. a model of its own).
+  const std::vector<Candidate> candidates{make_candidate("grain-shearing", site),
+                                          make_candidate(sediment::make_sediment_model("edfm"), site)};
+  EXPECT_EQ(candidates[1].label, "edfm");
   const Ranking ranking = compare_models(data, candidates, quick(1));
 
   ASSERT_EQ(ranking.models.size(), 2u);

@@ -43,6 +43,8 @@ struct Candidate {
 /// applied (a site value for a parameter the model lacks is skipped) and its priors: the site's
 /// where it gives one, log-uniform over the search bounds elsewhere.
 [[nodiscard]] Candidate make_candidate(const std::string& spec, const Site& site = {});
+/// The same for a model object the caller made (labelled by its name).
+[[nodiscard]] Candidate make_candidate(std::shared_ptr<const sediment::SedimentModel> model, const Site& site = {});
 
 struct ComparisonOptions {
   EvidenceOptions evidence;  ///< its threads are set from `threads` below
