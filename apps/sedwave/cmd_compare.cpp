@@ -1,7 +1,8 @@
 // `sedwave compare`: several sediment models fitted to the same data and ranked by their evidence
 // (the probability of the data under each model and its priors), beside chi^2, AIC and BIC, with a
 // posterior-predictive check; and the ranking again with every prior widened tenfold, since
-// evidence depends on priors (docs/inversion.md, "Comparing models").
+// evidence depends on priors (docs/inversion.md, "Comparing models"). The work is the library's
+// compare_models (sedwave/inversion/comparison.hpp); this file reads the options and prints.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,6 @@
 // `sedwave invert`: fit grain-contact parameters to observation files and report what the data
-// determine, with a plot.
+// determine, with a plot; with --method posterior, the library's posterior study
+// (sedwave/inversion/study.hpp) from that fit.
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -116,6 +116,7 @@ inversion::Site site_of_options(const ModelOptions& o) {
     return inversion::SiteValue{*x, option};
   };
   inversion::Site site;
+  site.source = "command line";
   site.phi = value(o.phi, "--phi");
   site.porosity = value(o.porosity, "--porosity");
   site.bulk_density = value(o.bulk_density, "--bulk-density");

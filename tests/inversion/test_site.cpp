@@ -35,6 +35,8 @@ Site worked_example(bool as_file) {
     site.kappa_sd_ln = value(1.0, "site.toml:6: key 'depth.kappa_sd_ln'");
     site.source = "site file site.toml";
     site.skip_missing_parameters = true;
+  } else {
+    site.source = "command line";
   }
   return site;
 }
@@ -53,6 +55,11 @@ TEST(Site, FileAndOptionsGiveIdenticalFixedValues) {
     EXPECT_EQ(from_file.spec[i].value, from_options.spec[i].value);  // bit for bit
   }
   EXPECT_NE(value_of(from_file, "kappa"), model->parameters()[0].default_value);
+  // The same notes, the file's saying where they came from.
+  ASSERT_EQ(file.notes.size(), options.notes.size());
+  for (std::size_t i = 0; i < file.notes.size(); ++i) {
+    EXPECT_EQ(file.notes[i], options.notes[i] + " (site file site.toml)");
+  }
 }
 
 TEST(Site, WorkedExampleMatchesTheHandValues) {

@@ -45,8 +45,9 @@ struct Site {
   std::optional<SiteValue> kappa_sd_ln;                       ///< sd of ln kappa about Hertz [1]
   std::optional<SiteValue> water_temperature, salinity;       ///< [deg C], [ppt]
   std::optional<SiteValue> restitution_lower, restitution_upper;  ///< [1]
-  /// "site file PATH" or "command line": the source of its priors and notes.
-  std::string source = "command line";
+  /// Where the site was given ("site file PATH", "command line"): the source of its priors, and
+  /// said after each note except for the command line's.
+  std::string source = "site";
   /// A site file describes the seabed for any model: a model without a parameter it sets skips it.
   /// The command line's options are meant for the one model: there that is refused.
   bool skip_missing_parameters = false;
