@@ -1,28 +1,22 @@
 // `sedwave compare`: several sediment models fitted to the same data and ranked by their evidence
 // (the probability of the data under each model and its priors), beside chi^2, AIC and BIC, with a
 // posterior-predictive check; and the ranking again with every prior widened tenfold, since
-// evidence depends on priors (docs/inversion.md, "Comparing models").
+// evidence depends on priors (docs/inversion.md, "Comparing models"). The work is the library's
+// compare_models (sedwave/inversion/comparison.hpp); this file reads the options and prints.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
-#include "job_queue.hpp"
 #include "model_options.hpp"
 #include "option_checks.hpp"
 #include "output_paths.hpp"
-#include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/comparison.hpp"
 #include "sedwave/inversion/observations.hpp"
-#include "sedwave/inversion/plot.hpp"
-#include "sedwave/inversion/posterior.hpp"
-#include "sedwave/inversion/predictive.hpp"
-#include "sedwave/inversion/report.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/sediment/catalog.hpp"
 
@@ -40,15 +34,6 @@ struct CompareOptions {
   int threads = 0;  ///< 0: every usable core
   bool plot = true;
   std::string out = "sedwave-compare";
-};
-
-struct Row {
-  std::string model;
-  std::string free;
-  inversion::FitResult fit;
-  std::vector<std::string> priors;
-  inversion::ModelEvidence evidence, widened;
-  inversion::PredictiveBand band;
 };
 
 std::vector<std::string> split(const std::string& text, char by) {
@@ -111,25 +96,9 @@ void check_fits(const std::vector<std::string>& fits, const std::vector<std::str
   }
 }
 
-/// One model's comparison, filled in by jobs (job_queue.hpp): its fit, then its evidence under the
-/// priors and under the priors widened x10, then its posterior band. Each job writes only its own
-/// fields, and each sampler has its own seeded random stream: the results do not depend on how many
-/// threads run the jobs or in which order they finish.
-struct ModelRun {
-  std::string spec;
-  std::shared_ptr<const sediment::SedimentModel> model;
-  inversion::FitParameters parameters;
-  std::vector<std::string> site_priors;
-  std::string site;
-  std::vector<inversion::Prior> priors;
-  Row row;
-};
-
-const inversion::FitOptions kFitOptions{.method = inversion::FitMethod::Global, .profile_likelihood = false};
-
-/// The model, its free parameters and its site priors, before any work: an unusable option stops
-/// the comparison before the first fit.
-ModelRun prepare(const std::string& spec, const CompareOptions& o) {
+/// A model with its free parameters, values and priors (site file, then --prior), before any work:
+/// an unusable option stops the comparison before the first fit.
+inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
   ModelOptions mo = o.shared;
   mo.model = spec;
   for (const std::string& f : o.fits) {
@@ -139,93 +108,32 @@ ModelRun prepare(const std::string& spec, const CompareOptions& o) {
   mo.set_values.erase(std::remove_if(mo.set_values.begin(), mo.set_values.end(),
                                      [&](const std::string& item) { return !has_parameter(*probe, name_of(item)); }),
                       mo.set_values.end());
-  ModelRun run;
-  run.spec = spec;
-  run.model = make_model(mo);
+  inversion::Candidate candidate;
+  candidate.label = spec;
+  candidate.model = make_model(mo);
   std::vector<std::string> notes;
-  run.parameters = make_parameters(mo, *run.model, ModelUse::Fit, &notes, &run.site_priors);
-  run.site = mo.site;
-  return run;
-}
-
-/// The fit, then the priors around it (every prior covers the search bounds of the fitted set).
-void fit_model(ModelRun& run, const CompareOptions& o, const inversion::ObservationSet& data) {
-  std::fprintf(stderr, "sedwave compare: %s: fit ...\n", run.spec.c_str());
-  Row& row = run.row;
-  row.model = run.model->name();
-  row.fit = inversion::fit(data, *run.model, run.parameters, kFitOptions);
-  std::vector<std::string> prior_items;
+  std::vector<inversion::SitePrior> site_priors;
+  candidate.parameters = make_parameters(mo, *candidate.model, ModelUse::Fit, &notes, &site_priors);
+  std::vector<std::string> prior_items;  // a --prior applies to every model that has its parameter free
   for (const std::string& item : o.priors) {
-    const int i = has_parameter(*run.model, name_of(item)) ? run.parameters.index_of(name_of(item)) : -1;
-    if (i >= 0 && run.parameters.spec[i].free) prior_items.push_back(item);
+    const int i = has_parameter(*candidate.model, name_of(item)) ? candidate.parameters.index_of(name_of(item)) : -1;
+    if (i >= 0 && candidate.parameters.spec[static_cast<std::size_t>(i)].free) prior_items.push_back(item);
   }
-  run.priors = inversion::default_priors(row.fit.fitted);
-  inversion::apply_priors(row.fit.fitted, run.site_priors, "site file " + run.site, run.priors);
-  inversion::apply_priors(row.fit.fitted, prior_items, "command line", run.priors);
-  for (int i : row.fit.fitted.free_indices()) {
-    const auto& parameter = row.fit.fitted.spec[i];
-    row.free += (row.free.empty() ? "" : ",") + parameter.name;
-    row.priors.push_back(parameter.name + ": " + run.priors[static_cast<std::size_t>(i)].describe(parameter.unit));
-  }
+  candidate.priors = inversion::default_priors(candidate.parameters);
+  inversion::apply_site_priors(candidate.parameters, site_priors, candidate.priors);
+  inversion::apply_priors(candidate.parameters, prior_items, "command line", candidate.priors);
+  return candidate;
 }
 
-/// One evidence run of a fitted model under `priors`; it announces itself and reports its progress
-/// on stderr under `label` (two runs of a model go side by side).
-inversion::ModelEvidence evidence_of(const ModelRun& run, const inversion::ObservationSet& data,
-                                     const std::vector<inversion::Prior>& priors, inversion::EvidenceOptions options,
-                                     const char* label) {
-  std::fprintf(stderr, "sedwave compare: %s: %s ...\n", run.spec.c_str(), label);
-  const std::string spec = run.spec;
-  options.progress = [spec, label](const std::string& line) {
-    std::fprintf(stderr, "sedwave compare: %s: %s: %s\n", spec.c_str(), label, line.c_str());
-  };
-  return inversion::model_evidence(data, *run.model, run.row.fit, priors, kFitOptions, options);
-}
-
-/// Queues every model's jobs; `threads` run them, and threads beyond the two evidence runs per
-/// model share each sampler's evaluations.
-void run_all(std::vector<ModelRun>& runs, const CompareOptions& o, const inversion::ObservationSet& data,
-             int threads) {
-  inversion::EvidenceOptions evidence = o.evidence;
-  evidence.threads = std::max(1, threads / (2 * static_cast<int>(runs.size())));
-  JobQueue queue;
-  for (ModelRun& run : runs) {
-    queue.add([&run, &o, &data, evidence](JobQueue& next) {
-      fit_model(run, o, data);
-      next.add([&run, &data, evidence](JobQueue&) {
-        run.row.widened =
-            evidence_of(run, data, inversion::widened(run.priors, 10.0), evidence, "evidence, priors widened x10");
-      });
-      next.add([&run, &data, evidence](JobQueue& after) {
-        run.row.evidence = evidence_of(run, data, run.priors, evidence, "evidence");
-        after.add([&run, &data](JobQueue&) {
-          run.row.band = inversion::predictive_band(run.row.model, *run.model, run.row.fit, run.row.evidence.samples,
-                                                    inversion::curve_frequencies(data));
-        });
-      });
-    });
-  }
-  queue.run(threads);
-}
-
-std::vector<int> ranking(const std::vector<Row>& rows, bool widened) {
-  std::vector<int> order(rows.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const auto& ea = widened ? rows[a].widened : rows[a].evidence;
-    const auto& eb = widened ? rows[b].widened : rows[b].evidence;
-    return ea.log_evidence > eb.log_evidence;
-  });
-  return order;
-}
-
-void print_table(const std::vector<Row>& rows) {
-  const std::vector<int> order = ranking(rows, false), wide = ranking(rows, true);
-  const double best = rows[order[0]].evidence.log_evidence;
+void print_table(const inversion::Ranking& ranking) {
+  const std::vector<inversion::ComparedModel>& rows = ranking.models;
+  const std::vector<int>& order = ranking.order;
+  const std::vector<int>& wide = ranking.order_widened;
+  const double best = ranking.best().evidence.log_evidence;
   std::printf("\n%-4s %-20s %3s %9s %7s %9s %9s %17s %8s %8s %10s %5s\n", "rank", "model", "k", "chi2", "chi2/nu",
               "AIC", "BIC", "ln Z", "dln Z", "p(pred)", "ln Z x10", "rank");
   for (std::size_t r = 0; r < order.size(); ++r) {
-    const Row& row = rows[order[r]];
+    const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
     const auto wide_rank = std::find(wide.begin(), wide.end(), order[r]) - wide.begin() + 1;
     std::printf("%-4zu %-20s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld%s\n", r + 1,
                 row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
@@ -235,43 +143,18 @@ void print_table(const std::vector<Row>& rows) {
                 row.evidence.converged ? "" : "  (NOT CONVERGED)");
   }
   if (rows.size() > 1) {
-    const double gap = rows[order[0]].evidence.log_evidence - rows[order[1]].evidence.log_evidence;
-    const double noise = std::hypot(rows[order[0]].evidence.uncertainty, rows[order[1]].evidence.uncertainty);
+    const inversion::ComparedModel& first = rows[static_cast<std::size_t>(order[0])];
+    const inversion::ComparedModel& second = rows[static_cast<std::size_t>(order[1])];
+    const double gap = first.evidence.log_evidence - second.evidence.log_evidence;
+    const double noise = std::hypot(first.evidence.uncertainty, second.evidence.uncertainty);
     if (gap < std::max(1.0, 2.0 * noise)) {
       std::printf("the first two differ by %.2f in ln Z (uncertainty %.2f): these data cannot tell them apart\n", gap,
                   noise);
     } else {
-      std::printf("%s is preferred over %s by a factor e^%.1f in evidence\n", rows[order[0]].model.c_str(),
-                  rows[order[1]].model.c_str(), gap);
+      std::printf("%s is preferred over %s by a factor e^%.1f in evidence\n", first.model.c_str(),
+                  second.model.c_str(), gap);
     }
   }
-}
-
-nlohmann::json report(const std::vector<Row>& rows) {
-  nlohmann::json j = nlohmann::json::array();
-  for (const Row& row : rows) {
-    const auto ev = [](const inversion::ModelEvidence& e) {
-      return nlohmann::json{{"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
-                            {"predictive_p", e.predictive_p}, {"converged", e.converged},
-                            {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds},
-                            {"steps", e.steps}, {"temperatures", e.temperatures},
-                            {"max_temperature", e.max_temperature},
-                            {"thermodynamic_integration", e.thermodynamic_integration},
-                            {"stone_overlap", e.stone_overlap}};
-    };
-    j.push_back({{"model", row.model}, {"free", row.free}, {"chi2", row.fit.chi2}, {"dof", row.fit.dof},
-                 {"aic", row.fit.aic}, {"bic", row.fit.bic}, {"priors", row.priors}, {"evidence", ev(row.evidence)},
-                 {"evidence_priors_widened_x10", ev(row.widened)}});
-  }
-  return j;
-}
-
-/// Each model's file of one kind: STEM_<position>_<spec>.csv (the position keeps two specs of one
-/// model apart; any character of the spec outside [A-Za-z0-9.-] is made '_').
-std::string model_file(const std::string& stem, std::size_t position, const std::string& spec) {
-  std::string name = stem + "_" + std::to_string(position + 1) + "_";
-  for (char c : spec) name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
-  return name + ".csv";
 }
 
 std::vector<OutputPath> output_files(const std::filesystem::path& out, const std::vector<std::string>& models) {
@@ -282,66 +165,10 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out, const std
     outputs.push_back({"--out", out / name});
   }
   for (std::size_t i = 0; i < models.size(); ++i) {
-    outputs.push_back({"--out", out / model_file("predictive", i, models[i])});
-    outputs.push_back({"--out", out / model_file("samples", i, models[i])});
+    outputs.push_back({"--out", out / inversion::ranking_file("predictive", i, models[i])});
+    outputs.push_back({"--out", out / inversion::ranking_file("samples", i, models[i])});
   }
   return outputs;
-}
-
-/// Every model's posterior band over the data, as files; returns them for the plot.
-std::vector<inversion::BandFile> write_bands(const std::filesystem::path& out, const std::vector<std::string>& specs,
-                                             const std::vector<Row>& rows, const inversion::ObservationSet& data) {
-  std::vector<inversion::PredictiveBand> bands;
-  std::vector<inversion::BandFile> files;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    files.push_back({rows[i].model, model_file("predictive", i, specs[i])});
-    inversion::write_predictive_csv(out / files.back().file, rows[i].band, data.water_sound_speed);
-    bands.push_back(rows[i].band);
-  }
-  inversion::write_predictive_residuals_csv(out / "predictive_residuals.csv", rows.front().fit, bands,
-                                            data.water_sound_speed);
-  std::printf("posterior bands: %s/predictive_*.csv, samples: %s/samples_*.csv\n", out.c_str(), out.c_str());
-  return files;
-}
-
-/// The bands of every model in one plot (read from the files write_bands wrote).
-void plot_bands(const std::filesystem::path& out, const std::vector<inversion::BandFile>& files,
-                const std::vector<Row>& rows, const inversion::ObservationSet& data) {
-  std::printf("%s\n", inversion::draw_predictive_plot(out, "predictive", "sedwave compare: posterior bands",
-                                                      data.water_sound_speed.has_value(), rows.front().fit, files,
-                                                      "predictive_residuals.csv")
-                          .message.c_str());
-}
-
-/// The free parameters' names and units of a row, in the order of its samples' columns.
-std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(const Row& row) {
-  std::vector<std::string> names, units;
-  for (int i : row.fit.fitted.free_indices()) {
-    names.push_back(row.fit.fitted.spec[i].name);
-    units.push_back(row.fit.fitted.spec[i].unit);
-  }
-  return {names, units};
-}
-
-/// Each model's posterior draws (the evidence run's beta = 1 ensemble).
-void write_samples(const std::filesystem::path& out, const std::vector<std::string>& specs,
-                   const std::vector<Row>& rows) {
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto [names, units] = sample_columns(rows[i]);
-    inversion::write_samples_csv(out / model_file("samples", i, specs[i]), rows[i].evidence.samples, names, units);
-  }
-}
-
-/// The corner plot of the model ranked first (read from its samples file).
-void plot_best_corner(const std::filesystem::path& out, const std::vector<std::string>& specs,
-                      const std::vector<Row>& rows) {
-  const auto best = static_cast<std::size_t>(ranking(rows, false).front());
-  const auto [names, units] = sample_columns(rows[best]);
-  std::vector<double> best_fit;
-  for (int i : rows[best].fit.fitted.free_indices()) best_fit.push_back(rows[best].fit.fitted.spec[i].value);
-  const inversion::CornerFiles files{model_file("samples", best, specs[best]), "corner_best",
-                                     "posterior of " + rows[best].model + " (ranked first)", best_fit};
-  std::printf("%s\n", inversion::draw_corner_plot(out, names, units, files).message.c_str());
 }
 
 }  // namespace
@@ -388,34 +215,34 @@ Command add_compare_command(CLI::App& app) {
     require_known(o->shared.set_values, "--set", models);
     check_fits(o->fits, model_names);
     const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
-    std::vector<ModelRun> runs;
-    for (const std::string& spec : model_names) runs.push_back(prepare(spec, *o));
-    run_all(runs, *o, data, threads_to_use(o->threads));
-    std::vector<Row> rows;
-    for (ModelRun& run : runs) rows.push_back(std::move(run.row));
+    std::vector<inversion::Candidate> candidates;
+    for (const std::string& spec : model_names) candidates.push_back(prepare(spec, *o));
+    const inversion::ComparisonOptions options{o->evidence, threads_to_use(o->threads), [](const std::string& line) {
+                                                 std::fprintf(stderr, "sedwave compare: %s\n", line.c_str());
+                                               }};
+    const inversion::Ranking ranking = inversion::compare_models(data, candidates, options);
     std::printf("sedwave compare: %zu models, %zu observations; ln Z up to a constant common to all models\n",
-                rows.size(), data.observations.size());
-    for (const Row& row : rows) {
-      std::printf("\n%s (free: %s)\n", row.model.c_str(), row.free.c_str());
-      for (const std::string& p : row.priors) std::printf("  prior %s\n", p.c_str());
+                ranking.models.size(), data.observations.size());
+    for (const inversion::ComparedModel& m : ranking.models) {
+      std::printf("\n%s (free: %s)\n", m.model.c_str(), m.free.c_str());
+      for (const std::string& p : m.priors) std::printf("  prior %s\n", p.c_str());
     }
-    print_table(rows);
+    print_table(ranking);
     {
       io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not part of its own
-      io::write_text_atomically(out / "compare.json", [&](std::ostream& s) { s << report(rows).dump(2) << "\n"; });
+      io::write_text_atomically(out / "compare.json",
+                                [&](std::ostream& s) { s << inversion::ranking_report(ranking).dump(2) << "\n"; });
       std::printf("report: %s/compare.json\n", o->out.c_str());
-      const std::vector<inversion::BandFile> band_files = write_bands(out, model_names, rows, data);
-      write_samples(out, model_names, rows);
+      inversion::write_ranking_files(out, ranking, data);
+      std::printf("posterior bands: %s/predictive_*.csv, samples: %s/samples_*.csv\n", out.c_str(), out.c_str());
       outputs.commit_all();
       if (o->plot) {
-        plot_bands(out, band_files, rows, data);
-        plot_best_corner(out, model_names, rows);
+        for (const std::string& message : inversion::draw_ranking_plots(out, ranking, data)) {
+          std::printf("%s\n", message.c_str());
+        }
       }
     }
-    const bool all_converged = std::all_of(rows.begin(), rows.end(), [](const Row& r) {
-      return r.evidence.converged && r.widened.converged;
-    });
-    return all_converged ? kExitOk : kExitIncomplete;
+    return ranking.converged() ? kExitOk : kExitIncomplete;
   }};
 }
 

@@ -1,5 +1,6 @@
 // `sedwave invert`: fit grain-contact parameters to observation files and report what the data
-// determine, with a plot.
+// determine, with a plot; with --method posterior, the library's posterior study
+// (sedwave/inversion/study.hpp) from that fit.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,7 +22,7 @@
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/posterior.hpp"
-#include "sedwave/inversion/predictive.hpp"
+#include "sedwave/inversion/study.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
@@ -221,15 +222,6 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
   return outputs;
 }
 
-/// The corner plot's files, with the best fit of the sampled parameters marked.
-inversion::CornerFiles corner_files(const inversion::FitResult& result, const std::vector<std::string>& names) {
-  inversion::CornerFiles files;
-  for (const std::string& name : names) {
-    files.best_fit.push_back(result.fitted.spec[result.fitted.index_of(name)].value);
-  }
-  return files;
-}
-
 }  // namespace
 
 Command add_invert_command(CLI::App& app) {
@@ -290,7 +282,8 @@ Command add_invert_command(CLI::App& app) {
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
             const auto model = make_model(o->model);
-            std::vector<std::string> site_notes, site_priors;
+            std::vector<std::string> site_notes;
+            std::vector<inversion::SitePrior> site_priors;
             const inversion::FitParameters parameters =
                 make_parameters(o->model, *model, ModelUse::Fit, &site_notes, &site_priors);
             for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
@@ -299,7 +292,7 @@ Command add_invert_command(CLI::App& app) {
             options.method = inversion::parse_fit_method(posterior ? "global" : o->method);
             if (!o->priors.empty() && !posterior) throw UsageError("--prior is for --method posterior");
             std::vector<inversion::Prior> priors = inversion::default_priors(parameters);
-            inversion::apply_priors(parameters, site_priors, "site file " + o->model.site, priors);
+            inversion::apply_site_priors(parameters, site_priors, priors);
             inversion::apply_priors(parameters, o->priors, "command line", priors);
             const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
             io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not half of its own
@@ -313,23 +306,16 @@ Command add_invert_command(CLI::App& app) {
             const inversion::FitResult result = inversion::fit(data, *model, parameters, options);
 
             nlohmann::json report = inversion::fit_report(result, data);
-            std::optional<inversion::PosteriorResult> sampled;
+            std::optional<inversion::PosteriorStudy> sampled;
             if (posterior) {
               inversion::PosteriorOptions posterior_options = o->posterior;
               posterior_options.threads = threads_to_use(o->threads);
               posterior_options.progress = [](const std::string& line) {
                 std::fprintf(stderr, "sedwave invert: posterior: %s\n", line.c_str());
               };
-              sampled = inversion::sample_posterior(data, *model, result, priors, options, posterior_options);
-              report["posterior"] = inversion::posterior_report(*sampled);
-              inversion::write_posterior_samples_csv(out / "posterior_samples.csv", *sampled);
-              inversion::write_posterior_samples_hdf5(out / "posterior_samples.h5", *sampled);
-              inversion::write_posterior_marginals_csv(out / "posterior_marginals.csv", *sampled);
-              const inversion::PredictiveBand band = inversion::predictive_band(
-                  result.model, *model, result, sampled->samples, inversion::curve_frequencies(data));
-              inversion::write_predictive_csv(out / "posterior_predictive.csv", band, data.water_sound_speed);
-              inversion::write_predictive_residuals_csv(out / "posterior_residuals.csv", result, {band},
-                                                        data.water_sound_speed);
+              sampled = inversion::posterior_study(data, *model, result, priors, options, posterior_options);
+              report["posterior"] = inversion::posterior_report(sampled->posterior);
+              inversion::write_posterior_study(out, *sampled, result, data);
             }
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
@@ -341,14 +327,10 @@ Command add_invert_command(CLI::App& app) {
               }
             }
             io::write_text_atomically(out / "fit.json", [&](std::ostream& s) { s << report.dump(2) << "\n"; });
-            const std::vector<double> frequencies = inversion::curve_frequencies(data);
-            const std::vector<inversion::CurvePoint> curves = inversion::model_curves(result, *model, frequencies);
-            if (curves.size() < frequencies.size()) {
+            if (const std::size_t left_out = inversion::write_fit_files(out, result, *model, data); left_out > 0) {
               std::printf("note: the model curves leave out %zu of %zu frequencies, where %s does not answer\n",
-                          frequencies.size() - curves.size(), frequencies.size(), result.model.c_str());
+                          left_out, inversion::curve_frequencies(data).size(), result.model.c_str());
             }
-            inversion::write_curves_csv(out / "curves.csv", curves, data.water_sound_speed);
-            inversion::write_observations_table(out / "observations.csv", data, result);
             outputs.commit_all();  // the plots read them
             inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
             if (o->plot) {
@@ -358,20 +340,14 @@ Command add_invert_command(CLI::App& app) {
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
             if (sampled) {
-              print_posterior(*sampled, o->out);
+              print_posterior(sampled->posterior, o->out);
               if (o->plot) {
-                std::printf("  %s\n",
-                            inversion::draw_corner_plot(out, sampled->sample_names, sampled->sample_units,
-                                                        corner_files(result, sampled->sample_names))
-                                .message.c_str());
-                std::printf("  %s\n", inversion::draw_predictive_plot(
-                                           out, "posterior_predictive", "sedwave posterior band: " + result.model,
-                                           data.water_sound_speed.has_value(), result,
-                                           {{result.model, "posterior_predictive.csv"}}, "posterior_residuals.csv")
-                                           .message.c_str());
+                for (const std::string& message : inversion::draw_posterior_plots(out, *sampled, result, data)) {
+                  std::printf("  %s\n", message.c_str());
+                }
               }
             }
-            const bool sampled_ok = !sampled || sampled->converged;
+            const bool sampled_ok = !sampled || sampled->posterior.converged;
             return result.converged && sampled_ok && result.flags.empty() ? kExitOk : kExitIncomplete;
           }};
 }

@@ -11,7 +11,6 @@
 #include "output_paths.hpp"
 #include "site_file.hpp"
 #include "sedwave/sediment/catalog.hpp"
-#include "sedwave/sediment/site.hpp"
 
 namespace sedwave::app {
 
@@ -106,83 +105,26 @@ void check_physical(const inversion::ParameterSpec& spec, const sediment::Parame
 
 namespace {
 
-/// Defaults where a model lacks the parameter a site conversion needs (quartz sand in sea water).
-constexpr double kSitePorosity = 0.4;
-constexpr double kSiteGrainDensity = 2650.0;
-constexpr double kSiteWaterDensity = 1025.0;
-
-std::string shown(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", x);
-  return text;
-}
-
-/// The value of a parameter the model has, or a default.
-double value_or(const inversion::FitParameters& p, const char* name, double fallback) {
-  for (const auto& s : p.spec) {
-    if (s.name == name) return s.value;
+/// The command line's site options as a Site (the same value a site file fills); the conversion
+/// (inversion/site.hpp) refuses a parameter the model lacks, since these options name one model.
+inversion::Site site_of_options(const ModelOptions& o) {
+  if (o.water_temperature.has_value() != o.salinity.has_value()) {
+    throw UsageError("--water-temperature and --salinity go together");
   }
-  return fallback;
-}
-
-/// What users measure at a site, turned into parameters (sediment/site.hpp; docs/models/site-inputs.md).
-/// A parameter also given directly (--set, --d, --kappa ...) conflicts with its site input.
-void apply_site_inputs(const ModelOptions& o, const std::set<std::string>& given, inversion::FitParameters& p,
-                       const std::string& model, std::vector<std::string>& notes) {
-  const auto target = [&](const char* name, const char* option) -> inversion::ParameterSpec& {
-    if (given.count(name)) {
-      throw UsageError(std::string(option) + " and a direct value of " + name + " both set it: give one");
-    }
-    for (auto& s : p.spec) {
-      if (s.name == name) return s;
-    }
-    throw UsageError(std::string(option) + ": model '" + model + "' has no parameter '" + name + "'");
+  const auto value = [](const std::optional<double>& x, const char* option) -> std::optional<inversion::SiteValue> {
+    if (!x) return std::nullopt;
+    return inversion::SiteValue{*x, option};
   };
-  if (o.water_temperature || o.salinity) {
-    if (!o.water_temperature || !o.salinity) throw UsageError("--water-temperature and --salinity go together");
-    const double t = *o.water_temperature, sal = *o.salinity;
-    const double rho = sediment::seawater_density(t, sal), k = sediment::seawater_bulk_modulus(t, sal);
-    const double eta = sediment::seawater_viscosity(t, sal);
-    bool used = false;
-    for (auto& s : p.spec) {
-      const bool water = s.name == "rho_w" || s.name == "K_w" || s.name == "eta";
-      if (!water) continue;
-      if (given.count(s.name)) throw UsageError("--water-temperature and a direct value of " + s.name + " both set it");
-      s.value = s.name == "rho_w" ? rho : s.name == "K_w" ? k : eta;
-      used = true;
-    }
-    if (!used) throw UsageError("--water-temperature: model '" + model + "' has no pore-water parameters");
-    notes.push_back("sea water at " + shown(t) + " deg C, " + shown(sal) + " ppt: rho_w " + shown(rho) +
-                    " kg/m^3, K_w " + shown(k) + " Pa (EOS-80, Mackenzie 1981), eta " + shown(eta) +
-                    " Pa s (Sharqawy et al. 2010)");
-  }
-  if (o.phi) {
-    const double d = sediment::diameter_from_phi(*o.phi);
-    target("d", "--phi").value = d;
-    notes.push_back("d = " + shown(d) + " m from phi " + shown(*o.phi) + " (" + sediment::wentworth_class(d).name + ")");
-  }
-  if (o.bulk_density) {
-    const double rho_s = value_or(p, "rho_s", kSiteGrainDensity), rho_w = value_or(p, "rho_w", kSiteWaterDensity);
-    const double porosity = sediment::porosity_from_bulk_density(*o.bulk_density, rho_s, rho_w);
-    target("porosity", "--bulk-density").value = porosity;
-    notes.push_back("porosity = " + shown(porosity) + " from bulk density " + shown(*o.bulk_density) + " kg/m^3");
-  }
-  if (o.depth && o.effective_pressure) throw UsageError("--depth and --effective-pressure both set the pressure: give one");
-  if (o.depth || o.effective_pressure) {
-    const char* option = o.depth ? "--depth" : "--effective-pressure";
-    const double porosity = value_or(p, "porosity", kSitePorosity);
-    const double rho_s = value_or(p, "rho_s", kSiteGrainDensity), rho_w = value_or(p, "rho_w", kSiteWaterDensity);
-    const double pressure =
-        o.depth ? sediment::sand_pressure_at_depth(*o.depth, porosity, rho_s, rho_w) : *o.effective_pressure;
-    inversion::ParameterSpec& kappa = target("kappa", option);
-    const double d = value_or(p, "d", 0.0);
-    kappa.value =
-        sediment::hertz_kappa_at_pressure(sediment::kQuartz, d, pressure, porosity, sediment::kDensePackCoordination);
-    notes.push_back("kappa = " + shown(kappa.value) + " N/m: Hertz, quartz grains of d = " + shown(d) + " m at " +
-                    shown(pressure) + " Pa mean effective pressure" +
-                    (o.depth ? " (" + shown(*o.depth) + " m below the seafloor, K0 0.5)" : std::string()) +
-                    ", porosity " + shown(porosity) + ", 9 contacts per grain");
-  }
+  inversion::Site site;
+  site.source = "command line";
+  site.phi = value(o.phi, "--phi");
+  site.porosity = value(o.porosity, "--porosity");
+  site.bulk_density = value(o.bulk_density, "--bulk-density");
+  site.depth = value(o.depth, "--depth");
+  site.effective_pressure = value(o.effective_pressure, "--effective-pressure");
+  site.water_temperature = value(o.water_temperature, "--water-temperature");
+  site.salinity = value(o.salinity, "--salinity");
+  return site;
 }
 
 /// The options that name one parameter each: its value and, for the contact's parameters, its
@@ -257,7 +199,8 @@ void refuse_bounds_on_fixed(const ModelOptions& o, const inversion::FitParameter
 }  // namespace
 
 inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::SedimentModel& model, ModelUse use,
-                                         std::vector<std::string>* site_notes, std::vector<std::string>* site_priors) {
+                                         std::vector<std::string>* site_notes,
+                                         std::vector<inversion::SitePrior>* site_priors) {
   refuse_repeated_parameters(o);
   inversion::FitParameters p(model.parameters());
   if (use == ModelUse::Fit) {
@@ -273,27 +216,29 @@ inversion::FitParameters make_parameters(const ModelOptions& o, const sediment::
   for (const Shorthand& h : shorthands(o)) {
     if (h.value || !h.bounds.empty()) apply_value(named(h.parameter, h.value_option), h.value, h.bounds);
   }
-  std::set<std::string> given;  // parameters whose value the command line gives directly
-  if (o.kappa) given.insert("kappa");
-  if (o.diameter) given.insert("d");
-  if (o.density) given.insert("rho_s");
+  inversion::SetBy set_by;  // parameters whose value the command line gives directly, and by which option
+  for (const Shorthand& h : shorthands(o)) {
+    if (h.value) set_by[h.parameter] = h.value_option;
+  }
   for (const std::string& item : o.set_values) {
     const auto [name, text] = name_and_value(item, "--set");
     named(name.c_str(), "--set").value = number_in(text, item, "--set");
-    given.insert(name);
+    set_by[name] = "--set '" + item + "'";
   }
   std::vector<std::string> notes;
-  apply_site_inputs(o, given, p, model.name(), notes);
-  if (!o.site.empty()) {
-    const SiteFile site = read_site_file(o.site);
-    for (const SiteEntry& e : site.entries) {
-      if (given.count(e.parameter)) {
-        throw UsageError("--site " + o.site + " and a direct value both set " + e.parameter + ": give one");
-      }
+  std::vector<inversion::SitePrior> priors;
+  const auto apply = [&](const inversion::Site& site) {
+    try {
+      inversion::SiteApplied applied = inversion::apply_site(site, model, p, set_by);
+      notes.insert(notes.end(), applied.notes.begin(), applied.notes.end());
+      priors.insert(priors.end(), applied.priors.begin(), applied.priors.end());
+    } catch (const inversion::SiteConflict& e) {
+      throw UsageError(e.what());
     }
-    const std::vector<std::string> priors = apply_site(site, p, notes);
-    if (site_priors) *site_priors = priors;
-  }
+  };
+  apply(site_of_options(o));
+  if (!o.site.empty()) apply(read_site_file(o.site));
+  if (site_priors) *site_priors = priors;
   if (site_notes) *site_notes = notes;
   for (const std::string& item : o.set_bounds) {
     const auto [name, text] = name_and_value(item, "--bounds");
@@ -336,6 +281,8 @@ void add_model_options(CLI::App& cmd, ModelOptions& o, ModelUse use) {
   // What users measure at a site (docs/models/site-inputs.md).
   cmd.add_option("--phi", o.phi, "site: mean grain size in Krumbein phi units, d = 2^-phi mm (sets d)")
       ->check(finite_in(-10.0, 14.0));
+  cmd.add_option("--porosity", o.porosity, "site: porosity [1] (sets porosity; in Hertz for --depth)")
+      ->check(finite_in(1e-6, 0.999999));
   cmd.add_option("--bulk-density", o.bulk_density, "site: wet bulk density [kg/m^3] (sets porosity)")
       ->check(finite_positive());
   cmd.add_option("--depth", o.depth,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sedwave/inversion/parameters.hpp"
+#include "sedwave/inversion/site.hpp"
 #include "sedwave/sediment/sediment_model.hpp"
 
 namespace sedwave::app {
@@ -21,13 +22,13 @@ struct ModelOptions {
   std::vector<std::string> set_values;  ///< NAME=VALUE
   std::vector<std::string> set_bounds;  ///< NAME=LO,HI
   /// What users measure at a site, converted to parameters (docs/models/site-inputs.md).
-  std::optional<double> phi, bulk_density, depth, effective_pressure, water_temperature, salinity;
+  std::optional<double> phi, porosity, bulk_density, depth, effective_pressure, water_temperature, salinity;
   std::string site;  ///< a site file (site_file.hpp): priors and values from what is known
 };
 
 enum class ModelUse { Fit, Truth };
 
-/// --model, --set, --kappa, --d, --gamma, --en, --density, the site inputs (--phi, --bulk-density,
+/// --model, --set, --kappa, --d, --gamma, --en, --density, the site inputs (--phi, --porosity, --bulk-density,
 /// --depth, --effective-pressure, --water-temperature, --salinity); for fits also --fit, --bounds,
 /// --*-bounds.
 void add_model_options(CLI::App& cmd, ModelOptions& options, ModelUse use);
@@ -37,12 +38,13 @@ void add_model_options(CLI::App& cmd, ModelOptions& options, ModelUse use);
 
 /// The model's parameters with the options applied; `site_notes` (if given) receives one line per
 /// site input converted (what it set, from what, by which relation), `site_priors` the site file's
-/// prior items ("NAME=KIND:A,B") for the free parameters. Throws UsageError for a name the
+/// priors for the free parameters. The site options and the site file fill one typed Site each, and
+/// one conversion applies both (sedwave/inversion/site.hpp). Throws UsageError for a name the
 /// model does not have, a malformed --set/--bounds or a parameter set twice (directly and from a site
 /// input), std::invalid_argument for a value or bound outside the parameter's physical range.
 [[nodiscard]] inversion::FitParameters make_parameters(const ModelOptions& options,
                                                        const sediment::SedimentModel& model, ModelUse use,
                                                        std::vector<std::string>* site_notes = nullptr,
-                                                       std::vector<std::string>* site_priors = nullptr);
+                                                       std::vector<inversion::SitePrior>* site_priors = nullptr);
 
 }  // namespace sedwave::app

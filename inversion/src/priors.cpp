@@ -79,16 +79,18 @@ double Prior::draw_theta(sampling::RandomStream& random) const {
   }
 }
 
-std::string Prior::describe(const std::string& unit) const {
+std::string Prior::describe_shape(const std::string& unit) const {
   const std::string u = unit == "1" ? "" : " " + unit;
-  std::string what;
   switch (kind) {
-    case PriorKind::Uniform: what = "uniform(" + number(a) + " .. " + number(b) + u + ")"; break;
-    case PriorKind::LogUniform: what = "log-uniform(" + number(std::max(a, lower)) + " .. " + number(std::min(b, upper)) + u + ")"; break;
-    case PriorKind::Normal: what = "normal(mean " + number(a) + u + ", sd " + number(b) + u + ")"; break;
-    default: what = "log-normal(median " + number(a) + u + ", sd of ln " + number(b) + ")"; break;
+    case PriorKind::Uniform: return "uniform(" + number(a) + " .. " + number(b) + u + ")";
+    case PriorKind::LogUniform: return "log-uniform(" + number(std::max(a, lower)) + " .. " + number(std::min(b, upper)) + u + ")";
+    case PriorKind::Normal: return "normal(mean " + number(a) + u + ", sd " + number(b) + u + ")";
+    default: return "log-normal(median " + number(a) + u + ", sd of ln " + number(b) + ")";
   }
-  return what + " on the bounds [" + number(lower) + ", " + number(upper) + "] (" + source + ")";
+}
+
+std::string Prior::describe(const std::string& unit) const {
+  return describe_shape(unit) + " on the bounds [" + number(lower) + ", " + number(upper) + "] (" + source + ")";
 }
 
 Prior default_prior(const ParameterSpec& spec) {
@@ -124,7 +126,11 @@ Prior parse_prior(const std::string& text, const ParameterSpec& spec) {
   };
   p.a = read(text.substr(colon + 1, comma - colon - 1));
   p.b = read(text.substr(comma + 1));
-  const std::string where = "--prior " + spec.name + "=" + text + ": ";
+  check_prior(p, spec, "--prior " + spec.name + "=" + text + ": ");
+  return p;
+}
+
+void check_prior(const Prior& p, const ParameterSpec& spec, const std::string& where) {
   const bool flat = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
   if (flat && !(p.a < p.b)) throw std::invalid_argument(where + "needs A < B");
   if (flat && (p.b <= spec.lower || p.a >= spec.upper)) {
@@ -134,7 +140,6 @@ Prior parse_prior(const std::string& text, const ParameterSpec& spec) {
   if (p.kind == PriorKind::LogUniform && !(p.a > 0.0)) throw std::invalid_argument(where + "needs A > 0");
   if (!flat && !(p.b > 0.0)) throw std::invalid_argument(where + "the sd must be positive");
   if (p.kind == PriorKind::LogNormal && !(p.a > 0.0)) throw std::invalid_argument(where + "the median must be positive");
-  return p;
 }
 
 std::vector<Prior> default_priors(const FitParameters& parameters) {

@@ -46,7 +46,7 @@ sedwave_cli_case(invert.site_phi_sets_d 0 "^site: d = 0.0002973 m from phi 1.75 
 sedwave_cli_case(invert.site_depth_sets_kappa_from_hertz 0 "^site: kappa = 6.909e\\+04 N/m: Hertz, quartz grains .* at 6041 Pa"
   invert ${OBS} --model saturated-lattice --fit gamma,permeability --phi 1.75 --bulk-density 1950 --depth 1
   --water-temperature 15 --salinity 35 ${FAST})
-sedwave_cli_case(invert.site_phi_and_d 2 "--phi and a direct value of d both set it"
+sedwave_cli_case(invert.site_phi_and_d 2 "--phi and --d both set d: give one"
   invert ${OBS} --phi 2 --d 3e-4 ${FAST})
 sedwave_cli_case(invert.site_depth_without_contacts 2 "--depth: model 'edfm' has no parameter 'kappa'"
   invert ${OBS} --model edfm --fit permeability --depth 1 ${FAST})
@@ -97,8 +97,13 @@ sedwave_cli_case(invert.site_file_out_of_range 1 "porosity_out_of_range.toml:2: 
   invert ${OBS} --site ${CLI_DATA}/site/porosity_out_of_range.toml ${FAST})
 sedwave_cli_case(invert.site_file_depth_needs_grain_size 1 "depth_without_grain_size.toml:2: key 'depth.metres': the Hertz stiffness needs the grain size"
   invert ${OBS} --site ${CLI_DATA}/site/depth_without_grain_size.toml ${FAST})
-sedwave_cli_case(invert.site_file_and_direct_value 2 "--site .*medium_sand.toml and a direct value both set d"
+sedwave_cli_case(invert.site_file_and_direct_value 2 "medium_sand.toml:7: key 'grain_size.phi' and --d both set d: give one"
   invert ${OBS} --site ${SITE} --d 3e-4 ${FAST})
+sedwave_cli_case(invert.site_file_and_site_option 2 "medium_sand.toml:7: key 'grain_size.phi' and --phi both set d"
+  invert ${OBS} --site ${SITE} --phi 2 ${FAST})
+# The same site as a file and as options: identical fixed values, kappa included.
+add_test(NAME cli.site.file_matches_flags
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/site_file_matches_flags.sh $<TARGET_FILE:sedwave> ${OBS} ${SITE} ${CLI_OUT}/site_file_matches_flags)
 
 # The posterior's band over the data and its samples as HDF5; compare's bands of every model.
 sedwave_cli_case(invert.posterior_writes_band_and_hdf5 3 "samples: .*posterior_samples.csv and .h5, band over the data: .*posterior_predictive.csv"

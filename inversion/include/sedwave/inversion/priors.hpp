@@ -37,6 +37,8 @@ struct Prior {
   [[nodiscard]] double draw_theta(sampling::RandomStream& random) const;
   /// Where the density is non-zero [unit]: the search bounds, narrowed by a flat prior's own ends.
   [[nodiscard]] std::pair<double, double> support() const;
+  /// The distribution alone, e.g. "log-normal(median 8.2e4 N/m, sd of ln 0.5)".
+  [[nodiscard]] std::string describe_shape(const std::string& unit) const;
   /// One line, e.g. "log-normal(median 8.2e4 N/m, sd_ln 0.5) on [1e3, 1e7] (command line)".
   [[nodiscard]] std::string describe(const std::string& unit) const;
 };
@@ -48,6 +50,11 @@ struct Prior {
 /// naming the option text, the kind and the accepted forms; refuses a prior whose support does not
 /// meet the search bounds, a non-positive sd, or A >= B for the flat kinds.
 [[nodiscard]] Prior parse_prior(const std::string& text, const ParameterSpec& spec);
+
+/// Throws std::invalid_argument starting with `where` unless `prior` is usable on the search bounds of
+/// `spec`: A < B and [A, B] meeting the bounds for the flat kinds, A > 0 for the logarithmic ones, a
+/// positive sd for the others.
+void check_prior(const Prior& prior, const ParameterSpec& spec, const std::string& where);
 
 /// One default prior per parameter of `parameters` (fixed ones included, unused).
 [[nodiscard]] std::vector<Prior> default_priors(const FitParameters& parameters);

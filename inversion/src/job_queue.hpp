@@ -1,5 +1,5 @@
 #pragma once
-// Independent pieces of work shared among threads. `sedwave compare` runs each model's fit, then
+// Independent pieces of work shared among threads. A comparison (comparison.hpp) runs each model's fit, then
 // its two evidence computations (the priors as given and widened tenfold), then its posterior band:
 // a handful of jobs of a second or more each, with nothing to share while they run. Threads that
 // take whole jobs wait for each other only when the queue runs dry, where threads inside one
@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-namespace sedwave::app {
+namespace sedwave::inversion {
 
 class JobQueue {
  public:
@@ -79,4 +79,4 @@ class JobQueue {
   std::exception_ptr error_;
 };
 
-}  // namespace sedwave::app
+}  // namespace sedwave::inversion

@@ -1,0 +1,102 @@
+#pragma once
+// Sediment models ranked by their evidence, as one library call: each model fitted, then its
+// evidence (the probability of the data under the model and its priors, posterior.hpp) under its
+// priors and again under them widened tenfold (evidence depends on priors), then the posterior band
+// it predicts over the data; beside chi^2, AIC, BIC and a posterior-predictive p-value
+// (docs/inversion.md, "Comparing models").
+//
+//   Site site;  // what is known of the seabed (site.hpp), or none
+//   std::vector<Candidate> candidates;
+//   for (const char* spec : {"biot-stoll", "edfm", "lattice"}) candidates.push_back(make_candidate(spec, site));
+//   const Ranking ranking = compare_models(data, candidates, {});
+//   ranking.best().model  // the name of the model ranked first
+//
+// The work runs as jobs on `threads` threads; each job writes only its own results and each
+// sampler has its own seeded random stream, so the ranking is the same, bit for bit, for any
+// thread count.
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/observations.hpp"
+#include "sedwave/inversion/posterior.hpp"
+#include "sedwave/inversion/predictive.hpp"
+#include "sedwave/inversion/priors.hpp"
+#include "sedwave/inversion/site.hpp"
+
+namespace sedwave::inversion {
+
+/// One model of a comparison, ready to fit.
+struct Candidate {
+  std::string label;  ///< names it in messages and files: the spec it was made from (e.g. "biot-stoll")
+  std::shared_ptr<const sediment::SedimentModel> model;
+  FitParameters parameters;   ///< free ones marked; values and search bounds set
+  std::vector<Prior> priors;  ///< one per parameter of `parameters` (those of the free ones are used)
+};
+
+/// The model `spec` names (sediment/catalog.hpp) with its typical free set, the site's values
+/// applied (a site value for a parameter the model lacks is skipped) and its priors: the site's
+/// where it gives one, log-uniform over the search bounds elsewhere.
+[[nodiscard]] Candidate make_candidate(const std::string& spec, const Site& site = {});
+/// The same for a model object the caller made (labelled by its name).
+[[nodiscard]] Candidate make_candidate(std::shared_ptr<const sediment::SedimentModel> model, const Site& site = {});
+
+struct ComparisonOptions {
+  EvidenceOptions evidence;  ///< its threads are set from `threads` below
+  int threads = 1;  ///< jobs side by side; threads beyond two per model share each sampler's evaluations
+  /// Given "LABEL: what" as each stage starts, and each sampler's progress lines; null: silent. Called
+  /// from the threads that run the jobs.
+  std::function<void(const std::string&)> progress = nullptr;
+};
+
+/// How much wider the priors of the second ranking are.
+inline constexpr double kPriorWidening = 10.0;
+
+struct ComparedModel {
+  std::string label;                ///< the candidate's
+  std::string model;                ///< the model's name
+  std::string free;                 ///< its free parameters, comma-separated
+  FitResult fit;                    ///< global search and polish, without likelihood profiles
+  std::vector<std::string> priors;  ///< one line per free parameter: "NAME: " + Prior::describe
+  ModelEvidence evidence;           ///< under the candidate's priors
+  ModelEvidence widened;            ///< under them widened kPriorWidening times (posterior.hpp, widened)
+  PredictiveBand band;              ///< over the data's frequencies, from the evidence run's posterior
+};
+
+struct Ranking {
+  std::vector<ComparedModel> models;  ///< in the candidates' order
+  std::vector<int> order;             ///< indices into models, largest evidence first
+  std::vector<int> order_widened;     ///< the same under the widened priors
+  [[nodiscard]] const ComparedModel& best() const { return models[static_cast<std::size_t>(order.front())]; }
+  /// Every evidence run, under both sets of priors, reached its target.
+  [[nodiscard]] bool converged() const;
+};
+
+/// Fits and ranks the candidates (at least one). Throws std::invalid_argument for no candidates or
+/// priors that do not fit their parameters, and whatever a fit or sampler throws.
+[[nodiscard]] Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>& candidates,
+                                     const ComparisonOptions& options = {});
+
+/// The ranking as JSON (compare.json): one entry per model in the candidates' order, with its fit's
+/// chi^2, AIC, BIC, its priors and both evidence runs.
+[[nodiscard]] nlohmann::json ranking_report(const Ranking& ranking);
+
+/// The name of a model's file of one kind: STEM_<position + 1>_<label>.csv (the position keeps two
+/// labels of one model apart; any character of the label outside [A-Za-z0-9.-] is made '_').
+[[nodiscard]] std::string ranking_file(const std::string& stem, std::size_t position, const std::string& label);
+
+/// Each model's posterior band (ranking_file "predictive") and posterior draws ("samples") and
+/// every model's residuals from its band median (predictive_residuals.csv), in `dir`.
+void write_ranking_files(const std::filesystem::path& dir, const Ranking& ranking, const ObservationSet& data);
+
+/// Every model's band over the data in one plot (predictive), and the corner plot of the model
+/// ranked first (corner_best), from the files written above; one message per plot.
+[[nodiscard]] std::vector<std::string> draw_ranking_plots(const std::filesystem::path& dir, const Ranking& ranking,
+                                                          const ObservationSet& data);
+
+}  // namespace sedwave::inversion

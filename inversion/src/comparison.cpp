@@ -1,0 +1,210 @@
+#include "sedwave/inversion/comparison.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+#include "job_queue.hpp"
+#include "sedwave/inversion/plot.hpp"
+#include "sedwave/inversion/report.hpp"
+#include "sedwave/sediment/catalog.hpp"
+
+namespace sedwave::inversion {
+namespace {
+
+/// A comparison's fits: global search and polish; no likelihood profiles, since the evidence
+/// samples the whole posterior anyway.
+const FitOptions kFitOptions{.method = FitMethod::Global, .profile_likelihood = false};
+
+void report(const ComparisonOptions& options, const std::string& line) {
+  if (options.progress) options.progress(line);
+}
+
+/// The fit, and what the report says of the free parameters and their priors.
+void fit_candidate(const Candidate& candidate, ComparedModel& compared, const ObservationSet& data,
+                   const ComparisonOptions& options) {
+  report(options, candidate.label + ": fit ...");
+  compared.label = candidate.label;
+  compared.model = candidate.model->name();
+  compared.fit = fit(data, *candidate.model, candidate.parameters, kFitOptions);
+  for (int i : compared.fit.fitted.free_indices()) {
+    const ParameterSpec& parameter = compared.fit.fitted.spec[static_cast<std::size_t>(i)];
+    compared.free += (compared.free.empty() ? "" : ",") + parameter.name;
+    compared.priors.push_back(parameter.name + ": " + candidate.priors[static_cast<std::size_t>(i)].describe(parameter.unit));
+  }
+}
+
+/// One evidence run of a fitted model under `priors`; it announces itself and reports its progress
+/// under `stage` (two runs of a model go side by side).
+ModelEvidence evidence_of(const Candidate& candidate, const ComparedModel& compared, const ObservationSet& data,
+                          const std::vector<Prior>& priors, EvidenceOptions evidence, const ComparisonOptions& options,
+                          const std::string& stage) {
+  const std::string label = candidate.label + ": " + stage;
+  report(options, label + " ...");
+  if (options.progress) {
+    evidence.progress = [&options, label](const std::string& line) { options.progress(label + ": " + line); };
+  }
+  return model_evidence(data, *candidate.model, compared.fit, priors, kFitOptions, evidence);
+}
+
+std::vector<int> order_by_evidence(const std::vector<ComparedModel>& models, bool widened) {
+  std::vector<int> order(models.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const ComparedModel& ma = models[static_cast<std::size_t>(a)];
+    const ComparedModel& mb = models[static_cast<std::size_t>(b)];
+    return (widened ? ma.widened : ma.evidence).log_evidence > (widened ? mb.widened : mb.evidence).log_evidence;
+  });
+  return order;
+}
+
+/// The free parameters' names and units of a model, in the order of its samples' columns.
+std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(const ComparedModel& m) {
+  std::vector<std::string> names, units;
+  for (int i : m.fit.fitted.free_indices()) {
+    names.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].name);
+    units.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].unit);
+  }
+  return {names, units};
+}
+
+std::string widened_stage() {
+  char text[64];
+  std::snprintf(text, sizeof text, "evidence, priors widened x%g", kPriorWidening);
+  return text;
+}
+
+}  // namespace
+
+Candidate make_candidate(const std::string& spec, const Site& site) {
+  Candidate candidate = make_candidate(sediment::make_sediment_model(spec), site);
+  candidate.label = spec;
+  return candidate;
+}
+
+Candidate make_candidate(std::shared_ptr<const sediment::SedimentModel> model, const Site& site) {
+  Candidate candidate;
+  candidate.label = model->name();
+  candidate.model = std::move(model);
+  candidate.parameters = FitParameters(candidate.model->parameters());
+  candidate.parameters.set_free_from_list(sediment::typical_free_parameters(*candidate.model));
+  Site for_any_model = site;
+  for_any_model.skip_missing_parameters = true;
+  SetBy set_by;
+  const SiteApplied applied = apply_site(for_any_model, *candidate.model, candidate.parameters, set_by);
+  candidate.parameters.validate();
+  candidate.priors = default_priors(candidate.parameters);
+  apply_site_priors(candidate.parameters, applied.priors, candidate.priors);
+  return candidate;
+}
+
+bool Ranking::converged() const {
+  return std::all_of(models.begin(), models.end(),
+                     [](const ComparedModel& m) { return m.evidence.converged && m.widened.converged; });
+}
+
+Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>& candidates,
+                       const ComparisonOptions& options) {
+  if (candidates.empty()) throw std::invalid_argument("compare_models: no models to compare");
+  for (const Candidate& c : candidates) {
+    c.parameters.require_parameters_of(*c.model);
+    if (c.priors.size() != c.parameters.spec.size()) {
+      throw std::invalid_argument("compare_models: " + c.label + ": one prior per parameter expected");
+    }
+  }
+  Ranking ranking;
+  ranking.models.resize(candidates.size());
+  EvidenceOptions evidence = options.evidence;
+  evidence.threads = std::max(1, options.threads / (2 * static_cast<int>(candidates.size())));
+  // Per model: its fit, then its two evidence runs side by side, then the band from the first.
+  JobQueue queue;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const Candidate& candidate = candidates[i];
+    ComparedModel& compared = ranking.models[i];
+    queue.add([&candidate, &compared, &data, &options, evidence](JobQueue& next) {
+      fit_candidate(candidate, compared, data, options);
+      next.add([&candidate, &compared, &data, &options, evidence](JobQueue&) {
+        compared.widened = evidence_of(candidate, compared, data, widened(candidate.priors, kPriorWidening), evidence,
+                                       options, widened_stage());
+      });
+      next.add([&candidate, &compared, &data, &options, evidence](JobQueue& after) {
+        compared.evidence = evidence_of(candidate, compared, data, candidate.priors, evidence, options, "evidence");
+        after.add([&candidate, &compared, &data](JobQueue&) {
+          compared.band = predictive_band(compared.model, *candidate.model, compared.fit, compared.evidence.samples,
+                                          curve_frequencies(data));
+        });
+      });
+    });
+  }
+  queue.run(options.threads);
+  ranking.order = order_by_evidence(ranking.models, false);
+  ranking.order_widened = order_by_evidence(ranking.models, true);
+  return ranking;
+}
+
+nlohmann::json ranking_report(const Ranking& ranking) {
+  const auto ev = [](const ModelEvidence& e) {
+    return nlohmann::json{{"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
+                          {"predictive_p", e.predictive_p}, {"converged", e.converged},
+                          {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds},
+                          {"steps", e.steps}, {"temperatures", e.temperatures},
+                          {"max_temperature", e.max_temperature},
+                          {"thermodynamic_integration", e.thermodynamic_integration},
+                          {"stone_overlap", e.stone_overlap}};
+  };
+  nlohmann::json j = nlohmann::json::array();
+  for (const ComparedModel& m : ranking.models) {
+    j.push_back({{"model", m.model}, {"free", m.free}, {"chi2", m.fit.chi2}, {"dof", m.fit.dof},
+                 {"aic", m.fit.aic}, {"bic", m.fit.bic}, {"priors", m.priors}, {"evidence", ev(m.evidence)},
+                 {"evidence_priors_widened_x10", ev(m.widened)}});
+  }
+  return j;
+}
+
+std::string ranking_file(const std::string& stem, std::size_t position, const std::string& label) {
+  std::string name = stem + "_" + std::to_string(position + 1) + "_";
+  for (char c : label) name += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+  return name + ".csv";
+}
+
+void write_ranking_files(const std::filesystem::path& dir, const Ranking& ranking, const ObservationSet& data) {
+  std::vector<PredictiveBand> bands;
+  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
+    const ComparedModel& m = ranking.models[i];
+    write_predictive_csv(dir / ranking_file("predictive", i, m.label), m.band, data.water_sound_speed);
+    bands.push_back(m.band);
+  }
+  write_predictive_residuals_csv(dir / "predictive_residuals.csv", ranking.models.front().fit, bands,
+                                 data.water_sound_speed);
+  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
+    const auto [names, units] = sample_columns(ranking.models[i]);
+    write_samples_csv(dir / ranking_file("samples", i, ranking.models[i].label), ranking.models[i].evidence.samples,
+                      names, units);
+  }
+}
+
+std::vector<std::string> draw_ranking_plots(const std::filesystem::path& dir, const Ranking& ranking,
+                                            const ObservationSet& data) {
+  std::vector<BandFile> bands;
+  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
+    bands.push_back({ranking.models[i].model, ranking_file("predictive", i, ranking.models[i].label)});
+  }
+  std::vector<std::string> messages;
+  messages.push_back(draw_predictive_plot(dir, "predictive", "sedwave compare: posterior bands",
+                                          data.water_sound_speed.has_value(), ranking.models.front().fit, bands,
+                                          "predictive_residuals.csv")
+                         .message);
+  const auto best = static_cast<std::size_t>(ranking.order.front());
+  const ComparedModel& m = ranking.models[best];
+  const auto [names, units] = sample_columns(m);
+  std::vector<double> best_fit;
+  for (int i : m.fit.fitted.free_indices()) best_fit.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].value);
+  const CornerFiles files{ranking_file("samples", best, m.label), "corner_best",
+                          "posterior of " + m.model + " (ranked first)", best_fit};
+  messages.push_back(draw_corner_plot(dir, names, units, files).message);
+  return messages;
+}
+
+}  // namespace sedwave::inversion
