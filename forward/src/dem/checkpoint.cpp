@@ -1,21 +1,34 @@
 // HDF5 checkpoint and restart of the DEM engine.
 //
-// File layout (all datasets in one file, format attribute "sedwave-dem-checkpoint", version 1):
+// File layout (format attribute "sedwave-dem-checkpoint", version 1):
 //   /            attributes step, time, dt, ranks, rebuilds, user_state
 //   /grains      id, group, body, radius, mass [N]; position, velocity, force [N,3];
 //                angular_velocity, torque [N,3] when the model rotates grains
 //   /history     a, b [M] (smaller, larger global id), shear [M,3] (seen from a)
 //   /bodies      displacement, velocity, contact_force [B,3]
-//   /domain      boundaries [ranks+1]
-// Rank 0 gathers and writes (the only time one rank holds all grains); every rank reads in chunks
-// and keeps what it owns.
+//   /domain      boundaries [ranks+1]; grain_rows, history_rows [ranks]: each rank's rows, in rank order
+// No rank holds all grains, writing or reading. On one rank /grains and /history are ordinary
+// datasets. On several, every rank writes its rows to a piece of its own, PATH.piece-TOKEN-RANK
+// (the same groups and datasets), and /grains and /history of PATH are HDF5 virtual datasets that
+// join the pieces (any HDF5 reader sees one file; the pieces must stay beside it). Parallel HDF5
+// is not needed, and every file is still written whole in memory and renamed into place: the pieces
+// first under a fresh TOKEN, then PATH, which is what switches a restart to the new state; pieces
+// no longer named by PATH are removed after that. A kill at any moment leaves the old checkpoint or
+// the new one whole.
+// Reading, each rank reads its own rows: with the same rank count, the rows it wrote (and its slab
+// boundaries); with another, an equal share of rows, and the engine then repartitions. Contact
+// history on another rank count is scanned by every rank for the records of its grains.
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <random>
+#include <span>
 #include <string>
 
 #include "../io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
-#include "sedwave/forward/dem/gather.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
@@ -76,14 +89,178 @@ void require_same_inputs(const std::map<std::string, std::string>& recorded,
   }
 }
 
+
+/// This rank's rows of /grains and /history, written under `file` (a checkpoint or its piece).
+void write_rows(hid_t file, const std::vector<Grain>& grains, const std::vector<HistoryEntry>& history, bool spins) {
+  h5::Handle g = h5::create_group(file, "grains");
+  const std::size_t n = grains.size();
+  h5::write(g, "id", column<std::int64_t>(grains, [](const Grain& x) { return x.id; }).data(), n);
+  h5::write(g, "group", column<std::int32_t>(grains, [](const Grain& x) { return x.group; }).data(), n);
+  h5::write(g, "body", column<std::int32_t>(grains, [](const Grain& x) { return x.body; }).data(), n);
+  h5::write(g, "radius", column<double>(grains, [](const Grain& x) { return x.radius; }).data(), n);
+  h5::write(g, "mass", column<double>(grains, [](const Grain& x) { return x.mass; }).data(), n);
+  h5::write(g, "position", vectors(grains, &Grain::position).data(), n, 3);
+  h5::write(g, "velocity", vectors(grains, &Grain::velocity).data(), n, 3);
+  h5::write(g, "force", vectors(grains, &Grain::force).data(), n, 3);
+  if (spins) {
+    h5::write(g, "angular_velocity", vectors(grains, &Grain::angular_velocity).data(), n, 3);
+    h5::write(g, "torque", vectors(grains, &Grain::torque).data(), n, 3);
+  }
+  h5::Handle h = h5::create_group(file, "history");
+  std::vector<std::int64_t> a, b;
+  std::vector<double> shear;
+  for (const HistoryEntry& e : history) {
+    a.push_back(e.a);
+    b.push_back(e.b);
+    shear.insert(shear.end(), {e.shear.x, e.shear.y, e.shear.z});
+  }
+  h5::write(h, "a", a.data(), a.size());
+  h5::write(h, "b", b.data(), b.size());
+  h5::write(h, "shear", shear.data(), a.size(), 3);
+}
+
+/// The datasets of write_rows, by group: name, element type, columns (0: one-dimensional).
+struct RowDataset {
+  const char* group;
+  const char* name;
+  hid_t type;
+  std::size_t columns;
+};
+
+std::vector<RowDataset> row_datasets(bool spins) {
+  std::vector<RowDataset> out{{"grains", "id", H5T_NATIVE_INT64, 0},   {"grains", "group", H5T_NATIVE_INT32, 0},
+                              {"grains", "body", H5T_NATIVE_INT32, 0}, {"grains", "radius", H5T_NATIVE_DOUBLE, 0},
+                              {"grains", "mass", H5T_NATIVE_DOUBLE, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3},
+                              {"grains", "velocity", H5T_NATIVE_DOUBLE, 3}, {"grains", "force", H5T_NATIVE_DOUBLE, 3}};
+  if (spins) {
+    out.push_back({"grains", "angular_velocity", H5T_NATIVE_DOUBLE, 3});
+    out.push_back({"grains", "torque", H5T_NATIVE_DOUBLE, 3});
+  }
+  out.push_back({"history", "a", H5T_NATIVE_INT64, 0});
+  out.push_back({"history", "b", H5T_NATIVE_INT64, 0});
+  out.push_back({"history", "shear", H5T_NATIVE_DOUBLE, 3});
+  return out;
+}
+
+/// A virtual dataset `d.group/d.name` under `file` that joins the pieces' datasets of the same
+/// name in rank order (rows[r] rows from pieces[r]). Piece names are relative: HDF5 looks for them
+/// beside the checkpoint.
+void join_pieces(hid_t file, const RowDataset& d, const std::vector<std::string>& pieces,
+                 const std::vector<std::int64_t>& rows) {
+  hsize_t total = 0;
+  for (const std::int64_t n : rows) total += static_cast<hsize_t>(n);
+  const int dims = d.columns ? 2 : 1;
+  const std::array<hsize_t, 2> extent{total, d.columns};
+  h5::Handle space(H5Screate_simple(dims, extent.data(), nullptr), H5Sclose, "dataspace " + std::string(d.name));
+  h5::Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
+  const std::string source = "/" + std::string(d.group) + "/" + d.name;
+  hsize_t first = 0;
+  for (std::size_t r = 0; r < pieces.size(); ++r) {
+    if (rows[r] == 0) continue;
+    const std::array<hsize_t, 2> start{first, 0}, count{static_cast<hsize_t>(rows[r]), d.columns};
+    h5::check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+              "select rows of " + source);
+    h5::Handle piece(H5Screate_simple(dims, count.data(), nullptr), H5Sclose, "dataspace of a piece");
+    h5::check(H5Pset_virtual(create, space, pieces[r].c_str(), source.c_str(), piece), "map " + pieces[r] + source);
+    first += count[0];
+  }
+  h5::check(H5Sselect_all(space), "select " + source);
+  h5::Handle group = h5::exists(file, d.group) ? h5::open_group(file, d.group) : h5::create_group(file, d.group);
+  h5::Handle set(H5Dcreate2(group, d.name, d.type, space, H5P_DEFAULT, create, H5P_DEFAULT), H5Dclose,
+                 "create dataset " + source);
+}
+
+std::string piece_name(const std::filesystem::path& path, const std::string& token, int rank) {
+  return path.filename().string() + ".piece-" + token + "-" + std::to_string(rank);
+}
+
+/// Removes the pieces of earlier checkpoints at `path` (those not of `token`).
+void remove_stale_pieces(const std::filesystem::path& path, const std::string& token) {
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::string prefix = path.filename().string() + ".piece-";
+  std::error_code ignored;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ignored)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(prefix) && !name.starts_with(prefix + token + "-")) std::filesystem::remove(entry.path(), ignored);
+  }
+}
+
+/// Every rank's value of `n`, in rank order, on every rank.
+std::vector<std::int64_t> per_rank(MPI_Comm comm, std::int64_t n) {
+  std::vector<std::int64_t> all(static_cast<std::size_t>(parallel::size(comm)), 0);
+  all[static_cast<std::size_t>(parallel::rank(comm))] = n;
+  parallel::sum(comm, std::span(all));
+  return all;
+}
+
+/// Throws on every rank when `failed` holds on any, with the first message found.
+void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& what) {
+  int failed = error.empty() ? 0 : 1;
+  parallel::max(comm, std::span(&failed, 1));
+  if (failed == 0) return;
+  throw std::runtime_error("DEM checkpoint: " + (error.empty() ? what + " failed on another rank" : error));
+}
+
+/// Rows [first, first + count) of /grains, as grains (spins when the model rotates them).
+void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, GrainArrays& out) {
+  const auto id = h5::read_rows<std::int64_t>(g, "id", first, count);
+  const auto group = h5::read_rows<std::int32_t>(g, "group", first, count);
+  const auto body = h5::read_rows<std::int32_t>(g, "body", first, count);
+  const auto radius = h5::read_rows<double>(g, "radius", first, count);
+  const auto mass = h5::read_rows<double>(g, "mass", first, count);
+  const auto x = h5::read_rows<double>(g, "position", first, count, 3);
+  const auto vel = h5::read_rows<double>(g, "velocity", first, count, 3);
+  const auto force = h5::read_rows<double>(g, "force", first, count, 3);
+  std::vector<double> w, torque;
+  if (spins) {
+    w = h5::read_rows<double>(g, "angular_velocity", first, count, 3);
+    torque = h5::read_rows<double>(g, "torque", first, count, 3);
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
+    Grain grain{id[k], group[k], body[k], radius[k], mass[k], at(x), at(vel), {}, at(force), {}};
+    if (spins) {
+      grain.angular_velocity = at(w);
+      grain.torque = at(torque);
+    }
+    out.push_local(grain);
+  }
+}
+
 }  // namespace
 
 void Engine::write_checkpoint(const std::string& path) {
-  const std::vector<Grain> all = gather_grains(*this);
-  const std::vector<HistoryEntry> history = gather_on_root(domain_.comm(), contact_history());
-  int status = 0;
+  MPI_Comm comm = domain_.comm();
+  const int rank = domain_.rank(), ranks = domain_.size();
+  const bool spins = grains_.rotation();
+  std::vector<Grain> mine;
+  mine.reserve(grains_.n_local());
+  for (std::size_t i = 0; i < grains_.n_local(); ++i) mine.push_back(grains_.grain(i));
+  std::vector<HistoryEntry> history = contact_history();
+  const std::vector<std::int64_t> grain_rows = per_rank(comm, static_cast<std::int64_t>(mine.size()));
+  const std::vector<std::int64_t> history_rows = per_rank(comm, static_cast<std::int64_t>(history.size()));
+
+  // A fresh token per checkpoint: the pieces of the previous one stay intact until PATH names these.
+  std::uint64_t token_bits = 0;
+  if (rank == 0) token_bits = (std::uint64_t{std::random_device{}()} << 32) ^ std::random_device{}();
+  parallel::broadcast(comm, std::span(&token_bits, 1));
+  char token[17];
+  std::snprintf(token, sizeof token, "%016llx", static_cast<unsigned long long>(token_bits));
+  const std::filesystem::path target(path);
+  const auto piece_path = [&](int r) { return target.parent_path() / piece_name(target, token, r); };
+
   std::string error;
-  if (domain_.rank() == 0) {
+  if (ranks > 1) {
+    try {
+      h5::write_file_atomically(piece_path(rank), [&](const h5::Handle& file) { write_rows(file, mine, history, spins); });
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    agree_on_failure(comm, error, "writing a piece");
+    mine = {};
+    history = {};
+  }
+  if (rank == 0) {
     try {
       // A reader (or a restart after SIGKILL) sees the old or the new file, never half of one.
       h5::write_file_atomically(path, [&](const h5::Handle& file) {
@@ -92,39 +269,21 @@ void Engine::write_checkpoint(const std::string& path) {
         h5::write_attribute(file, "step", step_);
         h5::write_attribute(file, "time", time_);
         h5::write_attribute(file, "dt", dt_);
-        h5::write_attribute(file, "ranks", static_cast<std::int32_t>(domain_.size()));
+        h5::write_attribute(file, "ranks", static_cast<std::int32_t>(ranks));
         h5::write_attribute(file, "rebuilds", rebuilds_);
         h5::write_string_attribute(file, "user_state", user_state_);
         h5::write_string_attribute(file, "contact_model", describe(settings_.contact));
         h5::Handle inputs = h5::create_group(file, "inputs");
         for (const auto& [name, value] : settings_.checkpoint.inputs) h5::write_string_attribute(inputs, name, value);
 
-        h5::Handle g = h5::create_group(file, "grains");
-        const std::size_t n = all.size();
-        h5::write(g, "id", column<std::int64_t>(all, [](const Grain& x) { return x.id; }).data(), n);
-        h5::write(g, "group", column<std::int32_t>(all, [](const Grain& x) { return x.group; }).data(), n);
-        h5::write(g, "body", column<std::int32_t>(all, [](const Grain& x) { return x.body; }).data(), n);
-        h5::write(g, "radius", column<double>(all, [](const Grain& x) { return x.radius; }).data(), n);
-        h5::write(g, "mass", column<double>(all, [](const Grain& x) { return x.mass; }).data(), n);
-        h5::write(g, "position", vectors(all, &Grain::position).data(), n, 3);
-        h5::write(g, "velocity", vectors(all, &Grain::velocity).data(), n, 3);
-        h5::write(g, "force", vectors(all, &Grain::force).data(), n, 3);
-        if (grains_.rotation()) {
-          h5::write(g, "angular_velocity", vectors(all, &Grain::angular_velocity).data(), n, 3);
-          h5::write(g, "torque", vectors(all, &Grain::torque).data(), n, 3);
+        if (ranks == 1) {
+          write_rows(file, mine, history, spins);
+        } else {
+          std::vector<std::string> pieces;
+          for (int r = 0; r < ranks; ++r) pieces.push_back(piece_name(target, token, r));
+          for (const RowDataset& d : row_datasets(spins))
+            join_pieces(file, d, pieces, std::string(d.group) == "grains" ? grain_rows : history_rows);
         }
-
-        h5::Handle h = h5::create_group(file, "history");
-        std::vector<std::int64_t> a, b;
-        std::vector<double> shear;
-        for (const HistoryEntry& e : history) {
-          a.push_back(e.a);
-          b.push_back(e.b);
-          shear.insert(shear.end(), {e.shear.x, e.shear.y, e.shear.z});
-        }
-        h5::write(h, "a", a.data(), a.size());
-        h5::write(h, "b", b.data(), b.size());
-        h5::write(h, "shear", shear.data(), a.size(), 3);
 
         h5::Handle bodies = h5::create_group(file, "bodies");
         std::vector<double> u, v, f;
@@ -140,14 +299,15 @@ void Engine::write_checkpoint(const std::string& path) {
 
         h5::Handle d = h5::create_group(file, "domain");
         h5::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
+        h5::write(d, "grain_rows", grain_rows.data(), grain_rows.size());
+        h5::write(d, "history_rows", history_rows.data(), history_rows.size());
       });
+      remove_stale_pieces(target, ranks > 1 ? token : "");
     } catch (const std::exception& e) {
-      status = 1;
       error = e.what();
     }
   }
-  MPI_Bcast(&status, 1, MPI_INT, 0, domain_.comm());
-  if (status != 0) throw std::runtime_error("DEM checkpoint: " + (error.empty() ? "write failed on rank 0" : error));
+  agree_on_failure(comm, error, "writing " + path);
 }
 
 void Engine::restore_checkpoint(const std::string& path) {
@@ -171,7 +331,8 @@ void Engine::restore_checkpoint(const std::string& path) {
   const int ranks = h5::read_attribute<std::int32_t>(file, "ranks");
 
   h5::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
-  const bool same_layout = ranks == domain_.size();
+  // The rows each rank wrote (files from before they were recorded are read as another layout).
+  const bool same_layout = ranks == domain_.size() && h5::exists(d, "grain_rows");
   if (same_layout) {
     domain_.set_boundaries(h5::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
   }
@@ -186,59 +347,45 @@ void Engine::restore_checkpoint(const std::string& path) {
     bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
                        {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
 
-  // Grains, in file order, each rank keeping its own (by slab, or by row range before repartition).
+  // This rank's rows: those it wrote (its grains at the checkpoint; the next rebuild migrates any
+  // that left the slab since), or an equal share of them all.
+  const auto rank_rows = [&](const std::string& written, std::size_t n) -> std::pair<std::size_t, std::size_t> {
+    const auto r = static_cast<std::size_t>(domain_.rank());
+    if (same_layout) {
+      const auto rows = h5::read_rows<std::int64_t>(d, written, 0, static_cast<std::size_t>(ranks));
+      std::size_t first = 0;
+      for (std::size_t k = 0; k < r; ++k) first += static_cast<std::size_t>(rows[k]);
+      return {first, static_cast<std::size_t>(rows[r])};
+    }
+    const auto p = static_cast<std::size_t>(domain_.size());
+    return {r * n / p, (r + 1) * n / p - r * n / p};
+  };
   h5::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
-  const std::size_t n = h5::rows(g, "id");
   const bool spins = grains_.rotation();
   if (spins && !h5::exists(g, "angular_velocity"))
     throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
   grains_ = GrainArrays(spins);
-  const auto r = static_cast<std::size_t>(domain_.rank());
-  const auto p = static_cast<std::size_t>(domain_.size());
-  for (std::size_t first = 0; first < n; first += kReadChunk) {
-    const std::size_t count = std::min(kReadChunk, n - first);
-    const auto id = h5::read_rows<std::int64_t>(g, "id", first, count);
-    const auto group = h5::read_rows<std::int32_t>(g, "group", first, count);
-    const auto body = h5::read_rows<std::int32_t>(g, "body", first, count);
-    const auto radius = h5::read_rows<double>(g, "radius", first, count);
-    const auto mass = h5::read_rows<double>(g, "mass", first, count);
-    const auto x = h5::read_rows<double>(g, "position", first, count, 3);
-    const auto vel = h5::read_rows<double>(g, "velocity", first, count, 3);
-    const auto force = h5::read_rows<double>(g, "force", first, count, 3);
-    std::vector<double> w, torque;
-    if (spins) {
-      w = h5::read_rows<double>(g, "angular_velocity", first, count, 3);
-      torque = h5::read_rows<double>(g, "torque", first, count, 3);
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
-      const Vec3 position = at(x);
-      const bool mine = same_layout ? domain_.owner(position.z) == domain_.rank()
-                                    : (first + k) * p / n == r;
-      if (!mine) continue;
-      Grain grain{id[k], group[k], body[k], radius[k], mass[k], position, at(vel), {}, at(force), {}};
-      if (spins) {
-        grain.angular_velocity = at(w);
-        grain.torque = at(torque);
-      }
-      grains_.push_local(grain);
-    }
-  }
+  const auto [first_grain, grain_count] = rank_rows("grain_rows", h5::rows(g, "id"));
+  for (std::size_t done = 0; done < grain_count; done += kReadChunk)
+    read_grains(g, first_grain + done, std::min(kReadChunk, grain_count - done), spins, grains_);
 
-  // History records that involve a local grain (migration forwards the rest as grains move).
+  // History: with the same layout, the records this rank wrote; else every record that involves a
+  // grain of this rank (migration forwards them as grains move).
   pending_history_.clear();
   if (needs_history(model_)) {
     std::unordered_map<std::int64_t, char> local_ids;
     for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
     h5::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
     const std::size_t m = h5::rows(h, "a");
-    for (std::size_t first = 0; first < m; first += kReadChunk) {
-      const std::size_t count = std::min(kReadChunk, m - first);
+    const auto [first_record, record_count] =
+        same_layout ? rank_rows("history_rows", m) : std::pair<std::size_t, std::size_t>{0, m};
+    for (std::size_t done = 0; done < record_count; done += kReadChunk) {
+      const std::size_t first = first_record + done, count = std::min(kReadChunk, record_count - done);
       const auto a = h5::read_rows<std::int64_t>(h, "a", first, count);
       const auto b = h5::read_rows<std::int64_t>(h, "b", first, count);
       const auto s = h5::read_rows<double>(h, "shear", first, count, 3);
       for (std::size_t k = 0; k < count; ++k)
-        if (local_ids.contains(a[k]) || local_ids.contains(b[k]))
+        if (same_layout || local_ids.contains(a[k]) || local_ids.contains(b[k]))
           pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
     }
   }
