@@ -7,14 +7,15 @@
 //   /history     a, b [M] (smaller, larger global id), shear [M,3] (seen from a)
 //   /bodies      displacement, velocity, contact_force [B,3]
 //   /domain      boundaries [ranks+1]; grain_rows, history_rows [ranks]: each rank's rows, in rank order
-// No rank holds all grains, writing or reading. On one rank /grains and /history are ordinary
-// datasets. On several, every rank writes its rows to a piece of its own, PATH.piece-TOKEN-RANK
-// (the same groups and datasets), and /grains and /history of PATH are HDF5 virtual datasets that
-// join the pieces (any HDF5 reader sees one file; the pieces must stay beside it). Parallel HDF5
-// is not needed, and every file is still written whole in memory and renamed into place: the pieces
-// first under a fresh TOKEN, then PATH, which is what switches a restart to the new state; pieces
-// no longer named by PATH are removed after that. A kill at any moment leaves the old checkpoint or
-// the new one whole.
+// No rank holds all grains, writing or reading. A small checkpoint on one rank is one file of
+// ordinary datasets. Otherwise every rank writes its rows in pieces of its own,
+// PATH.piece-TOKEN-RANK-PART (the same groups and datasets, at most CheckpointSettings::piece_rows
+// rows each, so a checkpoint adds one piece's memory to a rank's, whatever it holds), and /grains
+// and /history of PATH are HDF5 virtual datasets that join the pieces in rank order (any HDF5
+// reader sees one file; the pieces must stay beside it). Parallel HDF5 is not needed, and every
+// file is still written whole in memory and renamed into place: the pieces first under a fresh
+// TOKEN, then PATH, which is what switches a restart to the new state; pieces no longer named by
+// PATH are removed after that. A kill at any moment leaves the old checkpoint or the new one whole.
 // Reading, each rank reads its own rows: with the same rank count, the rows it wrote (and its slab
 // boundaries); with another, an equal share of rows, and the engine then repartitions. Contact
 // history on another rank count is scanned by every rank for the records of its grains.
@@ -36,21 +37,17 @@ namespace {
 constexpr std::int32_t kCheckpointVersion = 1;
 constexpr std::size_t kReadChunk = 1 << 16;
 
-template <typename T, typename F>
-std::vector<T> column(const std::vector<Grain>& grains, F field) {
-  std::vector<T> out;
-  out.reserve(grains.size());
-  for (const Grain& g : grains) out.push_back(field(g));
-  return out;
+/// Rows [first, first + count) of one of the grains' fields.
+template <typename T>
+const T* rows_of(const std::vector<T>& field, std::size_t first) {
+  return field.data() + first;
 }
 
-std::vector<double> vectors(const std::vector<Grain>& grains, Vec3 Grain::*field) {
+/// Rows [first, first + count) of a vector field, as count x 3 doubles.
+std::vector<double> vectors(const std::vector<Vec3>& field, std::size_t first, std::size_t count) {
   std::vector<double> out;
-  out.reserve(3 * grains.size());
-  for (const Grain& g : grains) {
-    const Vec3& v = g.*field;
-    out.insert(out.end(), {v.x, v.y, v.z});
-  }
+  out.reserve(3 * count);
+  for (std::size_t i = first; i < first + count; ++i) out.insert(out.end(), {field[i].x, field[i].y, field[i].z});
   return out;
 }
 
@@ -90,21 +87,21 @@ void require_same_inputs(const std::map<std::string, std::string>& recorded,
 }
 
 
-/// This rank's rows of /grains and /history, written under `file` (a checkpoint or its piece).
-void write_rows(hid_t file, const std::vector<Grain>& grains, const std::vector<HistoryEntry>& history, bool spins) {
+/// Rows of this rank's grains and contact history, written under `file` (a checkpoint or a piece).
+void write_rows(hid_t file, const GrainArrays& grains, std::size_t first, std::size_t n,
+                std::span<const HistoryEntry> history) {
   h5::Handle g = h5::create_group(file, "grains");
-  const std::size_t n = grains.size();
-  h5::write(g, "id", column<std::int64_t>(grains, [](const Grain& x) { return x.id; }).data(), n);
-  h5::write(g, "group", column<std::int32_t>(grains, [](const Grain& x) { return x.group; }).data(), n);
-  h5::write(g, "body", column<std::int32_t>(grains, [](const Grain& x) { return x.body; }).data(), n);
-  h5::write(g, "radius", column<double>(grains, [](const Grain& x) { return x.radius; }).data(), n);
-  h5::write(g, "mass", column<double>(grains, [](const Grain& x) { return x.mass; }).data(), n);
-  h5::write(g, "position", vectors(grains, &Grain::position).data(), n, 3);
-  h5::write(g, "velocity", vectors(grains, &Grain::velocity).data(), n, 3);
-  h5::write(g, "force", vectors(grains, &Grain::force).data(), n, 3);
-  if (spins) {
-    h5::write(g, "angular_velocity", vectors(grains, &Grain::angular_velocity).data(), n, 3);
-    h5::write(g, "torque", vectors(grains, &Grain::torque).data(), n, 3);
+  h5::write(g, "id", rows_of(grains.id, first), n);
+  h5::write(g, "group", rows_of(grains.group, first), n);
+  h5::write(g, "body", rows_of(grains.body, first), n);
+  h5::write(g, "radius", rows_of(grains.radius, first), n);
+  h5::write(g, "mass", rows_of(grains.mass, first), n);
+  h5::write(g, "position", vectors(grains.position, first, n).data(), n, 3);
+  h5::write(g, "velocity", vectors(grains.velocity, first, n).data(), n, 3);
+  h5::write(g, "force", vectors(grains.force, first, n).data(), n, 3);
+  if (grains.rotation()) {
+    h5::write(g, "angular_velocity", vectors(grains.angular_velocity, first, n).data(), n, 3);
+    h5::write(g, "torque", vectors(grains.torque, first, n).data(), n, 3);
   }
   h5::Handle h = h5::create_group(file, "history");
   std::vector<std::int64_t> a, b;
@@ -142,36 +139,62 @@ std::vector<RowDataset> row_datasets(bool spins) {
   return out;
 }
 
+/// One piece file: a part of one rank's rows.
+struct Piece {
+  int rank = 0;
+  std::int64_t part = 0;
+  std::int64_t grain_rows = 0, history_rows = 0;
+};
+
+/// The pieces of every rank in file order (rank by rank, part by part), from each rank's row counts:
+/// at most `piece_rows` grains and history records per piece, at least one piece per rank.
+std::vector<Piece> piece_layout(const std::vector<std::int64_t>& grain_rows, const std::vector<std::int64_t>& history_rows,
+                                std::int64_t piece_rows) {
+  std::vector<Piece> out;
+  for (std::size_t r = 0; r < grain_rows.size(); ++r) {
+    const std::int64_t most = std::max(grain_rows[r], history_rows[r]);
+    const std::int64_t parts = std::max<std::int64_t>(1, (most + piece_rows - 1) / piece_rows);
+    for (std::int64_t k = 0; k < parts; ++k) {
+      const auto rows_in = [&](std::int64_t n) { return std::clamp<std::int64_t>(n - k * piece_rows, 0, piece_rows); };
+      out.push_back({static_cast<int>(r), k, rows_in(grain_rows[r]), rows_in(history_rows[r])});
+    }
+  }
+  return out;
+}
+
+std::string piece_name(const std::filesystem::path& path, const std::string& token, const Piece& piece) {
+  return path.filename().string() + ".piece-" + token + "-" + std::to_string(piece.rank) + "-" +
+         std::to_string(piece.part);
+}
+
 /// A virtual dataset `d.group/d.name` under `file` that joins the pieces' datasets of the same
-/// name in rank order (rows[r] rows from pieces[r]). Piece names are relative: HDF5 looks for them
-/// beside the checkpoint.
-void join_pieces(hid_t file, const RowDataset& d, const std::vector<std::string>& pieces,
-                 const std::vector<std::int64_t>& rows) {
+/// name in order. Piece names are relative: HDF5 looks for them beside the checkpoint.
+void join_pieces(hid_t file, const RowDataset& d, const std::vector<Piece>& pieces, const std::filesystem::path& path,
+                 const std::string& token) {
+  const bool grains = std::string(d.group) == "grains";
+  const auto rows = [&](const Piece& p) { return static_cast<hsize_t>(grains ? p.grain_rows : p.history_rows); };
   hsize_t total = 0;
-  for (const std::int64_t n : rows) total += static_cast<hsize_t>(n);
+  for (const Piece& p : pieces) total += rows(p);
   const int dims = d.columns ? 2 : 1;
   const std::array<hsize_t, 2> extent{total, d.columns};
   h5::Handle space(H5Screate_simple(dims, extent.data(), nullptr), H5Sclose, "dataspace " + std::string(d.name));
   h5::Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
   const std::string source = "/" + std::string(d.group) + "/" + d.name;
   hsize_t first = 0;
-  for (std::size_t r = 0; r < pieces.size(); ++r) {
-    if (rows[r] == 0) continue;
-    const std::array<hsize_t, 2> start{first, 0}, count{static_cast<hsize_t>(rows[r]), d.columns};
+  for (const Piece& p : pieces) {
+    if (rows(p) == 0) continue;
+    const std::array<hsize_t, 2> start{first, 0}, count{rows(p), d.columns};
     h5::check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
               "select rows of " + source);
     h5::Handle piece(H5Screate_simple(dims, count.data(), nullptr), H5Sclose, "dataspace of a piece");
-    h5::check(H5Pset_virtual(create, space, pieces[r].c_str(), source.c_str(), piece), "map " + pieces[r] + source);
+    const std::string name = piece_name(path, token, p);
+    h5::check(H5Pset_virtual(create, space, name.c_str(), source.c_str(), piece), "map " + name + source);
     first += count[0];
   }
   h5::check(H5Sselect_all(space), "select " + source);
   h5::Handle group = h5::exists(file, d.group) ? h5::open_group(file, d.group) : h5::create_group(file, d.group);
   h5::Handle set(H5Dcreate2(group, d.name, d.type, space, H5P_DEFAULT, create, H5P_DEFAULT), H5Dclose,
                  "create dataset " + source);
-}
-
-std::string piece_name(const std::filesystem::path& path, const std::string& token, int rank) {
-  return path.filename().string() + ".piece-" + token + "-" + std::to_string(rank);
 }
 
 /// Removes the pieces of earlier checkpoints at `path` (those not of `token`).
@@ -232,33 +255,42 @@ void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, Grai
 void Engine::write_checkpoint(const std::string& path) {
   MPI_Comm comm = domain_.comm();
   const int rank = domain_.rank(), ranks = domain_.size();
-  const bool spins = grains_.rotation();
-  std::vector<Grain> mine;
-  mine.reserve(grains_.n_local());
-  for (std::size_t i = 0; i < grains_.n_local(); ++i) mine.push_back(grains_.grain(i));
-  std::vector<HistoryEntry> history = contact_history();
-  const std::vector<std::int64_t> grain_rows = per_rank(comm, static_cast<std::int64_t>(mine.size()));
+  const std::vector<HistoryEntry> history = contact_history();
+  const std::size_t n = grains_.n_local();
+  const std::vector<std::int64_t> grain_rows = per_rank(comm, static_cast<std::int64_t>(n));
   const std::vector<std::int64_t> history_rows = per_rank(comm, static_cast<std::int64_t>(history.size()));
+  const std::vector<Piece> pieces =
+      piece_layout(grain_rows, history_rows, static_cast<std::int64_t>(std::max<std::size_t>(settings_.checkpoint.piece_rows, 1)));
+  const bool in_pieces = pieces.size() > 1;
 
   // A fresh token per checkpoint: the pieces of the previous one stay intact until PATH names these.
   std::uint64_t token_bits = 0;
   if (rank == 0) token_bits = (std::uint64_t{std::random_device{}()} << 32) ^ std::random_device{}();
   parallel::broadcast(comm, std::span(&token_bits, 1));
-  char token[17];
-  std::snprintf(token, sizeof token, "%016llx", static_cast<unsigned long long>(token_bits));
+  char token_text[17];
+  std::snprintf(token_text, sizeof token_text, "%016llx", static_cast<unsigned long long>(token_bits));
+  const std::string token = token_text;
   const std::filesystem::path target(path);
-  const auto piece_path = [&](int r) { return target.parent_path() / piece_name(target, token, r); };
 
   std::string error;
-  if (ranks > 1) {
+  if (in_pieces) {
     try {
-      h5::write_file_atomically(piece_path(rank), [&](const h5::Handle& file) { write_rows(file, mine, history, spins); });
+      // Part by part: the memory a checkpoint adds is that of one piece, not of the rank's grains.
+      std::int64_t first_grain = 0, first_record = 0;
+      for (const Piece& p : pieces) {
+        if (p.rank != rank) continue;
+        h5::write_file_atomically(target.parent_path() / piece_name(target, token, p), [&](const h5::Handle& file) {
+          write_rows(file, grains_, static_cast<std::size_t>(first_grain), static_cast<std::size_t>(p.grain_rows),
+                     std::span(history).subspan(static_cast<std::size_t>(first_record),
+                                                static_cast<std::size_t>(p.history_rows)));
+        });
+        first_grain += p.grain_rows;
+        first_record += p.history_rows;
+      }
     } catch (const std::exception& e) {
       error = e.what();
     }
     agree_on_failure(comm, error, "writing a piece");
-    mine = {};
-    history = {};
   }
   if (rank == 0) {
     try {
@@ -276,13 +308,10 @@ void Engine::write_checkpoint(const std::string& path) {
         h5::Handle inputs = h5::create_group(file, "inputs");
         for (const auto& [name, value] : settings_.checkpoint.inputs) h5::write_string_attribute(inputs, name, value);
 
-        if (ranks == 1) {
-          write_rows(file, mine, history, spins);
+        if (in_pieces) {
+          for (const RowDataset& d : row_datasets(grains_.rotation())) join_pieces(file, d, pieces, target, token);
         } else {
-          std::vector<std::string> pieces;
-          for (int r = 0; r < ranks; ++r) pieces.push_back(piece_name(target, token, r));
-          for (const RowDataset& d : row_datasets(spins))
-            join_pieces(file, d, pieces, std::string(d.group) == "grains" ? grain_rows : history_rows);
+          write_rows(file, grains_, 0, n, history);
         }
 
         h5::Handle bodies = h5::create_group(file, "bodies");
@@ -302,7 +331,7 @@ void Engine::write_checkpoint(const std::string& path) {
         h5::write(d, "grain_rows", grain_rows.data(), grain_rows.size());
         h5::write(d, "history_rows", history_rows.data(), history_rows.size());
       });
-      remove_stale_pieces(target, ranks > 1 ? token : "");
+      remove_stale_pieces(target, in_pieces ? token : "");
     } catch (const std::exception& e) {
       error = e.what();
     }
