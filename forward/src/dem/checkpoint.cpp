@@ -216,7 +216,7 @@ std::vector<std::int64_t> per_rank(MPI_Comm comm, std::int64_t n) {
   return all;
 }
 
-/// Throws on every rank when `failed` holds on any, with the first message found.
+/// Throws on every rank when any rank has an `error` (its own message where it has one).
 void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& what) {
   int failed = error.empty() ? 0 : 1;
   parallel::max(comm, std::span(&failed, 1));
