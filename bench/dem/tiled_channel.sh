@@ -25,6 +25,7 @@
 # Prints a markdown table.
 set -euo pipefail
 MODE=${1:?usage: tiled_channel.sh restart|uneven [build-dir]}
+[[ $MODE == restart || $MODE == uneven ]] || { echo "tiled_channel.sh: unknown mode '$MODE' (restart or uneven)" >&2; exit 2; }
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${2:-$ROOT/build}
 WORK=${WORK:-$(mktemp -d /tmp/sedwave-tiled.XXXXXX)}
@@ -77,8 +78,4 @@ uneven_table() {
   rm -f "$WORK"/uneven.h5*
 }
 
-case $MODE in
-  restart) restart_table ;;
-  uneven) uneven_table ;;
-  *) echo "tiled_channel.sh: unknown mode '$MODE' (restart or uneven)" >&2; exit 2 ;;
-esac
+if [[ $MODE == restart ]]; then restart_table; else uneven_table; fi
