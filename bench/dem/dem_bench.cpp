@@ -26,7 +26,8 @@
 // `run` prints one line of key=value pairs on rank 0: the time per grain-step, the split of a step
 // into force, neighbour, communication and integration (mean and slowest rank, ms per step; the
 // communication time includes waiting for slower ranks), the halo-exchange volume per step and
-// every rank's peak resident memory (smallest, median, largest, rank 0's; MB).
+// every rank's peak resident memory (smallest, median, largest, rank 0's; MB) and the seconds the
+// slowest rank took to read its share of the data file.
 #include <mpi.h>
 #include <sys/resource.h>
 
@@ -172,9 +173,12 @@ int run(const std::string& path, long steps) {
   // Each rank keeps every size-th grain of the file, as `sedwave dem` does, so no rank holds them
   // all; the engine then sends each grain to its slab's owner.
   std::size_t index = 0;
+  const double read_start = MPI_Wtime();
   dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) {
     return static_cast<int>(index++ % static_cast<std::size_t>(size)) == rank;
   });
+  double read_s = MPI_Wtime() - read_start;  // the slowest rank's
+  MPI_Allreduce(MPI_IN_PLACE, &read_s, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   dem::EngineSettings s = settings(data.box, false);
   s.guard.check_interval = 1000;
   s.progress.enabled = std::getenv("DEM_BENCH_VERBOSE") != nullptr;
@@ -224,12 +228,12 @@ int run(const std::string& path, long steps) {
                 "rss_growth_bytes_per_grain=%.0f dt=%.6g ms_per_step=%.4f "
                 "force_ms=%.4f/%.4f neighbour_ms=%.4f/%.4f communication_ms=%.4f/%.4f integration_ms=%.4f/%.4f "
                 "halo_bytes_per_step=%.0f peak_rss_mb_min=%.1f peak_rss_mb_median=%.1f peak_rss_mb_max=%.1f "
-                "peak_rss_mb_rank0=%.1f\n",
+                "peak_rss_mb_rank0=%.1f read_s=%.3f\n",
                 1e9 * seconds / (n * static_cast<double>(steps)), size, n, steps, bytes / n,
                 1024.0 * static_cast<double>(rss_growth) / n, engine.time_step(),
                 1e3 * seconds / static_cast<double>(steps), force.mean_ms, force.max_ms, neighbour.mean_ms,
                 neighbour.max_ms, communication.mean_ms, communication.max_ms, integration.mean_ms,
-                integration.max_ms, halo_bytes, mb.front(), mb[mb.size() / 2], mb.back(), memory.rank0_mb);
+                integration.max_ms, halo_bytes, mb.front(), mb[mb.size() / 2], mb.back(), memory.rank0_mb, read_s);
   }
   return 0;
 }
