@@ -8,6 +8,11 @@
 //   dem_bench stack in.data K out.data
 //                                   K copies of a packing periodic along z, one above the other
 //                                   (ids renumbered), for larger packings than are worth relaxing
+//   dem_bench channel cell.data K STEPS CHECKPOINT [restart]
+//                                   K copies of the z-periodic packing cell.data tiled into a channel
+//                                   with frozen walls, each rank building only its own copies (or,
+//                                   with `restart`, the state of CHECKPOINT restored, on any rank
+//                                   count); runs STEPS and writes CHECKPOINT (pieces per rank)
 //   dem_bench loop file.data [CUT]  times the force loop alone on one rank, positions frozen after
 //                                   200 steps, dry and with a pore fluid's lubrication (cut-off
 //                                   CUT d, default 0.05) in alternating batches: median and fastest
@@ -21,7 +26,8 @@
 // `run` prints one line of key=value pairs on rank 0: the time per grain-step, the split of a step
 // into force, neighbour, communication and integration (mean and slowest rank, ms per step; the
 // communication time includes waiting for slower ranks), the halo-exchange volume per step and
-// every rank's peak resident memory (smallest, median, largest, rank 0's; MB).
+// every rank's peak resident memory (smallest, median, largest, rank 0's; MB) and the seconds the
+// slowest rank took to read its share of the data file.
 #include <mpi.h>
 #include <sys/resource.h>
 
@@ -36,6 +42,8 @@
 #include <string>
 #include <variant>
 
+#include "sedwave/forward/channel/geometry.hpp"
+#include "sedwave/forward/channel/periodic_cell.hpp"
 #include "sedwave/forward/dem/engine.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 #include "sedwave/forward/units.hpp"
@@ -165,9 +173,12 @@ int run(const std::string& path, long steps) {
   // Each rank keeps every size-th grain of the file, as `sedwave dem` does, so no rank holds them
   // all; the engine then sends each grain to its slab's owner.
   std::size_t index = 0;
+  const double read_start = MPI_Wtime();
   dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) {
     return static_cast<int>(index++ % static_cast<std::size_t>(size)) == rank;
   });
+  double read_s = MPI_Wtime() - read_start;  // the slowest rank's
+  MPI_Allreduce(MPI_IN_PLACE, &read_s, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   dem::EngineSettings s = settings(data.box, false);
   s.guard.check_interval = 1000;
   s.progress.enabled = std::getenv("DEM_BENCH_VERBOSE") != nullptr;
@@ -217,12 +228,12 @@ int run(const std::string& path, long steps) {
                 "rss_growth_bytes_per_grain=%.0f dt=%.6g ms_per_step=%.4f "
                 "force_ms=%.4f/%.4f neighbour_ms=%.4f/%.4f communication_ms=%.4f/%.4f integration_ms=%.4f/%.4f "
                 "halo_bytes_per_step=%.0f peak_rss_mb_min=%.1f peak_rss_mb_median=%.1f peak_rss_mb_max=%.1f "
-                "peak_rss_mb_rank0=%.1f\n",
+                "peak_rss_mb_rank0=%.1f read_s=%.3f\n",
                 1e9 * seconds / (n * static_cast<double>(steps)), size, n, steps, bytes / n,
                 1024.0 * static_cast<double>(rss_growth) / n, engine.time_step(),
                 1e3 * seconds / static_cast<double>(steps), force.mean_ms, force.max_ms, neighbour.mean_ms,
                 neighbour.max_ms, communication.mean_ms, communication.max_ms, integration.mean_ms,
-                integration.max_ms, halo_bytes, mb.front(), mb[mb.size() / 2], mb.back(), memory.rank0_mb);
+                integration.max_ms, halo_bytes, mb.front(), mb[mb.size() / 2], mb.back(), memory.rank0_mb, read_s);
   }
   return 0;
 }
@@ -246,6 +257,118 @@ int stack(const std::string& in, long copies, const std::string& out) {
   box.hi.z = box.lo.z + static_cast<double>(copies) * height;
   dem::write_lammps_data(out, box, grains);
   std::printf("stacked %ld copies: %zu grains, box height %g\n", copies, grains.size(), box.length(2));
+  return 0;
+}
+
+/// A channel of `copies` stacked images of the z-periodic packing `cell_path`, tiled on every rank
+/// (each builds its own copies; channel/periodic_cell.hpp), its end grains frozen into walls;
+/// `restart`: restored from `checkpoint` instead (the scene is tiled again first, as `sedwave dem`
+/// rebuilds its scene). Runs `steps`, writes `checkpoint` (pieces per rank) and prints one line of
+/// key=value pairs on rank 0: the seconds to tile, to restore, per step and to checkpoint; the
+/// exchange per step; every rank's peak resident memory, in MB and in bytes per grain it owns.
+int channel_run(const std::string& cell_path, long copies, long steps, const std::string& checkpoint, bool restart) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  namespace ch = fw::channel;
+  const double t_start = MPI_Wtime();
+  ch::PreparedChannel cell;
+  {
+    dem::LammpsData data = dem::read_lammps_data(cell_path, [&](const dem::Grain&) { return rank == 0; });
+    cell.box = data.box;
+    cell.box.periodic = {true, true, true};  // as `prepare` relaxed it
+    for (dem::Grain& g : data.grains) {
+      g.group = ch::kFlowGroup;
+      g.body = dem::kFreeBody;
+    }
+    cell.grains = std::move(data.grains);
+  }
+  dem::EngineSettings s = settings(cell.box, false);
+  ch::PreparedChannel tiled = ch::tile_periodic_cell(MPI_COMM_WORLD, cell, s.contact, static_cast<int>(copies), 1.5);
+  const double tile_s = MPI_Wtime() - t_start;
+  // DEM_BENCH_LOOSE=F: uneven work. Each flow grain in the upper half of the channel is removed with
+  // probability F (decided by its id, so alike on any rank count): a jammed half beside a loose one.
+  if (const char* loose = std::getenv("DEM_BENCH_LOOSE")) {
+    const double fraction = std::stod(loose), middle = 0.5 * (tiled.box.lo.z + tiled.box.hi.z);
+    std::erase_if(tiled.grains, [&](const dem::Grain& g) {
+      const std::uint64_t h = std::hash<std::uint64_t>{}(static_cast<std::uint64_t>(g.id) * 0x9E3779B97F4A7C15ull);
+      return g.group == ch::kFlowGroup && g.position.z > middle && static_cast<double>(h % 1000000) < 1e6 * fraction;
+    });
+  }
+  // DEM_BENCH_VERBOSE: rank 0's peak memory after each phase, in bytes per grain of the channel's share.
+  const bool verbose = std::getenv("DEM_BENCH_VERBOSE") != nullptr;
+  const double share = static_cast<double>(copies) * static_cast<double>(cell.grains.size()) / size;
+  const auto phase = [&](const char* name) {
+    if (verbose && rank == 0) std::printf("peak after %s: %.0f B per grain\n", name, 1024.0 * static_cast<double>(peak_rss_kib()) / share);
+  };
+  phase("tiling");
+  s.box = tiled.box;
+  s.guard.check_interval = 1000;
+  s.checkpoint.path = checkpoint;
+  // DEM_BENCH_REBUILD_EVERY=K: lists rebuilt every K steps; DEM_BENCH_SLABS=fixed keeps the first
+  // slabs, =pairs balances them on listed pairs at every rebuild (default: the engine's settings).
+  const char* rebuild_every_text = std::getenv("DEM_BENCH_REBUILD_EVERY");
+  const long rebuild_every = rebuild_every_text != nullptr ? std::stol(rebuild_every_text) : 0;
+  if (const char* slabs = std::getenv("DEM_BENCH_SLABS")) s.balance = {std::string(slabs) == "fixed" ? 0 : 1, false};
+  const std::vector<dem::RigidBody> walls{dem::RigidBody("lower_wall", dem::Frozen{}),
+                                          dem::RigidBody("upper_wall", dem::Frozen{})};
+  dem::Engine engine(MPI_COMM_WORLD, s, tiled.grains, walls);
+  std::vector<dem::Grain>().swap(tiled.grains);
+  phase("building the engine");
+  double restore_s = 0.0;
+  if (restart) {
+    MPI_Barrier(MPI_COMM_WORLD);
+    const double t0 = MPI_Wtime();
+    engine.restore_checkpoint(checkpoint);
+    MPI_Barrier(MPI_COMM_WORLD);
+    restore_s = MPI_Wtime() - t0;
+  }
+  if (restart) phase("restoring");
+  const long first_step = static_cast<long>(engine.step_count());
+  MPI_Barrier(MPI_COMM_WORLD);
+  const dem::Timings before = engine.timings();
+  const auto halo_before = engine.domain().halo_bytes_sent();
+  const double t0 = MPI_Wtime();
+  for (long done = 0; done < steps; done += rebuild_every > 0 ? rebuild_every : steps) {
+    engine.run(rebuild_every > 0 ? std::min(rebuild_every, steps - done) : steps);
+    if (rebuild_every > 0) engine.request_rebuild();
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double seconds = MPI_Wtime() - t0;
+  phase("running");
+  // Work per rank at the end: listed pairs + owned grains (what balancing on pairs evens out).
+  double work = static_cast<double>(engine.neighbor_list().n_pairs() + engine.n_local()), work_max = work;
+  MPI_Allreduce(MPI_IN_PLACE, &work, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &work_max, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  const double work_imbalance = work_max / (work / size);
+  const dem::Timings& after = engine.timings();
+  const PhaseTime force = phase_per_step(after.force - before.force, steps, size);
+  const PhaseTime communication = phase_per_step(after.communication - before.communication, steps, size);
+  double halo_bytes = static_cast<double>(engine.domain().halo_bytes_sent() - halo_before) / static_cast<double>(steps);
+  MPI_Allreduce(MPI_IN_PLACE, &halo_bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  const double t1 = MPI_Wtime();
+  engine.write_checkpoint(checkpoint);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double checkpoint_s = MPI_Wtime() - t1;
+  phase("running and checkpointing");
+  if (verbose && rank == 0) std::printf("engine's own structures: %.0f B per grain\n", static_cast<double>(engine.memory_bytes()) / share);
+  // Peak memory per owned grain, each rank against the grains it holds at the end.
+  const RankMemory memory = gather_peak_memory(rank, size);
+  double per_grain = 1024.0 * static_cast<double>(peak_rss_kib()) / static_cast<double>(std::max<std::size_t>(engine.n_local(), 1));
+  double per_grain_min = per_grain;
+  MPI_Allreduce(MPI_IN_PLACE, &per_grain, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &per_grain_min, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  if (rank == 0) {
+    const std::vector<double>& mb = memory.sorted_mb;
+    std::printf("ranks=%d grains=%lld steps=%ld..%ld tile_s=%.2f restore_s=%.2f ms_per_step=%.1f force_ms=%.1f/%.1f "
+                "communication_ms=%.2f/%.2f halo_bytes_per_step=%.0f checkpoint_s=%.2f peak_rss_mb_min=%.0f "
+                "peak_rss_mb_median=%.0f peak_rss_mb_max=%.0f peak_bytes_per_owned_grain_min=%.0f "
+                "peak_bytes_per_owned_grain_max=%.0f work_imbalance=%.3f force_imbalance=%.3f\n",
+                size, static_cast<long long>(engine.n_global()), first_step, first_step + steps, tile_s, restore_s,
+                1e3 * seconds / static_cast<double>(steps), force.mean_ms, force.max_ms, communication.mean_ms,
+                communication.max_ms, halo_bytes, checkpoint_s, mb.front(), mb[mb.size() / 2], mb.back(),
+                per_grain_min, per_grain, work_imbalance, force.max_ms / force.mean_ms);
+  }
   return 0;
 }
 
@@ -347,13 +470,16 @@ int main(int argc, char** argv) {
     if (mode == "prepare" && argc == 4) status = prepare(std::stol(argv[2]), argv[3]);
     else if (mode == "run" && argc == 4) status = run(argv[2], std::stol(argv[3]));
     else if (mode == "stack" && argc == 5) status = stack(argv[2], std::stol(argv[3]), argv[4]);
+    else if (mode == "channel" && (argc == 6 || (argc == 7 && std::string(argv[6]) == "restart")))
+      status = channel_run(argv[2], std::stol(argv[3]), std::stol(argv[4]), argv[5], argc == 7);
     else if (mode == "loop" && (argc == 3 || argc == 4)) status = loop(argv[2], argc == 4 ? std::stod(argv[3]) : 0.05);
     else if (mode == "params") {
       const ThesisPhysics p = thesis_physics();
       std::printf("%.17g %.17g %.17g\n", p.kn, p.gamma_n, p.dt);
       status = 0;
     } else {
-      std::cerr << "usage: dem_bench prepare N file | run file steps | stack file K out | loop file [cutoff] | params\n";
+      std::cerr << "usage: dem_bench prepare N file | run file steps | stack file K out | channel cell K steps checkpoint "
+                   "[restart] | loop file [cutoff] | params\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "dem_bench: " << e.what() << '\n';

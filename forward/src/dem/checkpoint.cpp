@@ -1,26 +1,34 @@
 // HDF5 checkpoint and restart of the DEM engine.
 //
-// File layout (all datasets in one file, format attribute "sedwave-dem-checkpoint", version 1):
+// File layout (format attribute "sedwave-dem-checkpoint", version 1):
 //   /            attributes step, time, dt, ranks, rebuilds, user_state
 //   /grains      id, group, body, radius, mass [N]; position, velocity, force [N,3];
 //                angular_velocity, torque [N,3] when the model rotates grains
 //   /history     a, b [M] (smaller, larger global id), shear [M,3] (seen from a)
 //   /bodies      displacement, velocity, contact_force [B,3]
-//   /domain      boundaries [ranks+1]; grain_rows [ranks+1]: rank r wrote rows
-//                grain_rows[r] to grain_rows[r+1] of /grains
-// Rank 0 gathers and writes (the only time one rank holds all grains). On restart every rank reads
-// only its part: on the same number of ranks the rows it wrote, on another number an equal block
-// of rows (then the slabs are cut anew); each reads an equal block of /history and sends every
-// record to the ranks holding its grains.
-#include <array>
+//   /domain      boundaries [ranks+1]; grain_rows, history_rows [ranks]: each rank's rows, in rank order
+// No rank holds all grains, writing or reading. A small checkpoint on one rank is one file of
+// ordinary datasets. Otherwise every rank writes its rows in pieces of its own,
+// PATH.piece-TOKEN-RANK-PART (the same groups and datasets, at most CheckpointSettings::piece_rows
+// rows each, so a checkpoint adds one piece's memory to a rank's, whatever it holds), and /grains
+// and /history of PATH are HDF5 virtual datasets that join the pieces in rank order (any HDF5
+// reader sees one file; the pieces must stay beside it). Parallel HDF5 is not needed, and every
+// file is still written whole in memory and renamed into place: the pieces first under a fresh
+// TOKEN, then PATH, which is what switches a restart to the new state; pieces no longer named by
+// PATH are removed after that. A kill at any moment leaves the old checkpoint or the new one whole.
+// Reading, each rank reads its own rows: with the same rank count, the rows it wrote (and its slab
+// boundaries); with another, an equal share of rows, and the engine then repartitions. Contact
+// history on another rank count is scanned by every rank for the records of its grains.
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <random>
+#include <span>
 #include <string>
-#include <unordered_map>
 
 #include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
-#include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
@@ -29,105 +37,17 @@ namespace {
 constexpr std::int32_t kCheckpointVersion = 1;
 constexpr std::size_t kReadChunk = 1 << 16;
 
-/// The part [first, first + count) of `n` rows that rank `r` of `p` reads: equal blocks in order.
-std::array<std::size_t, 2> block_of(std::size_t n, std::size_t r, std::size_t p) {
-  const std::size_t first = r * (n / p) + std::min(r, n % p);
-  return {first, n / p + (r < n % p ? 1 : 0)};
+/// Rows [first, first + count) of one of the grains' fields.
+template <typename T>
+const T* rows_of(const std::vector<T>& field, std::size_t first) {
+  return field.data() + first;
 }
 
-/// Rows [first, first + count) of /grains, as grains (read in chunks).
-std::vector<Grain> read_grains(hid_t g, std::size_t first, std::size_t count, bool spins) {
-  std::vector<Grain> out;
-  out.reserve(count);
-  for (std::size_t at = first; at < first + count; at += kReadChunk) {
-    const std::size_t m = std::min(kReadChunk, first + count - at);
-    const auto id = io::read_rows<std::int64_t>(g, "id", at, m);
-    const auto group = io::read_rows<std::int32_t>(g, "group", at, m);
-    const auto body = io::read_rows<std::int32_t>(g, "body", at, m);
-    const auto radius = io::read_rows<double>(g, "radius", at, m);
-    const auto mass = io::read_rows<double>(g, "mass", at, m);
-    const auto x = io::read_rows<double>(g, "position", at, m, 3);
-    const auto vel = io::read_rows<double>(g, "velocity", at, m, 3);
-    const auto force = io::read_rows<double>(g, "force", at, m, 3);
-    std::vector<double> w, torque;
-    if (spins) {
-      w = io::read_rows<double>(g, "angular_velocity", at, m, 3);
-      torque = io::read_rows<double>(g, "torque", at, m, 3);
-    }
-    for (std::size_t k = 0; k < m; ++k) {
-      const auto vec = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
-      Grain grain{id[k], group[k], body[k], radius[k], mass[k], vec(x), vec(vel), {}, vec(force), {}};
-      if (spins) {
-        grain.angular_velocity = vec(w);
-        grain.torque = vec(torque);
-      }
-      out.push_back(grain);
-    }
-  }
-  return out;
-}
-
-/// Rows [first, first + count) of /history (read in chunks).
-std::vector<HistoryEntry> read_history(hid_t h, std::size_t first, std::size_t count) {
-  std::vector<HistoryEntry> out;
-  out.reserve(count);
-  for (std::size_t at = first; at < first + count; at += kReadChunk) {
-    const std::size_t m = std::min(kReadChunk, first + count - at);
-    const auto a = io::read_rows<std::int64_t>(h, "a", at, m);
-    const auto b = io::read_rows<std::int64_t>(h, "b", at, m);
-    const auto s = io::read_rows<double>(h, "shear", at, m, 3);
-    for (std::size_t k = 0; k < m; ++k) out.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
-  }
-  return out;
-}
-
-/// Sends every history record to the ranks holding its grain a or b (collective). No rank learns
-/// where every grain is: rank id mod ranks keeps the holder of grain id (a directory spread over
-/// the ranks), and records travel through the directory of each of their grains. A rank holding
-/// both grains may receive a record twice; HistoryMap keeps one.
-std::vector<HistoryEntry> route_history(MPI_Comm comm, const GrainArrays& g, const std::vector<HistoryEntry>& read) {
-  const int me = parallel::rank(comm);
-  const auto p = static_cast<std::int64_t>(parallel::size(comm));
-  const auto directory = [p](std::int64_t id) { return static_cast<std::size_t>(((id % p) + p) % p); };
-  std::vector<std::vector<std::array<std::int64_t, 2>>> held(static_cast<std::size_t>(p));
-  for (std::size_t i = 0; i < g.n_local(); ++i) held[directory(g.id[i])].push_back({g.id[i], me});
-  std::unordered_map<std::int64_t, int> holder;
-  for (const auto& [id, rank] : parallel::all_to_all(comm, held)) holder.emplace(id, static_cast<int>(rank));
-
-  std::vector<std::vector<HistoryEntry>> ask(static_cast<std::size_t>(p));
-  for (const HistoryEntry& e : read) {
-    ask[directory(e.a)].push_back(e);
-    if (directory(e.b) != directory(e.a)) ask[directory(e.b)].push_back(e);
-  }
-  std::vector<std::vector<HistoryEntry>> deliver(static_cast<std::size_t>(p));
-  for (const HistoryEntry& e : parallel::all_to_all(comm, ask)) {
-    int first_holder = -1;
-    for (const std::int64_t id : {e.a, e.b}) {
-      if (directory(id) != static_cast<std::size_t>(me)) continue;
-      const auto it = holder.find(id);
-      if (it == holder.end() || it->second == first_holder) continue;
-      deliver[static_cast<std::size_t>(it->second)].push_back(e);
-      first_holder = it->second;
-    }
-  }
-  return parallel::all_to_all(comm, deliver);
-}
-
-template <typename T, typename F>
-std::vector<T> column(const std::vector<Grain>& grains, F field) {
-  std::vector<T> out;
-  out.reserve(grains.size());
-  for (const Grain& g : grains) out.push_back(field(g));
-  return out;
-}
-
-std::vector<double> vectors(const std::vector<Grain>& grains, Vec3 Grain::*field) {
+/// Rows [first, first + count) of a vector field, as count x 3 doubles.
+std::vector<double> vectors(const std::vector<Vec3>& field, std::size_t first, std::size_t count) {
   std::vector<double> out;
-  out.reserve(3 * grains.size());
-  for (const Grain& g : grains) {
-    const Vec3& v = g.*field;
-    out.insert(out.end(), {v.x, v.y, v.z});
-  }
+  out.reserve(3 * count);
+  for (std::size_t i = first; i < first + count; ++i) out.insert(out.end(), {field[i].x, field[i].y, field[i].z});
   return out;
 }
 
@@ -166,14 +86,213 @@ void require_same_inputs(const std::map<std::string, std::string>& recorded,
   }
 }
 
+
+/// Rows of this rank's grains and contact history, written under `file` (a checkpoint or a piece).
+void write_rows(hid_t file, const GrainArrays& grains, std::size_t first, std::size_t n,
+                std::span<const HistoryEntry> history) {
+  io::Handle g = io::create_group(file, "grains");
+  io::write(g, "id", rows_of(grains.id, first), n);
+  io::write(g, "group", rows_of(grains.group, first), n);
+  io::write(g, "body", rows_of(grains.body, first), n);
+  io::write(g, "radius", rows_of(grains.radius, first), n);
+  io::write(g, "mass", rows_of(grains.mass, first), n);
+  io::write(g, "position", vectors(grains.position, first, n).data(), n, 3);
+  io::write(g, "velocity", vectors(grains.velocity, first, n).data(), n, 3);
+  io::write(g, "force", vectors(grains.force, first, n).data(), n, 3);
+  if (grains.rotation()) {
+    io::write(g, "angular_velocity", vectors(grains.angular_velocity, first, n).data(), n, 3);
+    io::write(g, "torque", vectors(grains.torque, first, n).data(), n, 3);
+  }
+  io::Handle h = io::create_group(file, "history");
+  std::vector<std::int64_t> a, b;
+  std::vector<double> shear;
+  for (const HistoryEntry& e : history) {
+    a.push_back(e.a);
+    b.push_back(e.b);
+    shear.insert(shear.end(), {e.shear.x, e.shear.y, e.shear.z});
+  }
+  io::write(h, "a", a.data(), a.size());
+  io::write(h, "b", b.data(), b.size());
+  io::write(h, "shear", shear.data(), a.size(), 3);
+}
+
+/// The datasets of write_rows, by group: name, element type, columns (0: one-dimensional).
+struct RowDataset {
+  const char* group;
+  const char* name;
+  hid_t type;
+  std::size_t columns;
+};
+
+std::vector<RowDataset> row_datasets(bool spins) {
+  std::vector<RowDataset> out{{"grains", "id", H5T_NATIVE_INT64, 0},   {"grains", "group", H5T_NATIVE_INT32, 0},
+                              {"grains", "body", H5T_NATIVE_INT32, 0}, {"grains", "radius", H5T_NATIVE_DOUBLE, 0},
+                              {"grains", "mass", H5T_NATIVE_DOUBLE, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3},
+                              {"grains", "velocity", H5T_NATIVE_DOUBLE, 3}, {"grains", "force", H5T_NATIVE_DOUBLE, 3}};
+  if (spins) {
+    out.push_back({"grains", "angular_velocity", H5T_NATIVE_DOUBLE, 3});
+    out.push_back({"grains", "torque", H5T_NATIVE_DOUBLE, 3});
+  }
+  out.push_back({"history", "a", H5T_NATIVE_INT64, 0});
+  out.push_back({"history", "b", H5T_NATIVE_INT64, 0});
+  out.push_back({"history", "shear", H5T_NATIVE_DOUBLE, 3});
+  return out;
+}
+
+/// One piece file: a part of one rank's rows.
+struct Piece {
+  int rank = 0;
+  std::int64_t part = 0;
+  std::int64_t grain_rows = 0, history_rows = 0;
+};
+
+/// The pieces of every rank in file order (rank by rank, part by part), from each rank's row counts:
+/// at most `piece_rows` grains and history records per piece, at least one piece per rank.
+std::vector<Piece> piece_layout(const std::vector<std::int64_t>& grain_rows, const std::vector<std::int64_t>& history_rows,
+                                std::int64_t piece_rows) {
+  std::vector<Piece> out;
+  for (std::size_t r = 0; r < grain_rows.size(); ++r) {
+    const std::int64_t most = std::max(grain_rows[r], history_rows[r]);
+    const std::int64_t parts = std::max<std::int64_t>(1, (most + piece_rows - 1) / piece_rows);
+    for (std::int64_t k = 0; k < parts; ++k) {
+      const auto rows_in = [&](std::int64_t n) { return std::clamp<std::int64_t>(n - k * piece_rows, 0, piece_rows); };
+      out.push_back({static_cast<int>(r), k, rows_in(grain_rows[r]), rows_in(history_rows[r])});
+    }
+  }
+  return out;
+}
+
+std::string piece_name(const std::filesystem::path& path, const std::string& token, const Piece& piece) {
+  return path.filename().string() + ".piece-" + token + "-" + std::to_string(piece.rank) + "-" +
+         std::to_string(piece.part);
+}
+
+/// A virtual dataset `d.group/d.name` under `file` that joins the pieces' datasets of the same
+/// name in order. Piece names are relative: HDF5 looks for them beside the checkpoint.
+void join_pieces(hid_t file, const RowDataset& d, const std::vector<Piece>& pieces, const std::filesystem::path& path,
+                 const std::string& token) {
+  const bool grains = std::string(d.group) == "grains";
+  const auto rows = [&](const Piece& p) { return static_cast<hsize_t>(grains ? p.grain_rows : p.history_rows); };
+  hsize_t total = 0;
+  for (const Piece& p : pieces) total += rows(p);
+  const int dims = d.columns ? 2 : 1;
+  const std::array<hsize_t, 2> extent{total, d.columns};
+  io::Handle space(H5Screate_simple(dims, extent.data(), nullptr), H5Sclose, "dataspace " + std::string(d.name));
+  io::Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
+  const std::string source = "/" + std::string(d.group) + "/" + d.name;
+  hsize_t first = 0;
+  for (const Piece& p : pieces) {
+    if (rows(p) == 0) continue;
+    const std::array<hsize_t, 2> start{first, 0}, count{rows(p), d.columns};
+    io::check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+              "select rows of " + source);
+    io::Handle piece(H5Screate_simple(dims, count.data(), nullptr), H5Sclose, "dataspace of a piece");
+    const std::string name = piece_name(path, token, p);
+    io::check(H5Pset_virtual(create, space, name.c_str(), source.c_str(), piece), "map " + name + source);
+    first += count[0];
+  }
+  io::check(H5Sselect_all(space), "select " + source);
+  io::Handle group = io::exists(file, d.group) ? io::open_group(file, d.group) : io::create_group(file, d.group);
+  io::Handle set(H5Dcreate2(group, d.name, d.type, space, H5P_DEFAULT, create, H5P_DEFAULT), H5Dclose,
+                 "create dataset " + source);
+}
+
+/// Removes the pieces of earlier checkpoints at `path` (those not of `token`).
+void remove_stale_pieces(const std::filesystem::path& path, const std::string& token) {
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::string prefix = path.filename().string() + ".piece-";
+  std::error_code ignored;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ignored)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(prefix) && !name.starts_with(prefix + token + "-")) std::filesystem::remove(entry.path(), ignored);
+  }
+}
+
+/// Every rank's value of `n`, in rank order, on every rank.
+std::vector<std::int64_t> per_rank(MPI_Comm comm, std::int64_t n) {
+  std::vector<std::int64_t> all(static_cast<std::size_t>(parallel::size(comm)), 0);
+  all[static_cast<std::size_t>(parallel::rank(comm))] = n;
+  parallel::sum(comm, std::span(all));
+  return all;
+}
+
+/// Throws on every rank when any rank has an `error` (its own message where it has one).
+void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& what) {
+  int failed = error.empty() ? 0 : 1;
+  parallel::max(comm, std::span(&failed, 1));
+  if (failed == 0) return;
+  throw std::runtime_error("DEM checkpoint: " + (error.empty() ? what + " failed on another rank" : error));
+}
+
+/// Rows [first, first + count) of /grains, as grains (spins when the model rotates them).
+void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, GrainArrays& out) {
+  const auto id = io::read_rows<std::int64_t>(g, "id", first, count);
+  const auto group = io::read_rows<std::int32_t>(g, "group", first, count);
+  const auto body = io::read_rows<std::int32_t>(g, "body", first, count);
+  const auto radius = io::read_rows<double>(g, "radius", first, count);
+  const auto mass = io::read_rows<double>(g, "mass", first, count);
+  const auto x = io::read_rows<double>(g, "position", first, count, 3);
+  const auto vel = io::read_rows<double>(g, "velocity", first, count, 3);
+  const auto force = io::read_rows<double>(g, "force", first, count, 3);
+  std::vector<double> w, torque;
+  if (spins) {
+    w = io::read_rows<double>(g, "angular_velocity", first, count, 3);
+    torque = io::read_rows<double>(g, "torque", first, count, 3);
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
+    Grain grain{id[k], group[k], body[k], radius[k], mass[k], at(x), at(vel), {}, at(force), {}};
+    if (spins) {
+      grain.angular_velocity = at(w);
+      grain.torque = at(torque);
+    }
+    out.push_local(grain);
+  }
+}
+
 }  // namespace
 
 void Engine::write_checkpoint(const std::string& path) {
-  const std::vector<std::uint64_t> grain_counts = parallel::all_gather(domain_.comm(), std::uint64_t{n_local()});
-  const std::vector<Grain> all = gather_grains(*this);
-  const std::vector<HistoryEntry> history = parallel::gather_on_root(domain_.comm(), contact_history());
+  MPI_Comm comm = domain_.comm();
+  const int rank = domain_.rank(), ranks = domain_.size();
+  const std::vector<HistoryEntry> history = contact_history();
+  const std::size_t n = grains_.n_local();
+  const std::vector<std::int64_t> grain_rows = per_rank(comm, static_cast<std::int64_t>(n));
+  const std::vector<std::int64_t> history_rows = per_rank(comm, static_cast<std::int64_t>(history.size()));
+  const std::vector<Piece> pieces =
+      piece_layout(grain_rows, history_rows, static_cast<std::int64_t>(std::max<std::size_t>(settings_.checkpoint.piece_rows, 1)));
+  const bool in_pieces = pieces.size() > 1;
+
+  // A fresh token per checkpoint: the pieces of the previous one stay intact until PATH names these.
+  std::uint64_t token_bits = 0;
+  if (rank == 0) token_bits = (std::uint64_t{std::random_device{}()} << 32) ^ std::random_device{}();
+  parallel::broadcast(comm, std::span(&token_bits, 1));
+  char token_text[17];
+  std::snprintf(token_text, sizeof token_text, "%016llx", static_cast<unsigned long long>(token_bits));
+  const std::string token = token_text;
+  const std::filesystem::path target(path);
+
   std::string error;
-  if (domain_.rank() == 0) {
+  if (in_pieces) {
+    try {
+      // Part by part: the memory a checkpoint adds is that of one piece, not of the rank's grains.
+      std::int64_t first_grain = 0, first_record = 0;
+      for (const Piece& p : pieces) {
+        if (p.rank != rank) continue;
+        io::write_file_atomically(target.parent_path() / piece_name(target, token, p), [&](const io::Handle& file) {
+          write_rows(file, grains_, static_cast<std::size_t>(first_grain), static_cast<std::size_t>(p.grain_rows),
+                     std::span(history).subspan(static_cast<std::size_t>(first_record),
+                                                static_cast<std::size_t>(p.history_rows)));
+        });
+        first_grain += p.grain_rows;
+        first_record += p.history_rows;
+      }
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    agree_on_failure(comm, error, "writing a piece");
+  }
+  if (rank == 0) {
     try {
       // A reader (or a restart after SIGKILL) sees the old or the new file, never half of one.
       io::write_file_atomically(path, [&](const io::Handle& file) {
@@ -182,39 +301,18 @@ void Engine::write_checkpoint(const std::string& path) {
         io::write_attribute(file, "step", step_);
         io::write_attribute(file, "time", time_);
         io::write_attribute(file, "dt", dt_);
-        io::write_attribute(file, "ranks", static_cast<std::int32_t>(domain_.size()));
+        io::write_attribute(file, "ranks", static_cast<std::int32_t>(ranks));
         io::write_attribute(file, "rebuilds", rebuilds_);
         io::write_string_attribute(file, "user_state", user_state_);
         io::write_string_attribute(file, "contact_model", describe(settings_.contact));
         io::Handle inputs = io::create_group(file, "inputs");
         for (const auto& [name, value] : settings_.checkpoint.inputs) io::write_string_attribute(inputs, name, value);
 
-        io::Handle g = io::create_group(file, "grains");
-        const std::size_t n = all.size();
-        io::write(g, "id", column<std::int64_t>(all, [](const Grain& x) { return x.id; }).data(), n);
-        io::write(g, "group", column<std::int32_t>(all, [](const Grain& x) { return x.group; }).data(), n);
-        io::write(g, "body", column<std::int32_t>(all, [](const Grain& x) { return x.body; }).data(), n);
-        io::write(g, "radius", column<double>(all, [](const Grain& x) { return x.radius; }).data(), n);
-        io::write(g, "mass", column<double>(all, [](const Grain& x) { return x.mass; }).data(), n);
-        io::write(g, "position", vectors(all, &Grain::position).data(), n, 3);
-        io::write(g, "velocity", vectors(all, &Grain::velocity).data(), n, 3);
-        io::write(g, "force", vectors(all, &Grain::force).data(), n, 3);
-        if (grains_.rotation()) {
-          io::write(g, "angular_velocity", vectors(all, &Grain::angular_velocity).data(), n, 3);
-          io::write(g, "torque", vectors(all, &Grain::torque).data(), n, 3);
+        if (in_pieces) {
+          for (const RowDataset& d : row_datasets(grains_.rotation())) join_pieces(file, d, pieces, target, token);
+        } else {
+          write_rows(file, grains_, 0, n, history);
         }
-
-        io::Handle h = io::create_group(file, "history");
-        std::vector<std::int64_t> a, b;
-        std::vector<double> shear;
-        for (const HistoryEntry& e : history) {
-          a.push_back(e.a);
-          b.push_back(e.b);
-          shear.insert(shear.end(), {e.shear.x, e.shear.y, e.shear.z});
-        }
-        io::write(h, "a", a.data(), a.size());
-        io::write(h, "b", b.data(), b.size());
-        io::write(h, "shear", shear.data(), a.size(), 3);
 
         io::Handle bodies = io::create_group(file, "bodies");
         std::vector<double> u, v, f;
@@ -230,17 +328,15 @@ void Engine::write_checkpoint(const std::string& path) {
 
         io::Handle d = io::create_group(file, "domain");
         io::write(d, "boundaries", domain_.boundaries().data(), domain_.boundaries().size());
-        std::vector<std::int64_t> grain_rows{0};  // gathered in rank order
-        for (const std::uint64_t c : grain_counts) grain_rows.push_back(grain_rows.back() + static_cast<std::int64_t>(c));
         io::write(d, "grain_rows", grain_rows.data(), grain_rows.size());
+        io::write(d, "history_rows", history_rows.data(), history_rows.size());
       });
+      remove_stale_pieces(target, in_pieces ? token : "");
     } catch (const std::exception& e) {
       error = e.what();
-      if (error.empty()) error = "write failed on rank 0";
     }
   }
-  parallel::broadcast(domain_.comm(), error);  // every rank throws rank 0's error
-  if (!error.empty()) throw std::runtime_error("DEM checkpoint: " + error);
+  agree_on_failure(comm, error, "writing " + path);
 }
 
 void Engine::restore_checkpoint(const std::string& path) {
@@ -264,7 +360,8 @@ void Engine::restore_checkpoint(const std::string& path) {
   const int ranks = io::read_attribute<std::int32_t>(file, "ranks");
 
   io::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
-  const bool same_layout = ranks == domain_.size();
+  // The rows each rank wrote (files from before they were recorded are read as another layout).
+  const bool same_layout = ranks == domain_.size() && io::exists(d, "grain_rows");
   if (same_layout) {
     domain_.set_boundaries(io::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
   }
@@ -279,31 +376,47 @@ void Engine::restore_checkpoint(const std::string& path) {
     bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
                        {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
 
-  // Grains: on the same ranks, the rows this rank wrote (older checkpoints without grain_rows:
-  // as on other ranks); on other ranks an equal block of rows, the slabs cut anew below.
+  // This rank's rows: those it wrote (its grains at the checkpoint; the next rebuild migrates any
+  // that left the slab since), or an equal share of them all.
+  const auto rank_rows = [&](const std::string& written, std::size_t n) -> std::pair<std::size_t, std::size_t> {
+    const auto r = static_cast<std::size_t>(domain_.rank());
+    if (same_layout) {
+      const auto rows = io::read_rows<std::int64_t>(d, written, 0, static_cast<std::size_t>(ranks));
+      std::size_t first = 0;
+      for (std::size_t k = 0; k < r; ++k) first += static_cast<std::size_t>(rows[k]);
+      return {first, static_cast<std::size_t>(rows[r])};
+    }
+    const auto p = static_cast<std::size_t>(domain_.size());
+    return {r * n / p, (r + 1) * n / p - r * n / p};
+  };
   io::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
-  const std::size_t n = io::rows(g, "id");
   const bool spins = grains_.rotation();
   if (spins && !io::exists(g, "angular_velocity"))
     throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
-  const auto r = static_cast<std::size_t>(domain_.rank());
-  const auto p = static_cast<std::size_t>(domain_.size());
-  std::array<std::size_t, 2> mine = block_of(n, r, p);
-  if (same_layout && io::exists(d, "grain_rows")) {
-    const auto rows = io::read_rows<std::int64_t>(d, "grain_rows", r, 2);
-    if (rows[0] < 0 || rows[1] < rows[0] || static_cast<std::size_t>(rows[1]) > n)
-      throw std::runtime_error("DEM restart: " + path + " has inconsistent /domain/grain_rows");
-    mine = {static_cast<std::size_t>(rows[0]), static_cast<std::size_t>(rows[1] - rows[0])};
-  }
   grains_ = GrainArrays(spins);
-  for (const Grain& grain : read_grains(g, mine[0], mine[1], spins)) grains_.push_local(grain);
+  const auto [first_grain, grain_count] = rank_rows("grain_rows", io::rows(g, "id"));
+  for (std::size_t done = 0; done < grain_count; done += kReadChunk)
+    read_grains(g, first_grain + done, std::min(kReadChunk, grain_count - done), spins, grains_);
 
-  // History records go to the ranks holding their grains (migration forwards them as grains move).
+  // History: with the same layout, the records this rank wrote; else every record that involves a
+  // grain of this rank (migration forwards them as grains move).
   pending_history_.clear();
   if (needs_history(model_)) {
+    std::unordered_map<std::int64_t, char> local_ids;
+    for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
     io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
-    const auto [first, count] = block_of(io::rows(h, "a"), r, p);
-    pending_history_ = route_history(domain_.comm(), grains_, read_history(h, first, count));
+    const std::size_t m = io::rows(h, "a");
+    const auto [first_record, record_count] =
+        same_layout ? rank_rows("history_rows", m) : std::pair<std::size_t, std::size_t>{0, m};
+    for (std::size_t done = 0; done < record_count; done += kReadChunk) {
+      const std::size_t first = first_record + done, count = std::min(kReadChunk, record_count - done);
+      const auto a = io::read_rows<std::int64_t>(h, "a", first, count);
+      const auto b = io::read_rows<std::int64_t>(h, "b", first, count);
+      const auto s = io::read_rows<double>(h, "shear", first, count, 3);
+      for (std::size_t k = 0; k < count; ++k)
+        if (same_layout || local_ids.contains(a[k]) || local_ids.contains(b[k]))
+          pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+    }
   }
   if (!same_layout) domain_.partition_by_count(grains_, ghost_cutoff_);
   list_valid_ = false;

@@ -1,11 +1,13 @@
 #include "sedwave/forward/experiment/packings.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <ostream>
 #include <stdexcept>
 #include <type_traits>
 
 #include "sedwave/forward/channel/periodic_cell.hpp"
+#include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/newton_stage.hpp"
@@ -64,6 +66,10 @@ channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int ra
   const int copies = scene.geometry.n_grains / scene.tiling->cell_grains;
   channel::PreparedChannel tiled = channel::tile_periodic_cell(
       MPI_COMM_WORLD, packing, scene.contact, copies, scene.tiling->wall_thickness);
+  // A scene's packing is handed on from rank 0 (saved, fingerprinted, shared with the task farm's
+  // groups), so its copies are collected there.
+  tiled.grains = dem::gather_on_root(MPI_COMM_WORLD, tiled.grains);
+  std::sort(tiled.grains.begin(), tiled.grains.end(), [](const dem::Grain& a, const dem::Grain& b) { return a.id < b.id; });
   if (log) *log << "tiled " << copies << " copies of the cell into a channel of " << scene.geometry.n_grains << " grains\n";
   return tiled;
 }

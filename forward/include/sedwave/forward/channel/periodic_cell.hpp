@@ -34,7 +34,10 @@ struct CellTiling {
 
 /// Stacks `copies` images of a prepared z-periodic cell (grains on rank 0) along z into a channel
 /// open along z, whose grains within `wall_thickness` of the lower and upper ends become the lower
-/// and upper wall (groups, bodies and id order as generate_channel's: flow grains first). The report
+/// and upper wall (groups, bodies and id order as generate_channel's: flow grains first). The
+/// channel's grains come back spread over the ranks: every rank receives the cell and builds only
+/// its share of the copies (contiguous along z, with the ids one rank stacking them all would give),
+/// so no rank holds the whole channel; dem::gather_on_root collects them where one rank must. The report
 /// keeps the cell's preparation counts and its `converged`, and measures the channel itself: its
 /// contact statistics, residual forces and the force on the upper wall, from a DEM force evaluation
 /// (collective). The residual grows with the channel's length by round-off alone: heights near

@@ -63,6 +63,9 @@ struct CheckpointSettings {
   /// differs from this one, naming every entry that changed, unless allow_changed_inputs.
   std::map<std::string, std::string> inputs{};
   bool allow_changed_inputs = false;
+  /// Grains (and history records) per piece file: one piece is what a checkpoint holds in memory
+  /// beside the engine. Below it on one rank, the checkpoint is a single file.
+  std::size_t piece_rows = std::size_t{1} << 20;
 };
 
 struct ProgressSettings {

@@ -1,0 +1,140 @@
+// Checkpoints across rank counts (run with mpirun -np 4): written in pieces by 2 ranks, restored on
+// 3 and then on 1, the run ends where an uninterrupted 1-rank run ends, to the rank-equivalence
+// tolerance; each rank reads only its rows, and a new checkpoint removes the old one's pieces.
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "dem_test_support.hpp"
+#include "sedwave/forward/dem/gather.hpp"
+
+namespace sedwave::forward::dem {
+namespace {
+
+/// As the rank-equivalence test: the runs differ only in the order of floating-point sums.
+constexpr double kTolerance = 1e-9;
+constexpr std::size_t kGrains = 4 * 4 * 4 * 4;  // compressed_fcc(4, ...)
+
+struct Scene {
+  EngineSettings settings;
+  std::vector<Grain> grains;  // on rank 0 of the engine's communicator
+};
+
+/// A frictional periodic crystal (contact history kept), 4 cells high: three slabs of 1.9 d.
+Scene crystal(MPI_Comm comm, const std::string& checkpoint, std::int64_t every) {
+  Scene s;
+  s.settings.contact["kn"] = 1000.0;
+  s.settings.contact["restitution"] = 0.7;
+  s.settings.contact.tangential = "spring_history";
+  s.settings.contact["kt"] = 2.0 / 7.0 * 1000.0;
+  s.settings.contact["friction"] = 0.5;
+  s.settings.checkpoint = {checkpoint, every};
+  s.settings.checkpoint.piece_rows = 50;  // several pieces per rank
+  std::vector<Grain> all = testing::compressed_fcc(4, 0.01, 0.3, 11, s.settings.box);
+  if (parallel::rank(comm) == 0) s.grains = all;
+  return s;
+}
+
+std::map<std::int64_t, Grain> by_id(const Engine& engine) {
+  std::map<std::int64_t, Grain> out;
+  for (const Grain& g : gather_grains(engine)) out[g.id] = g;
+  return out;
+}
+
+double max_difference(const std::map<std::int64_t, Grain>& a, const std::map<std::int64_t, Grain>& b, const Box& box) {
+  double worst = 0.0;
+  for (const auto& [id, g] : a) {
+    Vec3 d = g.position - b.at(id).position;
+    for (int k = 0; k < 3; ++k) d[k] -= box.length(k) * std::round(d[k] / box.length(k));
+    worst = std::max({worst, norm(d), norm(g.velocity - b.at(id).velocity)});
+  }
+  return worst;
+}
+
+/// The tokens of the pieces beside `path` (files named PATH.piece-TOKEN-RANK-PART), with their counts.
+std::map<std::string, int> pieces_of(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::string prefix = p.filename().string() + ".piece-";
+  std::map<std::string, int> tokens;
+  for (const auto& entry : std::filesystem::directory_iterator(p.parent_path())) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(prefix)) ++tokens[name.substr(prefix.size(), 16)];
+  }
+  return tokens;
+}
+
+TEST(CheckpointAcrossRanks, WrittenOnTwoRanksRestoredOnThreeAndOne) {
+  const int rank = parallel::rank(MPI_COMM_WORLD);
+  ASSERT_EQ(parallel::size(MPI_COMM_WORLD), 4) << "run under mpirun -np 4";
+  const std::string path = testing::temp_path("dem_mpi_checkpoint.h5", MPI_COMM_WORLD);
+
+  // Written by 2 ranks at step 150; the 80 steps after it are lost, as under SIGKILL.
+  {
+    const parallel::SubCommunicator two(MPI_COMM_WORLD, rank < 2);
+    if (rank < 2) {
+      const Scene s = crystal(two.get(), path, 150);
+      Engine engine(two.get(), s.settings, s.grains);
+      engine.run(230);
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  std::map<std::string, int> written_by_two;
+  if (rank == 0) {
+    written_by_two = pieces_of(path);
+    ASSERT_EQ(written_by_two.size(), 1u);
+    EXPECT_GE(written_by_two.begin()->second, 6) << "128 grains per rank in pieces of 50";
+  }
+
+  // Restored on 3 ranks: each reads a third of the rows; a checkpoint at step 300 replaces the pieces.
+  std::map<std::int64_t, Grain> on_three;
+  {
+    const parallel::SubCommunicator three(MPI_COMM_WORLD, rank < 3);
+    if (rank < 3) {
+      const Scene s = crystal(three.get(), path, 150);
+      Engine engine(three.get(), s.settings, s.grains);
+      engine.restore_checkpoint(path);
+      EXPECT_EQ(engine.step_count(), 150);
+      const std::int64_t held = static_cast<std::int64_t>(engine.n_local());
+      EXPECT_EQ(parallel::sum(three.get(), held), static_cast<std::int64_t>(kGrains));
+      EXPECT_LT(held, static_cast<std::int64_t>(kGrains) / 2) << "rank " << rank << " holds more than its share";
+      engine.run(250);
+      EXPECT_FALSE(engine.contact_history().empty());
+      on_three = by_id(engine);
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank != 0) return;
+  // The 2-rank pieces went when the 3-rank checkpoint was in place.
+  const std::map<std::string, int> written_by_three = pieces_of(path);
+  ASSERT_EQ(written_by_three.size(), 1u);
+  EXPECT_NE(written_by_three.begin()->first, written_by_two.begin()->first);
+
+  // Restored on 1 rank from the 3 ranks' pieces, through the virtual datasets.
+  const Scene s = crystal(MPI_COMM_SELF, path, 0);
+  Engine restored(MPI_COMM_SELF, s.settings, s.grains);
+  restored.restore_checkpoint(path);
+  EXPECT_EQ(restored.step_count(), 300);
+  restored.run(100);
+  Engine straight(MPI_COMM_SELF, s.settings, s.grains);
+  straight.run(400);
+
+  const auto reference = by_id(straight);
+  ASSERT_EQ(reference.size(), kGrains);
+  ASSERT_EQ(on_three.size(), kGrains);
+  const double d3 = max_difference(reference, on_three, s.settings.box);
+  const double d1 = max_difference(reference, by_id(restored), s.settings.box);
+  std::printf("[ info ] 2 ranks -> 3 ranks: max difference to 1 rank %.3g; 3 ranks -> 1 rank: %.3g\n", d3, d1);
+  EXPECT_LT(d3, kTolerance);
+  EXPECT_LT(d1, kTolerance);
+
+  // One rank below piece_rows writes an ordinary file and removes the pieces.
+  Scene small = crystal(MPI_COMM_SELF, path, 10);
+  small.settings.checkpoint.piece_rows = kGrains * 100;
+  Engine serial(MPI_COMM_SELF, small.settings, s.grains);
+  serial.run(10);
+  EXPECT_TRUE(pieces_of(path).empty());
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace sedwave::forward::dem
