@@ -68,7 +68,7 @@ channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int ra
       MPI_COMM_WORLD, packing, scene.contact, copies, scene.tiling->wall_thickness);
   // A scene's packing is handed on from rank 0 (saved, fingerprinted, shared with the task farm's
   // groups), so its copies are collected there.
-  tiled.grains = dem::gather_on_root(MPI_COMM_WORLD, tiled.grains);
+  tiled.grains = parallel::gather_on_root(MPI_COMM_WORLD, tiled.grains);
   std::sort(tiled.grains.begin(), tiled.grains.end(), [](const dem::Grain& a, const dem::Grain& b) { return a.id < b.id; });
   if (log) *log << "tiled " << copies << " copies of the cell into a channel of " << scene.geometry.n_grains << " grains\n";
   return tiled;

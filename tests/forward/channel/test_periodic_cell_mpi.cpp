@@ -42,7 +42,7 @@ TEST(TilingPerRank, RanksTogetherHoldTheChannelOneRankBuilds) {
   const std::size_t share = spread.grains.size();
   EXPECT_GE(share, (kCopies / ranks) * 200u) << "rank " << rank;
   EXPECT_LE(share, (kCopies / ranks + 1) * 200u) << "rank " << rank;
-  const std::vector<dem::Grain> gathered = by_id(dem::gather_on_root(MPI_COMM_WORLD, spread.grains));
+  const std::vector<dem::Grain> gathered = by_id(parallel::gather_on_root(MPI_COMM_WORLD, spread.grains));
   if (rank != 0) return;
 
   const PreparedChannel alone = tile_periodic_cell(MPI_COMM_SELF, cell, hooke_contact(), kCopies, 1.5);
