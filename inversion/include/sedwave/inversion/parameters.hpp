@@ -8,6 +8,8 @@
 // d [m], the normal damping as the dashpot gamma [kg/s] or the restitution coefficient e_n [-] of
 // a collision of two equal grains, and the grain density rho_s [kg/m^3] (fixed). Parameters are
 // found by name (index_of), never by position.
+#include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -59,5 +61,14 @@ struct FitParameters {
   /// Throws std::invalid_argument unless these are the parameters of `model` (same names, order).
   void require_parameters_of(const sediment::SedimentModel& model) const;
 };
+
+/// The entry named `name` of a list of named results (FitResult::parameters, ::combinations,
+/// PosteriorResult::parameters ...); throws std::invalid_argument if there is none.
+template <typename Named>
+[[nodiscard]] const Named& by_name(const std::vector<Named>& list, const std::string& name) {
+  const auto it = std::find_if(list.begin(), list.end(), [&](const Named& q) { return q.name == name; });
+  if (it == list.end()) throw std::invalid_argument("no result named '" + name + "'");
+  return *it;
+}
 
 }  // namespace sedwave::inversion
