@@ -26,8 +26,8 @@ double quartz_hertz_kappa(double diameter, double pressure) {
   return hertz_kappa_at_pressure(kQuartz, diameter, pressure, kReferencePorosity, kDensePackCoordination);
 }
 
-GrainContactDerived::GrainContactDerived(DampingForm form, std::optional<double> low_frequency_c_hat)
-    : form_(form), low_frequency_c_hat_(low_frequency_c_hat) {
+GrainContactDerived::GrainContactDerived(DampingForm form, const forward::DispersionModel* dry_frame)
+    : form_(form), dry_frame_(dry_frame) {
   // Plausible ranges (SI):
   //   c0 1200 .. 2500 m/s: unconsolidated, water-saturated marine sediments (Hamilton 1980, JASA 68,
   //     1313: about 1450-2100 m/s from muds to gravels), widened for gassy muds and coarse gravels.
@@ -36,7 +36,7 @@ GrainContactDerived::GrainContactDerived(DampingForm form, std::optional<double>
   //     is (0.1)^(1/3) .. (1000)^(1/3).
   //   gamma_hat 1e-3 .. 1e3: from nearly elastic contacts (e_n = 0.998) to the heavy overdamping
   //     that sediment attenuation needs in the chain model.
-  if (low_frequency_c_hat_) {
+  if (dry_frame_) {
     quantities_.push_back(
         {"c0", "m/s", "low-frequency (f -> 0) sound speed of the model", 1200.0, 2500.0,
          "water-saturated marine sediments (Hamilton 1980: 1450-2100 m/s)",
@@ -66,7 +66,7 @@ GrainContactModel::GrainContactModel(std::shared_ptr<const forward::DispersionMo
     : model_(std::move(model)),
       form_(form),
       parameters_(grain_contact_parameters(form)),
-      derived_(form, model_ ? std::optional<double>(model_->long_wavelength_c_hat()) : std::nullopt) {
+      derived_(form, model_.get()) {
   if (!model_) throw std::invalid_argument("GrainContactModel needs a dimensionless model");
 }
 

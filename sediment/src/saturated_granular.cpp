@@ -40,7 +40,7 @@ SaturatedGranularModel::SaturatedGranularModel(std::shared_ptr<const forward::Di
       form_(form),
       permeability_(permeability),
       parameters_(saturated_parameters(form, permeability)),
-      contact_(form, std::nullopt),
+      contact_(form, nullptr),
       derived_(contact_.quantities()) {
   if (!model_) throw std::invalid_argument("SaturatedGranularModel needs a dimensionless model");
   const std::vector<DerivedQuantity>& poroelastic = poroelastic_derived_quantities();

@@ -96,9 +96,9 @@ inline constexpr double kReferencePorosity = 0.38;
 /// with m = rho_s pi d^3 / 6 (forward/units.hpp's GrainScales).
 class GrainContactDerived {
  public:
-  /// `low_frequency_c_hat`: c_hat as omega_hat -> 0 of the frame's dimensionless model, or nothing
-  /// where c0 is not the model's own speed (the saturated frame).
-  GrainContactDerived(DampingForm form, std::optional<double> low_frequency_c_hat);
+  /// `dry_frame`: the dimensionless model whose c_hat as omega_hat -> 0 gives c0 (the caller keeps
+  /// it alive), or nullptr where c0 is not the model's own speed (the saturated frame).
+  GrainContactDerived(DampingForm form, const forward::DispersionModel* dry_frame);
 
   [[nodiscard]] const std::vector<DerivedQuantity>& quantities() const { return quantities_; }
 
@@ -112,7 +112,7 @@ class GrainContactDerived {
     const T gamma = form_ == DampingForm::Gamma ? damping : gamma_hat * root_kappa_m;
     const T tau = gamma / kappa;
     std::vector<T> out;
-    if (low_frequency_c_hat_) out.push_back(*low_frequency_c_hat_ * scales.speed_scale());
+    if (dry_frame_) out.push_back(dry_frame_->long_wavelength_c_hat() * scales.speed_scale());
     out.push_back(tau);
     out.push_back(1.0 / (2.0 * std::numbers::pi * tau));
     out.push_back(gamma_hat);
@@ -122,7 +122,7 @@ class GrainContactDerived {
 
  private:
   DampingForm form_;
-  std::optional<double> low_frequency_c_hat_;
+  const forward::DispersionModel* dry_frame_;
   std::vector<DerivedQuantity> quantities_;
 };
 
