@@ -7,7 +7,11 @@
 // grain-shearing models are closed forms in SI. Every model is written once, templated on the
 // scalar type T, and JetEvaluated<> turns it into values plus a gradient by forward-mode automatic
 // differentiation (ceres::Jet), so Ceres, NLopt, the identifiability analysis and samplers need
-// nothing model-specific.
+// nothing model-specific. A model also describes itself: the quantities it derives from its
+// parameters (with units, meanings and plausible ranges, differentiated by the same Jets), the
+// parameters a fit frees by default, and the dimensionless engine behind it if it has one; the
+// inversion's report, profiles and plausibility flags read them from here
+// (docs/models/adding-a-model.md).
 #include <optional>
 #include <span>
 #include <string>
