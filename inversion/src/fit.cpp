@@ -183,8 +183,10 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
       c.determined = true;
       c.log_sigma = c.sigma = 0.0;
       c.profile_lower = c.profile_upper = value;
-    } else if (options.profile_likelihood && info.name == "f_star") {
-      // f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just before).
+    } else if (options.profile_likelihood && info.name == "f_star" && !result.combinations.empty() &&
+               result.combinations.back().name == "tau") {
+      // The grain contact's f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just
+      // before, sediment::GrainContactDerived).
       const CombinationResult& tau = result.combinations.back();
       const double k = 1.0 / (2.0 * std::numbers::pi);
       if (tau.profile_upper) c.profile_lower = k / *tau.profile_upper;
