@@ -50,10 +50,10 @@ inline Truth draw_truth(std::mt19937_64& rng) {
   const double m = forward::grain_mass(density, d);
   const double kappa = c0 * c0 * m / (d * d);
   const double gamma = t.gamma_hat * std::sqrt(kappa * m);
-  t.parameters.spec[inversion::kGrainDensity].value = density;
-  t.parameters.spec[inversion::kKappa].value = kappa;
-  t.parameters.spec[inversion::kDiameter].value = d;
-  t.parameters.spec[inversion::kDamping].value = gamma;
+  t.parameters.spec[t.parameters.index_of("rho_s")].value = density;
+  t.parameters.spec[t.parameters.index_of("kappa")].value = kappa;
+  t.parameters.spec[t.parameters.index_of("d")].value = d;
+  t.parameters.spec[t.parameters.index_of("gamma")].value = gamma;
   const double tau = gamma / kappa;
   t.values = {kappa, d, gamma, c0, tau, t.gamma_hat, kappa / inversion::quartz_hertz_kappa(d),
               1.0 / (2.0 * std::numbers::pi * tau)};
@@ -99,7 +99,7 @@ inline DataSetResult run_data_set(unsigned seed, int index) {
   DataSetResult r;
   r.truth = draw_truth(rng);
   const forward::LatticeModel lattice;
-  const double m = forward::grain_mass(r.truth.parameters.spec[inversion::kGrainDensity].value, r.truth.values[1]);
+  const double m = forward::grain_mass(r.truth.parameters.spec[r.truth.parameters.index_of("rho_s")].value, r.truth.values[1]);
   const double omega_scale = std::sqrt(r.truth.values[0] / m);  // omega = omega_hat sqrt(kappa/m)
   const double top_hz = r.truth.top_omega_hat * omega_scale / (2.0 * std::numbers::pi);
   const inversion::SyntheticDesign design{top_hz / 500.0, top_hz, 30, r.truth.alpha_noise,
@@ -145,7 +145,7 @@ inline std::pair<int, int> verify_open_sides(unsigned seed, int index) {
   std::mt19937_64 rng(seed * 1000003ull + static_cast<unsigned>(index));
   const Truth truth = draw_truth(rng);
   const forward::LatticeModel lattice;
-  const double m = forward::grain_mass(truth.parameters.spec[inversion::kGrainDensity].value, truth.values[1]);
+  const double m = forward::grain_mass(truth.parameters.spec[truth.parameters.index_of("rho_s")].value, truth.values[1]);
   const double top_hz = truth.top_omega_hat * std::sqrt(truth.values[0] / m) / (2.0 * std::numbers::pi);
   const inversion::SyntheticDesign design{top_hz / 500.0, top_hz, 30, truth.alpha_noise, truth.alpha_noise / 5.0,
                                           seed * 7919u + static_cast<unsigned>(index)};
@@ -154,7 +154,7 @@ inline std::pair<int, int> verify_open_sides(unsigned seed, int index) {
   int checked = 0, wrong = 0;
   inversion::FitOptions quick;
   quick.profile_likelihood = false;
-  for (int i = 0; i < inversion::kGrainDensity; ++i) {  // the free ones: kappa, d, gamma
+  for (const int i : fit.fitted.free_indices()) {  // kappa, d, gamma
     const auto& p = fit.parameters[static_cast<size_t>(i)];
     for (bool lower : {true, false}) {
       if ((lower ? p.profile_lower : p.profile_upper).has_value()) continue;

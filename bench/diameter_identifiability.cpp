@@ -48,23 +48,23 @@ int main(int argc, char** argv) {
     for (const double top : {0.6, 0.95}) {
       for (const unsigned seed : {1u, 2u, 3u}) {
         FitParameters truth;
-        truth.spec[kKappa].value = scales.kappa;
-        truth.spec[kDiameter].value = scales.diameter;
-        truth.spec[kDamping].value = scales.gamma(gamma_hat);
+        truth.spec[truth.index_of("kappa")].value = scales.kappa;
+        truth.spec[truth.index_of("d")].value = scales.diameter;
+        truth.spec[truth.index_of("gamma")].value = scales.gamma(gamma_hat);
         const SyntheticDesign band{top / 6.0 * to_hz, top * to_hz, 12, alpha_noise, speed_noise, seed};
         const ObservationSet data = synthetic_observations(source, truth, band);
         FitParameters start = truth;
-        start.spec[kKappa].value *= 0.9;
-        start.spec[kDiameter].value *= 0.9;
-        start.spec[kDamping].value *= 1.2;
+        start.spec[start.index_of("kappa")].value *= 0.9;
+        start.spec[start.index_of("d")].value *= 0.9;
+        start.spec[start.index_of("gamma")].value *= 1.2;
         const FitResult r = fit(data, table, start, FitOptions{.method = FitMethod::Ceres});
         const FitResult c = fit(data, continuum, start, FitOptions{.method = FitMethod::Global});
         const FitResult l = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
-        const ParameterResult& d = r.parameters[kDiameter];
-        const ParameterResult& dl = l.parameters[kDiameter];
+        const ParameterResult& d = inversion::by_name(r.parameters, "d");
+        const ParameterResult& dl = inversion::by_name(l.parameters, "d");
         std::printf("%9g %6.0f-%6.0f %4u | %6.1f %9.3g %9.2g %4s | %6.1f %9.3g %4s | %6.1f %9.3g %9.2g %4s\n", gamma_hat,
                     band.lowest_hz / 1e3, band.highest_hz / 1e3, seed, r.chi2, d.value, d.sigma, d.determined ? "yes" : "no",
-                    c.chi2, c.parameters[kDiameter].value, c.parameters[kDiameter].determined ? "yes" : "no", l.chi2,
+                    c.chi2, inversion::by_name(c.parameters, "d").value, inversion::by_name(c.parameters, "d").determined ? "yes" : "no", l.chi2,
                     dl.value, dl.sigma, dl.determined ? "yes" : "no");
       }
     }

@@ -59,12 +59,12 @@ inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int st
   const double speed_noise = alpha_noise / (ridge ? log_uniform(3.0, 5.0) : 5.0);
 
   inversion::FitParameters truth;
-  const double density = truth.spec[inversion::kGrainDensity].value;
+  const double density = truth.spec[truth.index_of("rho_s")].value;
   const double m = forward::grain_mass(density, d);
   const double kappa = c0 * c0 * m / (d * d);
-  truth.spec[inversion::kKappa].value = kappa;
-  truth.spec[inversion::kDiameter].value = d;
-  truth.spec[inversion::kDamping].value = gamma_hat * std::sqrt(kappa * m);
+  truth.spec[truth.index_of("kappa")].value = kappa;
+  truth.spec[truth.index_of("d")].value = d;
+  truth.spec[truth.index_of("gamma")].value = gamma_hat * std::sqrt(kappa * m);
 
   const forward::LatticeModel lattice;
   const auto frame = inversion::grain_contact_model(lattice, inversion::DampingForm::Gamma);
@@ -78,7 +78,7 @@ inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int st
   std::vector<std::string> prior_items;
   if (prior_kind == FlagPriors::Site) {
     std::normal_distribution<double> normal(0.0, 1.0);
-    for (const int i : {inversion::kKappa, inversion::kDiameter, inversion::kDamping}) {
+    for (const int i : {truth.index_of("kappa"), truth.index_of("d"), truth.index_of("gamma")}) {
       char item[96];
       std::snprintf(item, sizeof item, "%s=log-normal:%.17g,1", truth.spec[i].name.c_str(),
                     truth.spec[i].value * std::exp(normal(rng)));

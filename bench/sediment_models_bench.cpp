@@ -60,10 +60,10 @@ void field_fit(benchmark::State& state, const ModelCase& c) {
   const bool permeability = std::string(c.free).find("permeability") != std::string::npos;
   const auto model = sedwave::sediment::make_sediment_model(c.spec, {sedwave::sediment::DampingForm::Gamma, permeability});
   sedwave::inversion::FitParameters start(model->parameters());
-  if (start.starts_with_grain_contact()) {
-    start.spec[0].value = 5.0e5;
-    start.spec[1].value = 3.0e-4;
-    start.spec[2].value = 10.0;
+  if (model->dimensionless_engine()) {  // a grain contact: kappa, d, gamma
+    start.spec[start.index_of("kappa")].value = 5.0e5;
+    start.spec[start.index_of("d")].value = 3.0e-4;
+    start.spec[start.index_of("gamma")].value = 10.0;
   }
   start.set_free_from_list(c.free);
   sedwave::inversion::FitOptions options;

@@ -25,7 +25,6 @@
 #include "sedwave/inversion/study.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
-#include "sedwave/sediment/saturated_granular.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -78,13 +77,6 @@ inversion::ObservationSet read_all(const InvertOptions& o) {
   if (!all.water_sound_speed) all.water_sound_speed = o.water_speed;
   if (all.observations.empty()) throw std::invalid_argument("no observation files given");
   return all;
-}
-
-/// The dimensionless engine behind a grain-contact model (dry or saturated), if any.
-const forward::DispersionModel* dimensionless_of(const sediment::SedimentModel& model) {
-  if (const auto* dry = dynamic_cast<const sediment::GrainContactModel*>(&model)) return &dry->dimensionless();
-  if (const auto* wet = dynamic_cast<const sediment::SaturatedGranularModel*>(&model)) return &wet->dimensionless();
-  return nullptr;
 }
 
 /// "open" for a missing end of a profile interval (the search bound lies within it).
@@ -320,7 +312,7 @@ Command add_invert_command(CLI::App& app) {
             if (!site_notes.empty()) report["site_inputs"] = site_notes;
             // A table model may have answered some evaluations with the 1D theory or its long-wavelength
             // limit outside its range: the report must say so, or a theory fit would pass for a table fit.
-            if (const forward::DispersionModel* engine = dimensionless_of(*model)) {
+            if (const forward::DispersionModel* engine = model->dimensionless_engine()) {
               for (const forward::ModelDiagnostic& d : engine->diagnostics()) {
                 report[d.key] = d.count;
                 if (!d.note.empty()) std::printf("note: %s\n", d.note.c_str());

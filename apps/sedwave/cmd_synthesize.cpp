@@ -73,7 +73,7 @@ Command add_synthesize_command(CLI::App& app) {
     const inversion::FitParameters truth = make_parameters(o->model, *model, ModelUse::Truth, &site_notes);
     for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
     // The grain contact has no typical values to fall back on: its truth must be given.
-    if (truth.starts_with_grain_contact()) {
+    if (model->dimensionless_engine()) {
       const auto sets = [&](const char* name) {
         for (const std::string& item : o->model.set_values) {
           if (item.starts_with(std::string(name) + "=")) return true;

@@ -183,8 +183,10 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
       c.determined = true;
       c.log_sigma = c.sigma = 0.0;
       c.profile_lower = c.profile_upper = value;
-    } else if (options.profile_likelihood && info.name == "f_star") {
-      // f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just before).
+    } else if (options.profile_likelihood && info.name == "f_star" && !result.combinations.empty() &&
+               result.combinations.back().name == "tau") {
+      // The grain contact's f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just
+      // before, sediment::GrainContactDerived).
       const CombinationResult& tau = result.combinations.back();
       const double k = 1.0 / (2.0 * std::numbers::pi);
       if (tau.profile_upper) c.profile_lower = k / *tau.profile_upper;
@@ -244,8 +246,8 @@ std::pair<double, double> credible_span(double value, const std::optional<double
   return {lower.value_or(0.0), upper.value_or(std::numeric_limits<double>::infinity())};
 }
 
-void flag_range(const std::string& quantity, double value, std::pair<double, double> span, FitResult& result) {
-  const PlausibleRange* range = plausible_range(quantity);
+void flag_range(const std::string& quantity, double value, std::pair<double, double> span,
+                const PlausibleRange* range, FitResult& result) {
   if (!range) return;
   const bool below = span.second < range->lower, above = span.first > range->upper;
   if (!below && !above) return;
@@ -274,8 +276,19 @@ void flag_loose_sand(FitResult& result) {
   result.flags.push_back({"porosity", text});
 }
 
-/// Physical plausibility of every reported value (plausibility.hpp), and parameters at a bound.
-void flag_implausible(const FitOptions& options, FitResult& result) {
+/// The plausible range a model gives one of its derived quantities, or nothing.
+std::optional<PlausibleRange> derived_range(const sediment::SedimentModel& model, const std::string& name) {
+  for (const sediment::DerivedQuantity& q : model.derived_quantities()) {
+    if (q.name != name || !(q.plausible_upper > q.plausible_lower)) continue;
+    return PlausibleRange{q.plausible_lower, q.plausible_upper, q.plausible_basis.c_str(), q.below_cause.c_str(),
+                          q.above_cause.c_str()};
+  }
+  return std::nullopt;
+}
+
+/// Physical plausibility of every reported value (parameters: plausibility.hpp; derived quantities:
+/// the model's own ranges), and parameters at a bound.
+void flag_implausible(const sediment::SedimentModel& model, const FitOptions& options, FitResult& result) {
   for (const ParameterResult& p : result.parameters) {
     if (!p.free) continue;
     if (p.at_bound) {
@@ -287,11 +300,12 @@ void flag_implausible(const FitOptions& options, FitResult& result) {
       result.flags.push_back({p.name, text});
     }
     flag_range(p.name, p.value, credible_span(p.value, p.profile_lower, p.profile_upper, options.profile_likelihood),
-               result);
+               plausible_range(p.name), result);
   }
   for (const CombinationResult& c : result.combinations) {
+    const std::optional<PlausibleRange> range = derived_range(model, c.name);
     flag_range(c.name, c.value, credible_span(c.value, c.profile_lower, c.profile_upper, options.profile_likelihood),
-               result);
+               range ? &*range : nullptr, result);
   }
   flag_loose_sand(result);
 }
@@ -310,7 +324,7 @@ void analyze_with_restarts(const Setup& s, Theta theta, const FitOptions& option
     }
     theta = solve_local(s, *better, options.max_iterations).theta;
   }
-  flag_implausible(options, result);
+  flag_implausible(*s.model, options, result);
   // A model whose own sigma is known to leave something out (a one-packing table) makes every
   // interval too narrow by an unknown amount.
   if (const std::string caveat = s.model->uncertainty_caveat(); !caveat.empty()) {
@@ -402,7 +416,6 @@ std::vector<CurvePoint> model_curves(const FitResult& result, const sediment::Se
     for (std::size_t k = 0; k < free.size(); ++k) g(static_cast<Eigen::Index>(k)) = d_value[free[k]] * values[free[k]] / q;
     return q * std::sqrt(std::max(0.0, g.dot(result.covariance * g)));
   };
-  const auto* frame = dynamic_cast<const sediment::GrainContactModel*>(&model);
   std::vector<CurvePoint> curves;
   for (double f : frequencies_hz) {
     sediment::Wave w;
@@ -413,14 +426,11 @@ std::vector<CurvePoint> model_curves(const FitResult& result, const sediment::Se
     }
     CurvePoint c{f, kNotApplicable, kNotApplicable, kNotApplicable, kNotApplicable, w.attenuation,
                  sigma_of(w.attenuation, w.d_attenuation), w.speed, sigma_of(w.speed, w.d_speed)};
-    if (frame) {
-      const sediment::FrameWave<double> h =
-          sediment::frame_wave(frame->dimensionless(), frame->damping_form(), values[kKappa], values[kDiameter],
-                               values[kDamping], values[kGrainDensity], f);
-      c.omega_hat = h.omega_hat;
-      c.gamma_hat = h.gamma_hat;
-      c.alpha_hat = h.hat.alpha_hat;
-      c.c_hat = h.hat.c_hat;
+    if (const std::optional<sediment::DimensionlessWave> h = model.dimensionless_wave(values, f)) {
+      c.omega_hat = h->omega_hat;
+      c.gamma_hat = h->gamma_hat;
+      c.alpha_hat = h->alpha_hat;
+      c.c_hat = h->c_hat;
     }
     curves.push_back(c);
   }

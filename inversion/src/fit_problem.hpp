@@ -56,7 +56,8 @@ struct Setup {
 /// chi^2 at theta; +inf where the model cannot be evaluated.
 [[nodiscard]] double chi2_at(const Setup& s, const Theta& theta);
 
-/// A function of the parameters that the data may determine even when they do not (c0, tau ...).
+/// A function of the parameters that the data may determine even when they do not (c0, tau ...):
+/// one of the model's derived quantities (sediment::DerivedQuantity).
 struct Combination {
   std::string name;
   std::string unit;
@@ -65,9 +66,7 @@ struct Combination {
   std::function<Differentiated(const Setup&, const Theta&)> log_value;
 };
 
-/// The combinations that mean something for the model in use: tau, f_star, gamma_hat and
-/// kappa_over_hertz for every model whose parameters start with the grain contact's; c0 (the frame's
-/// own low-frequency speed) for the dry frame alone (combinations.cpp).
+/// The model's own derived quantities as functions of theta (combinations.cpp).
 [[nodiscard]] std::vector<Combination> combinations_for(const Setup& s);
 
 /// An extra residual that ties a combination to a target value (a likelihood profile of a

@@ -20,7 +20,7 @@ bool is_damping_name(const std::string& name) { return name == "gamma" || name =
 }  // namespace
 
 FitParameters::FitParameters() : spec(specs_of(sediment::grain_contact_parameters(DampingForm::Gamma))) {
-  for (int i : {kKappa, kDiameter, kDamping}) spec[i].free = true;
+  for (const char* name : {"kappa", "d", "gamma"}) spec[index_of(name)].free = true;
 }
 
 FitParameters::FitParameters(const std::vector<sediment::Parameter>& parameters) : spec(specs_of(parameters)) {}
@@ -34,20 +34,25 @@ int FitParameters::index_of(const std::string& name) const {
   throw std::invalid_argument("unknown parameter '" + name + "' (accepted: " + accepted + ")");
 }
 
-bool FitParameters::starts_with_grain_contact() const {
-  return size() >= 4 && spec[kKappa].name == "kappa" && spec[kDiameter].name == "d" &&
-         (spec[kDamping].name == "gamma" || spec[kDamping].name == "e_n") && spec[kGrainDensity].name == "rho_s";
+int FitParameters::damping_index() const {
+  for (int i = 0; i < size(); ++i) {
+    if (spec[i].name == "gamma" || spec[i].name == "e_n") return i;
+  }
+  return -1;
 }
 
 DampingForm FitParameters::damping_form() const {
-  return starts_with_grain_contact() && spec[kDamping].name == "e_n" ? DampingForm::Restitution : DampingForm::Gamma;
+  const int i = damping_index();
+  return i >= 0 && spec[i].name == "e_n" ? DampingForm::Restitution : DampingForm::Gamma;
 }
 
 void FitParameters::set_damping_form(DampingForm form) {
-  if (!starts_with_grain_contact()) throw std::invalid_argument("this model has no contact damping to switch");
-  const bool was_free = spec[kDamping].free;
-  const sediment::Parameter p = sediment::grain_contact_parameters(form)[kDamping];
-  spec[kDamping] = {p.name, p.unit, p.default_value, p.lower, p.upper, was_free};
+  const int i = damping_index();
+  if (i < 0) throw std::invalid_argument("this model has no contact damping to switch");
+  const bool was_free = spec[i].free;
+  for (const sediment::Parameter& p : sediment::grain_contact_parameters(form)) {
+    if (p.name == "gamma" || p.name == "e_n") spec[i] = {p.name, p.unit, p.default_value, p.lower, p.upper, was_free};
+  }
 }
 
 void FitParameters::set_free_from_list(const std::string& list) {
@@ -57,7 +62,7 @@ void FitParameters::set_free_from_list(const std::string& list) {
   std::string damping_named;  // "gamma" or "en" once the damping is named
   while (std::getline(stream, name, ',')) {
     int index = -1;
-    if (starts_with_grain_contact() && is_damping_name(name)) {
+    if (damping_index() >= 0 && is_damping_name(name)) {
       const std::string form_name = name == "gamma" ? "gamma" : "en";
       if (!damping_named.empty() && damping_named != form_name) {
         throw std::invalid_argument("--fit '" + list + "' names both gamma and en: the damping is one parameter, "
@@ -66,7 +71,7 @@ void FitParameters::set_free_from_list(const std::string& list) {
       damping_named = form_name;
       const DampingForm form = name == "gamma" ? DampingForm::Gamma : DampingForm::Restitution;
       if (form != damping_form()) set_damping_form(form);
-      index = kDamping;
+      index = damping_index();
     } else {
       try {
         index = index_of(name);

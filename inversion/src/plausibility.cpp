@@ -2,37 +2,15 @@
 
 #include <array>
 
-#include "sedwave/sediment/site.hpp"
-
 namespace sedwave::inversion {
 
-double quartz_hertz_kappa(double diameter, double pressure) {
-  return sediment::hertz_kappa_at_pressure(sediment::kQuartz, diameter, pressure, kReferencePorosity,
-                                           sediment::kDensePackCoordination);
-}
-
 const PlausibleRange* plausible_range(const std::string& quantity) {
-  static const std::array<std::pair<const char*, PlausibleRange>, 7> kRanges{{
+  static const std::array<std::pair<const char*, PlausibleRange>, 4> kRanges{{
       {"d",
        {1e-6, 6.4e-2, "clay (1 um) to pebble gravel (64 mm)",
         "a grain size below clay: the fit slid along a direction the data do not see (d trades with kappa and "
         "gamma), or the frequencies are in the wrong unit",
         "a grain size above gravel: the frequencies or attenuations may be in the wrong unit"}},
-      {"c0",
-       {1200.0, 2500.0, "water-saturated marine sediments (Hamilton 1980: 1450-2100 m/s)",
-        "too slow for a sediment: frequencies given in kHz but read as Hz (or a sound-speed ratio read as m/s)?",
-        "too fast for a sediment: frequencies in Hz read as kHz, a wrong sound-speed unit, or the wrong model"}},
-      {"kappa_over_hertz",
-       {0.46, 10.0, "Hertz stiffness of quartz contacts at 1 kPa .. 10 MPa, relative to 10 kPa",
-        "softer than a Hertz contact at 1 kPa: a unit mix-up, or d and kappa traded along an unseen direction",
-        "stiffer than a Hertz contact at 10 MPa: the contacts carry stiffness that belongs elsewhere (in a "
-        "water-saturated sediment the pore water's; a dry-frame model must put it in kappa), or d and kappa "
-        "traded along an unseen direction"}},
-      {"gamma_hat",
-       {1e-3, 1e3, "nearly elastic contacts (e_n 0.998) to the overdamping sediment attenuation needs",
-        "contacts almost without loss: attenuation in the wrong unit (Np vs dB), or the wrong model",
-        "a dashpot beyond any contact: attenuation in the wrong unit, or loss the model puts in the contacts "
-        "that belongs elsewhere"}},
       {"e_n", {1e-6, 1.0, "restitution of a binary collision, (0, 1]", "", ""}},
       {"sound_speed",
        {100.0, 2.0e4, "any seabed sediment at any frequency: gassy muds (about 100 m/s) to the P-wave speed of dense "

@@ -1,5 +1,7 @@
 #include "sedwave/sediment/catalog.hpp"
 
+#include <algorithm>
+#include <mutex>
 #include <stdexcept>
 
 #include "sedwave/forward/catalog/models.hpp"
@@ -29,49 +31,116 @@ std::shared_ptr<const forward::DispersionModel> frame_model(const std::string& f
   }
 }
 
+/// An entry for a model with one name whose class needs no choices.
+template <typename Model>
+CatalogEntry closed_form(const std::string& name) {
+  return {{name}, [](const std::string&, const ModelChoices&) { return std::make_shared<const Model>(); }, {}, {}};
+}
+
+/// The dry grain-contact frame: any forward/ model, and anything forward/ may yet accept (its own
+/// error then names the accepted ones).
+CatalogEntry dry_frames() {
+  return {forward::dispersion_model_names(),
+          [](const std::string& spec, const ModelChoices& choices) {
+            return std::make_shared<const GrainContactModel>(frame_model(spec, spec), choices.damping);
+          },
+          {},
+          [] { return std::vector<std::shared_ptr<const SedimentModel>>{make_sediment_model("lattice")}; }};
+}
+
+CatalogEntry saturated_frames() {
+  std::vector<std::string> names;
+  for (const std::string& frame : forward::dispersion_model_names()) names.push_back(std::string(kSaturated) + frame);
+  return {names,
+          [](const std::string& spec, const ModelChoices& choices) {
+            return std::make_shared<const SaturatedGranularModel>(
+                frame_model(spec.substr(kSaturated.size()), spec), choices.damping,
+                choices.permeability_given ? PermeabilityFrom::Parameter : PermeabilityFrom::KozenyCarman);
+          },
+          [](const std::string& spec) { return spec.starts_with(kSaturated); },
+          // The saturated frame once, in the form that lists permeability and pore_size (which --set accepts).
+          [] {
+            return std::vector<std::shared_ptr<const SedimentModel>>{
+                make_sediment_model("saturated-lattice", {DampingForm::Gamma, true})};
+          }};
+}
+
+/// The catalog, one entry per model. The dry frame takes any specification no other entry takes
+/// (forward/ then names what it accepts), so it is asked last.
+struct Catalog {
+  std::mutex mutex;
+  std::vector<CatalogEntry> entries{
+      saturated_frames(),
+      closed_form<BiotStollModel>("biot-stoll"),
+      closed_form<EffectiveDensityFluidModel>("edfm"),
+      closed_form<GrainShearingModel>("grain-shearing"),
+      closed_form<ViscousGrainShearingModel>("vgs-lambda"),
+  };
+  CatalogEntry fallback = dry_frames();
+
+  /// Entries in listing order: the dry frame first, as the command line has always listed it.
+  std::vector<CatalogEntry> listing() {
+    const std::lock_guard lock(mutex);
+    std::vector<CatalogEntry> all{fallback};
+    all.insert(all.end(), entries.begin(), entries.end());
+    return all;
+  }
+};
+
+Catalog& catalog() {
+  static Catalog instance;
+  return instance;
+}
+
+bool entry_accepts(const CatalogEntry& e, const std::string& spec) {
+  if (e.accepts) return e.accepts(spec);
+  return std::find(e.names.begin(), e.names.end(), spec) != e.names.end();
+}
+
 }  // namespace
 
-bool is_dry_frame(const std::string& spec) {
-  return spec == "continuum" || spec == "lattice" || spec.starts_with("table:");
+void register_model(CatalogEntry entry) {
+  if (entry.names.empty() || !entry.make) throw std::invalid_argument("register_model: an entry needs a name and make");
+  Catalog& c = catalog();
+  const std::lock_guard lock(c.mutex);
+  for (const std::string& name : entry.names) {
+    const auto takes = [&](const CatalogEntry& e) { return entry_accepts(e, name); };
+    if (entry_accepts(c.fallback, name) || std::any_of(c.entries.begin(), c.entries.end(), takes)) {
+      throw std::invalid_argument("register_model: a model named '" + name + "' exists already");
+    }
+  }
+  c.entries.push_back(std::move(entry));
+}
+
+void register_model(const std::string& name, std::function<std::shared_ptr<const SedimentModel>()> make) {
+  if (!make) throw std::invalid_argument("register_model: '" + name + "' needs a function that makes it");
+  register_model({{name}, [make](const std::string&, const ModelChoices&) { return make(); }, {}, {}});
 }
 
 std::shared_ptr<const SedimentModel> make_sediment_model(const std::string& spec, const ModelChoices& choices) {
-  if (spec == "biot-stoll") return std::make_shared<const BiotStollModel>();
-  if (spec == "edfm") return std::make_shared<const EffectiveDensityFluidModel>();
-  if (spec == "grain-shearing") return std::make_shared<const GrainShearingModel>();
-  if (spec == "vgs-lambda") return std::make_shared<const ViscousGrainShearingModel>();
-  if (spec.starts_with(kSaturated)) {
-    const std::string frame = spec.substr(kSaturated.size());
-    return std::make_shared<const SaturatedGranularModel>(
-        frame_model(frame, spec), choices.damping,
-        choices.permeability_given ? PermeabilityFrom::Parameter : PermeabilityFrom::KozenyCarman);
+  const std::vector<CatalogEntry> all = catalog().listing();
+  for (std::size_t i = 1; i < all.size(); ++i) {
+    if (entry_accepts(all[i], spec)) return all[i].make(spec, choices);
   }
-  return std::make_shared<const GrainContactModel>(frame_model(spec, spec), choices.damping);
+  return all[0].make(spec, choices);
 }
 
 std::vector<std::string> sediment_model_names() {
-  std::vector<std::string> names = forward::dispersion_model_names();
-  const std::size_t frames = names.size();
-  for (std::size_t i = 0; i < frames; ++i) names.push_back(std::string(kSaturated) + names[i]);
-  for (const char* name : {"biot-stoll", "edfm", "grain-shearing", "vgs-lambda"}) names.emplace_back(name);
+  std::vector<std::string> names;
+  for (const CatalogEntry& e : catalog().listing()) names.insert(names.end(), e.names.begin(), e.names.end());
   return names;
 }
 
 std::vector<std::shared_ptr<const SedimentModel>> model_examples() {
-  // The saturated frame once, in the form that lists permeability and pore_size (which --set accepts).
-  return {make_sediment_model("lattice"), make_sediment_model("saturated-lattice", {DampingForm::Gamma, true}),
-          make_sediment_model("biot-stoll"),
-          make_sediment_model("edfm"), make_sediment_model("grain-shearing"), make_sediment_model("vgs-lambda")};
-}
-
-std::string typical_free_parameters(const SedimentModel& model) {
-  const std::string name = model.name();
-  if (name == "edfm") return "porosity,permeability";
-  if (name == "biot-stoll") return "porosity,permeability,delta_b";
-  if (name == "grain-shearing") return "porosity,gamma_p,n";
-  if (name == "vgs-lambda") return "porosity,gamma_p,tau_p";
-  // The grain-contact frames, dry or saturated: the contact's three parameters.
-  return "kappa,d," + model.parameters()[GrainContactModel::kDamping].name;
+  std::vector<std::shared_ptr<const SedimentModel>> examples;
+  for (const CatalogEntry& e : catalog().listing()) {
+    if (e.examples) {
+      for (auto& m : e.examples()) examples.push_back(std::move(m));
+    } else {
+      examples.push_back(e.make(e.names.front(), {}));
+    }
+  }
+  return examples;
 }
 
 std::optional<std::string> sediment_model_file(const std::string& spec) {

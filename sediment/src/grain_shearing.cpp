@@ -31,7 +31,19 @@ void append_shearing_parameters(std::vector<Parameter>& ps, double gamma_p, doub
 
 // Buckingham (2005): the reference sediment (porosity 0.377, grain size 1 mm, 0.3 m below the
 // seabed) of its comparison with the Hamilton and Richardson sediment data.
-GrainShearingModel::GrainShearingModel() {
+DerivedQuantity GrainShearingParameters::wood_speed_quantity() {
+  // The range is that of marine sediments (Hamilton 1980, JASA 68, 1313), as for c0: Wood's speed of
+  // quartz grains in sea water is about 1480-1880 m/s for porosities 0.9-0.25.
+  return {"wood_speed", "m/s",
+          "Wood's speed c_0 of grains and water as a suspension: the f -> 0 limit of the grain-shearing wave "
+          "(Buckingham 2000)",
+          1200.0, 2500.0, "grains and water of marine sediments (Hamilton 1980: 1450-2100 m/s)",
+          "slower than any sediment's mixture: the water or grain moduli in the wrong unit, or a porosity beyond "
+          "any sediment",
+          "faster than any sediment's mixture: the water or grain moduli in the wrong unit"};
+}
+
+GrainShearingModel::GrainShearingModel() : derived_{wood_speed_quantity()} {
   const std::string source = "Buckingham 2005 reference sediment";
   parameters_ = mixture_parameters({0.377, 2730.0, 1005.0, 3.6e10, 2.374e9}, source);
   append_shearing_parameters(parameters_, 3.888e8, 4.588e7, 0.0851, source);
@@ -43,7 +55,12 @@ std::string GrainShearingModel::summary() const {
 }
 
 // Buckingham (2010), the SAX99 medium sand.
-ViscousGrainShearingModel::ViscousGrainShearingModel() {
+ViscousGrainShearingModel::ViscousGrainShearingModel()
+    : derived_{wood_speed_quantity(),
+               {"viscous_frequency", "Hz",
+                "transition frequency 1/(2 pi tau_p) of VGS(lambda): viscous (alpha ~ f^2) below, GS above "
+                "(Buckingham 2007, 2010)",
+                0.0, 0.0, "", "", ""}} {
   const std::string source = "Buckingham 2010, SAX99 sand";
   parameters_ = mixture_parameters({0.385, 2690.0, 1023.0, 3.2e10, 2.395e9}, source);
   append_shearing_parameters(parameters_, 3.796e8, 1.711e7, 0.0617, source);

@@ -6,6 +6,29 @@ namespace sedwave::sediment {
 // what is possible but unusual. Fluid density and bulk modulus reach far down so that the
 // vacuum-in-the-pores limit (a dry frame) stays inside the accepted range.
 
+const std::vector<DerivedQuantity>& poroelastic_derived_quantities() {
+  // wood_speed: Wood's speed of quartz grains in sea water is about 1480-1880 m/s for porosities
+  // 0.9-0.25; the range is that of marine sediments (Hamilton 1980, JASA 68, 1313), as for c0.
+  // biot_frequency: eta beta / (2 pi rho_w k) for water from gravel (k ~ 1e-7 m^2, beta 0.3: 0.5 Hz)
+  // to clay (k ~ 1e-18 m^2, beta 0.8: 1.3e11 Hz).
+  static const std::vector<DerivedQuantity> kQuantities{
+      {"wood_speed", "m/s",
+       "Wood's speed sqrt(K_Wood/rho) of grains and water as a suspension (Wood 1930): the low-frequency speed "
+       "without a frame",
+       1200.0, 2500.0, "grains and water of marine sediments (Hamilton 1980: 1450-2100 m/s)",
+       "slower than any sediment's mixture: the water or grain moduli in the wrong unit, or a porosity beyond any "
+       "sediment",
+       "faster than any sediment's mixture: the water or grain moduli in the wrong unit"},
+      {"biot_frequency", "Hz",
+       "Biot's characteristic frequency eta beta/(2 pi rho_w k) (Biot 1956): below it the pore water moves "
+       "with the frame",
+       0.1, 2.0e11, "permeabilities from gravel (1e-7 m^2) to clay (1e-18 m^2)",
+       "a permeability above any gravel's: the fit raised k to move the viscous loss below the data",
+       "a permeability below any clay's: the fit lowered k to move the viscous loss above the data"},
+  };
+  return kQuantities;
+}
+
 Parameter porosity_parameter() {
   return {"porosity", "1", 0.40, 0.01, 0.99, false,
           "pore volume fraction; well-sorted sands 0.35-0.45"};

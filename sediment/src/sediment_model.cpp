@@ -6,6 +6,23 @@
 
 namespace sedwave::sediment {
 
+const std::vector<DerivedQuantity>& SedimentModel::derived_quantities() const {
+  static const std::vector<DerivedQuantity> kNone;
+  return kNone;
+}
+
+std::vector<DerivedValue> SedimentModel::derived_values(std::span<const double>, bool) const { return {}; }
+
+std::string SedimentModel::typical_free_parameters() const {
+  std::string list;
+  for (const Parameter& p : parameters()) list += (list.empty() ? "" : ",") + p.name;
+  return list;
+}
+
+std::optional<DimensionlessWave> SedimentModel::dimensionless_wave(std::span<const double>, double) const {
+  return std::nullopt;
+}
+
 int SedimentModel::index_of(const std::string& name) const {
   const std::vector<Parameter>& ps = parameters();
   for (std::size_t i = 0; i < ps.size(); ++i) {

@@ -28,9 +28,9 @@ constexpr double kGammaTrue = 7.96;    // kg/s
 
 FitParameters true_parameters() {
   FitParameters p;
-  p.spec[kKappa].value = kKappaTrue;
-  p.spec[kDiameter].value = kDiameterTrue;
-  p.spec[kDamping].value = kGammaTrue;
+  p.spec[p.index_of("kappa")].value = kKappaTrue;
+  p.spec[p.index_of("d")].value = kDiameterTrue;
+  p.spec[p.index_of("gamma")].value = kGammaTrue;
   return p;
 }
 
@@ -63,9 +63,9 @@ TEST(SyntheticInversion, LatticeRecoversDeterminedCombinations) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const ObservationSet data = synthetic_data(lattice, true_parameters(), seed);
     FitParameters start = true_parameters();
-    start.spec[kKappa].value = 3.0e6;
-    start.spec[kDiameter].value = 1.0e-4;
-    start.spec[kDamping].value = 20.0;
+    start.spec[start.index_of("kappa")].value = 3.0e6;
+    start.spec[start.index_of("d")].value = 1.0e-4;
+    start.spec[start.index_of("gamma")].value = 20.0;
     const FitResult r = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
     EXPECT_TRUE(r.converged) << r.solver_message;
     expect_within_3_sigma(r, "c0", truth.speed_scale());
@@ -74,7 +74,7 @@ TEST(SyntheticInversion, LatticeRecoversDeterminedCombinations) {
     // 50 points with 5% noise: chi2 within loose 99.9% bounds for ~47 dof.
     EXPECT_GT(r.chi2, 20.0);
     EXPECT_LT(r.chi2, 85.0);
-    claimed_diameter += r.parameters[kDiameter].determined ? 1 : 0;
+    claimed_diameter += by_name(r.parameters, "d").determined ? 1 : 0;
   }
   // With gamma_hat ~ 48 the sound speed rises so fast that kd stays below 0.15 even at 1 MHz: the
   // lattice correction (~(kd)^2/24) is below the noise and d is normally not determined. Noise can
@@ -91,12 +91,12 @@ TEST(SyntheticInversion, KappaOverHertzIsTheSitePriorsHertzRelation) {
   const forward::LatticeModel lattice;
   const FitResult r = fit(synthetic_data(lattice, true_parameters(), 1), lattice, true_parameters(),
                           FitOptions{.method = FitMethod::Ceres, .profile_likelihood = false});
-  const double d = r.parameters[kDiameter].value;
+  const double d = by_name(r.parameters, "d").value;
   const double young = 9.45e10, poisson = 0.074;  // quartz (Mavko et al. 2009, table 7.1)
   const double e_star = young / (2.0 * (1.0 - poisson * poisson));
   const double force = std::numbers::pi * d * d * 1.0e4 / (9.0 * (1.0 - 0.38));
   const double hertz = std::cbrt(6.0 * e_star * e_star * (d / 4.0) * force);
-  EXPECT_NEAR(combination(r, "kappa_over_hertz").value / (r.parameters[kKappa].value / hertz), 1.0, 1e-9);
+  EXPECT_NEAR(combination(r, "kappa_over_hertz").value / (by_name(r.parameters, "kappa").value / hertz), 1.0, 1e-9);
 }
 
 TEST(SyntheticInversion, LatticeDeterminesDiameterWhenKdReachesOne) {
@@ -105,14 +105,14 @@ TEST(SyntheticInversion, LatticeDeterminesDiameterWhenKdReachesOne) {
   const forward::LatticeModel lattice;
   FitParameters truth = true_parameters();
   const forward::GrainScales<double> scales{kKappaTrue, kDiameterTrue, 2650.0};
-  truth.spec[kDamping].value = scales.gamma(0.05);
+  truth.spec[truth.index_of("gamma")].value = scales.gamma(0.05);
   const ObservationSet data = synthetic_data(lattice, truth, 1);
   FitParameters start = truth;
-  start.spec[kKappa].value = 3.0e6;
-  start.spec[kDiameter].value = 1.0e-4;
+  start.spec[start.index_of("kappa")].value = 3.0e6;
+  start.spec[start.index_of("d")].value = 1.0e-4;
   const FitResult r = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
   EXPECT_EQ(r.rank, 3);
-  const ParameterResult& d = r.parameters[kDiameter];
+  const ParameterResult& d = by_name(r.parameters, "d");
   ASSERT_TRUE(d.determined);
   EXPECT_LT(std::abs(std::log(d.value / kDiameterTrue)), 3.0 * d.log_sigma);
   expect_within_3_sigma(r, "gamma_hat", 0.05);
@@ -124,9 +124,9 @@ TEST(SyntheticInversion, ContinuumFlagsDiameterAsNotDetermined) {
   const ObservationSet data = synthetic_data(lattice, true_parameters(), 42);
   const FitResult r = fit(data, continuum, true_parameters(), FitOptions{.method = FitMethod::Global});
   EXPECT_EQ(r.rank, 2);  // only c0 and tau are visible to the continuum chain
-  EXPECT_FALSE(r.parameters[kDiameter].determined);
-  EXPECT_FALSE(r.parameters[kKappa].determined);
-  EXPECT_FALSE(r.parameters[kDamping].determined);
+  EXPECT_FALSE(by_name(r.parameters, "d").determined);
+  EXPECT_FALSE(by_name(r.parameters, "kappa").determined);
+  EXPECT_FALSE(by_name(r.parameters, "gamma").determined);
   EXPECT_TRUE(combination(r, "c0").determined);
   EXPECT_TRUE(combination(r, "tau").determined);
   EXPECT_TRUE(combination(r, "f_star").determined);
@@ -148,9 +148,9 @@ struct DrivenTableCase {
 
   FitParameters truth(double gamma_hat) const {
     FitParameters p;
-    p.spec[kKappa].value = scales.kappa;
-    p.spec[kDiameter].value = scales.diameter;
-    p.spec[kDamping].value = scales.gamma(gamma_hat);
+    p.spec[p.index_of("kappa")].value = scales.kappa;
+    p.spec[p.index_of("d")].value = scales.diameter;
+    p.spec[p.index_of("gamma")].value = scales.gamma(gamma_hat);
     return p;
   }
   SyntheticDesign lab_band(unsigned seed) const {
@@ -161,9 +161,9 @@ struct DrivenTableCase {
   /// outside, so a global search over the default bounds would see little of it).
   FitResult fit_table(const ObservationSet& data, const FitParameters& truth) const {
     FitParameters start = truth;
-    start.spec[kKappa].value *= 0.9;
-    start.spec[kDiameter].value *= 0.9;
-    start.spec[kDamping].value *= 1.2;
+    start.spec[start.index_of("kappa")].value *= 0.9;
+    start.spec[start.index_of("d")].value *= 0.9;
+    start.spec[start.index_of("gamma")].value *= 1.2;
     return fit(data, table, start, FitOptions{.method = FitMethod::Ceres});
   }
 };
@@ -188,7 +188,7 @@ TEST(SyntheticInversion, OnePackingTableIsFlagged) {
     for (std::size_t w = 0; w < ensemble.n_omega(); ++w) single.set(g, w, ensemble.at(g, w));
   const forward::table::TableModel one_packing{std::move(single), "one"};
   FitParameters start = truth;
-  start.spec[kKappa].value *= 0.9;
+  start.spec[start.index_of("kappa")].value *= 0.9;
   const FitResult r = fit(data, one_packing, start, FitOptions{.method = FitMethod::Ceres, .profile_likelihood = false});
   ASSERT_EQ(model_flags(r), 1);
   const auto flag = std::find_if(r.flags.begin(), r.flags.end(), [](const PlausibilityFlag& f) { return f.quantity == "model"; });
@@ -205,14 +205,14 @@ TEST(SyntheticInversion, DrivenTableDeterminesDiameterTheContinuumCannot) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const ObservationSet data = synthetic_observations(c.table, truth, c.lab_band(seed));
     const FitResult r = c.fit_table(data, truth);
-    const ParameterResult& d = r.parameters[kDiameter];
+    const ParameterResult& d = by_name(r.parameters, "d");
     ASSERT_TRUE(d.determined) << d.value << " +- " << d.sigma;
     EXPECT_LT(d.log_sigma, 0.3);
     EXPECT_LT(std::abs(std::log(d.value / c.scales.diameter)), 3.0 * d.log_sigma) << d.value << " +- " << d.sigma;
     EXPECT_LT(r.chi2, 45.0);  // 24 observations, 3 parameters: a loose 99.9 % bound
     const FitResult k = fit(data, continuum, truth, FitOptions{.method = FitMethod::Global});
     EXPECT_EQ(k.rank, 2);
-    EXPECT_FALSE(k.parameters[kDiameter].determined);
+    EXPECT_FALSE(by_name(k.parameters, "d").determined);
     EXPECT_GT(k.chi2, r.chi2 + 9.0) << "the continuum should fit the 3D shape worse";
   }
 }
@@ -228,7 +228,7 @@ TEST(SyntheticInversion, LatticeFitOf3DDataFindsADiameterTooLarge) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const ObservationSet data = synthetic_observations(c.table, truth, c.lab_band(seed));
     const FitResult l = fit(data, lattice, truth, FitOptions{.method = FitMethod::Global});
-    const ParameterResult& d = l.parameters[kDiameter];
+    const ParameterResult& d = by_name(l.parameters, "d");
     ASSERT_TRUE(d.determined);
     EXPECT_GT(d.value, 2.0 * c.scales.diameter);
     EXPECT_LT(l.chi2, 45.0);
@@ -243,7 +243,7 @@ TEST(SyntheticInversion, DrivenTableCannotDetermineDiameterOfStronglyOverdampedC
   int claimed = 0;
   for (unsigned seed : {1u, 2u, 3u}) {
     const FitResult r = c.fit_table(synthetic_observations(c.table, truth, c.lab_band(seed)), truth);
-    claimed += r.parameters[kDiameter].determined ? 1 : 0;
+    claimed += by_name(r.parameters, "d").determined ? 1 : 0;
   }
   EXPECT_LE(claimed, 1);
 }
@@ -252,9 +252,9 @@ TEST(SyntheticInversion, GlobalMethodConvergesFromBadlyScaledStart) {
   const forward::LatticeModel lattice;
   const ObservationSet data = synthetic_data(lattice, true_parameters(), 7);
   FitParameters start = true_parameters();
-  start.spec[kKappa].value = kKappaTrue * 1e4;
-  start.spec[kDiameter].value = kDiameterTrue * 1e-4;
-  start.spec[kDamping].value = kGammaTrue * 1e4;
+  start.spec[start.index_of("kappa")].value = kKappaTrue * 1e4;
+  start.spec[start.index_of("d")].value = kDiameterTrue * 1e-4;
+  start.spec[start.index_of("gamma")].value = kGammaTrue * 1e4;
   const FitResult global = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
   const FitResult reference = fit(data, lattice, true_parameters(), FitOptions{.method = FitMethod::Ceres});
   EXPECT_NEAR(global.chi2, reference.chi2, 1e-6 * reference.chi2);
@@ -268,19 +268,19 @@ TEST(SyntheticInversion, RestitutionParameterisation) {
   const forward::LatticeModel lattice;
   FitParameters truth = true_parameters();
   truth.set_damping_form(DampingForm::Restitution);
-  truth.spec[kDamping].value = 0.5;
+  truth.spec[truth.index_of("e_n")].value = 0.5;
   const ObservationSet data = synthetic_data(lattice, truth, 3);
   FitParameters start = truth;
   start.set_free_from_list("kappa,en");
-  start.spec[kDamping].value = 0.9;
-  start.spec[kKappa].value = 3e5;
+  start.spec[start.index_of("e_n")].value = 0.9;
+  start.spec[start.index_of("kappa")].value = 3e5;
   const FitResult r = fit(data, lattice, start, FitOptions{.method = FitMethod::Global});
-  const ParameterResult& e = r.parameters[kDamping];
+  const ParameterResult& e = by_name(r.parameters, "e_n");
   EXPECT_EQ(e.name, "e_n");
   ASSERT_TRUE(e.determined);
   EXPECT_LT(std::abs(std::log(e.value / 0.5)), 3.0 * e.log_sigma);
-  EXPECT_TRUE(r.parameters[kDiameter].determined);  // fixed: known exactly
-  EXPECT_FALSE(r.parameters[kDiameter].free);
+  EXPECT_TRUE(by_name(r.parameters, "d").determined);  // fixed: known exactly
+  EXPECT_FALSE(by_name(r.parameters, "d").free);
 }
 
 TEST(SyntheticInversion, CeresAndNloptMethodsReachTheSameMinimum) {

@@ -49,9 +49,9 @@ TEST(Posterior, MatchesTheLinearisedGaussianWhereTheDataDetermineTheParameters) 
 /// A sand's contact: kappa 2e6 N/m, d 0.3 mm, gamma 10 kg/s (f* ~ 32 kHz).
 FitParameters sand_contact() {
   FitParameters p;
-  p.spec[kKappa].value = 2e6;
-  p.spec[kDiameter].value = 3e-4;
-  p.spec[kDamping].value = 10.0;
+  p.spec[p.index_of("kappa")].value = 2e6;
+  p.spec[p.index_of("d")].value = 3e-4;
+  p.spec[p.index_of("gamma")].value = 10.0;
   return p;
 }
 
@@ -64,17 +64,17 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
   FitParameters truth = sand_contact();
   const ObservationSet data = synthetic_observations(*frame, truth, {100.0, 3e4, 15, 0.05, 0.005, 5});
   FitParameters start = truth;
-  start.spec[kKappa].lower = 1e4;
-  start.spec[kKappa].upper = 1e9;
-  start.spec[kDiameter].lower = 1e-5;
-  start.spec[kDiameter].upper = 1e-2;
-  start.spec[kDamping].lower = 1e-2;
-  start.spec[kDamping].upper = 1e4;
+  start.spec[start.index_of("kappa")].lower = 1e4;
+  start.spec[start.index_of("kappa")].upper = 1e9;
+  start.spec[start.index_of("d")].lower = 1e-5;
+  start.spec[start.index_of("d")].upper = 1e-2;
+  start.spec[start.index_of("gamma")].lower = 1e-2;
+  start.spec[start.index_of("gamma")].upper = 1e4;
   const FitOptions fit_options{.method = FitMethod::Ceres, .profile_likelihood = false};
   const FitResult best = fit(data, *frame, start, fit_options);
   const std::vector<Prior> priors = make_priors(best.fitted, {"d=log-normal:3e-4,0.5"});
   const PosteriorResult p = sample_posterior(data, *frame, best, priors, fit_options, {.steps = 3000, .seed = 7});
-  const PosteriorQuantity& d = p.parameters[kDiameter];
+  const PosteriorQuantity& d = by_name(p.parameters, "d");
   EXPECT_TRUE(d.prior_dominated);
   // The prior's median 3e-4 m and 68 % half-width 0.5 in ln, to Monte Carlo error.
   EXPECT_NEAR(std::log(d.median / 3e-4), 0.0, 0.15);
@@ -93,17 +93,17 @@ TEST(Posterior, StartsFromAFitOnASearchBound) {
   const forward::LatticeModel lattice;
   const auto frame = grain_contact_model(lattice, DampingForm::Gamma);
   FitParameters truth = sand_contact();
-  truth.spec[kKappa].value = 9e5;
-  truth.spec[kDamping].value = 5.0;
+  truth.spec[truth.index_of("kappa")].value = 9e5;
+  truth.spec[truth.index_of("gamma")].value = 5.0;
   const ObservationSet data = synthetic_observations(*frame, truth, {1e4, 1e6, 15, 0.1, 0.01, 2});
   FitParameters start = truth;
-  start.spec[kKappa].value = 1e6;
-  start.spec[kDamping].value = 1.0;
-  start.spec[kDiameter].lower = 1e-5;
-  start.spec[kDiameter].upper = 1e-2;
+  start.spec[start.index_of("kappa")].value = 1e6;
+  start.spec[start.index_of("gamma")].value = 1.0;
+  start.spec[start.index_of("d")].lower = 1e-5;
+  start.spec[start.index_of("d")].upper = 1e-2;
   const FitOptions options{.method = FitMethod::Global, .profile_likelihood = false};
   const FitResult best = fit(data, *frame, start, options);
-  ASSERT_TRUE(best.parameters[kDiameter].at_bound) << "the premise: d ends on a bound";
+  ASSERT_TRUE(by_name(best.parameters, "d").at_bound) << "the premise: d ends on a bound";
   PosteriorResult p;
   EXPECT_NO_THROW(p = sample_posterior(data, *frame, best, make_priors(best.fitted, {}), options, {.steps = 200}));
   EXPECT_GT(p.samples.rows(), 0);
@@ -132,7 +132,7 @@ TEST(PredictiveBand, QuantilesAreTheModelAtTheParameterQuantilesForAMonotoneMode
   std::vector<double> kappas(draws.data(), draws.data() + draws.size());
   std::sort(kappas.begin(), kappas.end());
   std::vector<double> values = best.fitted.values();
-  values[kKappa] = kappas[200];
+  values[static_cast<std::size_t>(best.fitted.index_of("kappa"))] = kappas[200];
   for (std::size_t i = 0; i < frequencies.size(); ++i) {
     const sediment::Wave at_median = frame->evaluate(values, frequencies[i], false);
     EXPECT_NEAR(band.speed[i][2] / at_median.speed, 1.0, 1e-12);

@@ -3,13 +3,16 @@
 // reported uncertainty; parameters of another model are refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/synthetic.hpp"
 #include "sedwave/sediment/catalog.hpp"
+#include "sedwave/sediment/jet_evaluated.hpp"
 
 namespace sedwave::inversion {
 namespace {
@@ -86,6 +89,55 @@ TEST(SedimentFits, SandWithMudPorosityIsFlagged) {
   bool flagged = false;
   for (const PlausibilityFlag& f : r.flags) flagged = flagged || (f.quantity == "porosity" && f.message.find("sand") != std::string::npos);
   EXPECT_TRUE(flagged);
+}
+
+/// A program's own model: a fluid of speed c [m/s] whose attenuation a0 (f / 1 kHz) [Np/m] makes
+/// the loss per wavelength alpha lambda = a0 c / 1 kHz the same at every f. Its plausible range is
+/// set below the truth used here so that the flag must fire.
+class LinearLossFluid final : public sediment::JetEvaluated<LinearLossFluid> {
+ public:
+  static constexpr int kParameters = 2;
+  [[nodiscard]] std::string name() const override { return "test-linear-loss-fluid"; }
+  [[nodiscard]] std::string summary() const override { return "a fluid with attenuation proportional to f"; }
+  [[nodiscard]] const std::vector<sediment::Parameter>& parameters() const override { return parameters_; }
+  [[nodiscard]] const std::vector<sediment::DerivedQuantity>& derived_quantities() const override { return derived_; }
+  template <typename T>
+  sediment::WaveOf<T> wave(const T* v, double frequency_hz) const {
+    return {v[1] * (frequency_hz / 1e3), v[0]};
+  }
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    return {v[1] * v[0] / 1e3};
+  }
+
+ private:
+  std::vector<sediment::Parameter> parameters_{{"c", "m/s", 1500.0, 100.0, 1e4, false, "speed"},
+                                               {"a0", "Np/m", 0.05, 1e-6, 1e3, true, "attenuation at 1 kHz"}};
+  std::vector<sediment::DerivedQuantity> derived_{
+      {"loss_per_wavelength", "1", "alpha lambda", 1e-3, 1e-2, "a test range", "too low", "too high"}};
+};
+
+// A registered model of the program's own goes through the library's fit by name: its derived
+// quantity is reported with an interval that covers the truth, and judged by its own range.
+TEST(OwnModel, RegisteredFitsAndIsJudgedByItsOwnDerivedQuantities) {
+  sediment::register_model("test-linear-loss-fluid", [] { return std::make_shared<const LinearLossFluid>(); });
+  const auto model = sediment::make_sediment_model("test-linear-loss-fluid");
+  FitParameters truth(model->parameters());
+  truth.set_free_from_list(model->typical_free_parameters());
+  truth.spec[truth.index_of("c")].value = 1600.0;
+  truth.spec[truth.index_of("a0")].value = 0.1;
+  const ObservationSet data = synthetic_observations(*model, truth, {100.0, 1e5, 20, 0.02, 0.003, 7});
+  FitParameters start = truth;
+  start.spec[start.index_of("c")].value = 1500.0;
+  start.spec[start.index_of("a0")].value = 0.05;
+  const FitResult r = fit(data, *model, start, {.method = FitMethod::Ceres});
+  const CombinationResult& loss = by_name(r.combinations, "loss_per_wavelength");
+  ASSERT_TRUE(loss.determined);
+  EXPECT_LT(std::abs(std::log(loss.value / 0.16)), 3.0 * loss.log_sigma) << loss.value << " +- " << loss.sigma;
+  const bool flagged = std::any_of(r.flags.begin(), r.flags.end(), [](const PlausibilityFlag& f) {
+    return f.quantity == "loss_per_wavelength" && f.message.find("too high") != std::string::npos;
+  });
+  EXPECT_TRUE(flagged) << "0.16 lies above the model's plausible range [1e-3, 1e-2]";
 }
 
 }  // namespace

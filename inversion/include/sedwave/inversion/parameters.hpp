@@ -6,7 +6,10 @@
 //
 // The default set is the grain-contact family's: contact stiffness kappa [N/m], grain diameter
 // d [m], the normal damping as the dashpot gamma [kg/s] or the restitution coefficient e_n [-] of
-// a collision of two equal grains, and the grain density rho_s [kg/m^3] (fixed).
+// a collision of two equal grains, and the grain density rho_s [kg/m^3] (fixed). Parameters are
+// found by name (index_of), never by position.
+#include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,9 +19,6 @@
 namespace sedwave::inversion {
 
 using sediment::DampingForm;
-
-/// Positions of the grain-contact parameters (in every model whose parameters start with them).
-enum ParameterIndex : int { kKappa = 0, kDiameter = 1, kDamping = 2, kGrainDensity = 3 };
 
 struct ParameterSpec {
   std::string name;
@@ -41,15 +41,15 @@ struct FitParameters {
   [[nodiscard]] int size() const { return static_cast<int>(spec.size()); }
   /// Index by name; throws std::invalid_argument listing the accepted names.
   [[nodiscard]] int index_of(const std::string& name) const;
-  /// True when the first four parameters are the grain contact's (kappa, d, gamma or en, rho_s).
-  [[nodiscard]] bool starts_with_grain_contact() const;
-  /// The damping form of a grain-contact parameter set (by the name of entry kDamping).
+  /// Index of the contact damping (the parameter named gamma or e_n), or -1 for a model without one.
+  [[nodiscard]] int damping_index() const;
+  /// The form of the contact damping: Restitution when a parameter is e_n, Gamma else.
   [[nodiscard]] DampingForm damping_form() const;
-  /// Switch between gamma and e_n (grain-contact sets only), resetting that entry to the form's
-  /// defaults and keeping whether it is free.
+  /// Switch between gamma and e_n (models with a contact damping only), resetting that entry to the
+  /// form's defaults and keeping whether it is free.
   void set_damping_form(DampingForm form);
   /// Mark free exactly the parameters named in a list like "kappa,d,gamma" (others fixed). For a
-  /// grain-contact set, naming gamma or en (e_n) selects that damping form. Throws
+  /// model with a contact damping, naming gamma or en (e_n) selects that damping form. Throws
   /// std::invalid_argument naming an unknown, repeated or conflicting name.
   void set_free_from_list(const std::string& list);
   [[nodiscard]] std::vector<int> free_indices() const;
@@ -61,5 +61,14 @@ struct FitParameters {
   /// Throws std::invalid_argument unless these are the parameters of `model` (same names, order).
   void require_parameters_of(const sediment::SedimentModel& model) const;
 };
+
+/// The entry named `name` of a list of named results (FitResult::parameters, ::combinations,
+/// PosteriorResult::parameters ...); throws std::invalid_argument if there is none.
+template <typename Named>
+[[nodiscard]] const Named& by_name(const std::vector<Named>& list, const std::string& name) {
+  const auto it = std::find_if(list.begin(), list.end(), [&](const Named& q) { return q.name == name; });
+  if (it == list.end()) throw std::invalid_argument("no result named '" + name + "'");
+  return *it;
+}
 
 }  // namespace sedwave::inversion

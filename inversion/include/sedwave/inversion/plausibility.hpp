@@ -3,18 +3,10 @@
 // ranges a seabed sediment can have; one outside them is flagged with its likely cause (a unit
 // mix-up, the wrong model, a search bound) instead of being printed as an answer.
 //
-// Ranges (SI):
+// A model's derived quantities (c0, kappa/kappa_Hertz, gamma_hat, Wood's speed ...) carry their own
+// ranges (sediment::DerivedQuantity, e.g. sediment/src/grain_contact.cpp). The parameters' ranges (SI):
 //   grain diameter d          1 um (clay) .. 64 mm (pebble gravel): the Wentworth scale's clay to
 //                             gravel classes.
-//   low-frequency speed c0    1200 .. 2500 m/s: unconsolidated, water-saturated marine sediments
-//                             (Hamilton 1980, JASA 68, 1313: about 1450-2100 m/s from muds to
-//                             gravels), widened for gassy muds and coarse gravels.
-//   kappa / kappa_Hertz       0.46 .. 10: the Hertz stiffness of a contact between two equal quartz
-//                             grains of diameter d at confining pressures 1 kPa .. 10 MPa, relative
-//                             to its value at 10 kPa (about 1 m below the seafloor); kappa_Hertz
-//                             grows as P^(1/3), so the range is (0.1)^(1/3) .. (1000)^(1/3).
-//   gamma_hat                 1e-3 .. 1e3: from nearly elastic contacts (e_n = 0.998) to the heavy
-//                             overdamping that sediment attenuation needs in the chain model.
 //   e_n                       (0, 1].
 //   sound_speed               100 .. 2e4 m/s at any frequency (synthetic data): no sediment is slower
 //                             than a gassy mud or faster than the minerals it is made of; a
@@ -26,19 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/sediment/grain_contact.hpp"
+
 namespace sedwave::inversion {
 
-/// Effective pressure at which kappa is compared with Hertz: about 1 m below the seafloor in sand
-/// ((rho_bulk - rho_water) g z = (2000 - 1025) 9.81 1 = 9.6 kPa).
-inline constexpr double kReferencePressure = 1.0e4;  ///< [Pa]
-/// Porosity of the reference pack: a medium sand (Hamilton 1980: sands 0.37-0.47).
-inline constexpr double kReferencePorosity = 0.38;
-
-/// Hertz contact stiffness [N/m] of the quartz grains (sediment::kQuartz) of diameter d [m] of a
-/// dense random pack (porosity kReferencePorosity, coordination sediment::kDensePackCoordination)
-/// at effective pressure P [Pa]: the same relation as the site inputs' kappa prior
-/// (sediment::hertz_kappa_at_pressure), so kappa_over_hertz and a site's kappa prior agree.
-[[nodiscard]] double quartz_hertz_kappa(double diameter, double pressure = kReferencePressure);
+/// The grain contact's reference for kappa_over_hertz (sediment/grain_contact.hpp).
+using sediment::kReferencePressure;
+using sediment::kReferencePorosity;
+using sediment::quartz_hertz_kappa;
 
 /// A reported quantity's accepted range.
 struct PlausibleRange {
@@ -49,8 +36,7 @@ struct PlausibleRange {
   const char* above_cause;  ///< likely cause of a value above it
 };
 
-/// The range of a reported quantity by name (d, c0, kappa_over_hertz, gamma_hat, e_n, porosity,
-/// sound_speed), or nullptr.
+/// The range of a parameter or the sound speed by name (d, e_n, porosity, sound_speed), or nullptr.
 [[nodiscard]] const PlausibleRange* plausible_range(const std::string& quantity);
 
 /// Largest porosity of a sand (d >= 62.5 um) that the joint check accepts.

@@ -80,6 +80,17 @@ T wood_speed(const T& porosity, const T& grain_density, const T& grain_bulk, con
               mixture_density(porosity, grain_density, fluid_density));
 }
 
+/// Biot's characteristic frequency [Hz], f_c = eta beta / (2 pi rho_f k): where the viscous and the
+/// inertial coupling of pore fluid and frame are equal (M. A. Biot, J. Acoust. Soc. Am. 28, 168-178
+/// (1956), "low-frequency range", his f_t = b / (2 pi rho_2) with b = eta beta^2 / k and
+/// rho_2 = beta rho_f; Stoll 1989, ch. 2). Below it the pore fluid moves with the frame (loss ~ f^2),
+/// above it the fluid lags (loss ~ f^(1/2)).
+template <typename T>
+T biot_characteristic_frequency(const T& viscosity, const T& porosity, const T& fluid_density,
+                                const T& permeability) {
+  return viscosity * porosity / (2.0 * std::numbers::pi * fluid_density * permeability);
+}
+
 /// Biot's elastic coefficients [Pa] in Stoll's notation (Stoll 1989, ch. 2; Stoll & Kan 1981):
 ///   D = K_s (1 + beta (K_s/K_f - 1)),
 ///   H = (K_s - K_b)^2 / (D - K_b) + K_b + 4/3 mu,  C = K_s (K_s - K_b) / (D - K_b),

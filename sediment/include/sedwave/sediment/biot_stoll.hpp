@@ -34,6 +34,15 @@ class BiotStollModel final : public JetEvaluated<BiotStollModel>, public PoreSpa
   [[nodiscard]] std::string name() const override { return "biot-stoll"; }
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override {
+    return poroelastic_derived_quantities();
+  }
+  [[nodiscard]] std::string typical_free_parameters() const override { return "porosity,permeability,delta_b"; }
+
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    return pore_space_derived(v);
+  }
 
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {

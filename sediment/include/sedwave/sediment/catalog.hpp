@@ -1,9 +1,15 @@
 #pragma once
-// Choosing a sediment model by name, as the command line does.
+// Choosing a sediment model by name, as the command line does: one table of entries, one per model
+// (or family of models), that a program may extend with its own (register_model).
 //
 //   continuum | lattice | table:FILE.h5[?...]         the dry grain-contact frame (forward/ models)
 //   saturated-<any of those>                          the frame in Biot's theory with pore water
 //   biot-stoll | edfm | grain-shearing | vgs-lambda   closed forms from the literature
+//
+// A model in the tree is one file (its class), one line in the table (catalog.cpp) and its source
+// line in sediment/CMakeLists.txt; a model outside the tree is one register_model call
+// (docs/models/adding-a-model.md).
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +29,26 @@ struct ModelChoices {
   bool permeability_given = false;
 };
 
+/// One entry of the catalog: a model, or a family of models chosen by a specification's form.
+struct CatalogEntry {
+  /// The specifications it accepts, one help line each (e.g. "biot-stoll", "table:FILE.h5").
+  std::vector<std::string> names;
+  /// The model a specification names. Called only for specifications `accepts` takes.
+  std::function<std::shared_ptr<const SedimentModel>(const std::string& spec, const ModelChoices& choices)> make;
+  /// Whether a specification is this entry's; empty: exactly one of `names`.
+  std::function<bool(const std::string& spec)> accepts;
+  /// Representative instances for listing parameters (`sedwave models`); empty: make(names[0], {}).
+  std::function<std::vector<std::shared_ptr<const SedimentModel>>()> examples;
+};
+
+/// Adds a model to the catalog, after the built-in ones: make_sediment_model, sediment_model_names
+/// and model_examples then know it, so every command and library study that takes a model by name
+/// takes it. Throws std::invalid_argument if one of its names is already taken. Thread-safe.
+void register_model(CatalogEntry entry);
+
+/// The short form for a model with one name: register_model({{name}, make}).
+void register_model(const std::string& name, std::function<std::shared_ptr<const SedimentModel>()> make);
+
 /// The model a specification names. Throws std::invalid_argument listing the accepted names.
 [[nodiscard]] std::shared_ptr<const SedimentModel> make_sediment_model(const std::string& spec,
                                                                        const ModelChoices& choices = {});
@@ -37,13 +63,10 @@ struct ModelChoices {
 /// The file a specification reads (a table), or nothing.
 [[nodiscard]] std::optional<std::string> sediment_model_file(const std::string& spec);
 
-/// The parameters a fit frees when the user does not say (`--fit`): those that sandy-site data over
-/// 50 Hz - 100 kHz can inform and that the model's family is meant to explain. The grain contact's
-/// kappa, d and damping for the dry and the saturated frame; porosity and permeability for EDFM,
-/// with the frame's decrement for Biot-Stoll; porosity and the shearing coefficients for GS and VGS.
-[[nodiscard]] std::string typical_free_parameters(const SedimentModel& model);
-
-/// True for the dry grain-contact frame's specifications (continuum, lattice, table:...).
-[[nodiscard]] bool is_dry_frame(const std::string& spec);
+/// The parameters a fit frees when the user does not say (`--fit`): the model's own choice
+/// (SedimentModel::typical_free_parameters).
+[[nodiscard]] inline std::string typical_free_parameters(const SedimentModel& model) {
+  return model.typical_free_parameters();
+}
 
 }  // namespace sedwave::sediment

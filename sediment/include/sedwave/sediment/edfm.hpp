@@ -31,6 +31,15 @@ class EffectiveDensityFluidModel final : public JetEvaluated<EffectiveDensityFlu
   [[nodiscard]] std::string name() const override { return "edfm"; }
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override {
+    return poroelastic_derived_quantities();
+  }
+  [[nodiscard]] std::string typical_free_parameters() const override { return "porosity,permeability"; }
+
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    return pore_space_derived(v);
+  }
 
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {

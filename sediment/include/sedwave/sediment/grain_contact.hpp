@@ -11,12 +11,14 @@
 
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sedwave/forward/dispersion.hpp"
 #include "sedwave/forward/units.hpp"
 #include "sedwave/sediment/jet_evaluated.hpp"
+#include "sedwave/sediment/site.hpp"
 
 namespace sedwave::sediment {
 
@@ -73,6 +75,57 @@ FrameWave<T> frame_wave(const forward::DispersionModel& model, DampingForm form,
   return {omega_hat, gamma_hat, hat, scales.alpha(hat.alpha_hat), scales.speed(hat.c_hat), scales.speed_scale()};
 }
 
+/// Effective pressure at which kappa is compared with Hertz: about 1 m below the seafloor in sand
+/// ((rho_bulk - rho_water) g z = (2000 - 1025) 9.81 1 = 9.6 kPa).
+inline constexpr double kReferencePressure = 1.0e4;  ///< [Pa]
+/// Porosity of the reference pack: a medium sand (Hamilton 1980: sands 0.37-0.47).
+inline constexpr double kReferencePorosity = 0.38;
+
+/// Hertz contact stiffness [N/m] of quartz grains (kQuartz) of diameter d [m] in a dense random pack
+/// (porosity kReferencePorosity, coordination kDensePackCoordination) at effective pressure P [Pa]:
+/// the same relation as the site inputs' kappa prior (hertz_kappa_at_pressure), so
+/// kappa_over_hertz and a site's kappa prior agree.
+[[nodiscard]] double quartz_hertz_kappa(double diameter, double pressure = kReferencePressure);
+
+/// The grain contact's derived quantities, written once for the dry and the saturated frame:
+///   c0     = c_hat(0) d sqrt(kappa/m)     low-frequency speed of the dry frame (dry frame only)
+///   tau    = gamma / kappa                 relaxation time of a contact
+///   f_star = 1 / (2 pi tau)                where attenuation bends from f^2 to f^(1/2)
+///   gamma_hat = gamma / sqrt(kappa m)      the dimensionless dashpot (sqrt(2) zeta(e_n) for e_n)
+///   kappa_over_hertz = kappa / kappa_Hertz(d, 10 kPa)   (kappa_Hertz is proportional to d)
+/// with m = rho_s pi d^3 / 6 (forward/units.hpp's GrainScales).
+class GrainContactDerived {
+ public:
+  /// `dry_frame`: the dimensionless model whose c_hat as omega_hat -> 0 gives c0 (the caller keeps
+  /// it alive), or nullptr where c0 is not the model's own speed (the saturated frame).
+  GrainContactDerived(DampingForm form, const forward::DispersionModel* dry_frame);
+
+  [[nodiscard]] const std::vector<DerivedQuantity>& quantities() const { return quantities_; }
+
+  template <typename T>
+  std::vector<T> values(const T& kappa, const T& diameter, const T& damping, const T& grain_density) const {
+    using std::sqrt;
+    const forward::GrainScales<T> scales{kappa, diameter, grain_density};
+    const T root_kappa_m = sqrt(kappa * scales.mass());
+    const T gamma_hat =
+        form_ == DampingForm::Gamma ? damping / root_kappa_m : forward::gamma_hat_from_restitution(damping);
+    const T gamma = form_ == DampingForm::Gamma ? damping : gamma_hat * root_kappa_m;
+    const T tau = gamma / kappa;
+    std::vector<T> out;
+    if (dry_frame_) out.push_back(dry_frame_->long_wavelength_c_hat() * scales.speed_scale());
+    out.push_back(tau);
+    out.push_back(1.0 / (2.0 * std::numbers::pi * tau));
+    out.push_back(gamma_hat);
+    out.push_back(kappa / (diameter * quartz_hertz_kappa(1.0)));
+    return out;
+  }
+
+ private:
+  DampingForm form_;
+  const forward::DispersionModel* dry_frame_;
+  std::vector<DerivedQuantity> quantities_;
+};
+
 /// Names, units, defaults and ranges of the four grain-contact parameters (kappa, d, gamma or e_n,
 /// rho_s), in this order.
 [[nodiscard]] std::vector<Parameter> grain_contact_parameters(DampingForm form);
@@ -89,8 +142,20 @@ class GrainContactModel final : public JetEvaluated<GrainContactModel> {
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
   [[nodiscard]] std::string uncertainty_caveat() const override { return model_->uncertainty_caveat(); }
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override {
+    return derived_.quantities();
+  }
+  [[nodiscard]] std::string typical_free_parameters() const override;
+  [[nodiscard]] const forward::DispersionModel* dimensionless_engine() const override { return model_.get(); }
+  [[nodiscard]] std::optional<DimensionlessWave> dimensionless_wave(std::span<const double> values,
+                                                                    double frequency_hz) const override;
   [[nodiscard]] const forward::DispersionModel& dimensionless() const { return *model_; }
   [[nodiscard]] DampingForm damping_form() const { return form_; }
+
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    return derived_.values(v[kKappa], v[kDiameter], v[kDamping], v[kGrainDensity]);
+  }
 
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
@@ -110,6 +175,7 @@ class GrainContactModel final : public JetEvaluated<GrainContactModel> {
   std::shared_ptr<const forward::DispersionModel> model_;
   DampingForm form_;
   std::vector<Parameter> parameters_;
+  GrainContactDerived derived_;
 };
 
 }  // namespace sedwave::sediment

@@ -91,6 +91,14 @@ struct GrainShearingParameters {
   static WoodMixture<T> mixture(const T* v) {
     return wood_mixture(v[kPorosity], v[kGrainDensity], v[kWaterDensity], v[kGrainBulkModulus], v[kWaterBulkModulus]);
   }
+  /// wood_speed c_0 [m/s]: the speed of both theories as omega -> 0 (the memory function vanishes
+  /// there: (i omega T)^n -> 0 for GS, i omega T^n tau_p^(1-n) -> 0 for VGS(lambda)), Buckingham 2000.
+  [[nodiscard]] static DerivedQuantity wood_speed_quantity();
+  template <typename T>
+  static T low_frequency_speed(const T* v) {
+    return mixture(v).speed;
+  }
+
   /// chi_p = (gamma_p + 4/3 gamma_s) / (rho_0 c_0^2), with rho_0 c_0^2 = K_0 (Wood's modulus).
   template <typename T>
   static T shearing_stiffness(const T* v, const WoodMixture<T>& wood) {
@@ -109,6 +117,13 @@ class GrainShearingModel final : public JetEvaluated<GrainShearingModel>, public
   [[nodiscard]] std::string name() const override { return "grain-shearing"; }
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override { return derived_; }
+  [[nodiscard]] std::string typical_free_parameters() const override { return "porosity,gamma_p,n"; }
+
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    return {low_frequency_speed(v)};
+  }
 
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
@@ -121,6 +136,7 @@ class GrainShearingModel final : public JetEvaluated<GrainShearingModel>, public
 
  private:
   std::vector<Parameter> parameters_;
+  std::vector<DerivedQuantity> derived_;
 };
 
 /// VGS(λ) (Buckingham 2010): the GS parameters plus the compressional viscous time constant
@@ -134,6 +150,15 @@ class ViscousGrainShearingModel final : public JetEvaluated<ViscousGrainShearing
   [[nodiscard]] std::string name() const override { return "vgs-lambda"; }
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const std::vector<Parameter>& parameters() const override { return parameters_; }
+  /// wood_speed, then viscous_frequency 1/(2 pi tau_p) [Hz]: below it the memory function is
+  /// viscous and attenuation grows as f^2, above it VGS(lambda) is GS (Buckingham 2007, 2010).
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override { return derived_; }
+  [[nodiscard]] std::string typical_free_parameters() const override { return "porosity,gamma_p,tau_p"; }
+
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    return {low_frequency_speed(v), 1.0 / (2.0 * std::numbers::pi * v[kViscousTime])};
+  }
 
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
@@ -151,6 +176,7 @@ class ViscousGrainShearingModel final : public JetEvaluated<ViscousGrainShearing
 
  private:
   std::vector<Parameter> parameters_;
+  std::vector<DerivedQuantity> derived_;
 };
 
 }  // namespace sedwave::sediment

@@ -5,13 +5,16 @@
 // A model class M provides
 //   static constexpr int kParameters;
 //   template <typename T> WaveOf<T> wave(const T* values, double frequency_hz) const;
-// and derives from JetEvaluated<M>.
+// and derives from JetEvaluated<M>. A model with derived quantities also provides
+//   template <typename T> std::vector<T> derived(const T* values) const;
+// in the order of its derived_quantities(); the same Jets give their exact gradients.
 #include <ceres/jet.h>
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "sedwave/sediment/sediment_model.hpp"
 
@@ -61,9 +64,45 @@ Wave evaluate_with_jets(const std::string& model_name, std::span<const double> v
   return w;
 }
 
+/// Evaluates `derived_of(const T* values)` (a generic callable returning std::vector<T>, one entry
+/// per derived quantity) as doubles, or with N Jet-seeded values for the gradients.
+template <int N, typename DerivedFunction>
+std::vector<DerivedValue> evaluate_derived_with_jets(const std::string& model_name, std::span<const double> values,
+                                                     bool derivatives, const DerivedFunction& derived_of) {
+  if (values.size() != static_cast<std::size_t>(N)) {
+    throw std::invalid_argument(model_name + ": " + std::to_string(N) + " parameter values expected, got " +
+                                std::to_string(values.size()));
+  }
+  std::vector<DerivedValue> out;
+  if (!derivatives) {
+    for (const double q : derived_of(values.data())) out.push_back({q, {}});
+    return out;
+  }
+  using Jet = ceres::Jet<double, N>;
+  Jet x[N];
+  for (int i = 0; i < N; ++i) x[i] = Jet(values[static_cast<std::size_t>(i)], i);
+  for (const Jet& q : derived_of(static_cast<const Jet*>(x))) {
+    out.push_back({q.a, std::vector<double>(q.v.data(), q.v.data() + N)});
+  }
+  return out;
+}
+
 template <typename M>
 class JetEvaluated : public SedimentModel {
  public:
+  [[nodiscard]] std::vector<DerivedValue> derived_values(std::span<const double> values,
+                                                         bool derivatives) const override {
+    const M& model = static_cast<const M&>(*this);
+    if constexpr (requires(const double* v) { model.template derived<double>(v); }) {
+      return evaluate_derived_with_jets<M::kParameters>(name(), values, derivatives, [&](const auto* x) {
+        using T = std::remove_cvref_t<decltype(*x)>;
+        return model.template derived<T>(x);
+      });
+    } else {
+      return SedimentModel::derived_values(values, derivatives);
+    }
+  }
+
   [[nodiscard]] Wave evaluate(std::span<const double> values, double frequency_hz,
                               bool derivatives) const final {
     const M& model = static_cast<const M&>(*this);

@@ -28,6 +28,22 @@ namespace sedwave::sediment {
 /// nu_frame [1]: Poisson ratio of the drained frame.
 [[nodiscard]] Parameter frame_poisson_parameter();
 
+/// The quantities every model of grains, pore water and Biot's flow derives (in this order):
+///   wood_speed      sqrt(K_Wood / rho) [m/s], the speed of the grains and water as a suspension
+///                   with no frame (Wood, A Textbook of Sound (1930; 2nd ed. 1941)); the fast wave's
+///                   low-frequency limit when the frame is soft (EDFM exactly);
+///   biot_frequency  f_c = eta beta / (2 pi rho_w k) [Hz] (biot_characteristic_frequency).
+[[nodiscard]] const std::vector<DerivedQuantity>& poroelastic_derived_quantities();
+
+/// The values of poroelastic_derived_quantities() from porosity, rho_s, K_s, rho_w, K_w, eta, k.
+template <typename T>
+std::vector<T> poroelastic_derived(const T& porosity, const T& grain_density, const T& grain_bulk,
+                                   const T& water_density, const T& water_bulk, const T& viscosity,
+                                   const T& permeability) {
+  return {wood_speed(porosity, grain_density, grain_bulk, water_density, water_bulk),
+          biot_characteristic_frequency(viscosity, porosity, water_density, permeability)};
+}
+
 /// The pore space of a model whose frame is given by moduli (EDFM, Biot-Stoll): its first nine
 /// parameters. Such a model derives from PoreSpace for the names of their indices.
 struct PoreSpace {
@@ -53,6 +69,13 @@ struct PoreSpace {
                                                        const Complex<T>& frame_shear) {
     return {frame_bulk,    frame_shear,   v[kPorosity],     v[kGrainDensity], v[kGrainBulk], v[kWaterDensity],
             v[kWaterBulk], v[kViscosity], v[kPermeability], v[kTortuosity],   v[kPoreSize]};
+  }
+
+  /// poroelastic_derived() of the pore-space parameters.
+  template <typename T>
+  [[nodiscard]] static std::vector<T> pore_space_derived(const T* v) {
+    return poroelastic_derived(v[kPorosity], v[kGrainDensity], v[kGrainBulk], v[kWaterDensity], v[kWaterBulk],
+                               v[kViscosity], v[kPermeability]);
   }
 };
 

@@ -22,6 +22,7 @@
 
 #include "sedwave/sediment/biot.hpp"
 #include "sedwave/sediment/grain_contact.hpp"
+#include "sedwave/sediment/poroelastic_parameters.hpp"
 #include "sedwave/sediment/site.hpp"
 
 namespace sedwave::sediment {
@@ -69,7 +70,25 @@ class SaturatedGranularModel final : public SedimentModel {
                               bool derivatives) const override;
   [[nodiscard]] PermeabilityFrom permeability_from() const { return permeability_; }
   [[nodiscard]] std::string uncertainty_caveat() const override { return model_->uncertainty_caveat(); }
+  /// The grain contact's (without c0, which is the dry frame's speed, not this model's), then the
+  /// poroelastic ones (Wood's speed, Biot's characteristic frequency).
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override { return derived_; }
+  [[nodiscard]] std::vector<DerivedValue> derived_values(std::span<const double> values,
+                                                         bool derivatives) const override;
+  [[nodiscard]] std::string typical_free_parameters() const override;
+  [[nodiscard]] const forward::DispersionModel* dimensionless_engine() const override { return model_.get(); }
   [[nodiscard]] const forward::DispersionModel& dimensionless() const { return *model_; }
+
+  template <typename T>
+  std::vector<T> derived(const T* v) const {
+    std::vector<T> out = contact_.values(v[kKappa], v[kDiameter], v[kDamping], v[kGrainDensity]);
+    const T permeability = permeability_of(v);
+    for (const T& q : poroelastic_derived(v[kPorosity], v[kGrainDensity], v[kGrainBulk], v[kWaterDensity],
+                                          v[kWaterBulk], v[kViscosity], permeability)) {
+      out.push_back(q);
+    }
+    return out;
+  }
 
   /// The fast wave for values in parameters() order (SI).
   template <typename T>
@@ -101,10 +120,18 @@ class SaturatedGranularModel final : public SedimentModel {
   }
 
  private:
+  template <typename T>
+  T permeability_of(const T* v) const {
+    const bool derived = permeability_ == PermeabilityFrom::KozenyCarman;
+    return derived ? kozeny_carman_formula(v[kDiameter], v[kPorosity]) : v[kPermeability];
+  }
+
   std::shared_ptr<const forward::DispersionModel> model_;
   DampingForm form_;
   PermeabilityFrom permeability_;
   std::vector<Parameter> parameters_;
+  GrainContactDerived contact_;
+  std::vector<DerivedQuantity> derived_;
 };
 
 }  // namespace sedwave::sediment

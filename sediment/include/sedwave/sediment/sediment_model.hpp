@@ -7,10 +7,19 @@
 // grain-shearing models are closed forms in SI. Every model is written once, templated on the
 // scalar type T, and JetEvaluated<> turns it into values plus a gradient by forward-mode automatic
 // differentiation (ceres::Jet), so Ceres, NLopt, the identifiability analysis and samplers need
-// nothing model-specific.
+// nothing model-specific. A model also describes itself: the quantities it derives from its
+// parameters (with units, meanings and plausible ranges, differentiated by the same Jets), the
+// parameters a fit frees by default, and the dimensionless engine behind it if it has one; the
+// inversion's report, profiles and plausibility flags read them from here
+// (docs/models/adding-a-model.md).
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
+
+namespace sedwave::forward {
+class DispersionModel;
+}
 
 namespace sedwave::sediment {
 
@@ -39,6 +48,35 @@ struct Wave {
   std::vector<double> d_speed;
 };
 
+/// A quantity a model derives from its parameters that the data may determine when the parameters
+/// are not (a grain contact's relaxation time, a mixture's Wood speed). The inversion reports it with
+/// its interval and flags a value outside its plausible range.
+struct DerivedQuantity {
+  std::string name;     ///< e.g. "tau"
+  std::string unit;     ///< SI unit; "1" for a dimensionless number
+  std::string meaning;  ///< one line, with its source where it has one
+  /// Values a seabed sediment can have; a fitted value outside is flagged. lower = upper = 0: none.
+  double plausible_lower = 0.0;
+  double plausible_upper = 0.0;
+  std::string plausible_basis;  ///< where the range comes from
+  std::string below_cause;      ///< likely cause of a value below it
+  std::string above_cause;      ///< likely cause of a value above it
+};
+
+/// One derived quantity's value and, if asked for, d value / d value_i (SI, one entry per parameter).
+struct DerivedValue {
+  double value = 0.0;
+  std::vector<double> gradient;
+};
+
+/// The dimensionless coordinates and wave of a grain-contact model at one frequency.
+struct DimensionlessWave {
+  double omega_hat = 0.0;
+  double gamma_hat = 0.0;
+  double alpha_hat = 0.0;
+  double c_hat = 0.0;
+};
+
 /// Interface of every sediment model. Implementations are immutable after construction and
 /// thread-safe for concurrent evaluate().
 class SedimentModel {
@@ -58,6 +96,22 @@ class SedimentModel {
   /// What the model's own sigmas are known to leave out, in words (an inversion flags it); empty
   /// when nothing is known to be missing.
   [[nodiscard]] virtual std::string uncertainty_caveat() const { return {}; }
+
+  /// The quantities the model derives from its parameters, in the order derived_values() returns them.
+  [[nodiscard]] virtual const std::vector<DerivedQuantity>& derived_quantities() const;
+  /// Their values (and, with `derivatives`, gradients) at parameter `values` (SI, parameters() order).
+  [[nodiscard]] virtual std::vector<DerivedValue> derived_values(std::span<const double> values,
+                                                                 bool derivatives) const;
+  /// The parameters a fit frees when the user does not say (`--fit`), comma-separated: those that
+  /// sandy-site data over 50 Hz - 100 kHz can inform and that the model is meant to explain. All
+  /// parameters unless a model says otherwise.
+  [[nodiscard]] virtual std::string typical_free_parameters() const;
+  /// The dimensionless forward model (forward/) behind a grain-contact model; nullptr for others.
+  [[nodiscard]] virtual const forward::DispersionModel* dimensionless_engine() const { return nullptr; }
+  /// The dimensionless coordinates of the wave at `values` and `frequency_hz`, for a model that is
+  /// one dimensionless engine scaled to SI (the dry frame); nothing for others.
+  [[nodiscard]] virtual std::optional<DimensionlessWave> dimensionless_wave(std::span<const double> values,
+                                                                            double frequency_hz) const;
 
   /// Index of a parameter by name; throws std::invalid_argument listing the accepted names.
   [[nodiscard]] int index_of(const std::string& name) const;
