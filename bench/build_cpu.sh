@@ -4,6 +4,7 @@
 # Each compiler and linker call runs under /usr/bin/time (a launcher), so the figures do not depend
 # on other work sharing the machine, as wall times would. No compiler cache (CCACHE_DISABLE=1).
 # Usage (repository root): bench/build_cpu.sh BUILD_DIR [cmake options ...]
+# (TARGETS="a b" builds only those targets, with what they need.)
 #   bench/build_cpu.sh /tmp/cpu-release -DCMAKE_BUILD_TYPE=Release -DSEDWAVE_WERROR=ON
 #   bench/build_cpu.sh /tmp/cpu-unity-off -DCMAKE_BUILD_TYPE=Release -DSEDWAVE_UNITY_BUILD=OFF
 # Prints the 15 most expensive steps, then the sums; the raw log stays in BUILD_DIR/cpu_steps.log
@@ -25,7 +26,8 @@ chmod +x "$BUILD/timed"
 export CCACHE_DISABLE=1
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER="$BUILD/timed" \
   -DCMAKE_CXX_LINKER_LAUNCHER="$BUILD/timed" "$@" >/dev/null
-cmake --build "$BUILD" -j "${JOBS:-$(nproc)}" >"$BUILD/build.out"
+# shellcheck disable=SC2086 # TARGETS is a list of names
+cmake --build "$BUILD" -j "${JOBS:-$(nproc)}" ${TARGETS:+--target $TARGETS} >"$BUILD/build.out"
 
 echo "most expensive steps (CPU s = user + system):"
 awk 'NF == 5 { printf "%8.1f  %s\n", $1 + $2, $5 }' "$LOG" | sort -rn | head -15
