@@ -24,8 +24,8 @@ if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
   # Before the build: test discovery runs the MPI test binaries (test_linear) at link time.
   export ASAN_OPTIONS=detect_leaks=0
   cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
-  # The programs run side by side, $JOBS at a time, longest first; each one's output is shown whole
-  # when it ends, and any failure fails the command once all have ended.
+  # The programs run side by side, $JOBS at a time; each one's output is shown whole when it ends,
+  # and any failure fails the command once all have ended.
   failed=0
   running=0
   for t in tests/test_linear tests/forward/dem/test_dem tests/test_inversion tests/test_sediment \
