@@ -24,11 +24,31 @@ if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
   # Before the build: test discovery runs the MPI test binaries (test_linear) at link time.
   export ASAN_OPTIONS=detect_leaks=0
   cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
-  for t in tests/test_theory tests/test_io tests/test_sediment tests/test_inversion tests/test_channel_table \
-           tests/forward/dem/test_dem tests/test_linear; do
-    echo "== $t under AddressSanitizer + UBSan"
-    "$SAN_DIR/$t" --gtest_brief=1
+  # The programs run side by side, $JOBS at a time; each one's output is shown whole when it ends,
+  # and any failure fails the command once all have ended.
+  failed=0
+  running=0
+  for t in tests/test_linear tests/forward/dem/test_dem tests/test_inversion tests/test_sediment \
+           tests/test_channel_table tests/test_theory tests/test_io; do
+    if [ "$running" -ge "$JOBS" ]; then
+      wait -n || failed=1
+      running=$((running - 1))
+    fi
+    (
+      log="$SAN_DIR/$(basename "$t").sanitized.log"
+      status=0
+      "$SAN_DIR/$t" --gtest_brief=1 >"$log" 2>&1 || status=$?
+      echo "== $t under AddressSanitizer + UBSan"
+      cat "$log"
+      exit "$status"
+    ) &
+    running=$((running + 1))
   done
+  while [ "$running" -gt 0 ]; do
+    wait -n || failed=1
+    running=$((running - 1))
+  done
+  [ "$failed" = 0 ] || { echo "sedwave: a unit-test program failed under the sanitizers (output above)" >&2; exit 1; }
   echo "== command-line cases under AddressSanitizer + UBSan"
   (cd "$SAN_DIR" && ctest -R '^cli\.' -j "$JOBS" --output-on-failure)
   unset ASAN_OPTIONS
