@@ -1,6 +1,8 @@
 #include "sedwave/inversion/comparison.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cctype>
 #include <cstdio>
 #include <stdexcept>
@@ -52,11 +54,13 @@ ModelEvidence evidence_of(const Candidate& candidate, const ComparedModel& compa
 std::vector<int> order_by_evidence(const std::vector<ComparedModel>& models, bool widened) {
   std::vector<int> order(models.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const ComparedModel& ma = models[static_cast<std::size_t>(a)];
-    const ComparedModel& mb = models[static_cast<std::size_t>(b)];
-    return (widened ? ma.widened : ma.evidence).log_evidence > (widened ? mb.widened : mb.evidence).log_evidence;
-  });
+  // Largest first; a NaN (a failed run) last, and ties in the candidates' order.
+  const auto key = [&](int i) {
+    const ComparedModel& m = models[static_cast<std::size_t>(i)];
+    const double z = (widened ? m.widened : m.evidence).log_evidence;
+    return std::isnan(z) ? -std::numeric_limits<double>::infinity() : z;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) > key(b); });
   return order;
 }
 

@@ -61,6 +61,9 @@ class SiteConversion {
     applied_.notes.push_back(site_.source == "command line" ? line : line + " (" + site_.source + ")");
   }
 
+  /// The pore water's density [kg/m^3]: the model's, else the site water's, else sea water's.
+  double water_density() { return value_or("rho_w", water_density_.value_or(kDefaultWaterDensity)); }
+
   /// The model's value of `name`, or `fallback` where it has none.
   double value_or(const char* name, double fallback) {
     const ParameterSpec* spec = find(name);
@@ -90,6 +93,7 @@ class SiteConversion {
   SiteApplied applied_;
   std::optional<double> diameter_;  ///< the site's grain size [m], for Hertz
   std::optional<double> porosity_;  ///< the site's porosity, for Hertz (also where the model has none)
+  std::optional<double> water_density_;  ///< the site water's density [kg/m^3] (also where the model has none)
 };
 
 void SiteConversion::water() {
@@ -107,7 +111,14 @@ void SiteConversion::water() {
     spec->value = std::string(name) == "rho_w" ? rho : std::string(name) == "K_w" ? k : eta;
     used = true;
   }
-  if (!used && site_.skip_missing_parameters) return;
+  water_density_ = rho;
+  // A model without pore water still takes the site water's density into the porosity from a bulk
+  // density and into the effective stress at depth.
+  const bool used_by_site = site_.bulk_density || site_.depth;
+  if (!used && (site_.skip_missing_parameters || used_by_site)) {
+    if (used_by_site) notes("sea water density " + shown(rho) + " kg/m^3 (EOS-80) for the site's conversions");
+    return;
+  }
   if (!used) throw SiteConflict(t->origin + ": model '" + model_.name() + "' has no pore-water parameters");
   notes("sea water at " + shown(t->value) + " deg C, " + shown(s->value) + " ppt: rho_w " + shown(rho) +
         " kg/m^3, K_w " + shown(k) + " Pa (EOS-80, Mackenzie 1981), eta " + shown(eta) +
@@ -142,8 +153,11 @@ void SiteConversion::porosity() {
   const double beta = mean ? mean->value
                            : sediment::porosity_from_bulk_density(bulk->value,
                                                                   value_or("rho_s", kDefaultGrainDensity),
-                                                                  value_or("rho_w", kDefaultWaterDensity));
+                                                                  water_density());
   porosity_ = beta;
+  // A frame without a porosity parameter (the dry lattice) still takes it into Hertz at depth (the
+  // stiffness's note names it).
+  if (!find("porosity") && (site_.depth || site_.effective_pressure)) return;
   ParameterSpec* spec = target("porosity", given.origin);
   if (!spec) return;
   std::optional<Prior> prior;
@@ -172,7 +186,7 @@ void SiteConversion::stiffness() {
   const double beta = porosity_ ? *porosity_ : value_or("porosity", kDefaultPorosity);
   const double pressure =
       depth ? sediment::sand_pressure_at_depth(depth->value, beta, value_or("rho_s", kDefaultGrainDensity),
-                                               value_or("rho_w", kDefaultWaterDensity))
+                                               water_density())
             : pressure_given->value;
   const double kappa =
       sediment::hertz_kappa_at_pressure(sediment::kQuartz, d, pressure, beta, sediment::kDensePackCoordination);

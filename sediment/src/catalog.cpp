@@ -101,14 +101,29 @@ bool entry_accepts(const CatalogEntry& e, const std::string& spec) {
 
 void register_model(CatalogEntry entry) {
   if (entry.names.empty() || !entry.make) throw std::invalid_argument("register_model: an entry needs a name and make");
-  Catalog& c = catalog();
-  const std::lock_guard lock(c.mutex);
+  // A name is taken when an entry accepts it, or when the new entry accepts a name listed already
+  // (a broad `accepts` would otherwise shadow a model of the tree). Registrations take turns; the
+  // predicates run on a copy, outside the catalog's own lock, so one that asks the catalog cannot
+  // deadlock.
+  static std::mutex registration;
+  const std::lock_guard turn(registration);
+  const std::vector<CatalogEntry> existing = catalog().listing();
+  std::vector<std::string> listed;
+  for (const CatalogEntry& e : existing) listed.insert(listed.end(), e.names.begin(), e.names.end());
   for (const std::string& name : entry.names) {
     const auto takes = [&](const CatalogEntry& e) { return entry_accepts(e, name); };
-    if (entry_accepts(c.fallback, name) || std::any_of(c.entries.begin(), c.entries.end(), takes)) {
+    if (std::any_of(existing.begin(), existing.end(), takes)) {
       throw std::invalid_argument("register_model: a model named '" + name + "' exists already");
     }
   }
+  for (const std::string& name : listed) {
+    if (entry_accepts(entry, name)) {
+      throw std::invalid_argument("register_model: the new entry would take the name '" + name +
+                                  "' of a model registered already");
+    }
+  }
+  Catalog& c = catalog();
+  const std::lock_guard lock(c.mutex);
   c.entries.push_back(std::move(entry));
 }
 

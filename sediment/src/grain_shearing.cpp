@@ -1,5 +1,7 @@
 #include "sedwave/sediment/grain_shearing.hpp"
 
+#include "sedwave/sediment/poroelastic_parameters.hpp"
+
 namespace sedwave::sediment {
 
 std::vector<Parameter> mixture_parameters(const MixtureDefaults& d, const std::string& source) {
@@ -32,15 +34,11 @@ void append_shearing_parameters(std::vector<Parameter>& ps, double gamma_p, doub
 // Buckingham (2005): the reference sediment (porosity 0.377, grain size 1 mm, 0.3 m below the
 // seabed) of its comparison with the Hamilton and Richardson sediment data.
 DerivedQuantity GrainShearingParameters::wood_speed_quantity() {
-  // The range is that of marine sediments (Hamilton 1980, JASA 68, 1313), as for c0: Wood's speed of
-  // quartz grains in sea water is about 1480-1880 m/s for porosities 0.9-0.25.
-  return {"wood_speed", "m/s",
-          "Wood's speed c_0 of grains and water as a suspension: the f -> 0 limit of the grain-shearing wave "
-          "(Buckingham 2000)",
-          1200.0, 2500.0, "grains and water of marine sediments (Hamilton 1980: 1450-2100 m/s)",
-          "slower than any sediment's mixture: the water or grain moduli in the wrong unit, or a porosity beyond "
-          "any sediment",
-          "faster than any sediment's mixture: the water or grain moduli in the wrong unit"};
+  // The poroelastic models' Wood speed, with its plausible range; here it is the wave's f -> 0 limit.
+  DerivedQuantity q = poroelastic_derived_quantities().front();
+  q.meaning = "Wood's speed c_0 of grains and water as a suspension: the f -> 0 limit of the grain-shearing wave "
+              "(Buckingham 2000)";
+  return q;
 }
 
 GrainShearingModel::GrainShearingModel() : derived_{wood_speed_quantity()} {

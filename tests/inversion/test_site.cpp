@@ -133,10 +133,22 @@ TEST(Site, ConflictsAndMissingParametersAreNamed) {
   EXPECT_EQ(message_of<SiteConflict>([&] { (void)apply_site(worked_example(false), *saturated, p, set_by); }),
             "--phi and --d both set d: give one");
   const auto lattice = sediment::make_sediment_model("lattice");
-  // The dry lattice has no pore water and no porosity: refused from the command line, skipped from a file.
+  // The dry lattice has no pore water and no porosity, yet takes both into Hertz at depth, from the
+  // command line as from a file: the same kappa either way.
+  SetBy from_flags_set_by, from_file_set_by;
+  FitParameters from_flags(lattice->parameters()), from_file(lattice->parameters());
+  EXPECT_NO_THROW((void)apply_site(worked_example(false), *lattice, from_flags, from_flags_set_by));
+  EXPECT_NO_THROW((void)apply_site(worked_example(true), *lattice, from_file, from_file_set_by));
+  EXPECT_EQ(value_of(from_flags, "kappa"), value_of(from_file, "kappa"));
+  EXPECT_NE(value_of(from_flags, "kappa"), value_of(FitParameters(lattice->parameters()), "kappa"));
+  // Without a depth or a bulk density the water has nothing to do there: refused from the command
+  // line (skipped from a file, which serves every model of a comparison).
+  Site water_only;
+  water_only.water_temperature = value(15.0, "--water-temperature");
+  water_only.salinity = value(35.0, "--salinity");
   SetBy none;
   FitParameters q(lattice->parameters());
-  EXPECT_EQ(message_of<SiteConflict>([&] { (void)apply_site(worked_example(false), *lattice, q, none); }),
+  EXPECT_EQ(message_of<SiteConflict>([&] { (void)apply_site(water_only, *lattice, q, none); }),
             "--water-temperature: model 'lattice' has no pore-water parameters");
   Site porosity_only;
   porosity_only.porosity = value(0.38, "--porosity");

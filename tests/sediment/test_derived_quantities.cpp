@@ -188,6 +188,12 @@ TEST(Catalog, TakesAModelOfTheProgramsOwn) {
                std::invalid_argument);
   EXPECT_THROW(register_model("lattice", [] { return std::make_shared<const LinearLossFluid>(); }),
                std::invalid_argument);
+  // So is an entry whose own test would take a name the catalog lists (it would shadow that model).
+  EXPECT_THROW(register_model({{"test-any-biot"},
+                               [](const std::string&, const ModelChoices&) { return std::make_shared<const LinearLossFluid>(); },
+                               [](const std::string& spec) { return spec.find("biot") != std::string::npos; },
+                               {}}),
+               std::invalid_argument);
   EXPECT_EQ(make_sediment_model("biot-stoll")->name(), "biot-stoll");
   EXPECT_EQ(make_sediment_model("saturated-continuum")->name(), "saturated-continuum");
   EXPECT_THROW((void)make_sediment_model("no-such-model"), std::invalid_argument);

@@ -167,6 +167,41 @@ std::string piece_name(const std::filesystem::path& path, const std::string& tok
          std::to_string(piece.part);
 }
 
+/// A file name as H5Pset_virtual takes it: '%' starts a format there, so a literal one is "%%".
+std::string vds_file_name(const std::string& name) {
+  std::string out;
+  for (const char c : name) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
+/// Throws unless every piece that `dataset` (a virtual one; an ordinary one has none) maps is beside
+/// the checkpoint at `path`: HDF5 reads a missing source as fill values, so a checkpoint copied
+/// without its pieces would restore grains of zero mass and radius without a word.
+void require_pieces(hid_t dataset, const std::filesystem::path& path) {
+  io::Handle create(H5Dget_create_plist(dataset), H5Pclose, "dataset creation properties of " + path.string());
+  if (H5Pget_layout(create) != H5D_VIRTUAL) return;
+  std::size_t mappings = 0;
+  io::check(H5Pget_virtual_count(create, &mappings), "count the pieces of " + path.string());
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  for (std::size_t k = 0; k < mappings; ++k) {
+    const ssize_t length = H5Pget_virtual_filename(create, k, nullptr, 0);
+    if (length < 0) throw std::runtime_error("DEM restart: cannot read the piece names of " + path.string());
+    std::string stored(static_cast<std::size_t>(length) + 1, '\0');
+    H5Pget_virtual_filename(create, k, stored.data(), stored.size());
+    stored.resize(static_cast<std::size_t>(length));
+    std::string name;  // undo vds_file_name
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+      name += stored[i];
+      if (stored[i] == '%' && i + 1 < stored.size() && stored[i + 1] == '%') ++i;
+    }
+    if (!std::filesystem::exists(folder / name)) {
+      throw std::runtime_error("DEM restart: " + path.string() + " lacks its piece " + (folder / name).string() +
+                               " (a checkpoint written on several ranks is the file and its .piece-* files "
+                               "together; copy them together)");
+    }
+  }
+}
+
 /// A virtual dataset `d.group/d.name` under `file` that joins the pieces' datasets of the same
 /// name in order. Piece names are relative: HDF5 looks for them beside the checkpoint.
 void join_pieces(hid_t file, const RowDataset& d, const std::vector<Piece>& pieces, const std::filesystem::path& path,
@@ -188,7 +223,8 @@ void join_pieces(hid_t file, const RowDataset& d, const std::vector<Piece>& piec
               "select rows of " + source);
     io::Handle piece(H5Screate_simple(dims, count.data(), nullptr), H5Sclose, "dataspace of a piece");
     const std::string name = piece_name(path, token, p);
-    io::check(H5Pset_virtual(create, space, name.c_str(), source.c_str(), piece), "map " + name + source);
+    io::check(H5Pset_virtual(create, space, vds_file_name(name).c_str(), source.c_str(), piece),
+              "map " + name + source);
     first += count[0];
   }
   io::check(H5Sselect_all(space), "select " + source);
@@ -208,20 +244,12 @@ void remove_stale_pieces(const std::filesystem::path& path, const std::string& t
   }
 }
 
-/// Every rank's value of `n`, in rank order, on every rank.
-std::vector<std::int64_t> per_rank(MPI_Comm comm, std::int64_t n) {
-  std::vector<std::int64_t> all(static_cast<std::size_t>(parallel::size(comm)), 0);
-  all[static_cast<std::size_t>(parallel::rank(comm))] = n;
-  parallel::sum(comm, std::span(all));
-  return all;
-}
-
-/// Throws on every rank when any rank has an `error` (its own message where it has one).
-void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& what) {
-  int failed = error.empty() ? 0 : 1;
-  parallel::max(comm, std::span(&failed, 1));
-  if (failed == 0) return;
-  throw std::runtime_error("DEM checkpoint: " + (error.empty() ? what + " failed on another rank" : error));
+/// Throws on every rank when any rank has an `error` (its own message where it has one, after
+/// `prefix`), so no rank goes on into a collective that the failed one never reaches.
+void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& what,
+                      const std::string& prefix = "DEM checkpoint: ") {
+  if (!parallel::any(comm, !error.empty())) return;
+  throw std::runtime_error(error.empty() ? "DEM checkpoint: " + what + " failed on another rank" : prefix + error);
 }
 
 /// Rows [first, first + count) of /grains, as grains (spins when the model rotates them).
@@ -257,8 +285,8 @@ void Engine::write_checkpoint(const std::string& path) {
   const int rank = domain_.rank(), ranks = domain_.size();
   const std::vector<HistoryEntry> history = contact_history();
   const std::size_t n = grains_.n_local();
-  const std::vector<std::int64_t> grain_rows = per_rank(comm, static_cast<std::int64_t>(n));
-  const std::vector<std::int64_t> history_rows = per_rank(comm, static_cast<std::int64_t>(history.size()));
+  const std::vector<std::int64_t> grain_rows = parallel::all_gather(comm, static_cast<std::int64_t>(n));
+  const std::vector<std::int64_t> history_rows = parallel::all_gather(comm, static_cast<std::int64_t>(history.size()));
   const std::vector<Piece> pieces =
       piece_layout(grain_rows, history_rows, static_cast<std::int64_t>(std::max<std::size_t>(settings_.checkpoint.piece_rows, 1)));
   const bool in_pieces = pieces.size() > 1;
@@ -340,84 +368,100 @@ void Engine::write_checkpoint(const std::string& path) {
 }
 
 void Engine::restore_checkpoint(const std::string& path) {
-  io::Handle file = io::open_file(path);
-  if (io::read_string_attribute(file, "format") != "sedwave-dem-checkpoint")
-    throw std::runtime_error("DEM restart: " + path + " is not a sedwave DEM checkpoint");
-  if (io::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
-    throw std::runtime_error("DEM restart: unsupported checkpoint version in " + path);
-  if (!settings_.checkpoint.allow_changed_inputs)
-    require_same_inputs(recorded_inputs(file), settings_.checkpoint.inputs, path);
-  // The laws decide which state exists (spins, history): a checkpoint only continues the same kind.
-  const std::string model = io::read_string_attribute(file, "contact_model");
-  if (model != describe(settings_.contact))
-    throw std::runtime_error("DEM restart: " + path + " was written with contact model " + model +
-                             ", the scene uses " + describe(settings_.contact));
-  step_ = io::read_attribute<std::int64_t>(file, "step");
-  time_ = io::read_attribute<double>(file, "time");
-  dt_ = io::read_attribute<double>(file, "dt");
-  rebuilds_ = io::read_attribute<std::int64_t>(file, "rebuilds");
-  user_state_ = io::read_string_attribute(file, "user_state");
-  const int ranks = io::read_attribute<std::int32_t>(file, "ranks");
+  // Each rank reads only its own part, so one rank can fail where the others do not (a piece it
+  // cannot read): the outcome is agreed before the collectives below, or the others would wait in
+  // them for ever. Returns whether the ranks keep the rows and slabs they wrote.
+  const auto read_own_part = [&]() -> bool {
+    io::Handle file = io::open_file(path);
+    if (io::read_string_attribute(file, "format") != "sedwave-dem-checkpoint")
+      throw std::runtime_error("DEM restart: " + path + " is not a sedwave DEM checkpoint");
+    if (io::read_attribute<std::int32_t>(file, "version") != kCheckpointVersion)
+      throw std::runtime_error("DEM restart: unsupported checkpoint version in " + path);
+    if (!settings_.checkpoint.allow_changed_inputs)
+      require_same_inputs(recorded_inputs(file), settings_.checkpoint.inputs, path);
+    // The laws decide which state exists (spins, history): a checkpoint only continues the same kind.
+    const std::string model = io::read_string_attribute(file, "contact_model");
+    if (model != describe(settings_.contact))
+      throw std::runtime_error("DEM restart: " + path + " was written with contact model " + model +
+                               ", the scene uses " + describe(settings_.contact));
+    step_ = io::read_attribute<std::int64_t>(file, "step");
+    time_ = io::read_attribute<double>(file, "time");
+    dt_ = io::read_attribute<double>(file, "dt");
+    rebuilds_ = io::read_attribute<std::int64_t>(file, "rebuilds");
+    user_state_ = io::read_string_attribute(file, "user_state");
+    const int ranks = io::read_attribute<std::int32_t>(file, "ranks");
 
-  io::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
-  // The rows each rank wrote (files from before they were recorded are read as another layout).
-  const bool same_layout = ranks == domain_.size() && io::exists(d, "grain_rows");
-  if (same_layout) {
-    domain_.set_boundaries(io::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
-  }
-
-  io::Handle bodies(H5Gopen2(file, "bodies", H5P_DEFAULT), H5Gclose, "open /bodies");
-  if (io::rows(bodies, "displacement") != bodies_.size())
-    throw std::runtime_error("DEM restart: the scene has a different number of rigid bodies than " + path);
-  const auto u = io::read_rows<double>(bodies, "displacement", 0, bodies_.size(), 3);
-  const auto v = io::read_rows<double>(bodies, "velocity", 0, bodies_.size(), 3);
-  const auto f = io::read_rows<double>(bodies, "contact_force", 0, bodies_.size(), 3);
-  for (std::size_t b = 0; b < bodies_.size(); ++b)
-    bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
-                       {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
-
-  // This rank's rows: those it wrote (its grains at the checkpoint; the next rebuild migrates any
-  // that left the slab since), or an equal share of them all.
-  const auto rank_rows = [&](const std::string& written, std::size_t n) -> std::pair<std::size_t, std::size_t> {
-    const auto r = static_cast<std::size_t>(domain_.rank());
+    io::Handle d(H5Gopen2(file, "domain", H5P_DEFAULT), H5Gclose, "open /domain");
+    // The rows each rank wrote (files from before they were recorded are read as another layout).
+    const bool same_layout = ranks == domain_.size() && io::exists(d, "grain_rows");
     if (same_layout) {
-      const auto rows = io::read_rows<std::int64_t>(d, written, 0, static_cast<std::size_t>(ranks));
-      std::size_t first = 0;
-      for (std::size_t k = 0; k < r; ++k) first += static_cast<std::size_t>(rows[k]);
-      return {first, static_cast<std::size_t>(rows[r])};
+      domain_.set_boundaries(io::read_rows<double>(d, "boundaries", 0, static_cast<std::size_t>(ranks) + 1));
     }
-    const auto p = static_cast<std::size_t>(domain_.size());
-    return {r * n / p, (r + 1) * n / p - r * n / p};
-  };
-  io::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
-  const bool spins = grains_.rotation();
-  if (spins && !io::exists(g, "angular_velocity"))
-    throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
-  grains_ = GrainArrays(spins);
-  const auto [first_grain, grain_count] = rank_rows("grain_rows", io::rows(g, "id"));
-  for (std::size_t done = 0; done < grain_count; done += kReadChunk)
-    read_grains(g, first_grain + done, std::min(kReadChunk, grain_count - done), spins, grains_);
 
-  // History: with the same layout, the records this rank wrote; else every record that involves a
-  // grain of this rank (migration forwards them as grains move).
-  pending_history_.clear();
-  if (needs_history(model_)) {
-    std::unordered_map<std::int64_t, char> local_ids;
-    for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
-    io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
-    const std::size_t m = io::rows(h, "a");
-    const auto [first_record, record_count] =
-        same_layout ? rank_rows("history_rows", m) : std::pair<std::size_t, std::size_t>{0, m};
-    for (std::size_t done = 0; done < record_count; done += kReadChunk) {
-      const std::size_t first = first_record + done, count = std::min(kReadChunk, record_count - done);
-      const auto a = io::read_rows<std::int64_t>(h, "a", first, count);
-      const auto b = io::read_rows<std::int64_t>(h, "b", first, count);
-      const auto s = io::read_rows<double>(h, "shear", first, count, 3);
-      for (std::size_t k = 0; k < count; ++k)
-        if (same_layout || local_ids.contains(a[k]) || local_ids.contains(b[k]))
-          pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+    io::Handle bodies(H5Gopen2(file, "bodies", H5P_DEFAULT), H5Gclose, "open /bodies");
+    if (io::rows(bodies, "displacement") != bodies_.size())
+      throw std::runtime_error("DEM restart: the scene has a different number of rigid bodies than " + path);
+    const auto u = io::read_rows<double>(bodies, "displacement", 0, bodies_.size(), 3);
+    const auto v = io::read_rows<double>(bodies, "velocity", 0, bodies_.size(), 3);
+    const auto f = io::read_rows<double>(bodies, "contact_force", 0, bodies_.size(), 3);
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      bodies_[b].restore({u[3 * b], u[3 * b + 1], u[3 * b + 2]}, {v[3 * b], v[3 * b + 1], v[3 * b + 2]},
+                         {f[3 * b], f[3 * b + 1], f[3 * b + 2]});
+
+    // This rank's rows: those it wrote (its grains at the checkpoint; the next rebuild migrates any
+    // that left the slab since), or an equal share of them all.
+    const auto rank_rows = [&](const std::string& written, std::size_t n) -> std::pair<std::size_t, std::size_t> {
+      const auto r = static_cast<std::size_t>(domain_.rank());
+      if (same_layout) {
+        const auto rows = io::read_rows<std::int64_t>(d, written, 0, static_cast<std::size_t>(ranks));
+        std::size_t first = 0;
+        for (std::size_t k = 0; k < r; ++k) first += static_cast<std::size_t>(rows[k]);
+        return {first, static_cast<std::size_t>(rows[r])};
+      }
+      const auto p = static_cast<std::size_t>(domain_.size());
+      return {r * n / p, (r + 1) * n / p - r * n / p};
+    };
+    io::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
+    require_pieces(io::Handle(H5Dopen2(g, "id", H5P_DEFAULT), H5Dclose, "open /grains/id"), path);
+    const bool spins = grains_.rotation();
+    if (spins && !io::exists(g, "angular_velocity"))
+      throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
+    grains_ = GrainArrays(spins);
+    const auto [first_grain, grain_count] = rank_rows("grain_rows", io::rows(g, "id"));
+    for (std::size_t done = 0; done < grain_count; done += kReadChunk)
+      read_grains(g, first_grain + done, std::min(kReadChunk, grain_count - done), spins, grains_);
+
+    // History: with the same layout, the records this rank wrote; else every record that involves a
+    // grain of this rank (migration forwards them as grains move).
+    pending_history_.clear();
+    if (needs_history(model_)) {
+      std::unordered_map<std::int64_t, char> local_ids;
+      for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
+      io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
+      require_pieces(io::Handle(H5Dopen2(h, "a", H5P_DEFAULT), H5Dclose, "open /history/a"), path);
+      const std::size_t m = io::rows(h, "a");
+      const auto [first_record, record_count] =
+          same_layout ? rank_rows("history_rows", m) : std::pair<std::size_t, std::size_t>{0, m};
+      for (std::size_t done = 0; done < record_count; done += kReadChunk) {
+        const std::size_t first = first_record + done, count = std::min(kReadChunk, record_count - done);
+        const auto a = io::read_rows<std::int64_t>(h, "a", first, count);
+        const auto b = io::read_rows<std::int64_t>(h, "b", first, count);
+        const auto s = io::read_rows<double>(h, "shear", first, count, 3);
+        for (std::size_t k = 0; k < count; ++k)
+          if (same_layout || local_ids.contains(a[k]) || local_ids.contains(b[k]))
+            pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+      }
     }
+    return same_layout;
+  };
+  std::string error;
+  bool same_layout = false;
+  try {
+    same_layout = read_own_part();
+  } catch (const std::exception& e) {
+    error = e.what();
   }
+  agree_on_failure(domain_.comm(), error, "reading " + path, "");
   if (!same_layout) domain_.partition_by_count(grains_, ghost_cutoff_);
   list_valid_ = false;
   history_.clear();

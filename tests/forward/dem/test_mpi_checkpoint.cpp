@@ -136,5 +136,47 @@ TEST(CheckpointAcrossRanks, WrittenOnTwoRanksRestoredOnThreeAndOne) {
   std::filesystem::remove(path);
 }
 
+TEST(CheckpointAcrossRanks, AMissingPieceIsRefusedOnEveryRank) {
+  // HDF5 reads a missing piece of a virtual dataset as zeros: a checkpoint copied without its pieces
+  // must be refused, by every rank (none left waiting in a collective), not restored as zero grains.
+  const int rank = parallel::rank(MPI_COMM_WORLD);
+  const std::string path = testing::temp_path("dem_mpi_checkpoint_missing.h5", MPI_COMM_WORLD);
+  const parallel::SubCommunicator two(MPI_COMM_WORLD, rank < 2);
+  if (rank < 2) {
+    const Scene s = crystal(two.get(), path, 20);
+    Engine engine(two.get(), s.settings, s.grains);
+    engine.run(20);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0) {
+    const std::filesystem::path p(path);
+    std::filesystem::path last;  // a piece of rank 1's
+    for (const auto& entry : std::filesystem::directory_iterator(p.parent_path())) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with(p.filename().string() + ".piece-") && name.ends_with("-1-0")) last = entry.path();
+    }
+    ASSERT_FALSE(last.empty());
+    std::filesystem::remove(last);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank < 2) {
+    const Scene s = crystal(two.get(), path, 0);
+    Engine engine(two.get(), s.settings, s.grains);
+    try {
+      engine.restore_checkpoint(path);
+      ADD_FAILURE() << "rank " << rank << " restored a checkpoint that lacks a piece";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("lacks its piece"), std::string::npos) << e.what();
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0) {
+    const std::filesystem::path p(path);
+    for (const auto& entry : std::filesystem::directory_iterator(p.parent_path())) {
+      if (entry.path().filename().string().starts_with(p.filename().string())) std::filesystem::remove(entry.path());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sedwave::forward::dem

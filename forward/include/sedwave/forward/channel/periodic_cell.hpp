@@ -37,7 +37,7 @@ struct CellTiling {
 /// and upper wall (groups, bodies and id order as generate_channel's: flow grains first). The
 /// channel's grains come back spread over the ranks: every rank receives the cell and builds only
 /// its share of the copies (contiguous along z, with the ids one rank stacking them all would give),
-/// so no rank holds the whole channel; dem::gather_on_root collects them where one rank must. The report
+/// so no rank holds the whole channel; parallel::gather_on_root collects them where one rank must. The report
 /// keeps the cell's preparation counts and its `converged`, and measures the channel itself: its
 /// contact statistics, residual forces and the force on the upper wall, from a DEM force evaluation
 /// (collective). The residual grows with the channel's length by round-off alone: heights near

@@ -253,16 +253,38 @@ std::vector<T> gather_on_root(MPI_Comm comm, const std::vector<T>& local, std::s
   return all;
 }
 
-/// Sends per-destination vectors of trivially copyable records with one all-to-all; returns what
-/// arrived, ordered by source rank (deterministic; collective). Counted in records, not bytes; a
-/// total beyond 2^31 - 1 records on one rank is refused (std::overflow_error).
+namespace detail {
+/// Throws std::overflow_error on every rank of `comm` when any rank's records to send or receive
+/// total more than one MPI call counts (collective, so no rank is left inside the next call).
+inline void agree_counts_fit(MPI_Comm comm, std::size_t total, const char* what) {
+  if (any(comm, total > kMaxMpiCount)) {
+    throw std::overflow_error(std::string("MPI all-to-all: the records ") + what +
+                              " on some rank exceed the largest MPI count (2^31 - 1)");
+  }
+}
+}  // namespace detail
+
+/// Sends per-destination vectors (one per rank of `comm`) of trivially copyable records with one
+/// all-to-all; returns what arrived, ordered by source rank (deterministic; collective). Counted in
+/// records, not bytes; a total beyond 2^31 - 1 records sent or received on any rank is refused
+/// with std::overflow_error on every rank.
 template <typename T>
 std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outgoing) {
   const RecordType<T> record;
   const std::size_t n = outgoing.size();
+  if (n != static_cast<std::size_t>(size(comm))) {
+    throw std::invalid_argument("MPI all-to-all: " + std::to_string(n) + " destinations for " +
+                                std::to_string(size(comm)) + " ranks");
+  }
+  std::size_t send_total = 0;
+  for (const std::vector<T>& to : outgoing) send_total += to.size();
+  detail::agree_counts_fit(comm, send_total, "to send");
   std::vector<int> send_counts(n), recv_counts(n);
-  for (std::size_t r = 0; r < n; ++r) send_counts[r] = mpi_count(outgoing[r].size());
+  for (std::size_t r = 0; r < n; ++r) send_counts[r] = static_cast<int>(outgoing[r].size());
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  std::size_t recv_total = 0;
+  for (const int c : recv_counts) recv_total += static_cast<std::size_t>(c);
+  detail::agree_counts_fit(comm, recv_total, "to receive");
   const std::vector<int> send_displs = displacements(send_counts);
   const std::vector<int> recv_displs = displacements(recv_counts);
   std::vector<T> send(static_cast<std::size_t>(send_displs.back()) + outgoing.back().size());
@@ -292,6 +314,9 @@ void in_turn(MPI_Comm comm, Turn turn) {
       failed = 1;
       error = e.what();
       if (error.empty()) error = "failed on rank " + std::to_string(me);
+    } catch (...) {  // whatever it is, the token must go on
+      failed = 1;
+      error = "failed on rank " + std::to_string(me);
     }
   }
   if (me + 1 < n) MPI_Send(&failed, 1, MPI_INT, me + 1, kTokenTag, comm);
