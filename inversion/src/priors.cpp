@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "short_number.hpp"
+
 namespace sedwave::inversion {
 namespace {
 
@@ -40,12 +42,6 @@ double truncated_normal_draw(double mean, double sd, double lo, double hi, sampl
   }
   throw std::invalid_argument("a normal prior truncated to its bounds has almost no mass there: widen the bounds "
                               "or move the prior");
-}
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", x);
-  return text;
 }
 
 }  // namespace
@@ -82,15 +78,17 @@ double Prior::draw_theta(sampling::RandomStream& random) const {
 std::string Prior::describe_shape(const std::string& unit) const {
   const std::string u = unit == "1" ? "" : " " + unit;
   switch (kind) {
-    case PriorKind::Uniform: return "uniform(" + number(a) + " .. " + number(b) + u + ")";
-    case PriorKind::LogUniform: return "log-uniform(" + number(std::max(a, lower)) + " .. " + number(std::min(b, upper)) + u + ")";
-    case PriorKind::Normal: return "normal(mean " + number(a) + u + ", sd " + number(b) + u + ")";
-    default: return "log-normal(median " + number(a) + u + ", sd of ln " + number(b) + ")";
+    case PriorKind::Uniform: return "uniform(" + short_number(a) + " .. " + short_number(b) + u + ")";
+    case PriorKind::LogUniform:
+      return "log-uniform(" + short_number(std::max(a, lower)) + " .. " + short_number(std::min(b, upper)) + u + ")";
+    case PriorKind::Normal: return "normal(mean " + short_number(a) + u + ", sd " + short_number(b) + u + ")";
+    default: return "log-normal(median " + short_number(a) + u + ", sd of ln " + short_number(b) + ")";
   }
 }
 
 std::string Prior::describe(const std::string& unit) const {
-  return describe_shape(unit) + " on the bounds [" + number(lower) + ", " + number(upper) + "] (" + source + ")";
+  return describe_shape(unit) + " on the bounds [" + short_number(lower) + ", " + short_number(upper) + "] (" +
+         source + ")";
 }
 
 Prior default_prior(const ParameterSpec& spec) {
@@ -134,8 +132,8 @@ void check_prior(const Prior& p, const ParameterSpec& spec, const std::string& w
   const bool flat = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
   if (flat && !(p.a < p.b)) throw std::invalid_argument(where + "needs A < B");
   if (flat && (p.b <= spec.lower || p.a >= spec.upper)) {
-    throw std::invalid_argument(where + "[A, B] does not meet the search bounds [" + number(spec.lower) + ", " +
-                                number(spec.upper) + "] " + spec.unit);
+    throw std::invalid_argument(where + "[A, B] does not meet the search bounds [" + short_number(spec.lower) + ", " +
+                                short_number(spec.upper) + "] " + spec.unit);
   }
   if (p.kind == PriorKind::LogUniform && !(p.a > 0.0)) throw std::invalid_argument(where + "needs A > 0");
   if (!flat && !(p.b > 0.0)) throw std::invalid_argument(where + "the sd must be positive");

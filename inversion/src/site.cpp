@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "short_number.hpp"
 #include "sedwave/sediment/site.hpp"
 
 namespace sedwave::inversion {
@@ -14,12 +15,6 @@ namespace {
 constexpr double kDefaultPorosity = 0.4;
 constexpr double kDefaultGrainDensity = 2650.0;  // [kg/m^3]
 constexpr double kDefaultWaterDensity = 1025.0;  // [kg/m^3]
-
-std::string shown(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", x);
-  return text;
-}
 
 /// Sets parameters of one model from one site, keeping the notes and priors it makes.
 class SiteConversion {
@@ -53,7 +48,7 @@ class SiteConversion {
       notes(spec.name + ": prior " + typed.describe_shape(spec.unit) + note);
     } else {
       spec.value = value;
-      notes(spec.name + " = " + shown(value) + (spec.unit == "1" ? "" : " " + spec.unit) + note);
+      notes(spec.name + " = " + short_number(value) + (spec.unit == "1" ? "" : " " + spec.unit) + note);
     }
   }
 
@@ -116,12 +111,13 @@ void SiteConversion::water() {
   // density and into the effective stress at depth.
   const bool used_by_site = site_.bulk_density || site_.depth;
   if (!used && (site_.skip_missing_parameters || used_by_site)) {
-    if (used_by_site) notes("sea water density " + shown(rho) + " kg/m^3 (EOS-80) for the site's conversions");
+    if (used_by_site) notes("sea water density " + short_number(rho) + " kg/m^3 (EOS-80) for the site's conversions");
     return;
   }
   if (!used) throw SiteConflict(t->origin + ": model '" + model_.name() + "' has no pore-water parameters");
-  notes("sea water at " + shown(t->value) + " deg C, " + shown(s->value) + " ppt: rho_w " + shown(rho) +
-        " kg/m^3, K_w " + shown(k) + " Pa (EOS-80, Mackenzie 1981), eta " + shown(eta) +
+  notes("sea water at " + short_number(t->value) + " deg C, " + short_number(s->value) +
+        " ppt: rho_w " + short_number(rho) +
+        " kg/m^3, K_w " + short_number(k) + " Pa (EOS-80, Mackenzie 1981), eta " + short_number(eta) +
         " Pa s (Sharqawy et al. 2010)");
 }
 
@@ -137,7 +133,7 @@ void SiteConversion::grain_size() {
   }
   diameter_ = d;
   set(*spec, d, prior, site_.phi->origin,
-      " from phi " + shown(site_.phi->value) + " (" + sediment::wentworth_class(d).name + ")");
+      " from phi " + short_number(site_.phi->value) + " (" + sediment::wentworth_class(d).name + ")");
 }
 
 void SiteConversion::porosity() {
@@ -163,7 +159,7 @@ void SiteConversion::porosity() {
   std::optional<Prior> prior;
   if (mean && site_.porosity_sd) prior = Prior{.kind = PriorKind::Normal, .a = beta, .b = site_.porosity_sd->value};
   set(*spec, beta, prior, given.origin,
-      mean ? std::string(" (the site's porosity)") : " from bulk density " + shown(bulk->value) + " kg/m^3");
+      mean ? std::string(" (the site's porosity)") : " from bulk density " + short_number(bulk->value) + " kg/m^3");
 }
 
 void SiteConversion::stiffness() {
@@ -193,9 +189,10 @@ void SiteConversion::stiffness() {
   std::optional<Prior> prior;
   if (site_.kappa_sd_ln) prior = Prior{.kind = PriorKind::LogNormal, .a = kappa, .b = site_.kappa_sd_ln->value};
   set(*spec, kappa, prior, given.origin,
-      ": Hertz, quartz grains of d = " + shown(d) + " m at " + shown(pressure) + " Pa mean effective pressure" +
-          (depth ? " (" + shown(depth->value) + " m below the seafloor, K0 0.5)" : std::string()) + ", porosity " +
-          shown(beta) + ", 9 contacts per grain");
+      ": Hertz, quartz grains of d = " + short_number(d) + " m at " + short_number(pressure) +
+          " Pa mean effective pressure" +
+          (depth ? " (" + short_number(depth->value) + " m below the seafloor, K0 0.5)" : std::string()) + ", porosity " +
+          short_number(beta) + ", 9 contacts per grain");
 }
 
 void SiteConversion::restitution() {
@@ -207,7 +204,8 @@ void SiteConversion::restitution() {
   ParameterSpec* spec = target("e_n", lo->origin);
   if (!spec) return;
   set(*spec, 0.5 * (lo->value + hi->value), Prior{.kind = PriorKind::Uniform, .a = lo->value, .b = hi->value},
-      lo->origin, " (middle of the site's restitution range " + shown(lo->value) + " .. " + shown(hi->value) + ")");
+      lo->origin,
+      " (middle of the site's restitution range " + short_number(lo->value) + " .. " + short_number(hi->value) + ")");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <map>
 
+#include "hooke_contact.hpp"
 #include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/channel/contacts.hpp"
 #include "sedwave/forward/channel/periodic_cell.hpp"
@@ -17,13 +18,7 @@
 namespace sedwave::forward::channel {
 namespace {
 
-dem::ContactSpec hooke_contact() {
-  dem::ContactSpec c;
-  c.normal = "hooke";
-  c["kn"] = 726.0;
-  c["restitution"] = 0.9;
-  return c;
-}
+using testing::hooke_contact;
 
 ChannelGeometry cell_geometry(int grains) {
   ChannelGeometry g;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "hooke_contact.hpp"
 #include "sedwave/forward/channel/geometry.hpp"
 #include "sedwave/forward/channel/periodic_cell.hpp"
 #include "sedwave/forward/dem/gather.hpp"
@@ -13,13 +14,7 @@
 namespace sedwave::forward::channel {
 namespace {
 
-dem::ContactSpec hooke_contact() {
-  dem::ContactSpec c;
-  c.normal = "hooke";
-  c["kn"] = 726.0;
-  c["restitution"] = 0.9;
-  return c;
-}
+using testing::hooke_contact;
 
 std::vector<dem::Grain> by_id(std::vector<dem::Grain> grains) {
   std::sort(grains.begin(), grains.end(), [](const dem::Grain& a, const dem::Grain& b) { return a.id < b.id; });

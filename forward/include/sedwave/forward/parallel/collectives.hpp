@@ -253,17 +253,6 @@ std::vector<T> gather_on_root(MPI_Comm comm, const std::vector<T>& local, std::s
   return all;
 }
 
-namespace detail {
-/// Throws std::overflow_error on every rank of `comm` when any rank's records to send or receive
-/// total more than one MPI call counts (collective, so no rank is left inside the next call).
-inline void agree_counts_fit(MPI_Comm comm, std::size_t total, const char* what) {
-  if (any(comm, total > kMaxMpiCount)) {
-    throw std::overflow_error(std::string("MPI all-to-all: the records ") + what +
-                              " on some rank exceed the largest MPI count (2^31 - 1)");
-  }
-}
-}  // namespace detail
-
 /// Sends per-destination vectors (one per rank of `comm`) of trivially copyable records with one
 /// all-to-all; returns what arrived, ordered by source rank (deterministic; collective). Counted in
 /// records, not bytes; a total beyond 2^31 - 1 records sent or received on any rank is refused
@@ -276,15 +265,21 @@ std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outg
     throw std::invalid_argument("MPI all-to-all: " + std::to_string(n) + " destinations for " +
                                 std::to_string(size(comm)) + " ranks");
   }
+  // Counts go as ints (an oversized one as 0, refused below); the totals each rank sends and
+  // receives are checked in one agreement, so every rank throws or none does.
   std::size_t send_total = 0;
-  for (const std::vector<T>& to : outgoing) send_total += to.size();
-  detail::agree_counts_fit(comm, send_total, "to send");
   std::vector<int> send_counts(n), recv_counts(n);
-  for (std::size_t r = 0; r < n; ++r) send_counts[r] = static_cast<int>(outgoing[r].size());
+  for (std::size_t r = 0; r < n; ++r) {
+    send_total += outgoing[r].size();
+    send_counts[r] = outgoing[r].size() <= kMaxMpiCount ? static_cast<int>(outgoing[r].size()) : 0;
+  }
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
   std::size_t recv_total = 0;
   for (const int c : recv_counts) recv_total += static_cast<std::size_t>(c);
-  detail::agree_counts_fit(comm, recv_total, "to receive");
+  if (any(comm, send_total > kMaxMpiCount || recv_total > kMaxMpiCount)) {
+    throw std::overflow_error("MPI all-to-all: the records to send or receive on some rank exceed the largest "
+                              "MPI count (2^31 - 1)");
+  }
   const std::vector<int> send_displs = displacements(send_counts);
   const std::vector<int> recv_displs = displacements(recv_counts);
   std::vector<T> send(static_cast<std::size_t>(send_displs.back()) + outgoing.back().size());
