@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,12 +71,8 @@ std::vector<dem::Grain> stacked_grains(const PreparedChannel& cell, int copies, 
 
 /// The cell's grains on every rank of comm (a cell is small: 10^4 grains are 1.5 MB).
 std::vector<dem::Grain> cell_on_every_rank(MPI_Comm comm, const std::vector<dem::Grain>& grains) {
-  static_assert(std::is_trivially_copyable_v<dem::Grain>);
-  std::uint64_t count = grains.size();
-  parallel::broadcast(comm, std::span(&count, 1));
   std::vector<dem::Grain> all = grains;
-  all.resize(count);
-  parallel::broadcast(comm, std::as_writable_bytes(std::span(all)));
+  parallel::broadcast(comm, all);
   return all;
 }
 

@@ -207,13 +207,19 @@ void broadcast(MPI_Comm comm, T& value, int root = 0) requires std::is_arithmeti
   broadcast(comm, std::span<T, 1>(&value, 1), root);
 }
 
-/// A vector (length and contents) as `root` holds it, on every rank of `comm` (collective).
+/// A vector (length and contents) as `root` holds it, on every rank of `comm` (collective). Numbers
+/// go as their MPI type, trivially copyable records (grains) as their bytes.
 template <typename T>
 void broadcast(MPI_Comm comm, std::vector<T>& values, int root = 0, std::size_t max_count = kMaxMpiCount) {
+  static_assert(std::is_trivially_copyable_v<T>);
   std::uint64_t length = values.size();
   broadcast(comm, length, root);
   values.resize(static_cast<std::size_t>(length));
-  broadcast(comm, std::span(values), root, max_count);
+  if constexpr (std::is_arithmetic_v<T>) {
+    broadcast(comm, std::span(values), root, max_count);
+  } else {
+    broadcast(comm, std::as_writable_bytes(std::span(values)), root, max_count);
+  }
 }
 
 /// A string as `root` holds it, on every rank of `comm` (collective).
