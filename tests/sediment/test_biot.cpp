@@ -8,11 +8,12 @@
 #include <numbers>
 
 #include "sedwave/sediment/biot.hpp"
+#include "sediment_test_support.hpp"
 
 namespace sedwave::sediment {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using testing::kTwoPi;
 
 // Reference values of ber, bei and their derivatives computed with mpmath 1.3 (mp.ber, mp.bei and
 // mp.diff at 30 digits), an independent arbitrary-precision implementation.

@@ -20,6 +20,7 @@
 
 #include "sedwave/sediment/biot_stoll.hpp"
 #include "sedwave/sediment/edfm.hpp"
+#include "sediment_test_support.hpp"
 
 namespace sedwave::sediment {
 namespace {
@@ -27,7 +28,7 @@ namespace {
 using E = EffectiveDensityFluidModel;
 using B = BiotStollModel;
 using cd = std::complex<double>;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using testing::kTwoPi;
 
 double wood_of(const std::vector<double>& v) {
   return wood_speed(v[E::kPorosity], v[E::kGrainDensity], v[E::kGrainBulk], v[E::kWaterDensity], v[E::kWaterBulk]);
@@ -174,36 +175,24 @@ std::vector<double> sax99_biot_stoll() {
   return {0.385, 2690.0, 3.2e10, 1023.0, 2.395e9, 1.0e-3, 2.5e-11, 1.35, 2.6482e-5, 4.36e7, 2.92e7, 0.15, 0.15};
 }
 
-struct IndependentValue {
-  double frequency;    ///< [Hz]
-  double attenuation;  ///< [Np/m]
-  double speed;        ///< [m/s]
-};
 
 // Both sides evaluate the same equations in double (here) and at 40 digits (there), so they agree
 // to the rounding of the double computation, ~1e-13; 1e-10 leaves room for the Kelvin series and
 // the quadratic, and is 1e7 times below any convention error (those change alpha by its own size).
 constexpr double kIndependentTolerance = 1e-10;
 
-void expect_independent_values(const SedimentModel& model, const std::vector<double>& v,
-                               std::initializer_list<IndependentValue> reference) {
-  for (const IndependentValue& r : reference) {
-    const Wave w = model.evaluate(v, r.frequency, false);
-    EXPECT_NEAR(w.attenuation / r.attenuation, 1.0, kIndependentTolerance) << r.frequency << " Hz";
-    EXPECT_NEAR(w.speed / r.speed, 1.0, kIndependentTolerance) << r.frequency << " Hz";
-  }
-}
 
 TEST(BiotStoll, Sax99MatchesStollsEquationsSolvedIndependently) {
   const B model;
   const std::vector<double> v = sax99_biot_stoll();
   model.check_values(v);
-  expect_independent_values(model, v,
+  testing::expect_independent_values(model, v,
                             {{100.0, 1.5501799891045016e-3, 1657.6996558065859},
                              {1e3, 0.09562890515677602, 1687.214089727702},
                              {1e4, 0.52841040131130622, 1754.588735363414},
                              {1e5, 1.8701415037013174, 1774.8785540628257},
-                             {4e5, 3.9160971218266341, 1779.6301722909027}});
+                             {4e5, 3.9160971218266341, 1779.6301722909027}},
+                                     kIndependentTolerance);
 }
 
 TEST(Edfm, Sax99MatchesStollsEquationsWithoutFrameSolvedIndependently) {
@@ -211,12 +200,13 @@ TEST(Edfm, Sax99MatchesStollsEquationsWithoutFrameSolvedIndependently) {
   const std::vector<double> all = sax99_biot_stoll();
   const std::vector<double> v(all.begin(), all.begin() + E::kParameters);
   model.check_values(v);
-  expect_independent_values(model, v,
+  testing::expect_independent_values(model, v,
                             {{100.0, 1.5290089219293596e-3, 1647.5559451806606},
                              {1e3, 0.099874990404854945, 1678.5472285387695},
                              {1e4, 0.54362980336087201, 1748.408923573128},
                              {1e5, 1.8846681853767446, 1769.3303503019296},
-                             {4e5, 3.8455536479192561, 1774.2294373874493}});
+                             {4e5, 3.8455536479192561, 1774.2294373874493}},
+                                     kIndependentTolerance);
 }
 
 // Biot's characteristic frequency f_c = eta beta / (2 pi rho_f k) (Biot 1956; Stoll 1989, ch. 2),

@@ -6,15 +6,13 @@
 #include <numbers>
 #include <vector>
 
-#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/sediment/grain_contact.hpp"
+#include "sediment_test_support.hpp"
 
 namespace sedwave::sediment {
 namespace {
 
-std::shared_ptr<const forward::DispersionModel> chain(const char* name) {
-  return forward::make_dispersion_model(name);
-}
+using testing::chain;
 
 // At omega_hat -> 0 the chain's speed is its speed scale d sqrt(kappa/m) (c_hat = 1), a closed form
 // whose gradient is known: d c / d kappa = c / (2 kappa), d c / d d = -c / (2 d), d c / d rho_s = -c / (2 rho_s).

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "sedwave/sediment/grain_shearing.hpp"
+#include "sediment_test_support.hpp"
 
 namespace sedwave::sediment {
 namespace {
@@ -26,7 +27,7 @@ constexpr double kPi = std::numbers::pi;
 double omega_of(double f) { return 2.0 * kPi * f; }
 
 /// Wood's (1930) speed, arranged as c_0^2 = K_s K_w / ((N K_s + (1 - N) K_w) rho_0).
-double wood_speed(const std::vector<double>& v) {
+double independent_wood_speed(const std::vector<double>& v) {
   const double N = v[0], rho_s = v[1], rho_w = v[2], K_s = v[3], K_w = v[4];
   const double rho0 = N * rho_w + (1.0 - N) * rho_s;
   return std::sqrt(K_s * K_w / ((N * K_s + (1.0 - N) * K_w) * rho0));
@@ -41,7 +42,7 @@ double chi_p(const std::vector<double>& v) {
 /// The published dispersion relation k_p = (omega / c_0) (1 + chi_p Psi)^(-1/2) in std::complex;
 /// returns {alpha, c}.
 std::pair<double, double> dispersion_relation(const std::vector<double>& v, Std memory, double f) {
-  const double c0 = wood_speed(v);
+  const double c0 = independent_wood_speed(v);
   const Std factor = std::pow(1.0 + chi_p(v) * memory, -0.5);
   return {-omega_of(f) / c0 * factor.imag(), c0 / factor.real()};
 }
@@ -73,7 +74,7 @@ void expect_gradient_matches_central_differences(const SedimentModel& model, con
 
 void expect_causal_dispersion(const SedimentModel& model) {
   const std::vector<double> v = model.default_values();
-  const double c0 = wood_speed(v);
+  const double c0 = independent_wood_speed(v);
   Wave previous = model.evaluate(v, 1.0, false);
   EXPECT_GT(previous.speed, c0);
   for (double f = 1.25; f <= 1.0e6; f *= 1.25) {
@@ -94,7 +95,7 @@ TEST(GrainShearingModel, LowFrequencySpeedIsWoodsMixture) {
   const double f = 1e-40;
   const double bound = chi_p(v) * std::pow(omega_of(f), v[7]);
   ASSERT_LT(bound, 1e-4);
-  EXPECT_NEAR(model.evaluate(v, f, false).speed / wood_speed(v), 1.0, bound);
+  EXPECT_NEAR(model.evaluate(v, f, false).speed / independent_wood_speed(v), 1.0, bound);
 }
 
 // chi_p (omega T)^n << 1: alpha -> (omega / 2 c_0) chi_p (omega T)^n sin(n pi/2), so alpha ~ f^(1+n).
@@ -103,7 +104,7 @@ TEST(GrainShearingModel, WeakShearingAttenuationScalesAsFToTheOnePlusN) {
   std::vector<double> v = model.default_values();
   v[GrainShearingModel::kGammaP] = 1e3;
   v[GrainShearingModel::kGammaS] = 1.0;
-  const double n = v[7], f = 1e3, c0 = wood_speed(v);
+  const double n = v[7], f = 1e3, c0 = independent_wood_speed(v);
   const double z = chi_p(v) * std::pow(omega_of(f), n);
   ASSERT_LT(z, 1e-6);
   const double expected = omega_of(f) / (2.0 * c0) * z * std::sin(n * kPi / 2.0);
@@ -119,7 +120,7 @@ TEST(GrainShearingModel, StrongShearingAttenuationScalesAsFToTheOneMinusHalfN) {
   const GrainShearingModel model;
   std::vector<double> v = model.default_values();
   v[GrainShearingModel::kGammaP] = 1e12;
-  const double n = v[7], f = 1e3, c0 = wood_speed(v), chi = chi_p(v);
+  const double n = v[7], f = 1e3, c0 = independent_wood_speed(v), chi = chi_p(v);
   const double z = chi * std::pow(omega_of(f), n);
   ASSERT_GT(z, 300.0);
   const Wave w = model.evaluate(v, f, false);
@@ -171,30 +172,18 @@ TEST(GrainShearingModel, DefaultsAreBuckinghams2005ReferenceSediment) {
   EXPECT_EQ(GrainShearingModel().default_values(), expected);
 }
 
-struct IndependentValue {
-  double frequency;    ///< [Hz]
-  double attenuation;  ///< [Np/m]
-  double speed;        ///< [m/s]
-};
-
 // Double against 40 digits of the same closed form: agreement to ~1e-14; 1e-11 is the margin.
-void expect_independent_values(const SedimentModel& model, std::initializer_list<IndependentValue> reference) {
-  const std::vector<double> v = model.default_values();
-  for (const IndependentValue& r : reference) {
-    const Wave w = model.evaluate(v, r.frequency, false);
-    EXPECT_NEAR(w.attenuation / r.attenuation, 1.0, 1e-11) << r.frequency << " Hz";
-    EXPECT_NEAR(w.speed / r.speed, 1.0, 1e-11) << r.frequency << " Hz";
-  }
-}
+constexpr double kShearingTolerance = 1e-11;
 
 // Buckingham's relation for exp(i(omega t - k x)) at the 2005 reference set, by
 // tests/sediment/independent_reference.py.
 TEST(GrainShearingModel, ReferenceSedimentMatchesTheRelationAt40Digits) {
-  expect_independent_values(GrainShearingModel(), {{100.0, 2.8695298264822393e-3, 1761.2553917578016},
+  testing::expect_independent_values(GrainShearingModel(), GrainShearingModel().default_values(), {{100.0, 2.8695298264822393e-3, 1761.2553917578016},
                                                    {1e3, 0.033591269065844154, 1783.9857597851903},
                                                    {1e4, 0.39046688057148537, 1811.2669577660403},
                                                    {1e5, 4.5023608077653599, 1843.9294316273374},
-                                                   {4e5, 19.537025412536149, 1866.5820584643654}});
+                                                   {4e5, 19.537025412536149, 1866.5820584643654}},
+                                     kShearingTolerance);
 }
 
 TEST(GrainShearingModel, DescribesItself) {
@@ -233,7 +222,7 @@ TEST(ViscousGrainShearingModel, LongViscousTimeIsGrainShearing) {
 TEST(ViscousGrainShearingModel, LowFrequencyAttenuationScalesAsFSquared) {
   const ViscousGrainShearingModel model;
   const std::vector<double> v = model.default_values();
-  const double n = v[7], tau = v[8], c0 = wood_speed(v), f = 0.01;
+  const double n = v[7], tau = v[8], c0 = independent_wood_speed(v), f = 0.01;
   ASSERT_LT(omega_of(f) * tau, 1e-5);
   const double expected = omega_of(f) * omega_of(f) * chi_p(v) * std::pow(tau, 1.0 - n) / (2.0 * c0);
   const Wave w = model.evaluate(v, f, false);
@@ -292,11 +281,12 @@ TEST(ViscousGrainShearingModel, DefaultsAreBuckinghams2010Sax99Set) {
 // tests/sediment/independent_reference.py; 100 Hz lies in the viscous regime, 100 kHz in the
 // grain-shearing one.
 TEST(ViscousGrainShearingModel, Sax99MatchesTheRelationAt40Digits) {
-  expect_independent_values(ViscousGrainShearingModel(), {{100.0, 1.8067003275984786e-3, 1647.6807197383143},
+  testing::expect_independent_values(ViscousGrainShearingModel(), ViscousGrainShearingModel().default_values(), {{100.0, 1.8067003275984786e-3, 1647.6807197383143},
                                                           {1e3, 0.11314297705284732, 1685.2166242622532},
                                                           {1e4, 0.48776924002865873, 1757.9904684010307},
                                                           {1e5, 2.735260341161072, 1777.2074451668394},
-                                                          {4e5, 10.700197166437907, 1788.4941202393648}});
+                                                          {4e5, 10.700197166437907, 1788.4941202393648}},
+                                     kShearingTolerance);
 }
 
 TEST(ViscousGrainShearingModel, DescribesItself) {

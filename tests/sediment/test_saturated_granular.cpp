@@ -8,17 +8,15 @@
 #include <numbers>
 #include <vector>
 
-#include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
+#include "sediment_test_support.hpp"
 
 namespace sedwave::sediment {
 namespace {
 
 using S = SaturatedGranularModel;
 
-std::shared_ptr<const forward::DispersionModel> chain(const char* name) {
-  return forward::make_dispersion_model(name);
-}
+using testing::chain;
 
 TEST(SaturatedGranularModel, NamesItsFrameAndItsPermeabilitySource) {
   const S given(chain("lattice"), DampingForm::Gamma, PermeabilityFrom::Parameter);

@@ -4,9 +4,11 @@
 #include <mpi.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <numbers>
 #include <random>
@@ -85,6 +87,24 @@ inline std::vector<Grain> compressed_fcc(int cells, double overlap, double speed
   box.hi = a * Vec3{double(cells), double(cells), double(cells)};
   box.periodic = {true, true, true};
   return grains;
+}
+
+/// Runs on different rank counts differ only in the order of floating-point sums: positions and
+/// velocities agree to this (grain diameters and diameters per time unit).
+constexpr double kRankTolerance = 1e-9;
+
+/// Largest difference in position (modulo the periodic directions) or velocity between two
+/// snapshots keyed by grain id.
+inline double max_difference(const std::map<std::int64_t, Grain>& a, const std::map<std::int64_t, Grain>& b,
+                             const Box& box) {
+  double worst = 0.0;
+  for (const auto& [id, g] : a) {
+    Vec3 d = g.position - b.at(id).position;
+    for (int k = 0; k < 3; ++k)
+      if (box.periodic[k]) d[k] -= box.length(k) * std::round(d[k] / box.length(k));
+    worst = std::max({worst, norm(d), norm(g.velocity - b.at(id).velocity)});
+  }
+  return worst;
 }
 
 }  // namespace sedwave::forward::dem::testing

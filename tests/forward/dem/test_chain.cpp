@@ -11,8 +11,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 struct Fit {
   double slope;
   double intercept;

@@ -10,7 +10,6 @@ namespace {
 
 using testing::make_grain;
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
 
 struct CollisionResult {
   double restitution;

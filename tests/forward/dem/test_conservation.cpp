@@ -7,8 +7,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 /// Parameter: newton on (every pair across the periodic faces computed once, reactions sent back).
 class Conservation : public ::testing::TestWithParam<bool> {};
 

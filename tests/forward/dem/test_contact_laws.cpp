@@ -21,7 +21,6 @@ namespace {
 
 using testing::make_grain;
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
 
 constexpr double kE = 1e4, kNu = 0.3, kFriction = 0.5, kGammaT = 2.0, kKt = 300.0, kTanhScale = 100.0;
 constexpr double kRollingFriction = 0.1, kRollingRegularisation = 0.01, kRestitution = 0.8;

@@ -11,8 +11,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 /// Fluid without drag or buoyancy: lubrication alone.
 FluidSpec squeeze_film(double viscosity, double roughness, double cutoff) {
   FluidSpec f;

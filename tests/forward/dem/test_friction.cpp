@@ -9,8 +9,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 constexpr double kWallRadius = 1e4;
 constexpr double kStiffness = 1e4;
 

@@ -7,8 +7,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 TEST(Guard, FiresOnATimeStepAboveTheCollectiveStabilityLimit) {
   // The pair limit is accepted, but an FCC packing has modes twice as stiff as one pair.
   EngineSettings s;

@@ -11,8 +11,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 struct Snapshot {
   std::map<std::int64_t, Vec3> position, velocity;
 };

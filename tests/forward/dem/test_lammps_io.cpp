@@ -11,8 +11,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 std::string temp_file(const std::string& name) {
   return testing::temp_path("lammps_io_" + name);
 }

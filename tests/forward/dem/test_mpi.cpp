@@ -15,11 +15,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-/// Trajectory agreement required between rank counts, in grain diameters. The runs differ only in
-/// the order of floating-point sums (~1e-16 per step), amplified by the packing's chaotic dynamics
-/// over the short run; observed differences are ~1e-13.
-constexpr double kTolerance = 1e-9;
-
 std::vector<Grain> tall_column(int nx, int nz, double overlap, Box& box, std::uint64_t seed) {
   const double a = std::sqrt(2.0) * (1.0 - overlap);
   const Vec3 basis[4] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
@@ -98,17 +93,6 @@ std::map<std::int64_t, Grain> run_on(MPI_Comm comm, bool periodic_z, bool newton
   return out;
 }
 
-double max_difference(const std::map<std::int64_t, Grain>& a, const std::map<std::int64_t, Grain>& b,
-                      const Box& box) {
-  double worst = 0.0;
-  for (const auto& [id, g] : a) {
-    Vec3 d = g.position - b.at(id).position;
-    for (int k = 0; k < 3; ++k)  // compare modulo the periodic box
-      if (box.periodic[k]) d[k] -= box.length(k) * std::round(d[k] / box.length(k));
-    worst = std::max({worst, norm(d), norm(g.velocity - b.at(id).velocity)});
-  }
-  return worst;
-}
 
 /// (periodic z, newton on, pore fluid): the same trajectories on 1, 2 and 4 ranks, and with newton
 /// on and off.
@@ -141,14 +125,14 @@ TEST_P(RankEquivalence, SameTrajectoriesOnOneTwoAndFourRanks) {
   ASSERT_EQ(one.size(), 192u);
   ASSERT_EQ(two.size(), one.size());
   ASSERT_EQ(four.size(), one.size());
-  const double d2 = max_difference(one, two, box), d4 = max_difference(one, four, box);
-  const double d_newton = max_difference(one, other_newton, box);
+  const double d2 = testing::max_difference(one, two, box), d4 = testing::max_difference(one, four, box);
+  const double d_newton = testing::max_difference(one, other_newton, box);
   std::printf("[ info ] periodic_z=%d newton=%d fluid=%d: max |1-rank - 2-rank| = %.3g, |1-rank - 4-rank| = %.3g, "
               "|newton on - off| = %.3g; history records %zu/%zu/%zu\n",
               int(periodic_z), int(newton), int(fluid), d2, d4, d_newton, records1, records2, records4);
-  EXPECT_LT(d2, kTolerance);
-  EXPECT_LT(d4, kTolerance);
-  EXPECT_LT(d_newton, kTolerance);
+  EXPECT_LT(d2, testing::kRankTolerance);
+  EXPECT_LT(d4, testing::kRankTolerance);
+  EXPECT_LT(d_newton, testing::kRankTolerance);
   EXPECT_GT(records1, 0u);
   if (newton) {  // each contact is held by one side only, whatever the decomposition
     EXPECT_EQ(records2, records1);
@@ -240,7 +224,7 @@ TEST(Checkpoint, TwoRankCheckpointContinuesOnThreeRanks) {
   EXPECT_GT(records_at_checkpoint, 0u);  // friction history to carry over
   ASSERT_EQ(straight.size(), all.size());
   ASSERT_EQ(restarted.size(), all.size());
-  EXPECT_LT(max_difference(straight, restarted, box), kTolerance);
+  EXPECT_LT(testing::max_difference(straight, restarted, box), testing::kRankTolerance);
   std::filesystem::remove(path);
 }
 

@@ -11,8 +11,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-/// As the rank-equivalence test: the runs differ only in the order of floating-point sums.
-constexpr double kTolerance = 1e-9;
 constexpr std::size_t kGrains = 4 * 4 * 4 * 4;  // compressed_fcc(4, ...)
 
 struct Scene {
@@ -41,15 +39,6 @@ std::map<std::int64_t, Grain> by_id(const Engine& engine) {
   return out;
 }
 
-double max_difference(const std::map<std::int64_t, Grain>& a, const std::map<std::int64_t, Grain>& b, const Box& box) {
-  double worst = 0.0;
-  for (const auto& [id, g] : a) {
-    Vec3 d = g.position - b.at(id).position;
-    for (int k = 0; k < 3; ++k) d[k] -= box.length(k) * std::round(d[k] / box.length(k));
-    worst = std::max({worst, norm(d), norm(g.velocity - b.at(id).velocity)});
-  }
-  return worst;
-}
 
 /// The tokens of the pieces beside `path` (files named PATH.piece-TOKEN-RANK-PART), with their counts.
 std::map<std::string, int> pieces_of(const std::string& path) {
@@ -121,11 +110,11 @@ TEST(CheckpointAcrossRanks, WrittenOnTwoRanksRestoredOnThreeAndOne) {
   const auto reference = by_id(straight);
   ASSERT_EQ(reference.size(), kGrains);
   ASSERT_EQ(on_three.size(), kGrains);
-  const double d3 = max_difference(reference, on_three, s.settings.box);
-  const double d1 = max_difference(reference, by_id(restored), s.settings.box);
+  const double d3 = testing::max_difference(reference, on_three, s.settings.box);
+  const double d1 = testing::max_difference(reference, by_id(restored), s.settings.box);
   std::printf("[ info ] 2 ranks -> 3 ranks: max difference to 1 rank %.3g; 3 ranks -> 1 rank: %.3g\n", d3, d1);
-  EXPECT_LT(d3, kTolerance);
-  EXPECT_LT(d1, kTolerance);
+  EXPECT_LT(d3, testing::kRankTolerance);
+  EXPECT_LT(d1, testing::kRankTolerance);
 
   // One rank below piece_rows writes an ordinary file and removes the pieces.
   Scene small = crystal(MPI_COMM_SELF, path, 10);

@@ -9,8 +9,6 @@
 namespace sedwave::forward::dem {
 namespace {
 
-const auto* const kMpi = ::testing::AddGlobalTestEnvironment(new testing::MpiEnvironment);
-
 struct Scene {
   EngineSettings settings;
   std::vector<Grain> grains;
