@@ -340,35 +340,39 @@ std::vector<Grain> join(std::vector<AtomLine> atoms, std::vector<VelocityLine> v
   for (std::size_t k = 1; k < atoms.size(); ++k)
     if (atoms[k].id == atoms[k - 1].id)
       failure.offer(atoms[k].line, where(atoms[k].line) + "duplicate atom id " + std::to_string(atoms[k].id));
-  std::vector<Grain> grains(atoms.size());
-  for (std::size_t k = 0; k < atoms.size(); ++k) {
-    Grain& g = grains[k];
-    g.id = atoms[k].id;
-    g.group = atoms[k].group;
-    g.radius = atoms[k].radius;
-    g.mass = atoms[k].mass;
-    g.position = atoms[k].position;
-  }
+  // Each atom's velocity line: the last one given for it, as a serial read applies them in turn.
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> velocity_of(atoms.size(), kNone);
   std::sort(velocities.begin(), velocities.end(), [](const auto& a, const auto& b) { return a.line < b.line; });
-  for (const VelocityLine& v : velocities) {  // in file order, so the last line for an atom wins
+  for (std::size_t k = 0; k < velocities.size(); ++k) {
+    const VelocityLine& v = velocities[k];
     const auto it = std::lower_bound(atoms.begin(), atoms.end(), AtomLine{v.id, 0, {}, 0.0, 0.0, 0}, by_id);
     if (it == atoms.end() || it->id != v.id || it->line > v.line) {
       failure.offer(v.line, where(v.line) + "Velocities entry for atom id " + std::to_string(v.id) +
                                 ", which is not in the Atoms section");
       continue;
     }
-    Grain& g = grains[static_cast<std::size_t>(it - atoms.begin())];
-    g.velocity = v.velocity;
-    g.angular_velocity = v.angular_velocity;
+    velocity_of[static_cast<std::size_t>(it - atoms.begin())] = k;
   }
-  // Back to file order.
+  // The grains, built once, in file order.
   std::vector<std::size_t> order(atoms.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return atoms[a].line < atoms[b].line; });
-  std::vector<Grain> in_file_order;
-  in_file_order.reserve(grains.size());
-  for (const std::size_t k : order) in_file_order.push_back(grains[k]);
-  return in_file_order;
+  std::vector<Grain> grains(atoms.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const AtomLine& a = atoms[order[k]];
+    Grain& g = grains[k];
+    g.id = a.id;
+    g.group = a.group;
+    g.radius = a.radius;
+    g.mass = a.mass;
+    g.position = a.position;
+    if (const std::size_t v = velocity_of[order[k]]; v != kNone) {
+      g.velocity = velocities[v].velocity;
+      g.angular_velocity = velocities[v].angular_velocity;
+    }
+  }
+  return grains;
 }
 
 /// Throws the first failure of the file on every rank of `comm` (collective; none: returns).
