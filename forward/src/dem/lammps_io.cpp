@@ -8,9 +8,8 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
-#include <sstream>
-#include <tuple>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 
 #include "sedwave/forward/dem/engine.hpp"
@@ -117,8 +116,7 @@ struct DataHeader {
   std::uint64_t file_size = 0;
 };
 
-template <class Reporter>
-void read_header_line(const std::string& body, const Reporter& r, DataHeader& h) {
+void read_header_line(const std::string& body, const Where& r, DataHeader& h) {
   const std::vector<std::string> words = split(body);
   if (words.size() == 2 && words[1] == "atoms") {
     h.n_atoms = parse<std::int64_t>(words[0], r, "atom count");
