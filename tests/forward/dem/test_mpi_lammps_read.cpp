@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -179,6 +180,32 @@ TEST(LammpsDataRanges, MalformedLinesAreNamedAsASerialReadNamesThem) {
     std::filesystem::remove(path);
     std::filesystem::remove(clean);
   }
+}
+
+// Files of 1 to 12 grains on 2, 3 and 4 ranks: the edges of the shares fall on every kind of line
+// (keywords, blank lines, the header's end, atoms, velocities), and every read equals the serial one.
+TEST(LammpsDataRanges, ShareEdgesOnEveryKindOfLine) {
+  const int rank = parallel::rank(MPI_COMM_WORLD);
+  Box box;
+  const std::vector<Grain> grains = random_grains(box);
+  const std::string path = testing::temp_path("lammps_ranges_edges.data", MPI_COMM_WORLD);
+  for (std::size_t n = 1; n <= 12; ++n) {
+    if (rank == 0) write_lammps_data(path, box, std::span(grains).first(n));
+    MPI_Barrier(MPI_COMM_WORLD);
+    const std::vector<Grain> expected = sorted_by_id(read_lammps_data(path).grains);
+    for (int ranks : {2, 3, 4}) {
+      const parallel::SubCommunicator sub(MPI_COMM_WORLD, rank < ranks);
+      if (sub.get() == MPI_COMM_NULL) continue;
+      LammpsData data;
+      EXPECT_EQ(error_of([&] { data = read_lammps_data(sub.get(), path); }), "") << n << " grains, " << ranks << " ranks";
+      const std::vector<Grain> all = sorted_by_id(parallel::gather_on_root(sub.get(), data.grains));
+      if (rank != 0) continue;
+      EXPECT_EQ(all.size(), n) << ranks << " ranks";
+      for (std::size_t k = 0; k < std::min(all.size(), expected.size()); ++k) expect_same(all[k], expected[k]);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+  }
+  if (rank == 0) std::filesystem::remove(path);
 }
 
 // More ranks than lines: the empty shares still agree, and a header that announces more atoms than
