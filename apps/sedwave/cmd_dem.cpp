@@ -160,13 +160,6 @@ std::vector<dem::RigidBody> make_walls(const DemOptions& o, std::map<int, std::i
   return bodies;
 }
 
-/// Each rank keeps every size-th grain of the file, so no rank holds them all; the engine then
-/// sends each grain to the rank owning its slab.
-dem::LammpsData read_share(const DemOptions& o, const MpiSession& mpi) {
-  std::int64_t index = 0;
-  return dem::read_lammps_data(o.data, [&](const dem::Grain&) { return index++ % mpi.size() == mpi.rank(); });
-}
-
 bool exists_on_root(const std::string& path, const MpiSession& mpi) {
   int found = mpi.rank() == 0 && std::filesystem::exists(path) ? 1 : 0;
   MPI_Bcast(&found, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -278,7 +271,8 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
   const bool root = mpi.rank() == 0;
   check_dem_paths(o);
 
-  dem::LammpsData data = read_share(o, mpi);
+  // Each rank reads its share of the file's bytes; the engine then sends each grain to its slab's owner.
+  dem::LammpsData data = dem::read_lammps_data(MPI_COMM_WORLD, o.data);
   std::map<int, std::int32_t> body_of_type;
   std::vector<dem::RigidBody> bodies = make_walls(o, body_of_type);
   for (dem::Grain& g : data.grains) {

@@ -13,6 +13,10 @@
 //                                   with frozen walls, each rank building only its own copies (or,
 //                                   with `restart`, the state of CHECKPOINT restored, on any rank
 //                                   count); runs STEPS and writes CHECKPOINT (pieces per rank)
+//   dem_bench read file.data [whole] reads the data file on every rank, each its share of the bytes
+//                                   (`whole`: each the whole file, keeping every size-th grain), and
+//                                   prints the slowest rank's seconds, the grains per rank and every
+//                                   rank's peak resident memory (MB, and its growth during the read)
 //   dem_bench loop file.data [CUT]  times the force loop alone on one rank, positions frozen after
 //                                   200 steps, dry and with a pore fluid's lubrication (cut-off
 //                                   CUT d, default 0.05) in alternating batches: median and fastest
@@ -170,13 +174,10 @@ int run(const std::string& path, long steps) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   const long rss_before = peak_rss_kib();
-  // Each rank keeps every size-th grain of the file, as `sedwave dem` does, so no rank holds them
-  // all; the engine then sends each grain to its slab's owner.
-  std::size_t index = 0;
+  // Each rank reads its share of the file's bytes, as `sedwave dem` does, so no rank holds it whole;
+  // the engine then sends each grain to its slab's owner.
   const double read_start = MPI_Wtime();
-  dem::LammpsData data = dem::read_lammps_data(path, [&](const dem::Grain&) {
-    return static_cast<int>(index++ % static_cast<std::size_t>(size)) == rank;
-  });
+  dem::LammpsData data = dem::read_lammps_data(MPI_COMM_WORLD, path);
   double read_s = MPI_Wtime() - read_start;  // the slowest rank's
   MPI_Allreduce(MPI_IN_PLACE, &read_s, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   dem::EngineSettings s = settings(data.box, false);
@@ -234,6 +235,41 @@ int run(const std::string& path, long steps) {
                 1e3 * seconds / static_cast<double>(steps), force.mean_ms, force.max_ms, neighbour.mean_ms,
                 neighbour.max_ms, communication.mean_ms, communication.max_ms, integration.mean_ms,
                 integration.max_ms, halo_bytes, mb.front(), mb[mb.size() / 2], mb.back(), memory.rank0_mb, read_s);
+  }
+  return 0;
+}
+
+/// Reads a data file on every rank and prints, on rank 0, the slowest rank's seconds, the grains per
+/// rank and every rank's peak resident memory. `whole`: every rank parses the whole file and keeps
+/// every size-th grain (the way before byte ranges), for comparison in the same run.
+int read(const std::string& path, bool whole) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const long rss_before = peak_rss_kib();
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double start = MPI_Wtime();
+  std::size_t index = 0;
+  const dem::LammpsData data =
+      whole ? dem::read_lammps_data(path, [&](const dem::Grain&) { return static_cast<int>(index++ % static_cast<std::size_t>(size)) == rank; })
+            : dem::read_lammps_data(MPI_COMM_WORLD, path);
+  double seconds = MPI_Wtime() - start;
+  MPI_Allreduce(MPI_IN_PLACE, &seconds, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  long counts[2] = {static_cast<long>(data.grains.size()), -static_cast<long>(data.grains.size())};
+  long total = counts[0];
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  double growth_mb = static_cast<double>(peak_rss_kib() - rss_before) / 1024.0;
+  double growth[2] = {growth_mb, -growth_mb};
+  MPI_Allreduce(MPI_IN_PLACE, growth, 2, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  const RankMemory memory = gather_peak_memory(rank, size);
+  if (rank == 0) {
+    const std::vector<double>& mb = memory.sorted_mb;
+    std::printf("mode=%s ranks=%d grains=%ld read_s=%.3f grains_per_rank_min=%ld grains_per_rank_max=%ld "
+                "peak_rss_mb_min=%.1f peak_rss_mb_median=%.1f peak_rss_mb_max=%.1f read_growth_mb_min=%.1f "
+                "read_growth_mb_max=%.1f\n",
+                whole ? "whole" : "ranges", size, total, seconds, counts[0], -counts[1], mb.front(), mb[mb.size() / 2],
+                mb.back(), growth[0], -growth[1]);
   }
   return 0;
 }
@@ -472,6 +508,8 @@ int main(int argc, char** argv) {
     else if (mode == "stack" && argc == 5) status = stack(argv[2], std::stol(argv[3]), argv[4]);
     else if (mode == "channel" && (argc == 6 || (argc == 7 && std::string(argv[6]) == "restart")))
       status = channel_run(argv[2], std::stol(argv[3]), std::stol(argv[4]), argv[5], argc == 7);
+    else if (mode == "read" && (argc == 3 || (argc == 4 && std::string(argv[3]) == "whole")))
+      status = read(argv[2], argc == 4);
     else if (mode == "loop" && (argc == 3 || argc == 4)) status = loop(argv[2], argc == 4 ? std::stod(argv[3]) : 0.05);
     else if (mode == "params") {
       const ThesisPhysics p = thesis_physics();
@@ -479,7 +517,7 @@ int main(int argc, char** argv) {
       status = 0;
     } else {
       std::cerr << "usage: dem_bench prepare N file | run file steps | stack file K out | channel cell K steps checkpoint "
-                   "[restart] | loop file [cutoff] | params\n";
+                   "[restart] | read file [whole] | loop file [cutoff] | params\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "dem_bench: " << e.what() << '\n';

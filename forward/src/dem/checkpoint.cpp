@@ -17,8 +17,8 @@
 // TOKEN, then PATH, which is what switches a restart to the new state; pieces no longer named by
 // PATH are removed after that. A kill at any moment leaves the old checkpoint or the new one whole.
 // Reading, each rank reads its own rows: with the same rank count, the rows it wrote (and its slab
-// boundaries); with another, an equal share of rows, and the engine then repartitions. Contact
-// history on another rank count is scanned by every rank for the records of its grains.
+// boundaries); with another, an equal share of rows, and the engine then repartitions; each contact-
+// history record read then goes to the ranks holding its grains.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +26,7 @@
 #include <random>
 #include <span>
 #include <string>
+#include <unordered_map>
 
 #include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
@@ -278,6 +279,45 @@ void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, Grai
   }
 }
 
+/// Sends the contact-history records that this rank read (its equal share of a checkpoint written on
+/// another rank count) to the ranks holding their grains, so that no rank reads them all
+/// (collective). Rank id mod P learns which rank holds grain `id`; a record passes through the one
+/// of its grain a, which adds a's holder, then through the one of its grain b, which sends it to
+/// both holders (once where they are one rank). A record none of whose grains is held is dropped.
+std::vector<HistoryEntry> route_to_holders(MPI_Comm comm, const GrainArrays& g, std::vector<HistoryEntry> records) {
+  const int ranks = parallel::size(comm), me = parallel::rank(comm);
+  const auto teller = [&](std::int64_t id) { return static_cast<std::size_t>(((id % ranks) + ranks) % ranks); };
+  struct Holder {
+    std::int64_t id, rank;
+  };
+  std::vector<std::vector<Holder>> holders_out(static_cast<std::size_t>(ranks));
+  for (std::size_t i = 0; i < g.n_local(); ++i) holders_out[teller(g.id[i])].push_back({g.id[i], me});
+  std::unordered_map<std::int64_t, std::int64_t> holder;
+  for (const Holder& h : parallel::all_to_all(comm, holders_out)) holder.emplace(h.id, h.rank);
+  holders_out = {};
+  const auto holder_of = [&](std::int64_t id) {
+    const auto it = holder.find(id);
+    return it == holder.end() ? std::int64_t{-1} : it->second;
+  };
+  std::vector<std::vector<HistoryEntry>> to_a(static_cast<std::size_t>(ranks));
+  for (const HistoryEntry& e : records) to_a[teller(e.a)].push_back(e);
+  records = {};
+  struct WithHolder {
+    HistoryEntry entry;
+    std::int64_t holder_a;
+  };
+  std::vector<std::vector<WithHolder>> to_b(static_cast<std::size_t>(ranks));
+  for (const HistoryEntry& e : parallel::all_to_all(comm, to_a)) to_b[teller(e.b)].push_back({e, holder_of(e.a)});
+  to_a = {};
+  std::vector<std::vector<HistoryEntry>> to_holders(static_cast<std::size_t>(ranks));
+  for (const WithHolder& w : parallel::all_to_all(comm, to_b)) {
+    const std::int64_t holder_b = holder_of(w.entry.b);
+    if (w.holder_a >= 0) to_holders[static_cast<std::size_t>(w.holder_a)].push_back(w.entry);
+    if (holder_b >= 0 && holder_b != w.holder_a) to_holders[static_cast<std::size_t>(holder_b)].push_back(w.entry);
+  }
+  return parallel::all_to_all(comm, to_holders);
+}
+
 }  // namespace
 
 void Engine::write_checkpoint(const std::string& path) {
@@ -431,25 +471,20 @@ void Engine::restore_checkpoint(const std::string& path) {
     for (std::size_t done = 0; done < grain_count; done += kReadChunk)
       read_grains(g, first_grain + done, std::min(kReadChunk, grain_count - done), spins, grains_);
 
-    // History: with the same layout, the records this rank wrote; else every record that involves a
-    // grain of this rank (migration forwards them as grains move).
+    // History: the records this rank wrote, or an equal share of them all (sent on to the ranks
+    // holding their grains below; migration forwards them as grains move).
     pending_history_.clear();
     if (needs_history(model_)) {
-      std::unordered_map<std::int64_t, char> local_ids;
-      for (std::size_t i = 0; i < grains_.n_local(); ++i) local_ids.emplace(grains_.id[i], 0);
       io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
       require_pieces(io::Handle(H5Dopen2(h, "a", H5P_DEFAULT), H5Dclose, "open /history/a"), path);
-      const std::size_t m = io::rows(h, "a");
-      const auto [first_record, record_count] =
-          same_layout ? rank_rows("history_rows", m) : std::pair<std::size_t, std::size_t>{0, m};
+      const auto [first_record, record_count] = rank_rows("history_rows", io::rows(h, "a"));
       for (std::size_t done = 0; done < record_count; done += kReadChunk) {
         const std::size_t first = first_record + done, count = std::min(kReadChunk, record_count - done);
         const auto a = io::read_rows<std::int64_t>(h, "a", first, count);
         const auto b = io::read_rows<std::int64_t>(h, "b", first, count);
         const auto s = io::read_rows<double>(h, "shear", first, count, 3);
         for (std::size_t k = 0; k < count; ++k)
-          if (same_layout || local_ids.contains(a[k]) || local_ids.contains(b[k]))
-            pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+          pending_history_.push_back({a[k], b[k], {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
       }
     }
     return same_layout;
@@ -462,6 +497,8 @@ void Engine::restore_checkpoint(const std::string& path) {
     error = e.what();
   }
   agree_on_failure(domain_.comm(), error, "reading " + path, "");
+  if (!same_layout && needs_history(model_))
+    pending_history_ = route_to_holders(domain_.comm(), grains_, std::move(pending_history_));
   if (!same_layout) domain_.partition_by_count(grains_, ghost_cutoff_);
   list_valid_ = false;
   history_.clear();

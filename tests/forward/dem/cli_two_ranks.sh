@@ -3,7 +3,7 @@
 # state, then a --restart to a later step (the files are cut back to the checkpoint and appended).
 # Checks the multi-rank paths of the command (reading shares, rank-by-rank writers, restore), and
 # that the restarted run ends byte for byte as an uninterrupted one on the same 2 ranks (each rank
-# reads back the grains it wrote).
+# reads back the grains it wrote), and that a malformed data file is refused naming its line.
 #
 # Usage: cli_two_ranks.sh MPIEXEC SEDWAVE DATA_FILE WORK_DIR
 set -euo pipefail
@@ -33,4 +33,13 @@ straight=(dem "$data" --kn 1000 --restitution 0.7 --friction 0.5 --gravity 0,0,-
 "$mpiexec" -np 2 --oversubscribe "$sedwave" "${straight[@]}" --steps 1000
 cmp final.data straight.data || { echo "FAIL: the restarted run ends elsewhere than the uninterrupted one" >&2; exit 1; }
 cmp run.dump straight.dump || { echo "FAIL: the restarted dump differs from the uninterrupted one" >&2; exit 1; }
-echo "PASS: 2 ranks, restarted at step 600, 11 dump frames, 128 grains in the final state, identical to an uninterrupted run"
+# Each rank parses its share of the file's bytes: a malformed line in the second rank's share (the
+# last Velocities line) is named with its line number in the whole file, and the run fails.
+lines=$(wc -l < "$data")
+awk -v last="$lines" 'NR == last { $2 = "fast" } { print }' "$data" > bad.data
+if "$mpiexec" -np 2 --oversubscribe "$sedwave" dem bad.data --kn 1000 --restitution 0.7 --steps 10 --quiet \
+    > bad.log 2>&1; then
+  echo "FAIL: a malformed data file was accepted on 2 ranks" >&2; exit 1
+fi
+grep -q "bad.data:$lines: bad velocity 'fast'" bad.log || { cat bad.log; echo "FAIL: the error does not name bad.data:$lines" >&2; exit 1; }
+echo "PASS: 2 ranks, restarted at step 600, 11 dump frames, 128 grains in the final state, identical to an uninterrupted run; a malformed line named at bad.data:$lines"

@@ -1,12 +1,15 @@
 // Checkpoints across rank counts (run with mpirun -np 4): written in pieces by 2 ranks, restored on
 // 3 and then on 1, the run ends where an uninterrupted 1-rank run ends, to the rank-equivalence
-// tolerance; each rank reads only its rows, and a new checkpoint removes the old one's pieces.
+// tolerance; each rank reads only its rows, contact history reaches the ranks holding its grains, and
+// a new checkpoint removes the old one's pieces.
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 
 #include "dem_test_support.hpp"
 #include "sedwave/forward/dem/gather.hpp"
+#include "sedwave/io/hdf5.hpp"
 
 namespace sedwave::forward::dem {
 namespace {
@@ -52,6 +55,29 @@ std::map<std::string, int> pieces_of(const std::string& path) {
   return tokens;
 }
 
+/// After a restore on another rank count, each contact-history record of the checkpoint is held by
+/// exactly the ranks holding its grains (each rank read only a share of the records).
+void expect_history_with_holders(MPI_Comm comm, const Engine& engine, const std::string& path) {
+  std::set<std::int64_t> mine;
+  for (std::size_t i = 0; i < engine.n_local(); ++i) mine.insert(engine.grains().id[i]);
+  std::vector<std::int64_t> file_a, file_b;
+  {
+    const io::Handle file = io::open_file(path);
+    const io::Handle h = io::open_group(file, "history");
+    const std::size_t m = io::rows(h, "a");
+    file_a = io::read_rows<std::int64_t>(h, "a", 0, m);
+    file_b = io::read_rows<std::int64_t>(h, "b", 0, m);
+  }
+  ASSERT_FALSE(file_a.empty()) << "no friction history to carry over";
+  // A pair across two ranks may have been written by both: pairs are compared, not records.
+  std::set<std::pair<std::int64_t, std::int64_t>> expected, held;
+  for (std::size_t k = 0; k < file_a.size(); ++k)
+    if (mine.contains(file_a[k]) || mine.contains(file_b[k])) expected.insert({file_a[k], file_b[k]});
+  for (const HistoryEntry& e : engine.contact_history()) held.insert({e.a, e.b});
+  EXPECT_EQ(held, expected) << "rank " << parallel::rank(comm);
+  EXPECT_FALSE(held.empty()) << "rank " << parallel::rank(comm);
+}
+
 TEST(CheckpointAcrossRanks, WrittenOnTwoRanksRestoredOnThreeAndOne) {
   const int rank = parallel::rank(MPI_COMM_WORLD);
   ASSERT_EQ(parallel::size(MPI_COMM_WORLD), 4) << "run under mpirun -np 4";
@@ -83,6 +109,7 @@ TEST(CheckpointAcrossRanks, WrittenOnTwoRanksRestoredOnThreeAndOne) {
       Engine engine(three.get(), s.settings, s.grains);
       engine.restore_checkpoint(path);
       EXPECT_EQ(engine.step_count(), 150);
+      expect_history_with_holders(three.get(), engine, path);
       const std::int64_t held = static_cast<std::int64_t>(engine.n_local());
       EXPECT_EQ(parallel::sum(three.get(), held), static_cast<std::int64_t>(kGrains));
       EXPECT_LT(held, static_cast<std::int64_t>(kGrains) / 2) << "rank " << rank << " holds more than its share";

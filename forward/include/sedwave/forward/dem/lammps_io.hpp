@@ -11,6 +11,8 @@
 // Numbers are written with 17 significant digits, so a file read back gives the same doubles bit
 // for bit (restarts from data files and comparisons of final states rely on it). Malformed input
 // throws std::runtime_error naming the file and line: "packing.data:12: bad Atoms line ...".
+#include <mpi.h>
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -31,8 +33,14 @@ struct LammpsData {
   std::vector<Grain> grains;
 };
 
-/// Reads a data file. `keep` filters grains while reading (e.g. each rank its own share), so no
-/// rank needs to hold all grains.
+/// Reads a data file on the ranks of `comm` together, no rank holding it whole (collective): rank 0
+/// reads the header and tells the others; each rank parses the lines that start in its share of the
+/// bytes after the header (line numbers counted per share and summed over the ranks before); each
+/// atom and velocity line goes to rank id mod size, which joins them. Every rank returns the box and
+/// its grains in file order; the engine then sends each grain to its slab's owner. A malformed file
+/// fails on every rank with the message a serial read gives (its first error in file order).
+[[nodiscard]] LammpsData read_lammps_data(MPI_Comm comm, const std::string& path);
+/// Reads a data file on this rank alone (MPI_COMM_SELF); `keep` picks the grains returned.
 [[nodiscard]] LammpsData read_lammps_data(const std::string& path,
                                           const std::function<bool(const Grain&)>& keep = {});
 /// Writes a data file (atom_style sphere) with velocities; serial (one rank, all grains given).
