@@ -16,7 +16,7 @@
 namespace sedwave::forward::dem {
 namespace {
 
-constexpr std::size_t kGrains = 240;
+constexpr std::size_t kDataFileGrains = 240;
 
 /// Grains with arbitrary doubles, ids out of order, types 1 to 3.
 std::vector<Grain> random_grains(Box& box) {
@@ -25,8 +25,8 @@ std::vector<Grain> random_grains(Box& box) {
   box.lo = {-u(rng), -u(rng), -u(rng)};
   box.hi = {8.0 + u(rng), 8.0 + u(rng), 40.0 + u(rng)};
   std::vector<Grain> grains;
-  for (std::size_t i = 0; i < kGrains; ++i) {
-    Grain g = testing::make_grain(static_cast<std::int64_t>((7 * i) % kGrains) * 5 + 2,
+  for (std::size_t i = 0; i < kDataFileGrains; ++i) {
+    Grain g = testing::make_grain(static_cast<std::int64_t>((7 * i) % kDataFileGrains) * 5 + 2,
                                   {8.0 * u(rng), 8.0 * u(rng), 40.0 * u(rng)}, 0.4 + 0.2 * u(rng), 1.0 + u(rng));
     g.group = static_cast<std::int32_t>(1 + i % 3);
     g.velocity = {u(rng) - 0.5, 1e-7 * u(rng), -3e5 * u(rng)};
@@ -50,7 +50,7 @@ void write_lines(const std::string& path, const std::vector<std::string>& lines)
 
 /// The line numbers (from 1) of write_lammps_data's layout: atom k, velocity k.
 std::size_t atom_line(std::size_t k) { return 11 + k; }
-std::size_t velocity_line(std::size_t k) { return 14 + kGrains + k; }
+std::size_t velocity_line(std::size_t k) { return 14 + kDataFileGrains + k; }
 
 /// The file written by rank 0, with its velocity lines in reverse order and one atom's velocity
 /// given twice (the later line wins), so that atoms and velocities meet from different ranks.
@@ -60,10 +60,10 @@ std::string packing_file(const std::vector<Grain>& grains, const Box& box) {
     write_lammps_data(path, box, grains);
     std::vector<std::string> lines = lines_of(path);
     const auto first = lines.begin() + static_cast<std::ptrdiff_t>(velocity_line(0) - 1);
-    std::reverse(first, first + kGrains);
+    std::reverse(first, first + kDataFileGrains);
     std::string repeated = lines[velocity_line(3) - 1];
     repeated = repeated.substr(0, repeated.find(' ')) + " 1 2 3 4 5 6";
-    lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(velocity_line(kGrains - 2) - 1), repeated);
+    lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(velocity_line(kDataFileGrains - 2) - 1), repeated);
     write_lines(path, lines);
   }
   MPI_Barrier(MPI_COMM_WORLD);
@@ -104,7 +104,7 @@ TEST(LammpsDataRanges, TwoThreeAndFourRanksReadExactlyTheSerialGrains) {
   const std::string path = packing_file(random_grains(box), box);
   const LammpsData serial = read_lammps_data(path);
   const std::vector<Grain> expected = sorted_by_id(serial.grains);
-  ASSERT_EQ(expected.size(), kGrains);
+  ASSERT_EQ(expected.size(), kDataFileGrains);
   for (int ranks : {2, 3, 4}) {
     const parallel::SubCommunicator sub(MPI_COMM_WORLD, rank < ranks);
     if (sub.get() == MPI_COMM_NULL) continue;
@@ -113,7 +113,7 @@ TEST(LammpsDataRanges, TwoThreeAndFourRanksReadExactlyTheSerialGrains) {
     EXPECT_EQ(data.box.lo, serial.box.lo);
     EXPECT_EQ(data.box.hi, serial.box.hi);
     // No rank holds the packing whole: each joins the ids congruent to its rank.
-    EXPECT_LT(data.grains.size(), kGrains) << ranks << " ranks, rank " << rank;
+    EXPECT_LT(data.grains.size(), kDataFileGrains) << ranks << " ranks, rank " << rank;
     for (const Grain& g : data.grains) EXPECT_EQ(g.id % ranks, rank) << "grain " << g.id;
     const std::vector<Grain> all = sorted_by_id(parallel::gather_on_root(sub.get(), data.grains));
     if (rank != 0) continue;
@@ -142,11 +142,11 @@ TEST(LammpsDataRanges, MalformedLinesAreNamedAsASerialReadNamesThem) {
   };
   const std::string first_id = std::to_string(grains.front().id);
   const std::vector<Case> cases = {
-      {atom_line(kGrains - 3), "9999 1 1.0 1.0 0.5 0.5 zero", "bad coordinate 'zero'"},
-      {atom_line(kGrains - 1), first_id + " 2 1.0 1.0 0.5 0.5 0.5", "duplicate atom id " + first_id},
-      {atom_line(kGrains - 2), "1 1 1.0 1.0 0.5 0.5", "bad Atoms line"},
-      {velocity_line(kGrains - 4), "123456 0 0 0 0 0 0", "Velocities entry for atom id 123456, which is not in the Atoms"},
-      {velocity_line(kGrains - 6), "7 0 0 0 0 0", "bad Velocities line"},
+      {atom_line(kDataFileGrains - 3), "9999 1 1.0 1.0 0.5 0.5 zero", "bad coordinate 'zero'"},
+      {atom_line(kDataFileGrains - 1), first_id + " 2 1.0 1.0 0.5 0.5 0.5", "duplicate atom id " + first_id},
+      {atom_line(kDataFileGrains - 2), "1 1 1.0 1.0 0.5 0.5", "bad Atoms line"},
+      {velocity_line(kDataFileGrains - 4), "123456 0 0 0 0 0 0", "Velocities entry for atom id 123456, which is not in the Atoms"},
+      {velocity_line(kDataFileGrains - 6), "7 0 0 0 0 0", "bad Velocities line"},
   };
   for (const Case& c : cases) {
     if (rank == 0) {
@@ -168,7 +168,7 @@ TEST(LammpsDataRanges, MalformedLinesAreNamedAsASerialReadNamesThem) {
   if (rank == 0) {
     std::vector<std::string> changed = lines;
     changed[atom_line(1) - 1] = "5 1 1.0 -1.0 0.5 0.5 0.5";
-    changed[velocity_line(kGrains - 1) - 1] = "7 0 0";
+    changed[velocity_line(kDataFileGrains - 1) - 1] = "7 0 0";
     write_lines(path, changed);
   }
   MPI_Barrier(MPI_COMM_WORLD);
