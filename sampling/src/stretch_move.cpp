@@ -389,8 +389,9 @@ void check_moves(const MoveMix& moves, int walkers) {
   // Differential evolution picks 2 distinct walkers of the other half, the snooker 3.
   const int needed = moves.snooker > 0.0 ? 6 : moves.differential_evolution > 0.0 ? 4 : 2;
   if (walkers < needed) {
-    throw std::invalid_argument("walkers = " + std::to_string(walkers) + " with the differential-evolution moves: use at least " +
-                                std::to_string(needed) + " walkers (their distinct picks come from the other half)");
+    throw std::invalid_argument("walkers = " + std::to_string(walkers) +
+                                " with the differential-evolution moves: use at least " + std::to_string(needed) +
+                                " walkers (their distinct picks come from the other half)");
   }
 }
 
