@@ -1,14 +1,17 @@
 // Does the default posterior converge? Synthetic sets with fixed seeds, 5 per model family
-// (sediment::model_examples(): the dry lattice chain, the saturated chain with its permeability from
-// Kozeny-Carman or as a parameter of its own, Biot-Stoll, EDFM, grain-shearing, VGS(lambda)): the
+// (the dry lattice chain, the saturated chain with its permeability from Kozeny-Carman or as a
+// parameter of its own, Biot-Stoll, EDFM, grain-shearing, VGS(lambda), in this order): the
 // truth is the family's defaults with each of its typical free parameters (2-3,
 // sediment::typical_free_parameters) moved by a factor e^(0.3 N(0,1)); 20 log-spaced frequencies
 // over 100 Hz - 100 kHz, 5 % attenuation and 1 % sound-speed noise. Each set is fitted (global) with
 // those parameters free, then sampled with sample_posterior's defaults (an adaptive run length,
 // capped by PosteriorOptions::steps) under default priors; prints per set the steps run, the
-// largest autocorrelation time, the smallest ESS, the wall time and whether it converged.
+// largest autocorrelation time, the smallest ESS, the widest 95 % interval (ln of its upper over its
+// lower end: a run that missed part of a ridge shows a narrower one), the wall time and whether it
+// converged.
 //
-//   build/bin/bench_posterior_defaults [sets per family=5] [DIR: also write the sets there as CSV]
+//   build/bin/bench_posterior_defaults [sets per family=5] [DIR: also write the sets there as CSV; - none]
+//                                      [FAMILY...: only these families, by their index in the table (0-6)]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +25,7 @@
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/synthetic.hpp"
 #include "sedwave/sediment/catalog.hpp"
+#include "sedwave/sediment/saturated_granular.hpp"
 
 namespace {
 
@@ -61,6 +65,29 @@ SyntheticSet make_set(const std::shared_ptr<const sediment::SedimentModel>& mode
   return set;
 }
 
+// The 7 families in a fixed order (the order of the seeds): sediment::model_examples(), with the
+// saturated chain also in its Kozeny-Carman form (permeability from d and porosity), just before the
+// form with permeability as a parameter, which the catalog lists.
+std::vector<std::shared_ptr<const sediment::SedimentModel>> bench_families() {
+  std::vector<std::shared_ptr<const sediment::SedimentModel>> out;
+  for (auto& model : sediment::model_examples()) {
+    const auto* saturated = dynamic_cast<const sediment::SaturatedGranularModel*>(model.get());
+    if (saturated && saturated->permeability_from() == sediment::PermeabilityFrom::Parameter) {
+      out.push_back(sediment::make_sediment_model(model->name(), {sediment::DampingForm::Gamma, false}));
+    }
+    out.push_back(model);
+  }
+  return out;
+}
+
+std::string label(const sediment::SedimentModel& model) {
+  const auto* saturated = dynamic_cast<const sediment::SaturatedGranularModel*>(&model);
+  if (!saturated) return model.name();
+  return model.name() + (saturated->permeability_from() == sediment::PermeabilityFrom::Parameter
+                             ? " (permeability a parameter)"
+                             : " (Kozeny-Carman)");
+}
+
 std::string free_names(const inversion::FitParameters& p) {
   std::string out;
   for (int i : p.free_indices()) out += (out.empty() ? "" : ",") + p.spec[i].name;
@@ -71,40 +98,45 @@ std::string free_names(const inversion::FitParameters& p) {
 
 int main(int argc, char** argv) {
   const int per_family = argc > 1 ? std::atoi(argv[1]) : 5;
-  const std::filesystem::path dir = argc > 2 ? argv[2] : "";
+  const std::filesystem::path dir = argc > 2 && std::string(argv[2]) != "-" ? argv[2] : "";
+  std::vector<std::size_t> only;
+  for (int a = 3; a < argc; ++a) only.push_back(static_cast<std::size_t>(std::atoi(argv[a])));
   if (!dir.empty()) std::filesystem::create_directories(dir);
   const inversion::PosteriorOptions defaults;
   std::printf("default posterior (cap %d steps, checked every %d) on %d synthetic sets per family\n", defaults.steps,
               defaults.check_every, per_family);
-  std::printf("%-40s %4s %-24s %6s %7s %7s %6s %7s %s\n", "model", "set", "free", "steps", "tau", "ESS", "accept",
-              "s", "verdict");
+  std::printf("%-40s %4s %-24s %6s %7s %7s %6s %6s %7s %s\n", "model", "set", "free", "steps", "tau", "ESS",
+              "accept", "ln95", "s", "verdict");
   int sets = 0, converged = 0;
   double longest = 0.0;
-  const auto families = sediment::model_examples();
+  const auto families = bench_families();
   for (std::size_t f = 0; f < families.size(); ++f) {
+    if (!only.empty() && std::find(only.begin(), only.end(), f) == only.end()) continue;
     for (int k = 0; k < per_family; ++k) {
       const SyntheticSet set = make_set(families[f], f, k);
-      const std::string label = families[f]->name() + (f == 2 ? " (permeability a parameter)" : "");
+      const std::string name = label(*families[f]);
       if (!dir.empty()) {
         inversion::write_observation_csv(
             dir / ("set_" + std::to_string(f) + "_" + std::to_string(k) + ".csv"), set.data,
-            {"synthetic set " + std::to_string(k) + " of " + label + ", seed " + std::to_string(set.seed) +
+            {"synthetic set " + std::to_string(k) + " of " + name + ", seed " + std::to_string(set.seed) +
              " (bench/posterior_defaults.cpp); free: " + free_names(set.truth)});
       }
       const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
       const inversion::FitResult best = inversion::fit(set.data, *set.model, set.truth, fit_options);
       const inversion::PosteriorResult p = inversion::sample_posterior(
           set.data, *set.model, best, inversion::make_priors(best.fitted, {}), fit_options, defaults);
-      double tau = 0.0, ess = 1e300;
+      double tau = 0.0, ess = 1e300, width = 0.0;
       for (const auto& q : p.parameters) {
+        width = std::max(width, std::log(q.upper_95 / q.lower_95));
         tau = std::max(tau, static_cast<double>(p.steps - p.steps / 2) * p.walkers / q.effective_samples);
         ess = std::min(ess, q.effective_samples);
       }
       ++sets;
       converged += p.converged;
       longest = std::max(longest, p.wall_seconds);
-      std::printf("%-40s %4d %-24s %6d %7.1f %7.0f %6.2f %7.2f %s\n", label.c_str(), k, free_names(set.truth).c_str(),
-                  p.steps, tau, ess, p.acceptance, p.wall_seconds, p.converged ? "converged" : "NOT CONVERGED");
+      std::printf("%-40s %4d %-24s %6d %7.1f %7.0f %6.2f %6.2f %7.2f %s\n", name.c_str(), k,
+                  free_names(set.truth).c_str(), p.steps, tau, ess, p.acceptance, width, p.wall_seconds,
+                  p.converged ? "converged" : "NOT CONVERGED");
       std::fflush(stdout);
     }
   }

@@ -154,6 +154,11 @@ Eigen::VectorXd draw_free_from_priors(const Setup& s, const std::vector<Prior>& 
   return x;
 }
 
+/// What sample_posterior runs, as its outputs name it.
+constexpr const char* kSamplerAlgorithm =
+    "ensemble of walkers, differential-evolution moves (ter Braak 2006) 0.8 and snooker moves (ter Braak & Vrugt "
+    "2008) 0.2";
+
 /// Prior draws, the pilot of the ladder and the hot rungs' start, from a stream of their own.
 constexpr std::uint64_t kPriorStream = 0x5DEECE66DULL;
 /// Prior draws that measure how far below the best fit the prior's likelihoods lie.
@@ -396,6 +401,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   ensemble.seed = options.seed;
   ensemble.threads = options.threads;
   ensemble.check_every = options.check_every;
+  ensemble.moves = sampling::differential_moves();
   ProgressReporter report(options.progress);
   ensemble.stop = [&](const sampling::EnsembleRun& so_far) {
     const sampling::Diagnostics d = sampling::diagnose(so_far);
@@ -470,7 +476,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
 
 nlohmann::json posterior_report(const PosteriorResult& p) {
   nlohmann::json j;
-  j["sampler"] = {{"algorithm", "affine-invariant ensemble, stretch move (Goodman & Weare 2010)"},
+  j["sampler"] = {{"algorithm", kSamplerAlgorithm},
                   {"walkers", p.walkers},
                   {"steps", p.steps},
                   {"steps_cap", p.steps_cap},
@@ -536,7 +542,7 @@ void write_posterior_samples_hdf5(const std::filesystem::path& path, const Poste
       {{"title", "sedwave posterior samples"},
        {"layout", "one dataset per free parameter, shape {walkers, kept steps}: walker w's chain in row w, burn-in "
                   "dropped; values in the dataset's unit (SI)"},
-       {"sampler", "affine-invariant ensemble, stretch move (Goodman & Weare 2010); " + std::to_string(p.walkers) +
+       {"sampler", std::string(kSamplerAlgorithm) + "; " + std::to_string(p.walkers) +
                        " walkers x " + std::to_string(p.steps) + " steps, first half burn-in"},
        {"priors", priors},
        {"converged", p.converged ? "yes" : "no: " + p.advice}},

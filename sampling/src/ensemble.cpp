@@ -34,6 +34,8 @@ EnsembleRun kept_run(const detail::History& history, const detail::Ensemble& ens
 
 }  // namespace
 
+MoveMix differential_moves() { return {.stretch = 0.0, .differential_evolution = 0.8, .snooker = 0.2}; }
+
 int default_walkers(int dim) {
   const int walkers = std::max(4 * dim, 16);
   return walkers + walkers % 2;
@@ -70,11 +72,12 @@ EnsembleRun sample(const LogDensity& log_density, const std::vector<Eigen::Vecto
   detail::CountingEvaluator evaluate(
       [&log_density](const Eigen::VectorXd& x) { return detail::LogParts{log_density(x), 0.0}; }, options.threads);
   detail::check_adaptive_options(options.check_every, static_cast<bool>(options.stop), options.burn_in);
+  detail::check_moves(options.moves, walkers);
   detail::Ensemble ensemble = detail::start_ensemble(start_walkers, walkers, 1.0, evaluate);
   RandomStream random(options.seed);
   detail::History history(walkers, dim);
   for (int step = 1; step <= options.steps; ++step) {
-    detail::stretch_update(ensemble, 1.0, options.stretch, random, evaluate);
+    detail::mixed_update(ensemble, options.stretch, options.moves, random, evaluate);
     history.record(ensemble, 1.0);
     if (options.check_every > 0 && step % options.check_every == 0 && step < options.steps &&
         options.stop(kept_run(history, ensemble, burn_in_steps(options, step), evaluate.evaluations()))) {

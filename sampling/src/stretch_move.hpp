@@ -1,6 +1,7 @@
 #pragma once
 // The stretch move on a half-ensemble (GW10 section 5; FM13 algorithm 3), shared by the plain and
-// the tempered sampler. A target is ln prior(x) + beta ln L(x); the plain sampler uses beta = 1
+// the tempered sampler, and the differential-evolution moves the plain sampler may mix in
+// (ensemble.hpp, MoveMix). A target is ln prior(x) + beta ln L(x); the plain sampler uses beta = 1
 // and puts its whole density in the "prior" part.
 #include <functional>
 #include <utility>
@@ -8,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "sedwave/sampling/ensemble.hpp"
 #include "sedwave/sampling/random_stream.hpp"
 
 namespace sedwave::sampling::detail {
@@ -60,6 +62,11 @@ class CountingEvaluator {
 void stretch_update(Ensemble& ensemble, double beta, double stretch, RandomStream& random,
                     CountingEvaluator& evaluate);
 
+/// One update with a move drawn from `moves` (the stretch move alone draws no random number for the
+/// choice, so its samples are those of stretch_update).
+void mixed_update(Ensemble& ensemble, double stretch, const MoveMix& moves, RandomStream& random,
+                  CountingEvaluator& evaluate);
+
 /// One update of every ensemble (ensembles[t] at betas[t]), drawing the random numbers in the same
 /// order as stretch_update on each ensemble in turn, so the samples are the same; but the first
 /// halves of all ensembles are evaluated as one batch, then the second halves, which gives the
@@ -90,6 +97,9 @@ class History {
 
 /// Checks the options shared by both samplers; std::invalid_argument names what to change.
 void check_run_options(int walkers, int dim, int steps, int burn_in, double stretch, int threads);
+/// Checks a move mixture for an ensemble of `walkers` (weights finite, >= 0, not all 0; enough
+/// walkers in a half for the differential moves' distinct picks).
+void check_moves(const MoveMix& moves, int walkers);
 /// Checks the adaptive-length options (check_every >= 0; with check_every > 0 a stop test and burn_in = -1).
 void check_adaptive_options(int check_every, bool has_stop, int burn_in);
 

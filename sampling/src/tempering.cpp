@@ -253,6 +253,11 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density,
                             ensemble_options.stretch, ensemble_options.threads);
   detail::check_adaptive_options(ensemble_options.check_every, static_cast<bool>(options.stop),
                                  ensemble_options.burn_in);
+  if (ensemble_options.moves.differential_evolution != 0.0 || ensemble_options.moves.snooker != 0.0) {
+    // The evidence's accuracy was established with the stretch move on every rung.
+    throw std::invalid_argument("parallel tempering moves its rungs by the stretch move only: leave "
+                                "ensemble.moves at its default");
+  }
 
   detail::CountingEvaluator evaluate([&density](const Eigen::VectorXd& x) {
     const double log_prior = density.log_prior(x);

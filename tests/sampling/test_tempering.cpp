@@ -309,5 +309,16 @@ TEST(Tempering, RefusesABadLadder) {
                                         {"log likelihood"});
 }
 
+// The evidence's accuracy was established with the stretch move on every rung; other moves are refused.
+TEST(Tempering, RefusesMovesOtherThanTheStretch) {
+  const GaussianProblem problem;
+  TemperingOptions options;
+  options.betas = evidence_ladder(4, 100.0);
+  options.ensemble.moves = differential_moves();
+  const auto start = start_ball(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), options.ensemble);
+  expect_refusal<std::invalid_argument>([&] { (void)sample_tempered(problem.density(), start, options); },
+                                        {"stretch move only"});
+}
+
 }  // namespace
 }  // namespace sedwave::sampling

@@ -26,8 +26,10 @@ struct PosteriorOptions {
   /// The cap on ensemble updates per walker, burn-in included. The run stops earlier, once
   /// converged: every check_every updates the kept half is diagnosed, and the run ends when every
   /// quantity has kept steps >= 50 autocorrelation times, ESS >= 400 and walkers that agree (R-hat
-  /// < 1.05); the first half of the updates run is burn-in. "NOT CONVERGED" only at the cap.
-  int steps = 20000;
+  /// < 1.05); the first half of the updates run is burn-in. "NOT CONVERGED" only at the cap. The
+  /// cap leaves room for posteriors along ridges bounded only by the priors, whose tau reaches
+  /// ~700 updates (bench_posterior_defaults): 50 tau kept then needs ~70000 updates.
+  int steps = 100000;
   int burn_in = -1;       ///< -1: the first half; another value needs check_every = 0
   unsigned seed = 20090501;
   int threads = 1;        ///< share the model evaluations; the samples do not depend on it
