@@ -39,10 +39,8 @@ int main(int argc, char** argv) {
   std::printf("%-22s %-22s %10s %7s %9s %16s %8s %8s %7s\n", "model", "free", "quadrature", "+-", "in 2 sd",
               "mean diff +- se", "sd(lnZ)", "stated", "s/run");
   const auto families = sediment::model_examples();
-  for (std::size_t family = 0; family < families.size(); ++family) {
-    const auto& model = families[family];
-    // The third family is the saturated chain again, with its permeability a parameter of its own.
-    const std::string name = model->name() + (family == 2 ? " (k param.)" : "");
+  for (const auto& model : families) {
+    const std::string name = model->name();
     if (!only.empty() && name.find(only) == std::string::npos) continue;
     std::string typical = sediment::typical_free_parameters(*model);
     const std::string free = typical.substr(0, typical.find(',', typical.find(',') + 1));

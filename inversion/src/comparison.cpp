@@ -156,7 +156,7 @@ nlohmann::json ranking_report(const Ranking& ranking) {
                           {"steps", e.steps}, {"temperatures", e.temperatures},
                           {"max_temperature", e.max_temperature},
                           {"thermodynamic_integration", e.thermodynamic_integration},
-                          {"stone_overlap", e.stone_overlap}};
+                          {"stone_overlap", e.stone_overlap}, {"swap_acceptance", e.swap_acceptance}};
   };
   nlohmann::json j = nlohmann::json::array();
   for (const ComparedModel& m : ranking.models) {

@@ -17,6 +17,10 @@ namespace {
 
 constexpr int kDefaultTemperatures = 16;
 constexpr double kDefaultMaxTemperature = 1e6;
+// The ladder's adaptation gain kappa(t) = t0 / (nu (t + t0)) (VFM16 eq. 13, with their and
+// ptemcee's t0 = 10^4 and nu = 10^2): nearly constant over a burn-in of a few thousand steps.
+constexpr double kAdaptationLag = 1e4;
+constexpr double kAdaptationTime = 1e1;
 
 void check_ladder(const std::vector<double>& betas) {
   if (betas.empty() || betas.front() != 1.0) {
@@ -65,6 +69,27 @@ void propose_swaps(std::vector<Level>& levels, const std::vector<double>& betas,
   }
 }
 
+// One step of VFM16's ladder dynamics (section 3.1, eqs. 12-13): the log width S_i of the
+// interval from temperature T_i = 1 / beta_i to T_(i+1) moves by kappa(t) (A_i - A_(i+1)), A_i the
+// fraction of this step's swaps accepted between them, so an interval that swaps more easily than
+// the next widens and rates even out. T_0 = 1 and the hottest finite temperature stay; the last
+// interval takes up what the others leave. A step that would push the next-hottest past the
+// hottest is skipped, so the ladder stays strictly ordered.
+void adapt_ladder(std::vector<double>& betas, const std::vector<long>& accepted_now, int walkers, int step) {
+  const std::size_t finite = betas.back() == 0.0 ? betas.size() - 1 : betas.size();
+  if (finite < 3) return;
+  const double kappa = kAdaptationLag / (kAdaptationTime * (static_cast<double>(step) + kAdaptationLag));
+  std::vector<double> temperature(finite), adapted(finite);
+  for (std::size_t i = 0; i < finite; ++i) temperature[i] = 1.0 / betas[i];
+  adapted[0] = temperature[0];
+  for (std::size_t i = 0; i + 2 < finite; ++i) {
+    const double rate_difference = static_cast<double>(accepted_now[i] - accepted_now[i + 1]) / walkers;
+    adapted[i + 1] = adapted[i] + (temperature[i + 1] - temperature[i]) * std::exp(kappa * rate_difference);
+  }
+  if (!(adapted[finite - 2] < temperature[finite - 1])) return;
+  for (std::size_t i = 1; i + 1 < finite; ++i) betas[i] = 1.0 / adapted[i];
+}
+
 // A beta = 0 rung refreshed by independent prior draws: every walker replaced (drawn in walker
 // order before any is evaluated, so the run does not depend on the thread count).
 void redraw_from_prior(detail::Ensemble& ensemble, const PriorAndLikelihood& density, RandomStream& random,
@@ -98,17 +123,18 @@ EnsembleRun level_run(const Level& level, int burn_in) {
   return run;
 }
 
-// The run so far, its burn-in dropped.
+// The run so far, its burn-in dropped; swaps_accepted counts the swaps of the steps after the
+// ladder's adaptation (adapt_steps of them before).
 TemperedRun tempered_run(const std::vector<Level>& levels, const std::vector<double>& betas,
-                         const std::vector<long>& swaps_accepted, int burn_in, int evaluations) {
+                         const std::vector<long>& swaps_accepted, int adapt_steps, int burn_in, int evaluations) {
   TemperedRun run;
   run.betas = betas;
   const int steps = levels.front().history.steps();
   const auto walkers = static_cast<double>(levels.front().ensemble.positions.size());
+  const auto counted = static_cast<double>(std::max(steps - adapt_steps, 1));
   run.swap_acceptance.resize(static_cast<Eigen::Index>(swaps_accepted.size()));
   for (std::size_t i = 0; i < swaps_accepted.size(); ++i) {
-    run.swap_acceptance(static_cast<Eigen::Index>(i)) =
-        static_cast<double>(swaps_accepted[i]) / (static_cast<double>(steps) * walkers);
+    run.swap_acceptance(static_cast<Eigen::Index>(i)) = static_cast<double>(swaps_accepted[i]) / (counted * walkers);
   }
   for (std::size_t t = 0; t < levels.size(); ++t) {
     run.log_likelihood.push_back(levels[t].history.log_likelihood(burn_in));
@@ -236,7 +262,7 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density,
   if (!density.log_prior || !density.log_likelihood) {
     throw std::invalid_argument("tempering needs both the log prior and the log likelihood");
   }
-  const std::vector<double> betas =
+  std::vector<double> betas =
       options.betas.empty() ? evidence_ladder(kDefaultTemperatures, kDefaultMaxTemperature) : options.betas;
   check_ladder(betas);
   if (level_starts.size() != betas.size()) {
@@ -257,6 +283,11 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density,
     // The evidence's accuracy was established with the stretch move on every rung.
     throw std::invalid_argument("parallel tempering moves its rungs by the stretch move only: leave "
                                 "ensemble.moves at its default");
+  }
+  if (options.adapt_steps < 0 || burn_in_steps(ensemble_options) < 2 * options.adapt_steps) {
+    throw std::invalid_argument("adapt_steps = " + std::to_string(options.adapt_steps) + " with a burn-in of " +
+                                std::to_string(burn_in_steps(ensemble_options)) +
+                                " steps: the ladder may adapt only during the first half of the burn-in (0 keeps it fixed)");
   }
 
   detail::CountingEvaluator evaluate([&density](const Eigen::VectorXd& x) {
@@ -280,20 +311,32 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density,
     moved.push_back(&levels[t].ensemble);
     moved_betas.push_back(betas[t]);
   }
+  const int adapt_steps = options.adapt_steps;
   for (int step = 1; step <= ensemble_options.steps; ++step) {
     detail::stretch_update_all(moved, moved_betas, ensemble_options.stretch, random, evaluate);
     if (levels.back().prior_draws) redraw_from_prior(levels.back().ensemble, density, random, evaluate);
-    propose_swaps(levels, betas, random, swaps_accepted);
+    std::vector<long> accepted_now(swaps_accepted.size(), 0);
+    propose_swaps(levels, betas, random, accepted_now);
     for (std::size_t t = 0; t < levels.size(); ++t) levels[t].history.record(levels[t].ensemble, betas[t]);
+    if (step <= adapt_steps) {
+      adapt_ladder(betas, accepted_now, walkers, step);
+      std::size_t m = 0;
+      for (std::size_t t = 0; t < levels.size(); ++t) {
+        if (!levels[t].prior_draws) moved_betas[m++] = betas[t];
+      }
+    } else {
+      for (std::size_t i = 0; i < swaps_accepted.size(); ++i) swaps_accepted[i] += accepted_now[i];
+    }
     if (ensemble_options.check_every > 0 && step % ensemble_options.check_every == 0 &&
-        step < ensemble_options.steps &&
-        options.stop(tempered_run(levels, betas, swaps_accepted, burn_in_steps(ensemble_options, step),
+        step < ensemble_options.steps && step >= 4 * adapt_steps &&
+        options.stop(tempered_run(levels, betas, swaps_accepted, adapt_steps, burn_in_steps(ensemble_options, step),
                                   evaluate.evaluations()))) {
       break;
     }
   }
   const int steps = levels.front().history.steps();
-  return tempered_run(levels, betas, swaps_accepted, burn_in_steps(ensemble_options, steps), evaluate.evaluations());
+  return tempered_run(levels, betas, swaps_accepted, adapt_steps, burn_in_steps(ensemble_options, steps),
+                      evaluate.evaluations());
 }
 
 Evidence thermodynamic_evidence(const TemperedRun& run) {

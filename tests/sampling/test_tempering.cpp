@@ -134,11 +134,12 @@ struct SeedStudy {
 // The stated error is honest: over 20 seeds, |ln Z - exact| <= 2 sigma_stated in >= 90 % of runs, and
 // the mean difference is within 2 standard errors of 0 (no bias beyond the noise).
 void expect_honest_evidence(const PriorAndLikelihood& density, double exact, const std::vector<double>& betas,
-                            const Eigen::Vector2d& start, int steps, int seeds = 20) {
+                            const Eigen::Vector2d& start, int steps, int adapt_steps = 0, int seeds = 20) {
   SeedStudy study;
   for (std::uint64_t seed = 1; seed <= static_cast<std::uint64_t>(seeds); ++seed) {
     TemperingOptions options;
     options.betas = betas;
+    options.adapt_steps = adapt_steps;
     options.ensemble.steps = steps;
     options.ensemble.seed = seed;
     // Hot rungs from prior draws, cold ones in a small ball at the likelihood's peak.
@@ -174,6 +175,42 @@ TEST(Tempering, EvidenceErrorIsHonestAgainstQuadrature) {
   EXPECT_NEAR(exact, problem.quadrature(1000), 1e-3) << "the reference itself is not converged";
   expect_honest_evidence(problem.density(), exact, evidence_ladder(24, 1e6),
                          Eigen::Vector2d(std::log(1.5), std::log(0.7)), 1000);
+}
+
+// With the ladder adapted during the burn-in the evidence stays honest: the kept steps all use the
+// final ladder, and stepping stones hold for any ladder.
+TEST(Tempering, EvidenceErrorIsHonestWithAnAdaptedLadder) {
+  const DecayProblem problem;
+  expect_honest_evidence(problem.density(), problem.quadrature(2000), evidence_ladder(24, 1e6),
+                         Eigen::Vector2d(std::log(1.5), std::log(0.7)), 2000, 500);
+}
+
+// VFM16's adaptation evens out the swap rates of a geometric ladder: on the decay problem the
+// rates of a fixed ladder spread widely between its cold and hot ends; after 1000 adapted steps
+// the spread over the kept steps is at most half of that, the slowest pair swaps more often, and
+// beta = 1, the smallest beta > 0 and beta = 0 stay where they were.
+TEST(Tempering, AdaptedLadderEvensOutTheSwapRates) {
+  const DecayProblem problem;
+  TemperingOptions options;
+  options.betas = evidence_ladder(12, 1e6);
+  options.ensemble.steps = 3000;
+  const auto start = start_ball(Eigen::Vector2d(std::log(1.5), std::log(0.7)), Eigen::Vector2d(0.01, 0.01),
+                                options.ensemble);
+  const TemperedRun fixed = sample_tempered(problem.density(), start, options);
+  options.adapt_steps = 500;
+  const TemperedRun adapted = sample_tempered(problem.density(), start, options);
+  // The pairs among beta > 0: the last pair, to the prior's rung, is not adapted.
+  const auto finite_pairs = [](const TemperedRun& run) { return run.swap_acceptance.head(run.swap_acceptance.size() - 1); };
+  const auto spread = [&](const TemperedRun& run) { return finite_pairs(run).maxCoeff() - finite_pairs(run).minCoeff(); };
+  std::cout << "  swap rates, fixed ladder:   " << fixed.swap_acceptance.transpose() << "\n  swap rates, adapted ladder: "
+            << adapted.swap_acceptance.transpose() << '\n';
+  EXPECT_LT(spread(adapted), 0.5 * spread(fixed));
+  EXPECT_GT(finite_pairs(adapted).minCoeff(), finite_pairs(fixed).minCoeff());
+  EXPECT_EQ(adapted.betas.front(), 1.0);
+  EXPECT_EQ(adapted.betas[adapted.betas.size() - 2], options.betas[options.betas.size() - 2]);
+  EXPECT_EQ(adapted.betas.back(), 0.0);
+  for (std::size_t i = 1; i < adapted.betas.size(); ++i) EXPECT_LT(adapted.betas[i], adapted.betas[i - 1]);
+  EXPECT_NE(adapted.betas, options.betas);
 }
 
 // The beta = 1 ensemble samples the posterior: its mean within 4 Monte Carlo standard errors.
@@ -240,6 +277,14 @@ TEST(Tempering, ThreadsDoNotChangeTheRun) {
   }
   EXPECT_EQ(serial.swap_acceptance, threaded.swap_acceptance);
   EXPECT_EQ(thermodynamic_evidence(serial).log_evidence, thermodynamic_evidence(threaded).log_evidence);
+  // The ladder's adaptation uses only the swaps, drawn in the same order for any thread count.
+  options.adapt_steps = 30;
+  const TemperedRun adapted_threaded = sample_tempered(problem.density(), start, options);
+  options.ensemble.threads = 1;
+  const TemperedRun adapted_serial = sample_tempered(problem.density(), start, options);
+  EXPECT_EQ(adapted_serial.betas, adapted_threaded.betas);
+  EXPECT_NE(adapted_serial.betas, serial.betas);
+  EXPECT_EQ(thermodynamic_evidence(adapted_serial).log_evidence, thermodynamic_evidence(adapted_threaded).log_evidence);
 }
 
 // <ln L>_beta never decreases with beta, so ln Z = integral_0^1 <ln L>_beta d beta can never exceed
@@ -307,6 +352,10 @@ TEST(Tempering, RefusesABadLadder) {
   options.betas.clear();
   expect_refusal<std::invalid_argument>([&] { (void)sample_tempered({problem.density().log_prior, {}, {}}, start, options); },
                                         {"log likelihood"});
+  options.ensemble.steps = 100;
+  options.adapt_steps = 30;
+  expect_refusal<std::invalid_argument>([&] { (void)sample_tempered(problem.density(), start, options); },
+                                        {"adapt_steps = 30", "burn-in of 50"});
 }
 
 // The evidence's accuracy was established with the stretch move on every rung; other moves are refused.

@@ -94,6 +94,11 @@ struct EvidenceOptions {
   int steps = 4000;    ///< the cap on updates per temperature, the first half burn-in
   unsigned seed = 20090501;
   int threads = 1;     ///< share the model evaluations; the result does not depend on it
+  /// Updates at the start of the burn-in during which the ladder between beta = 1 and
+  /// 1/max_temperature adapts towards equal swap rates between neighbours (Vousden, Farr & Mandel
+  /// 2016, MNRAS 455, 1919, section 3.1); at most a quarter of `steps`; 0: a fixed ladder (the
+  /// default until the evidence's accuracy with it is measured for every model family).
+  int adapt_steps = 0;
   double target_uncertainty = 0.1;  ///< standard error of ln Z to reach
   int check_every = 250;            ///< 0: run exactly `steps`
   std::function<void(const std::string&)> progress = nullptr;  ///< as PosteriorOptions::progress
@@ -108,6 +113,9 @@ struct ModelEvidence {
   double thermodynamic_integration = 0.0;  ///< cross-check by thermodynamic integration over the same ladder
   double stone_overlap = 0.0;  ///< smallest effective fraction of a stone's weights (sampling::Evidence)
   int temperatures = 0;        ///< rungs of the ladder, beta = 0 included
+  /// Accepted fraction of swaps between neighbouring rungs, coldest pair first, over the steps after
+  /// the ladder's adaptation.
+  std::vector<double> swap_acceptance;
   double max_temperature = 0.0;
   int steps = 0;               ///< updates run per temperature, the first half burn-in
   /// Posterior-predictive p-value of chi^2: the chance that data replicated from the posterior fit

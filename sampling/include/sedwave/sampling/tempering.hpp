@@ -37,6 +37,12 @@ struct TemperingOptions {
   EnsembleOptions ensemble;
   /// Asked with the run so far (first half dropped) every ensemble.check_every steps; true ends it.
   std::function<bool(const TemperedRun&)> stop;
+  /// Updates during which the interior of the ladder adapts so that neighbouring temperatures swap
+  /// at equal rates (VFM16 section 3.1): betas[0] = 1, the smallest beta > 0 and a last beta = 0
+  /// stay where they are. 0: the ladder is fixed. The burn-in must hold the adaptation (it is
+  /// at most half the run; an adaptive run is not stopped before 2 x adapt_steps), so that every
+  /// kept step sees the final ladder.
+  int adapt_steps = 0;
 };
 
 /// `temperatures` inverse temperatures beta_i = max_temperature^(-i / (temperatures - 1)): evenly
@@ -46,6 +52,7 @@ struct TemperingOptions {
 [[nodiscard]] std::vector<double> evidence_ladder(int temperatures, double max_temperature);
 
 struct TemperedRun {
+  /// The ladder the kept steps used (adapted where TemperingOptions::adapt_steps > 0).
   std::vector<double> betas;
   /// Per temperature, as sample() returns it; levels[0] (beta = 1) samples the posterior. Its
   /// log_density is ln prior + beta ln L; acceptance counts stretch moves only (1 at a beta = 0 rung
@@ -53,7 +60,8 @@ struct TemperedRun {
   std::vector<EnsembleRun> levels;
   /// Per temperature, per walker: ln L at each kept step.
   std::vector<std::vector<Eigen::VectorXd>> log_likelihood;
-  /// Accepted fraction of swaps between betas[i] and betas[i + 1] (VFM16 aim at evenly spread rates).
+  /// Accepted fraction of swaps between betas[i] and betas[i + 1] over the steps after the ladder's
+  /// adaptation (VFM16 aim at evenly spread rates).
   Eigen::VectorXd swap_acceptance;
   int evaluations = 0;  ///< calls of the prior-and-likelihood pair
   int steps = 0;        ///< updates run, burn-in included
