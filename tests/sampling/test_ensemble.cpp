@@ -164,6 +164,19 @@ TEST(Ensemble, SameSeedSameSamples) {
   EXPECT_NE(sample(density, start, options).chains.front(), first.chains.front());
 }
 
+/// The run on 1 thread and on 3 gives the same chains bit for bit, with the same number of
+/// evaluations (every draw is made before the evaluations are shared out); returns the 1-thread run.
+EnsembleRun expect_samples_independent_of_threads(const LogDensity& density,
+                                                  const std::vector<Eigen::VectorXd>& start, EnsembleOptions options) {
+  options.threads = 1;
+  EnsembleRun serial = sample(density, start, options);
+  options.threads = 3;
+  const EnsembleRun threaded = sample(density, start, options);
+  for (std::size_t k = 0; k < serial.chains.size(); ++k) EXPECT_EQ(serial.chains[k], threaded.chains[k]);
+  EXPECT_EQ(serial.evaluations, threaded.evaluations);
+  return serial;
+}
+
 // Threads share the evaluations of each half-ensemble; the draws are made before, so the samples
 // must be the same bit for bit whatever the thread count.
 TEST(Ensemble, ThreadsDoNotChangeTheSamples) {
@@ -171,11 +184,7 @@ TEST(Ensemble, ThreadsDoNotChangeTheSamples) {
   options.steps = 200;
   const LogDensity density = gaussian_log_density(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
   const auto start = start_ball(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), options);
-  const EnsembleRun serial = sample(density, start, options);
-  options.threads = 3;
-  const EnsembleRun threaded = sample(density, start, options);
-  for (std::size_t k = 0; k < serial.chains.size(); ++k) EXPECT_EQ(serial.chains[k], threaded.chains[k]);
-  EXPECT_EQ(serial.evaluations, threaded.evaluations);
+  expect_samples_independent_of_threads(density, start, options);
   options.threads = 0;
   expect_refusal<std::invalid_argument>([&] { (void)sample(density, start, options); }, {"threads = 0"});
 }
@@ -363,10 +372,7 @@ TEST(Ensemble, DifferentialMovesDoNotDependOnThreads) {
   options.moves = differential_moves();
   const LogDensity density = gaussian_log_density(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
   const auto start = start_ball(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), options);
-  const EnsembleRun serial = sample(density, start, options);
-  options.threads = 3;
-  const EnsembleRun threaded = sample(density, start, options);
-  for (std::size_t k = 0; k < serial.chains.size(); ++k) EXPECT_EQ(serial.chains[k], threaded.chains[k]);
+  const EnsembleRun serial = expect_samples_independent_of_threads(density, start, options);
   options.moves = {};
   EXPECT_NE(sample(density, start, options).chains.front(), serial.chains.front());
 }
