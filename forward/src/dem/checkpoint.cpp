@@ -286,7 +286,7 @@ void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, Grai
 /// both holders (once where they are one rank). A record none of whose grains is held is dropped.
 std::vector<HistoryEntry> route_to_holders(MPI_Comm comm, const GrainArrays& g, std::vector<HistoryEntry> records) {
   const int ranks = parallel::size(comm), me = parallel::rank(comm);
-  const auto teller = [&](std::int64_t id) { return static_cast<std::size_t>(((id % ranks) + ranks) % ranks); };
+  const auto teller = [&](std::int64_t id) { return parallel::rank_for_key(id, ranks); };
   struct Holder {
     std::int64_t id, rank;
   };

@@ -277,10 +277,6 @@ struct ParsedRange {
   Failure failure;
 };
 
-std::size_t joining_rank(std::int64_t id, int ranks) {
-  return static_cast<std::size_t>(((id % ranks) + ranks) % ranks);
-}
-
 /// The lines of [begin, end), numbered from `first_number`, in `section` at the start.
 ParsedRange parse_range(const std::string& path, std::uint64_t begin, std::uint64_t end, std::int64_t first_number,
                         Section section, int ranks) {
@@ -302,11 +298,11 @@ ParsedRange parse_range(const std::string& path, std::uint64_t begin, std::uint6
           r.fail("atom_style " + style[0] + " is not supported (atom_style sphere expected)");
       } else if (section == Section::atoms) {
         const AtomLine a = parse_atom(line, words, r);
-        out.atoms[joining_rank(a.id, ranks)].push_back(a);
+        out.atoms[parallel::rank_for_key(a.id, ranks)].push_back(a);
         ++out.n_atoms;
       } else if (section == Section::velocities) {
         const VelocityLine v = parse_velocity(line, words, r);
-        out.velocities[joining_rank(v.id, ranks)].push_back(v);
+        out.velocities[parallel::rank_for_key(v.id, ranks)].push_back(v);
       }
     }
   } catch (const std::runtime_error& e) {  // the rest of the range cannot matter: this failure comes first

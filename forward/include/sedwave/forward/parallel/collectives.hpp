@@ -120,6 +120,12 @@ inline int size(MPI_Comm comm) {
   return n;
 }
 
+/// The rank of `ranks` that answers for `key` (key mod ranks, non-negative for any key): a
+/// directory that needs no table, as when ranks meet at one place per grain id to join records.
+inline std::size_t rank_for_key(std::int64_t key, int ranks) {
+  return static_cast<std::size_t>(((key % ranks) + ranks) % ranks);
+}
+
 /// The ranks of `comm` that pass `member` = true, as a communicator in the same rank order
 /// (collective over `comm`; get() is MPI_COMM_NULL on the others). Freed with this object.
 class SubCommunicator {
