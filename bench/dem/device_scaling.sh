@@ -7,6 +7,9 @@
 # (prepared) stacked 1, 2, 4, 8 and 16 times along z; 16 copies are the 2.5e5-grain packing.
 #   strong scaling  5e4 and 2.5e5 grains on 1, 2, 4, 8, 16 ranks
 #   weak scaling    15 625 grains per rank, 1 -> 16 ranks
+#   strong_1e7      (only when named in SERIES) 640 stacked copies, 10^7 grains: sedwave on
+#                   RANKS_1E7 (default "16 1"), LAMMPS on LAMMPS_RANKS_1E7 (default "16"), 20 steps;
+#                   the stacked file is about 1.7 GB (COPIES_1E7 copies instead of 640, to check)
 # Each (packing, ranks) runs every packed sedwave build, then LAMMPS; the next pass runs them in the
 # reverse order, until the budget is spent.
 #
@@ -84,6 +87,11 @@ for p in $stacks; do
   STEPS[weak_$p]=$((300 / DIVISOR)); GRAINS[weak_$p]=$((15625 * p))
 done
 STEPS[weak_16]=$((200 / DIVISOR)) GRAINS[weak_16]=250000  # also the 2.5e5-grain strong-scaling packing
+if [[ " $SERIES " == *" strong_1e7 "* ]]; then
+  copies=${COPIES_1E7:-640}  # fewer to check the script on a small machine
+  DATA[strong_1e7]=$WORK/strong_1e7.data; STEPS[strong_1e7]=$((20 / DIVISOR < 2 ? 2 : 20 / DIVISOR)); GRAINS[strong_1e7]=$((15625 * copies))
+  pack_env mpirun -np 1 dem_bench stack "$PACK/packings/packing_15625.data" "$copies" "${DATA[strong_1e7]}" >/dev/null
+fi
 log "packings ready in $WORK"
 
 # (packing, ranks) configurations: strong 5e4, weak 1..8, strong 2.5e5 (= weak 16)
@@ -93,6 +101,7 @@ for series in $SERIES; do
     strong_5e4) for p in $RANKS; do CONFIGS+=("strong_5e4:$p"); done ;;
     weak) for p in 1 2 4 8; do [[ " $RANKS " == *" $p "* ]] && CONFIGS+=("weak_$p:$p"); done ;;
     strong_2.5e5) for p in $RANKS; do CONFIGS+=("weak_16:$p"); done ;;
+    strong_1e7) for p in ${RANKS_1E7:-16 1}; do CONFIGS+=("strong_1e7:$p"); done ;;
     *) echo "device_scaling: unknown series $series" >&2; exit 2 ;;
   esac
 done
@@ -146,6 +155,13 @@ run_lammps() {  # packing ranks pass
   log "lammps $packing ranks=$ranks: $(sed -E 's/.*ms_per_step=([0-9.]+).*/\1/' <<<"$line") ms/step"
 }
 
+# LAMMPS on every configuration but the 10^7-grain one off LAMMPS_RANKS_1E7 (one LAMMPS rank
+# needs about 5 s per step there).
+lammps_wanted() {  # packing ranks
+  (( WITH_LAMMPS )) || return 1
+  [[ $1 != strong_1e7 || " ${LAMMPS_RANKS_1E7:-16} " == *" $2 "* ]]
+}
+
 for ((pass = 1; pass <= PASSES; ++pass)); do
   order=("${CONFIGS[@]}")
   for config in "${order[@]}"; do
@@ -153,9 +169,9 @@ for ((pass = 1; pass <= PASSES; ++pass)); do
     (( $(left) > 0 )) || { log "budget spent: pass $pass stops before $packing ranks=$ranks"; break 2; }
     if (( pass % 2 == 1 )); then
       for b in "${BUILDS[@]}"; do run_sedwave "$b" "$packing" "$ranks" "$pass"; done
-      (( WITH_LAMMPS )) && run_lammps "$packing" "$ranks" "$pass"
+      lammps_wanted "$packing" "$ranks" && run_lammps "$packing" "$ranks" "$pass"
     else
-      (( WITH_LAMMPS )) && run_lammps "$packing" "$ranks" "$pass"
+      lammps_wanted "$packing" "$ranks" && run_lammps "$packing" "$ranks" "$pass"
       for ((k = ${#BUILDS[@]} - 1; k >= 0; --k)); do run_sedwave "${BUILDS[k]}" "$packing" "$ranks" "$pass"; done
     fi
   done

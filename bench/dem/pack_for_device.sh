@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Packs what bench/dem/device_scaling.sh needs on a bare x86-64 Linux machine (glibc >= this one's,
-# no MPI, no LAMMPS, no network) into one folder: dem_bench, Debian's Open MPI (mpirun, orted, the
+# Packs what bench/dem/device_scaling.sh, bench/dem/tiled_channel.sh and bench/device_lease.sh need
+# on a bare x86-64 Linux machine (glibc >= this one's, no MPI, no LAMMPS, no network) into one
+# folder: dem_bench, sedwave (for bench/compare_threads.sh), Debian's Open MPI (mpirun, orted, the
 # MCA components and help files, PMIx and its components), LAMMPS (lmp, liblammps), every shared
 # library they need apart from glibc's own, and the packings of the scaling study.
 #
@@ -30,7 +31,7 @@ PMIX=/usr/lib/$ARCH/pmix2
 for tool in lmp orterun strip ldd; do
   command -v "$tool" >/dev/null || { echo "pack_for_device: $tool is missing (apt-get install lammps openmpi-bin binutils)" >&2; exit 1; }
 done
-cmake --build "$BUILD" --target dem_bench >/dev/null
+cmake --build "$BUILD" --target dem_bench sedwave >/dev/null
 
 # Keep the pack out of git without touching .gitignore (the device copies ignored paths only when
 # they are named in carry).
@@ -46,6 +47,7 @@ mkdir -p "$PACK/usr/bin" "$PACK/lib" "$PACK/usr/lib/$ARCH" "$PACK/etc" "$PACK/us
 
 # ---- programs -----------------------------------------------------------------------------------
 cp "$BUILD/bin/dem_bench" "$PACK/usr/bin/dem_bench"
+cp "$BUILD/bin/sedwave" "$PACK/usr/bin/sedwave"
 for extra in ${EXTRA_BENCH:-}; do cp "${extra#*=}" "$PACK/usr/bin/dem_bench_${extra%%=*}"; done
 cp "$(readlink -f "$(command -v lmp)")" "$PACK/usr/bin/lmp"
 cp /usr/bin/orterun /usr/bin/orted /usr/bin/ompi_info "$PACK/usr/bin/"
@@ -53,7 +55,7 @@ ln -s orterun "$PACK/usr/bin/mpirun"
 cc -O2 -Wall -Wextra -Werror -o "$PACK/usr/bin/peak_rss" "$ROOT/bench/dem/peak_rss.c"
 # The scaling script and what it reads, so that the pack runs from any checkout.
 mkdir -p "$PACK/bench"
-cp "$ROOT"/bench/dem/{device_scaling.sh,in.thesis.lmp,scaling_table.py} "$PACK/bench/"
+cp "$ROOT"/bench/dem/{device_scaling.sh,tiled_channel.sh,in.thesis.lmp,scaling_table.py} "$PACK/bench/"
 
 # ---- Open MPI and PMIx trees (components, help files, configuration) -----------------------------
 mkdir -p "$PACK$OMPI/lib" "$PACK$PMIX/lib"
@@ -134,8 +136,9 @@ mkdir -p "$CARRY"
 tar -C "$PACK" -c . | xz -T2 -2 >"$CARRY/pack.tar.xz"
 cat >"$CARRY/run.sh" <<'EOF'
 #!/usr/bin/env bash
-# Unpacks pack.tar.xz (made by bench/dem/pack_for_device.sh) into /tmp and runs the scaling study
-# from there; arguments and environment (OUT, BUDGET_S, PASSES, RANKS) go to device_scaling.sh.
+# Unpacks pack.tar.xz (made by bench/dem/pack_for_device.sh) into /tmp (PACK_TREE) and runs the
+# scaling study from there; arguments and environment (OUT, BUDGET_S, PASSES, RANKS) go to
+# device_scaling.sh. UNPACK_ONLY=1 stops after unpacking.
 set -euo pipefail
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 TREE=${PACK_TREE:-/tmp/sedwave-dem-pack}
@@ -146,6 +149,7 @@ if tar --version >/dev/null 2>&1 && command -v xz >/dev/null; then
 else
   python3 -c 'import sys, tarfile; tarfile.open(sys.argv[1]).extractall(sys.argv[2])' "$HERE/pack.tar.xz" "$TREE"
 fi
+[[ ${UNPACK_ONLY:-0} == 1 ]] && exit 0
 exec bash "$TREE/bench/device_scaling.sh" "$TREE" "$@"
 EOF
 chmod +x "$CARRY/run.sh"

@@ -62,7 +62,7 @@ def main(path):
     print("| series | code | " + " | ".join(f"{p} ranks" for p in (1, 2, 4, 8, 16)) + " |")
     print("|---|---|" + "---|" * 5)
     for series, packing_of in (("strong 5e4", lambda p: "strong_5e4"), ("strong 2.5e5", lambda p: "weak_16"),
-                               ("weak 15625/rank", lambda p: f"weak_{p}")):
+                               ("strong 1e7", lambda p: "strong_1e7"), ("weak 15625/rank", lambda p: f"weak_{p}")):
         for b in builds:
             base = median((packing_of(1) if series.startswith("weak") else packing_of(1), 1), b, "ms_per_step")
             cells = []

@@ -22,6 +22,10 @@
 #             and oversubscribed it measures the scheduler as much as the work. COPIES default 8,
 #             STEPS default 200.
 #   WORK      where the cell and checkpoints go (default a new folder under /tmp)
+#   BENCH     a dem_bench to run instead of building one (e.g. a pack's, bench/dem/pack_for_device.sh);
+#             then CELL names a prepared cell (default WORK/cell.data, prepared if missing) and
+#             MPIRUN the launcher (default "mpirun --oversubscribe"; a pack's needs its libraries:
+#             "env LD_LIBRARY_PATH=... mpirun --bind-to core")
 # Prints a markdown table.
 set -euo pipefail
 MODE=${1:?usage: tiled_channel.sh restart|uneven [build-dir]}
@@ -31,10 +35,14 @@ BUILD=${2:-$ROOT/build}
 WORK=${WORK:-$(mktemp -d /tmp/sedwave-tiled.XXXXXX)}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-cmake -S "$ROOT" -B "$BUILD" -DSEDWAVE_BUILD_BENCH=ON >/dev/null
-cmake --build "$BUILD" --target dem_bench >/dev/null
-BENCH=$BUILD/bin/dem_bench
-[[ -f $WORK/cell.data ]] || "$BENCH" prepare 15625 "$WORK/cell.data" >/dev/null
+if [[ -z ${BENCH:-} ]]; then
+  cmake -S "$ROOT" -B "$BUILD" -DSEDWAVE_BUILD_BENCH=ON >/dev/null
+  cmake --build "$BUILD" --target dem_bench >/dev/null
+  BENCH=$BUILD/bin/dem_bench
+fi
+read -r -a LAUNCH <<<"${MPIRUN:-mpirun --oversubscribe}"
+CELL=${CELL:-$WORK/cell.data}
+[[ -f $CELL ]] || "${LAUNCH[@]}" -np 1 "$BENCH" prepare 15625 "$CELL" >/dev/null
 
 row() {  # run name, ranks, then the key=value line
   local name=$1 ranks=$2 line=$3
@@ -51,10 +59,10 @@ restart_table() {
   rm -f "$WORK"/channel.h5*
   echo "| run | ranks | grains | steps | tile s | read s | ms/step | force ms (mean/max) | exchange ms/step (mean/max) | halo B/step | checkpoint s | peak MB per rank (min/median/max) | peak B per owned grain (min/max) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-  line=$(mpirun -np "$write_ranks" --oversubscribe "$BENCH" channel "$WORK/cell.data" "$copies" "$steps" "$WORK/channel.h5")
+  line=$("${LAUNCH[@]}" -np "$write_ranks" "$BENCH" channel "$CELL" "$copies" "$steps" "$WORK/channel.h5")
   row "tile, run, checkpoint" "$write_ranks" "$line"
   for p in ${RESTART_RANKS:-3}; do
-    line=$(mpirun -np "$p" --oversubscribe "$BENCH" channel "$WORK/cell.data" "$copies" "$steps" "$WORK/channel.h5" restart)
+    line=$("${LAUNCH[@]}" -np "$p" "$BENCH" channel "$CELL" "$copies" "$steps" "$WORK/channel.h5" restart)
     row "restart, run, checkpoint" "$p" "$line"
   done
   echo "checkpoint: $(ls "$WORK"/channel.h5* | wc -l) files, $(du -ch "$WORK"/channel.h5* | tail -1 | cut -f1) (in $WORK)"
@@ -67,8 +75,8 @@ uneven_table() {
   echo "|---|---|---|---|---|---|"
   for p in $ranks; do
     for slabs in fixed pairs; do
-      line=$(DEM_BENCH_SLABS=$slabs mpirun -np "$p" --oversubscribe -x DEM_BENCH_SLABS -x DEM_BENCH_LOOSE \
-             -x DEM_BENCH_REBUILD_EVERY "$BENCH" channel "$WORK/cell.data" "$copies" "$steps" "$WORK/uneven.h5")
+      line=$(DEM_BENCH_SLABS=$slabs "${LAUNCH[@]}" -np "$p" -x DEM_BENCH_SLABS -x DEM_BENCH_LOOSE \
+             -x DEM_BENCH_REBUILD_EVERY "$BENCH" channel "$CELL" "$copies" "$steps" "$WORK/uneven.h5")
       awk -v p="$p" -v slabs="$slabs" '{
         for (i = 1; i <= NF; i++) { split($i, kv, "="); v[kv[1]] = kv[2] }
         printf "| %s | %s | %s | %s | %s | %s |\n", p, slabs, v["grains"], v["work_imbalance"], v["force_imbalance"],
