@@ -341,6 +341,8 @@ int channel_run(const std::string& cell_path, long copies, long steps, const std
   s.box = tiled.box;
   s.guard.check_interval = 1000;
   s.checkpoint.path = checkpoint;
+  // DEM_BENCH_PIECE_ROWS=K: checkpoint pieces of at most K rows (default the engine's).
+  if (const char* rows = std::getenv("DEM_BENCH_PIECE_ROWS")) s.checkpoint.piece_rows = std::stoul(rows);
   // DEM_BENCH_REBUILD_EVERY=K: lists rebuilt every K steps; DEM_BENCH_SLABS=fixed keeps the first
   // slabs, =pairs balances them on listed pairs at every rebuild (default: the engine's settings).
   const char* rebuild_every_text = std::getenv("DEM_BENCH_REBUILD_EVERY");
