@@ -38,12 +38,6 @@ void index_frequencies(Setup& s) {
   }
 }
 
-std::vector<double> values_of(const Theta& theta) {
-  std::vector<double> v(theta.size());
-  std::transform(theta.begin(), theta.end(), v.begin(), [](double t) { return std::exp(t); });
-  return v;
-}
-
 /// The model at every distinct frequency; false where it has no answer (and why, if asked).
 bool waves_at(const Setup& s, const std::vector<double>& values, bool derivatives, std::vector<sediment::Wave>& waves,
               std::string* why = nullptr) {
@@ -114,6 +108,12 @@ std::vector<double*> blocks_of(Theta& theta) {
 }
 
 }  // namespace
+
+std::vector<double> values_of(const Theta& theta) {
+  std::vector<double> v(theta.size());
+  std::transform(theta.begin(), theta.end(), v.begin(), [](double t) { return std::exp(t); });
+  return v;
+}
 
 Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& model, const FitParameters& parameters,
                  const FitOptions& options) {

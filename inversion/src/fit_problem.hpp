@@ -66,8 +66,14 @@ struct Combination {
   std::function<Differentiated(const Setup&, const Theta&)> log_value;
 };
 
+/// The parameter values exp(theta) (SI).
+[[nodiscard]] std::vector<double> values_of(const Theta& theta);
+
 /// The model's own derived quantities as functions of theta (combinations.cpp).
 [[nodiscard]] std::vector<Combination> combinations_for(const Setup& s);
+/// Every derived quantity's value at theta, in the same order, without gradients (a posterior
+/// draw's); throws as Combination::log_value does where one is not a positive number.
+[[nodiscard]] std::vector<double> derived_at(const Setup& s, const Theta& theta);
 
 /// An extra residual that ties a combination to a target value (a likelihood profile of a
 /// combination holds it fixed this way).

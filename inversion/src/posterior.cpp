@@ -213,6 +213,96 @@ class ProgressReporter {
   double last_ = 0.0;
 };
 
+
+/// The model's derived quantities along every walker's kept draws, each draw computed once: a check
+/// of the stop test adds the draws made since the last one and drops those the burn-in has passed
+/// (burn-in only grows, so a dropped draw is never kept again).
+class DerivedChains {
+ public:
+  DerivedChains(const detail::Setup& s, const Theta& theta, std::size_t quantities)
+      : s_(s), theta_(theta), quantities_(static_cast<Eigen::Index>(quantities)) {}
+
+  /// Per walker: kept steps x derived quantities (values) of the run so far.
+  std::vector<Eigen::MatrixXd> update(const sampling::EnsembleRun& run) {
+    const std::size_t walkers = run.chains.size();
+    if (cache_.size() != walkers) cache_.assign(walkers, {});
+    const Eigen::Index kept = run.chains.empty() ? 0 : run.chains.front().rows();
+    const long first_kept = static_cast<long>(run.steps) - static_cast<long>(kept);
+    std::vector<Eigen::MatrixXd> out(walkers);
+    for (std::size_t w = 0; w < walkers; ++w) {
+      std::vector<std::vector<double>>& rows = cache_[w];
+      if (first_kept > first_) rows.erase(rows.begin(), rows.begin() + std::min<long>(first_kept - first_, std::ssize(rows)));
+      for (long step = first_kept + std::ssize(rows); step < run.steps; ++step) {
+        rows.push_back(at(run.chains[w].row(static_cast<Eigen::Index>(step - first_kept)).transpose()));
+      }
+      out[w].resize(kept, quantities_);
+      for (Eigen::Index r = 0; r < kept; ++r) {
+        for (Eigen::Index c = 0; c < quantities_; ++c) out[w](r, c) = rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
+      }
+    }
+    first_ = std::max(first_, first_kept);
+    return out;
+  }
+
+ private:
+  std::vector<double> at(const Eigen::VectorXd& free_ln_values) const {
+    Theta t = theta_;
+    for (Eigen::Index j = 0; j < free_ln_values.size(); ++j) t[s_.free[static_cast<std::size_t>(j)]] = free_ln_values(j);
+    return detail::derived_at(s_, t);
+  }
+  const detail::Setup& s_;
+  Theta theta_;
+  Eigen::Index quantities_;
+  long first_ = 0;  ///< the step of every walker's first cached row
+  std::vector<std::vector<std::vector<double>>> cache_;
+};
+
+/// The derived quantities the stop test watches beside the parameters: those that move with a free
+/// parameter at the best fit (one that does not is a constant column, which has no R-hat).
+std::vector<std::size_t> varying_quantities(const detail::Setup& s, const std::vector<detail::Combination>& combinations,
+                                            const Theta& theta) {
+  std::vector<std::size_t> out;
+  for (std::size_t c = 0; c < combinations.size(); ++c) {
+    const Eigen::VectorXd gradient = combinations[c].log_value(s, theta).v;
+    for (const int i : s.free) {
+      if (gradient(i) != 0.0) {
+        out.push_back(c);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+/// Diagnostics of the parameters (ln values, columns 0..k-1) and of the derived quantities
+/// (values, columns k..) together, walker by walker, each column named.
+sampling::Diagnostics diagnose_together(const sampling::EnsembleRun& run, const std::vector<Eigen::MatrixXd>& derived,
+                                        std::vector<std::string> names) {
+  std::vector<Eigen::MatrixXd> chains(run.chains.size());
+  for (std::size_t w = 0; w < chains.size(); ++w) {
+    chains[w].resize(run.chains[w].rows(), run.chains[w].cols() + derived[w].cols());
+    chains[w] << run.chains[w], derived[w];
+  }
+  sampling::Diagnostics d = sampling::diagnose(chains, run.acceptance);
+  d.names = std::move(names);
+  return d;
+}
+
+/// Those diagnostics restricted to the parameters (the first k columns) and the derived quantities
+/// in `watched`: what the stop test and the verdict judge.
+sampling::Diagnostics watched_columns(const sampling::Diagnostics& d, std::size_t k, const std::vector<std::size_t>& watched) {
+  std::vector<Eigen::Index> columns;
+  for (std::size_t j = 0; j < k; ++j) columns.push_back(static_cast<Eigen::Index>(j));
+  for (const std::size_t c : watched) columns.push_back(static_cast<Eigen::Index>(k + c));
+  sampling::Diagnostics out = d;
+  out.rhat = d.rhat(columns);
+  out.autocorrelation_time = d.autocorrelation_time(columns);
+  out.ess = d.ess(columns);
+  out.names.clear();
+  for (const Eigen::Index j : columns) out.names.push_back(d.names[static_cast<std::size_t>(j)]);
+  return out;
+}
+
 }  // namespace
 
 sampling::PriorAndLikelihood evidence_integrand(const ObservationSet& data, const sediment::SedimentModel& model,
@@ -411,9 +501,23 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   ensemble.threads = options.threads;
   ensemble.check_every = options.check_every;
   ensemble.moves = sampling::differential_moves();
+  // The stop test and the verdict cover the derived quantities too (a combination along a ridge can
+  // mix more slowly than any parameter), each computed once per kept draw.
+  const std::vector<detail::Combination> combinations = detail::combinations_for(s);
+  const std::vector<std::size_t> watched = varying_quantities(s, combinations, theta);
+  std::vector<std::string> names;
+  for (const int i : s.free) names.push_back(s.parameters.spec[i].name);
+  for (const detail::Combination& c : combinations) names.push_back(c.name);
+  DerivedChains derived(s, theta, combinations.size());
+  const auto judged = [&](const sampling::EnsembleRun& so_far, sampling::Diagnostics* all = nullptr) {
+    sampling::Diagnostics d = diagnose_together(so_far, derived.update(so_far), names);
+    sampling::Diagnostics judged_columns = watched_columns(d, s.free.size(), watched);
+    if (all != nullptr) *all = std::move(d);
+    return judged_columns;
+  };
   ProgressReporter report(options.progress);
   ensemble.stop = [&](const sampling::EnsembleRun& so_far) {
-    const sampling::Diagnostics d = sampling::diagnose(so_far);
+    const sampling::Diagnostics d = judged(so_far);
     report(so_far.steps, options.steps, steps_needed(d),
            format("largest autocorrelation time %.1f steps, smallest ESS %.0f", d.autocorrelation_time.maxCoeff(),
                   d.ess.minCoeff()));
@@ -423,8 +527,8 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
       sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble, [&](const Eigen::VectorXd& x) {
         return std::isfinite(log_posterior(x));
       }), ensemble);
-  const sampling::Diagnostics diagnostics = sampling::diagnose(run);
-  const sampling::Convergence convergence = sampling::assess_convergence(diagnostics);
+  sampling::Diagnostics diagnostics;  // every column: the parameters', then every derived quantity's
+  const sampling::Convergence convergence = sampling::assess_convergence(judged(run, &diagnostics));
 
   PosteriorResult result;
   result.walkers = static_cast<int>(run.chains.size());
@@ -455,27 +559,13 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     result.parameters.push_back(q);
   }
 
-  // Combinations at every kept draw, walker by walker (their R-hat and ESS need the chains).
-  const std::vector<detail::Combination> combinations = detail::combinations_for(s);
+  // Combinations at every kept draw, walker by walker (their R-hat and ESS are columns k.. above).
   if (!combinations.empty()) {
-    std::vector<Eigen::MatrixXd> chains;
-    for (const Eigen::MatrixXd& walker : run.chains) {
-      Eigen::MatrixXd values(walker.rows(), static_cast<Eigen::Index>(combinations.size()));
-      for (Eigen::Index r = 0; r < walker.rows(); ++r) {
-        Theta t = theta;
-        for (Eigen::Index j = 0; j < k; ++j) t[s.free[static_cast<std::size_t>(j)]] = walker(r, j);
-        for (std::size_t c = 0; c < combinations.size(); ++c) {
-          values(r, static_cast<Eigen::Index>(c)) = std::exp(combinations[c].log_value(s, t).a);
-        }
-      }
-      chains.push_back(values);
-    }
-    const sampling::Diagnostics d = sampling::diagnose(chains, run.acceptance);
-    const Eigen::MatrixXd all = sampling::pooled_samples(chains);
+    const Eigen::MatrixXd all = sampling::pooled_samples(derived.update(run));
     for (std::size_t c = 0; c < combinations.size(); ++c) {
       const auto col = static_cast<Eigen::Index>(c);
-      result.combinations.push_back(
-          summarize(combinations[c].name, combinations[c].unit, all.col(col), d.rhat(col), d.ess(col)));
+      result.combinations.push_back(summarize(combinations[c].name, combinations[c].unit, all.col(col),
+                                              diagnostics.rhat(k + col), diagnostics.ess(k + col)));
       flag_prior_control(result.combinations.back(), control, all.col(col).array().log().matrix());
     }
   }

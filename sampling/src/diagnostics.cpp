@@ -219,7 +219,8 @@ Convergence assess_convergence(const Diagnostics& d, const ConvergenceCriteria& 
   const double kept_needed =
       std::max(criteria.min_ess * worst_tau / d.walkers, criteria.min_steps_per_tau * worst_tau);
   for (Eigen::Index i = 0; i < d.rhat.size(); ++i) {
-    const std::string name = "parameter " + std::to_string(i);
+    const auto column = static_cast<std::size_t>(i);
+    const std::string name = column < d.names.size() ? d.names[column] : "parameter " + std::to_string(i);
     if (!std::isfinite(d.rhat(i))) {
       // Too few kept draws per half-chain, or walkers that never moved: no between/within variance.
       verdict.converged = false;
@@ -258,7 +259,7 @@ Convergence assess_convergence(const Diagnostics& d, const ConvergenceCriteria& 
   }
   if (verdict.converged) {
     advice << "converged: kept steps >= " << criteria.min_steps_per_tau << " tau and ESS >= " << criteria.min_ess
-           << " for every parameter, walkers agree (R-hat < " << criteria.max_rhat << "; smallest ESS "
+           << " for every " << (d.names.empty() ? "parameter" : "quantity") << ", walkers agree (R-hat < " << criteria.max_rhat << "; smallest ESS "
            << format_number(d.ess.minCoeff()) << ", largest tau " << format_number(worst_tau) << " steps).\n";
   }
   verdict.advice = advice.str();

@@ -116,6 +116,24 @@ TEST(Diagnostics, WellMixedChainsConverge) {
   EXPECT_NE(verdict.advice.find("converged"), std::string::npos);
 }
 
+// Columns that are named (a caller's parameters and derived quantities) are named in the advice.
+TEST(Diagnostics, AdviceNamesTheColumnsItWasGiven) {
+  RandomStream random(19);
+  std::vector<Eigen::MatrixXd> walkers;
+  for (int k = 0; k < 16; ++k) {
+    Eigen::MatrixXd chain(100, 2);
+    chain.col(0) = normal_series(100, 0.0, 1.0, random);
+    chain.col(1) = ar1_series(100, 0.95, random);
+    walkers.push_back(chain);
+  }
+  Diagnostics diagnostics = diagnose(walkers, 0.4);
+  diagnostics.names = {"kappa", "f_star"};
+  const Convergence verdict = assess_convergence(diagnostics);
+  EXPECT_FALSE(verdict.converged);
+  EXPECT_NE(verdict.advice.find("f_star: effective sample size"), std::string::npos) << verdict.advice;
+  EXPECT_EQ(verdict.advice.find("parameter 1"), std::string::npos) << verdict.advice;
+}
+
 // Too short a run: the advice asks for more steps, says how far it got and how many it needs; a very
 // low acceptance is remarked on.
 TEST(Diagnostics, ShortRunAdviceSaysHowManySteps) {

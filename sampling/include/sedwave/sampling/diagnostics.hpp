@@ -50,6 +50,9 @@ struct Diagnostics {
   double acceptance = 0.0;               ///< mean accepted fraction of proposals
   int kept_steps = 0;
   int walkers = 0;
+  /// What each column is, for the advice ("parameter i" where absent): a caller that diagnoses
+  /// derived quantities beside the parameters names both.
+  std::vector<std::string> names{};
 };
 
 /// Diagnostics of chains (per walker: steps x dim) with the run's acceptance fraction.
