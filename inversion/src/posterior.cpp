@@ -213,7 +213,6 @@ class ProgressReporter {
   double last_ = 0.0;
 };
 
-
 /// The model's derived quantities along every walker's kept draws, each draw computed once: a check
 /// of the stop test adds the draws made since the last one and drops those the burn-in has passed
 /// (burn-in only grows, so a dropped draw is never kept again).
@@ -228,17 +227,18 @@ class DerivedChains {
     if (cache_.size() != walkers) cache_.assign(walkers, {});
     const Eigen::Index kept = run.chains.empty() ? 0 : run.chains.front().rows();
     const long first_kept = static_cast<long>(run.steps) - static_cast<long>(kept);
+    const long width = static_cast<long>(quantities_);
     std::vector<Eigen::MatrixXd> out(walkers);
     for (std::size_t w = 0; w < walkers; ++w) {
-      std::vector<std::vector<double>>& rows = cache_[w];
-      if (first_kept > first_) rows.erase(rows.begin(), rows.begin() + std::min<long>(first_kept - first_, std::ssize(rows)));
-      for (long step = first_kept + std::ssize(rows); step < run.steps; ++step) {
-        rows.push_back(at(run.chains[w].row(static_cast<Eigen::Index>(step - first_kept)).transpose()));
+      std::vector<double>& rows = cache_[w];  // row-major, from step first_
+      const long dropped = std::min<long>(std::max(first_kept - first_, 0L) * width, std::ssize(rows));
+      rows.erase(rows.begin(), rows.begin() + dropped);
+      for (long step = first_kept + std::ssize(rows) / std::max(width, 1L); step < run.steps && width > 0; ++step) {
+        const std::vector<double> q = at(run.chains[w].row(static_cast<Eigen::Index>(step - first_kept)).transpose());
+        rows.insert(rows.end(), q.begin(), q.end());
       }
-      out[w].resize(kept, quantities_);
-      for (Eigen::Index r = 0; r < kept; ++r) {
-        for (Eigen::Index c = 0; c < quantities_; ++c) out[w](r, c) = rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
-      }
+      out[w] = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(rows.data(), kept,
+                                                                                                      quantities_);
     }
     first_ = std::max(first_, first_kept);
     return out;
@@ -254,7 +254,7 @@ class DerivedChains {
   Theta theta_;
   Eigen::Index quantities_;
   long first_ = 0;  ///< the step of every walker's first cached row
-  std::vector<std::vector<std::vector<double>>> cache_;
+  std::vector<std::vector<double>> cache_;
 };
 
 /// The derived quantities the stop test watches beside the parameters: those that move with a free
