@@ -246,9 +246,7 @@ class DerivedChains {
 
  private:
   std::vector<double> at(const Eigen::VectorXd& free_ln_values) const {
-    Theta t = theta_;
-    for (Eigen::Index j = 0; j < free_ln_values.size(); ++j) t[s_.free[static_cast<std::size_t>(j)]] = free_ln_values(j);
-    return detail::derived_at(s_, t);
+    return detail::derived_at(s_, with_free(s_, theta_, free_ln_values));
   }
   const detail::Setup& s_;
   Theta theta_;
@@ -486,8 +484,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   require_prior_covers(s, priors, theta);
   // ln posterior in the free ln-parameters: ln prior - chi^2 / 2 (the fit's Gaussian likelihood).
   const sampling::LogDensity log_posterior = [&](const Eigen::VectorXd& x) {
-    Theta t = theta;
-    for (Eigen::Index j = 0; j < k; ++j) t[s.free[static_cast<std::size_t>(j)]] = x(j);
+    const Theta t = with_free(s, theta, x);
     const double lp = log_prior(s.parameters, priors, t);
     if (!std::isfinite(lp)) return -std::numeric_limits<double>::infinity();
     const double chi2 = detail::chi2_at(s, t);
@@ -509,15 +506,10 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   for (const int i : s.free) names.push_back(s.parameters.spec[i].name);
   for (const detail::Combination& c : combinations) names.push_back(c.name);
   DerivedChains derived(s, theta, combinations.size());
-  const auto judged = [&](const sampling::EnsembleRun& so_far, sampling::Diagnostics* all = nullptr) {
-    sampling::Diagnostics d = diagnose_together(so_far, derived.update(so_far), names);
-    sampling::Diagnostics judged_columns = watched_columns(d, s.free.size(), watched);
-    if (all != nullptr) *all = std::move(d);
-    return judged_columns;
-  };
   ProgressReporter report(options.progress);
   ensemble.stop = [&](const sampling::EnsembleRun& so_far) {
-    const sampling::Diagnostics d = judged(so_far);
+    const sampling::Diagnostics d =
+        watched_columns(diagnose_together(so_far, derived.update(so_far), names), s.free.size(), watched);
     report(so_far.steps, options.steps, steps_needed(d),
            format("largest autocorrelation time %.1f steps, smallest ESS %.0f", d.autocorrelation_time.maxCoeff(),
                   d.ess.minCoeff()));
@@ -527,8 +519,11 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
       sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble, [&](const Eigen::VectorXd& x) {
         return std::isfinite(log_posterior(x));
       }), ensemble);
-  sampling::Diagnostics diagnostics;  // every column: the parameters', then every derived quantity's
-  const sampling::Convergence convergence = sampling::assess_convergence(judged(run, &diagnostics));
+  const std::vector<Eigen::MatrixXd> derived_chains = derived.update(run);
+  // Every column: the parameters', then every derived quantity's.
+  const sampling::Diagnostics diagnostics = diagnose_together(run, derived_chains, names);
+  const sampling::Convergence convergence =
+      sampling::assess_convergence(watched_columns(diagnostics, s.free.size(), watched));
 
   PosteriorResult result;
   result.walkers = static_cast<int>(run.chains.size());
@@ -561,7 +556,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
 
   // Combinations at every kept draw, walker by walker (their R-hat and ESS are columns k.. above).
   if (!combinations.empty()) {
-    const Eigen::MatrixXd all = sampling::pooled_samples(derived.update(run));
+    const Eigen::MatrixXd all = sampling::pooled_samples(derived_chains);
     for (std::size_t c = 0; c < combinations.size(); ++c) {
       const auto col = static_cast<Eigen::Index>(c);
       result.combinations.push_back(summarize(combinations[c].name, combinations[c].unit, all.col(col),
