@@ -304,26 +304,31 @@ TemperedRun sample_tempered(const PriorAndLikelihood& density,
 
   RandomStream random(ensemble_options.seed);
   std::vector<long> swaps_accepted(betas.size() - 1, 0);
+  // The rungs the stretch move updates (a rung of prior draws is redrawn instead) and their betas,
+  // which follow the ladder while it adapts.
   std::vector<detail::Ensemble*> moved;
-  std::vector<double> moved_betas;
-  for (std::size_t t = 0; t < levels.size(); ++t) {
-    if (levels[t].prior_draws) continue;
-    moved.push_back(&levels[t].ensemble);
-    moved_betas.push_back(betas[t]);
+  for (Level& level : levels) {
+    if (!level.prior_draws) moved.push_back(&level.ensemble);
   }
+  const auto betas_of_moved = [&] {
+    std::vector<double> out;
+    for (std::size_t t = 0; t < levels.size(); ++t) {
+      if (!levels[t].prior_draws) out.push_back(betas[t]);
+    }
+    return out;
+  };
+  std::vector<double> moved_betas = betas_of_moved();
   const int adapt_steps = options.adapt_steps;
+  std::vector<long> accepted_now(swaps_accepted.size());
   for (int step = 1; step <= ensemble_options.steps; ++step) {
     detail::stretch_update_all(moved, moved_betas, ensemble_options.stretch, random, evaluate);
     if (levels.back().prior_draws) redraw_from_prior(levels.back().ensemble, density, random, evaluate);
-    std::vector<long> accepted_now(swaps_accepted.size(), 0);
+    std::fill(accepted_now.begin(), accepted_now.end(), 0);
     propose_swaps(levels, betas, random, accepted_now);
     for (std::size_t t = 0; t < levels.size(); ++t) levels[t].history.record(levels[t].ensemble, betas[t]);
     if (step <= adapt_steps) {
       adapt_ladder(betas, accepted_now, walkers, step);
-      std::size_t m = 0;
-      for (std::size_t t = 0; t < levels.size(); ++t) {
-        if (!levels[t].prior_draws) moved_betas[m++] = betas[t];
-      }
+      moved_betas = betas_of_moved();
     } else {
       for (std::size_t i = 0; i < swaps_accepted.size(); ++i) swaps_accepted[i] += accepted_now[i];
     }
