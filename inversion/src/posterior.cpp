@@ -288,7 +288,8 @@ sampling::Diagnostics diagnose_together(const sampling::EnsembleRun& run, const 
 
 /// Those diagnostics restricted to the parameters (the first k columns) and the derived quantities
 /// in `watched`: what the stop test and the verdict judge.
-sampling::Diagnostics watched_columns(const sampling::Diagnostics& d, std::size_t k, const std::vector<std::size_t>& watched) {
+sampling::Diagnostics watched_columns(const sampling::Diagnostics& d, std::size_t k,
+                                      const std::vector<std::size_t>& watched) {
   std::vector<Eigen::Index> columns;
   for (std::size_t j = 0; j < k; ++j) columns.push_back(static_cast<Eigen::Index>(j));
   for (const std::size_t c : watched) columns.push_back(static_cast<Eigen::Index>(k + c));

@@ -259,8 +259,8 @@ Convergence assess_convergence(const Diagnostics& d, const ConvergenceCriteria& 
   }
   if (verdict.converged) {
     advice << "converged: kept steps >= " << criteria.min_steps_per_tau << " tau and ESS >= " << criteria.min_ess
-           << " for every " << (d.names.empty() ? "parameter" : "quantity") << ", walkers agree (R-hat < " << criteria.max_rhat << "; smallest ESS "
-           << format_number(d.ess.minCoeff()) << ", largest tau " << format_number(worst_tau) << " steps).\n";
+           << " for every " << (d.names.empty() ? "parameter" : "quantity") << ", walkers agree (R-hat < "
+           << criteria.max_rhat << "; smallest ESS " << format_number(d.ess.minCoeff()) << ", largest tau " << format_number(worst_tau) << " steps).\n";
   }
   verdict.advice = advice.str();
   return verdict;

@@ -64,10 +64,12 @@ std::string strip_comment(const std::string& line) {
 
 bool starts_with(const std::string& line, const char* prefix) { return line.rfind(prefix, 0) == 0; }
 
+/// White space between the words of a line.
+constexpr const char* kSpace = " \t\n\v\f\r";
+
 /// The words of a line, split at white space (as `>>` would, without a stream per line: data files
 /// have millions of lines).
 std::vector<std::string> split(const std::string& line) {
-  constexpr const char* kSpace = " \t\n\v\f\r";
   std::vector<std::string> out;
   for (std::size_t at = line.find_first_not_of(kSpace); at != std::string::npos;) {
     const std::size_t stop = std::min(line.find_first_of(kSpace, at), line.size());
@@ -317,7 +319,8 @@ std::pair<std::int64_t, Section> scan_range(const std::string& path, std::uint64
   Section last = Section::none;
   RangeLines range(path, begin, end);
   for (std::string line; range.next(line); ++lines) {
-    const std::size_t first = line.find_first_not_of(" \t\r\v\f");
+    // Only a line whose first word starts with a letter can be a keyword: most are not split.
+    const std::size_t first = line.find_first_not_of(kSpace);
     if (first == std::string::npos || !std::isalpha(static_cast<unsigned char>(line[first]))) continue;
     last = section_of(split(strip_comment(line))[0]);
   }
