@@ -15,10 +15,11 @@ SEDWAVE_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev li
   libopenmpi-dev openmpi-bin libhdf5-dev libgtest-dev libbenchmark-dev libcli11-dev libtoml11-dev
   nlohmann-json3-dev gnuplot-nox python3 ninja-build)
 
+# Installs SEDWAVE_PACKAGES and any packages named as arguments.
 sedwave_install_packages() {
   local missing=()
   local p
-  for p in "${SEDWAVE_PACKAGES[@]}"; do
+  for p in "${SEDWAVE_PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0

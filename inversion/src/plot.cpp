@@ -522,7 +522,7 @@ using Histogram2 = std::vector<double>;
 Histogram2 smoothed(const Histogram2& h) {
   Histogram2 out(h.size(), 0.0);
   const int n = kCornerBins;
-  const auto at = [n](int i, int j) { return static_cast<std::size_t>(i * n + j); };
+  const auto at = [](int i, int j) { return static_cast<std::size_t>(i * kCornerBins + j); };
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       double sum = 0.0, weight = 0.0;

@@ -9,6 +9,9 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+// C++20 deduces this from the braces alone; Clang 14 does not implement that yet.
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
 }  // namespace
 
 Vec3 RigidBody::acceleration() const {

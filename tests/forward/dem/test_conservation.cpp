@@ -85,9 +85,10 @@ TEST(Momentum, LinearAndAngularMomentumOfAFrictionalRollingCluster) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
       for (int k = 0; k < 4; ++k) {
-        Grain g = testing::make_grain(static_cast<std::int64_t>(grains.size()),
-                                      {1.02 * i + 0.05 * u(rng), 1.02 * j + 0.05 * u(rng), 1.02 * k},
-                                      0.5 + 0.05 * u(rng));
+        // The draws in a fixed order (a function's arguments have none): radius, then x and y.
+        const double radius = 0.5 + 0.05 * u(rng);
+        const Vec3 position{1.02 * i + 0.05 * u(rng), 1.02 * j + 0.05 * u(rng), 1.02 * k};
+        Grain g = testing::make_grain(static_cast<std::int64_t>(grains.size()), position, radius);
         g.velocity = {u(rng), u(rng), u(rng)};
         g.angular_velocity = {3 * u(rng), 3 * u(rng), 3 * u(rng)};
         grains.push_back(g);
