@@ -109,7 +109,7 @@ void time_sampler(benchmark::State& state, Run run) {
 }
 
 void evidence(benchmark::State& state) {
-  time_sampler(state, [&state](const Problem& p, int threads) {
+  time_sampler(state, [](const Problem& p, int threads) {
     // A fixed length (compare's adapts to the data): the figures are a cost per evaluation.
     inversion::EvidenceOptions options;
     options.threads = threads;

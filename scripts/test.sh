@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Set up a fresh Debian machine (as root), build with warnings as errors, run the unit tests under
-# AddressSanitizer + UBSan, then every test with ctest (last, so its summary closes the output).
+# Set up a fresh Debian machine (as root), build with warnings as errors, then run every test with
+# ctest beside a second, sanitized build (AddressSanitizer + UBSan) that runs the unit tests and
+# every command-line case; the last lines give both verdicts.
 # SEDWAVE_SANITIZE_TESTS=0 skips the sanitizer pass (a second build, with Clang, of those targets).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 # Clang, its sanitizer runtimes and OpenMP build the sanitizer pass.
@@ -13,29 +14,28 @@ sedwave_build Release -DSEDWAVE_WERROR=ON "-DSEDWAVE_SANITIZED_ONLY_TESTS=$SANIT
 # Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
-if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
-  # Under AddressSanitizer + UBSan: the theories, the sediment models, the inversion, tables and HDF5 files, the DEM
-  # engine, the linear-response engine, and every command-line case (tests/cli: bad input of every kind, restarts, outputs)
-  # through a sanitized `sedwave`. Open MPI's own allocations are not ours to fix: no leak check.
-  SAN_DIR="${BUILD_DIR}-sanitize"
-  SAN_TARGETS=(test_theory test_io test_sediment test_inversion test_channel_table test_dem test_linear sedwave)
-  # Clang, the sanitizers' own compiler: it compiles this build in 70 % of GCC's CPU time, and 50 %
+# The sanitizer pass: under AddressSanitizer + UBSan, the theories, the sediment models, the inversion, tables and
+# HDF5 files, the DEM engine, the linear-response engine, and every command-line case (tests/cli: bad input of every
+# kind, restarts, outputs) through a sanitized `sedwave`. Open MPI's own allocations are not ours to fix: no leak check.
+SAN_DIR="${BUILD_DIR}-sanitize"
+sanitizer_pass() {
+  local targets=(test_theory test_io test_sediment test_inversion test_channel_table test_dem test_linear sedwave)
+  # Clang, the sanitizers' own compiler: it compiles this build in 70 % of GCC's CPU time, and 56 %
   # with the third-party headers left uninstrumented (cmake/sanitizer_ignorelist.txt); a second
   # compiler's warnings are errors too. -O1 with line tables only (-g1): the sanitizers' reports keep
   # function, file and line (docs/performance.md, "The test command").
-  SAN_GENERATOR=(-G "$SEDWAVE_GENERATOR")
-  [ -f "$SAN_DIR/CMakeCache.txt" ] && SAN_GENERATOR=()
-  cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" "${SAN_GENERATOR[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  local generator=(-G "$SEDWAVE_GENERATOR")
+  [ -f "$SAN_DIR/CMakeCache.txt" ] && generator=()
+  cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1" -DSEDWAVE_SANITIZE=ON \
     -DSEDWAVE_WERROR=ON -DSEDWAVE_BUILD_BENCH=OFF $(sedwave_compiler_cache) >/dev/null
   # Before the build: test discovery runs the MPI test binaries (test_linear) at link time.
   export ASAN_OPTIONS=detect_leaks=0
-  cmake --build "$SAN_DIR" -j "$JOBS" --target "${SAN_TARGETS[@]}"
+  cmake --build "$SAN_DIR" -j "$JOBS" --target "${targets[@]}"
   # The programs run side by side, $JOBS at a time; each one's output is shown whole when it ends,
-  # and any failure fails the command once all have ended.
-  failed=0
-  running=0
+  # and any failure fails the pass once all have ended.
+  local failed=0 running=0 t
   for t in tests/test_linear tests/forward/dem/test_dem tests/test_inversion tests/test_sediment \
            tests/test_channel_table tests/test_theory tests/test_io; do
     if [ "$running" -ge "$JOBS" ]; then
@@ -56,11 +56,28 @@ if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
     wait -n || failed=1
     running=$((running - 1))
   done
-  [ "$failed" = 0 ] || { echo "sedwave: a unit-test program failed under the sanitizers (output above)" >&2; exit 1; }
+  [ "$failed" = 0 ] || { echo "sedwave: a unit-test program failed under the sanitizers (output above)"; return 1; }
   echo "== command-line cases under AddressSanitizer + UBSan"
   (cd "$SAN_DIR" && ctest -R '^cli\.' -j "$JOBS" --output-on-failure)
-  unset ASAN_OPTIONS
-fi
+}
 
-cd "$BUILD_DIR"
-ctest --output-on-failure -j "$JOBS" "$@"
+# The sanitizer pass runs beside ctest on the Release build: ctest alone leaves the cores idle a
+# seventh of its time (MPI start-up, cases that wait on each other's lock), which the second build
+# fills (docs/performance.md, "The test command"). ctest reports as it goes; the pass's output
+# follows it whole, then both verdicts.
+san_status=0
+if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
+  mkdir -p "$SAN_DIR"
+  (sanitizer_pass) >"$SAN_DIR/pass.log" 2>&1 &
+  san_pid=$!
+fi
+ctest_status=0
+(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@") | tee "$BUILD_DIR/ctest.log" || ctest_status=$?
+if [ "${SEDWAVE_SANITIZE_TESTS:-1}" = 1 ]; then
+  wait "$san_pid" || san_status=$?
+  echo "== the sanitizer pass (build, unit-test programs, command-line cases): $SAN_DIR/pass.log"
+  cat "$SAN_DIR/pass.log"
+  if [ "$san_status" = 0 ]; then echo "sanitizer pass: passed"; else echo "sanitizer pass: FAILED (exit $san_status)"; fi
+fi
+echo "ctest on the Release build: $(grep -E 'tests passed' "$BUILD_DIR/ctest.log" || echo "no summary (exit $ctest_status)")"
+[ "$ctest_status" = 0 ] && [ "$san_status" = 0 ]

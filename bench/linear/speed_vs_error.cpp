@@ -189,8 +189,10 @@ int main(int argc, char** argv) {
   // 1D theories: closed forms (median of 1e5 evaluations per repeat).
   const ContinuumModel continuum;
   const LatticeModel lattice;
-  for (const auto& [name, model] : std::vector<std::pair<std::string, const DispersionModel*>>{
+  for (const auto& [name, theory] : std::vector<std::pair<std::string, const DispersionModel*>>{
            {"1D continuum", &continuum}, {"1D lattice", &lattice}}) {
+    // A copy: C++20 lets a lambda capture a structured binding, Clang 14 does not yet.
+    const DispersionModel* model = theory;
     DispersionPoint p{};
     const double t = median_seconds(5, [&] {
       for (int r = 0; r < 100000; ++r) p = model->evaluate(drive.omega_hat * (1.0 + 1e-12 * r), drive.gamma_hat);
