@@ -19,6 +19,11 @@ sanitizer_pass() {
   # with the third-party headers left uninstrumented (cmake/sanitizer_ignorelist.txt); a second
   # compiler's warnings are errors too. -O1 with line tables only (-g1): the sanitizers' reports keep
   # function, file and line (docs/performance.md, "The test command").
+  # A folder configured with another compiler starts afresh: CMake would drop the options below
+  # when it changes the compiler of an existing cache.
+  if [ -f "$SAN_DIR/CMakeCache.txt" ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' "$SAN_DIR/CMakeCache.txt"; then
+    rm -rf "$SAN_DIR/CMakeCache.txt" "$SAN_DIR/CMakeFiles"
+  fi
   local generator=(-G "$SEDWAVE_GENERATOR")
   [ -f "$SAN_DIR/CMakeCache.txt" ] && generator=()
   cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
