@@ -76,8 +76,13 @@ if [ "$SANITIZE" = 1 ]; then
   SANITIZED_ONLY="test_linear;test_inversion;test_sediment;test_dem"
   CTEST_SKIP=(-E '^cli\.')
   mkdir -p "$SAN_DIR"
+  # In a process group of its own (job control on for this one start), so that a failed or
+  # interrupted run stops the whole pass with it.
+  set -m
   (sanitizer_pass) >"$SAN_DIR/pass.log" 2>&1 &
   san_pid=$!
+  set +m
+  trap 'if [ -n "${san_pid:-}" ]; then kill -- -"$san_pid" 2>/dev/null || true; fi' EXIT
 fi
 release_status=0
 sedwave_build Release -DSEDWAVE_WERROR=ON "-DSEDWAVE_SANITIZED_ONLY_TESTS=$SANITIZED_ONLY" || release_status=$?
@@ -93,6 +98,7 @@ fi
 san_status=0
 if [ "$SANITIZE" = 1 ]; then
   wait "$san_pid" || san_status=$?
+  san_pid=""
   echo "== the sanitizer pass (build, unit-test programs, command-line cases): $SAN_DIR/pass.log"
   cat "$SAN_DIR/pass.log"
   if [ "$san_status" = 0 ]; then echo "sanitizer pass: passed"; else echo "sanitizer pass: FAILED (exit $san_status)"; fi
