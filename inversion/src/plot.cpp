@@ -521,8 +521,8 @@ using Histogram2 = std::vector<double>;
 /// contouring: single bins' noise would otherwise fray the contours.
 Histogram2 smoothed(const Histogram2& h) {
   Histogram2 out(h.size(), 0.0);
-  const int n = kCornerBins;
-  const auto at = [](int i, int j) { return static_cast<std::size_t>(i * kCornerBins + j); };
+  constexpr int n = kCornerBins;
+  const auto at = [](int i, int j) { return static_cast<std::size_t>(i * n + j); };
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       double sum = 0.0, weight = 0.0;
