@@ -7,10 +7,13 @@
 // those parameters free, then sampled with sample_posterior's defaults (an adaptive run length,
 // capped by PosteriorOptions::steps) under default priors; prints per set the steps run, the
 // largest autocorrelation time, the smallest ESS, the widest 95 % interval (ln of its upper over its
-// lower end: a run that missed part of a ridge shows a narrower one), the wall time and whether it
-// converged.
+// lower end: a run that missed part of a ridge shows a narrower one), the rungs of its tempering
+// ladder (0: one ensemble), the wall time and whether it converged. With --quadrature, also each
+// parameter's 95 % interval width (ln) against brute-force quadrature of the same posterior
+// (marginal_quadrature.hpp; about 10^6 evaluations per set).
 //
-//   build/bin/bench_posterior_defaults [sets per family=5] [DIR: also write the sets there as CSV; - none]
+//   build/bin/bench_posterior_defaults [--quadrature] [sets per family=5]
+//                                      [DIR: also write the sets there as CSV; - none]
 //                                      [FAMILY...: only these families, by their index in the table (0-6)]
 #include <algorithm>
 #include <cmath>
@@ -21,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "marginal_quadrature.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/synthetic.hpp"
@@ -94,19 +98,54 @@ std::string free_names(const inversion::FitParameters& p) {
   return out;
 }
 
+// Each free parameter's 95 % width (ln) in the samples and by quadrature, on one line.
+void print_against_quadrature(const SyntheticSet& set, const inversion::FitResult& best,
+                              const inversion::FitOptions& fit_options, const inversion::PosteriorResult& p) {
+  const auto integrand =
+      inversion::evidence_integrand(set.data, *set.model, best, inversion::make_priors(best.fitted, {}), fit_options);
+  const bench::MarginalIntervals reference = bench::marginal_intervals_by_quadrature(integrand, best);
+  std::printf("     95 %% widths (ln), sampled / quadrature:");
+  for (std::size_t j = 0; j < p.parameters.size(); ++j) {
+    const auto& q = p.parameters[j];
+    std::printf(" %s %.2f / %.2f%s", q.name.c_str(), std::log(q.upper_95 / q.lower_95),
+                reference.upper_95[j] - reference.lower_95[j], reference.resolved[j] ? "" : " (unresolved)");
+  }
+  if (p.parameters.size() == 3) {
+    const bench::MarginalIntervals slices = bench::marginal_intervals_by_slices(integrand, reference.box);
+    std::printf("; by slices:");
+    for (std::size_t j = 0; j < 3; ++j) std::printf(" %.2f", slices.upper_95[j] - slices.lower_95[j]);
+  }
+  // Draws outside the box the quadrature integrated: mass that its coarse first grid did not see.
+  Eigen::Index outside = 0;
+  for (Eigen::Index r = 0; r < p.samples.rows(); ++r) {
+    for (std::size_t j = 0; j < p.parameters.size(); ++j) {
+      const double x = std::log(p.samples(r, static_cast<Eigen::Index>(j)));
+      if (x < reference.box.lo[j] || x > reference.box.hi[j]) {
+        ++outside;
+        break;
+      }
+    }
+  }
+  std::printf("; draws outside its box %.1f %%\n", 100.0 * static_cast<double>(outside) / static_cast<double>(p.samples.rows()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int per_family = argc > 1 ? std::atoi(argv[1]) : 5;
-  const std::filesystem::path dir = argc > 2 && std::string(argv[2]) != "-" ? argv[2] : "";
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const auto flag = std::find(args.begin(), args.end(), "--quadrature");
+  const bool quadrature = flag != args.end();
+  if (quadrature) args.erase(flag);
+  const int per_family = args.size() > 0 ? std::atoi(args[0].c_str()) : 5;
+  const std::filesystem::path dir = args.size() > 1 && args[1] != "-" ? args[1] : "";
   std::vector<std::size_t> only;
-  for (int a = 3; a < argc; ++a) only.push_back(static_cast<std::size_t>(std::atoi(argv[a])));
+  for (std::size_t a = 2; a < args.size(); ++a) only.push_back(static_cast<std::size_t>(std::atoi(args[a].c_str())));
   if (!dir.empty()) std::filesystem::create_directories(dir);
   const inversion::PosteriorOptions defaults;
   std::printf("default posterior (cap %d steps, checked every %d) on %d synthetic sets per family\n", defaults.steps,
               defaults.check_every, per_family);
-  std::printf("%-40s %4s %-24s %6s %7s %7s %6s %6s %7s %s\n", "model", "set", "free", "steps", "tau", "ESS",
-              "accept", "ln95", "s", "verdict");
+  std::printf("%-40s %4s %-24s %6s %7s %7s %6s %6s %5s %7s %s\n", "model", "set", "free", "steps", "tau", "ESS",
+              "accept", "ln95", "rungs", "s", "verdict");
   int sets = 0, converged = 0;
   double longest = 0.0;
   const auto families = bench_families();
@@ -134,9 +173,10 @@ int main(int argc, char** argv) {
       ++sets;
       converged += p.converged;
       longest = std::max(longest, p.wall_seconds);
-      std::printf("%-40s %4d %-24s %6d %7.1f %7.0f %6.2f %6.2f %7.2f %s\n", name.c_str(), k,
-                  free_names(set.truth).c_str(), p.steps, tau, ess, p.acceptance, width, p.wall_seconds,
-                  p.converged ? "converged" : "NOT CONVERGED");
+      std::printf("%-40s %4d %-24s %6d %7.1f %7.0f %6.2f %6.2f %5d %7.2f %s\n", name.c_str(), k,
+                  free_names(set.truth).c_str(), p.steps, tau, ess, p.acceptance, width, p.temperatures,
+                  p.wall_seconds, p.converged ? "converged" : "NOT CONVERGED");
+      if (quadrature) print_against_quadrature(set, best, fit_options, p);
       std::fflush(stdout);
     }
   }

@@ -164,8 +164,10 @@ std::string prior_note(const inversion::PosteriorQuantity& q) {
 }
 
 void print_posterior(const inversion::PosteriorResult& p, const std::string& out) {
-  std::printf("\nposterior (%d walkers x %d steps of at most %d, first half burn-in; acceptance %.2f; %.1f s):\n",
-              p.walkers, p.steps, p.steps_cap, p.acceptance, p.wall_seconds);
+  const std::string ladder =
+      p.temperatures > 0 ? "parallel tempering, " + std::to_string(p.temperatures) + " rungs of " : "";
+  std::printf("\nposterior (%s%d walkers x %d steps of at most %d, first half burn-in; acceptance %.2f; %.1f s):\n",
+              ladder.c_str(), p.walkers, p.steps, p.steps_cap, p.acceptance, p.wall_seconds);
   std::printf("  priors:\n");
   for (const std::string& line : p.priors) std::printf("    %s\n", line.c_str());
   std::printf("  %-16s %-6s %11s  %-23s  %-23s %6s %7s\n", "quantity", "unit", "median", "68% credible",
@@ -178,7 +180,8 @@ void print_posterior(const inversion::PosteriorResult& p, const std::string& out
   for (const auto& q : p.parameters) row(q);
   for (const auto& q : p.combinations) row(q);
   if (p.converged) {
-    std::printf("  converged (kept steps >= 50 autocorrelation times, effective sample sizes >= 400, walkers agree)\n");
+    std::printf("  converged (kept steps >= 50 autocorrelation times, effective sample sizes >= 400, walkers agree%s)\n",
+                p.temperatures > 0 ? "; every rung mixed" : "");
   } else {
     std::printf("  NOT CONVERGED: %s\n", p.advice.c_str());
   }
@@ -240,6 +243,12 @@ Command add_invert_command(CLI::App& app) {
                                 "posterior: the most ensemble updates; the run stops once converged, the first half "
                                 "discarded as burn-in")
       ->capture_default_str()->check(CLI::Range(10, 10000000));
+  auto* temperatures =
+      cmd->add_option("--temperatures", o->posterior.temperatures,
+                      "posterior: rungs of a parallel-tempering ladder (0: one ensemble; -1: " +
+                          std::to_string(inversion::PosteriorOptions::kAutoTemperatures) +
+                          " where a parameter with a flat prior is left open by the data and the other priors, else one ensemble)")
+          ->capture_default_str()->check(CLI::Range(-1, 1000));
   add_threads_option(*cmd, o->threads,
                      "posterior: threads that share each half-ensemble's evaluations (they meet at every "
                      "half-step, which on a busy machine costs more than it saves)");
@@ -263,8 +272,8 @@ Command add_invert_command(CLI::App& app) {
                 "skip the likelihood profiles (most of a fit's time on large files); determination then rests on "
                 "the linearised sigmas alone");
 
-  return {cmd, [o, walkers, steps]() {
-            for (const CLI::Option* sampler : {walkers, steps}) {
+  return {cmd, [o, walkers, steps, temperatures]() {
+            for (const CLI::Option* sampler : {walkers, steps, temperatures}) {
               if (sampler->count() > 0 && o->method != "posterior") {
                 throw UsageError(sampler->get_name() + " is for --method posterior; --method " + o->method +
                                  " does not sample");

@@ -154,10 +154,16 @@ Eigen::VectorXd draw_free_from_priors(const Setup& s, const std::vector<Prior>& 
   return x;
 }
 
-/// What sample_posterior runs, as its outputs name it.
-constexpr const char* kSamplerAlgorithm =
-    "ensemble of walkers, differential-evolution moves (ter Braak 2006) 0.8 and snooker moves (ter Braak & Vrugt "
-    "2008) 0.2";
+/// What sample_posterior ran, as its outputs name it.
+std::string sampler_algorithm(const PosteriorResult& p) {
+  if (p.temperatures > 0) {
+    return "parallel tempering (Vousden, Farr & Mandel 2016), " + std::to_string(p.temperatures) +
+           " rungs from beta = 1 to the prior (beta = 0, independent draws), stretch moves (Goodman & Weare 2010); "
+           "the posterior is the beta = 1 rung's";
+  }
+  return "ensemble of walkers, differential-evolution moves (ter Braak 2006) 0.8 and snooker moves (ter Braak & "
+         "Vrugt 2008) 0.2";
+}
 
 /// Prior draws, the pilot of the ladder and the hot rungs' start, from a stream of their own.
 constexpr std::uint64_t kPriorStream = 0x5DEECE66DULL;
@@ -165,14 +171,17 @@ constexpr std::uint64_t kPriorStream = 0x5DEECE66DULL;
 constexpr int kPilotDraws = 256;
 /// Prior draws tried for one start walker of a hot rung before it starts at the best fit instead.
 constexpr int kStartDraws = 1000;
-/// The evidence's error is not trusted before this many updates (the first half, burn-in, lets
-/// every rung forget its start). The rungs started around the best fit begin narrower than their
+/// A tempered run (the evidence's, or a posterior's) is not stopped before this many updates (the
+/// first half, burn-in, lets every rung forget its start). The rungs started around the best fit begin narrower than their
 /// own distribution (a Gaussian ball where L^beta has heavier tails) and widen slowly: after 500
 /// steps of burn-in EDFM's ln Z on a synthetic set was still too high by +0.031 +- 0.012 over 20
 /// seeds against quadrature of the same integral, after 1000 it was not (-0.011 +- 0.008;
 /// bench/evidence_accuracy.cpp), and Biot-Stoll's on the shipped field data scattered by 0.09
-/// between seeds against a stated 0.05 (0.035 after 1000).
-constexpr int kMinEvidenceSteps = 2000;
+/// between seeds against a stated 0.05 (0.035 after 1000). A tempered posterior of the lattice chain
+/// on the shipped field data with a log-normal grain-size prior (sd of ln 0.3), stopped by the test
+/// alone after 250 steps, gave d's 95 % interval an upper end 7 % below the prior's, which the
+/// data leave nearly unchanged; after 1000, 2000 and 4000 steps it was within 2 %.
+constexpr int kMinTemperedSteps = 2000;
 /// Seconds of silence before a sampling run reports its progress, and between its lines.
 constexpr double kProgressSeconds = 2.0;
 
@@ -187,7 +196,7 @@ double steps_needed(const sampling::Diagnostics& d, const sampling::ConvergenceC
   return 2.0 * std::max(c.min_steps_per_tau * tau, c.min_ess * tau / d.walkers);
 }
 
-std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+std::string formatted(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
   char line[256];
   std::snprintf(line, sizeof line, pattern, a, b, c, d);
   return line;
@@ -203,8 +212,8 @@ class ProgressReporter {
     last_ = elapsed;
     const double wanted = std::min(static_cast<double>(cap), std::max(steps_wanted, static_cast<double>(steps)));
     const double left = (wanted - steps) * elapsed / steps;
-    sink_(format("%.0f of at most %.0f steps, %.0f s; ", steps, cap, elapsed) + state +
-          format("; about %.0f steps and %.0f s to go", wanted - steps, left));
+    sink_(formatted("%.0f of at most %.0f steps, %.0f s; ", steps, cap, elapsed) + state +
+          formatted("; about %.0f steps and %.0f s to go", wanted - steps, left));
   }
 
  private:
@@ -302,6 +311,122 @@ sampling::Diagnostics watched_columns(const sampling::Diagnostics& d, std::size_
   return out;
 }
 
+/// The sampler's options that PosteriorOptions and EvidenceOptions share.
+template <class Options>
+sampling::EnsembleOptions ensemble_options(const Options& options) {
+  sampling::EnsembleOptions ensemble;
+  ensemble.walkers = options.walkers;
+  ensemble.steps = options.steps;
+  ensemble.seed = options.seed;
+  ensemble.threads = options.threads;
+  ensemble.check_every = options.check_every;
+  return ensemble;
+}
+
+/// A tempering ladder and its start walkers for `density`: `temperatures` rungs evenly spaced in
+/// ln beta from 1 down to 1/max_temperature, then beta = 0 (the prior, refreshed by independent
+/// draws). The ladder reaches further where the prior's typical draws have ln L below the best fit's
+/// by more than max_temperature, with the same number of rungs per decade: down to where they are
+/// within e^1 of the best fit in L^beta_min, so that the last stone, prior draws weighted by
+/// L^beta_min, has no dominant few. Rungs where the best fit is not yet e^dim likelier than a
+/// typical prior draw start from prior draws; colder ones around the best fit, as wide as L^beta
+/// there.
+struct TemperedStart {
+  sampling::TemperingOptions tempering;  ///< betas and ensemble set
+  std::vector<std::vector<Eigen::VectorXd>> starts;
+  double max_temperature = 0.0;
+};
+
+TemperedStart tempered_start(const Setup& s, const FitResult& best, const std::vector<Prior>& priors, const Theta& theta,
+                             const sampling::PriorAndLikelihood& density, int temperatures, double max_temperature,
+                             const sampling::EnsembleOptions& ensemble) {
+  const auto k = static_cast<Eigen::Index>(s.free.size());
+  sampling::RandomStream prior_random(ensemble.seed ^ kPriorStream);
+  std::vector<double> pilot;
+  for (int i = 0; i < kPilotDraws; ++i) pilot.push_back(density.log_likelihood(density.draw_prior(prior_random)));
+  std::nth_element(pilot.begin(), pilot.begin() + kPilotDraws / 2, pilot.end());
+  const double best_log_l = -0.5 * detail::chi2_at(s, theta);
+  const double gap = std::isfinite(pilot[kPilotDraws / 2]) ? best_log_l - pilot[kPilotDraws / 2]
+                                                             : std::numeric_limits<double>::infinity();
+  TemperedStart out;
+  out.max_temperature = max_temperature;
+  int rungs = temperatures;
+  if (gap > max_temperature) {
+    out.max_temperature = std::isfinite(gap) ? gap : 1e3 * max_temperature;
+    rungs = static_cast<int>(std::ceil((temperatures - 1) * std::log(out.max_temperature) / std::log(max_temperature))) + 1;
+  }
+  out.tempering.betas = sampling::evidence_ladder(rungs, out.max_temperature);
+  out.tempering.ensemble = ensemble;
+  const auto inside = [&](const Eigen::VectorXd& x) {
+    return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
+  };
+  for (const double beta : out.tempering.betas) {
+    const std::vector<Eigen::VectorXd> ball = start_walkers(s, best, priors, theta, ensemble, inside, beta);
+    if (beta * gap >= static_cast<double>(k)) {
+      out.starts.push_back(ball);
+      continue;
+    }
+    std::vector<Eigen::VectorXd> walkers;
+    for (const Eigen::VectorXd& fallback : ball) {
+      Eigen::VectorXd x = density.draw_prior(prior_random);
+      for (int tries = 1; beta > 0.0 && !std::isfinite(density.log_likelihood(x)); ++tries) {
+        x = tries < kStartDraws ? density.draw_prior(prior_random) : fallback;
+      }
+      walkers.push_back(x);
+    }
+    out.starts.push_back(walkers);
+  }
+  return out;
+}
+
+/// Whether a free parameter with a flat prior (uniform or log-uniform, the default) is left open by
+/// the data and the other priors together: its sd in ln, in the linearised posterior at the best
+/// fit, above determined_log_sigma (FitOptions: what the fit calls NOT DETERMINED). The linearised posterior's precision is the data's
+/// J^T J plus the priors' curvature in ln(value): 1/sd^2 for a log-normal prior, (value/sd)^2 for
+/// a normal one at its mean, 0 for the flat ones. Such a parameter's posterior is closed by nothing
+/// but the data, and where they leave it open, by the search bounds.
+bool open_to_the_bounds(const Setup& s, const Theta& theta, const std::vector<Prior>& priors,
+                        double determined_log_sigma) {
+  const Eigen::MatrixXd jacobian = detail::whitened_jacobian(s, theta);
+  Eigen::MatrixXd precision = jacobian.transpose() * jacobian;
+  std::vector<bool> flat(s.free.size());
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    const Prior& p = priors[static_cast<std::size_t>(i)];
+    const auto jj = static_cast<Eigen::Index>(j);
+    flat[j] = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
+    if (p.kind == PriorKind::LogNormal) precision(jj, jj) += 1.0 / (p.b * p.b);
+    if (p.kind == PriorKind::Normal) precision(jj, jj) += std::pow(std::exp(theta[i]) / p.b, 2);
+  }
+  // Variances from the eigen-decomposition, a direction that nothing sees (an eigenvalue at
+  // rounding level of the largest) counting as unbounded.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(precision);
+  const Eigen::VectorXd lambda = eigen.eigenvalues().cwiseMax(1e-14 * eigen.eigenvalues().cwiseAbs().maxCoeff());
+  const Eigen::VectorXd variance = eigen.eigenvectors().cwiseAbs2() * lambda.cwiseInverse();
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const double sd = std::sqrt(variance(static_cast<Eigen::Index>(j)));
+    if (flat[j] && !(sd <= determined_log_sigma)) return true;
+  }
+  return false;
+}
+
+/// The largest integrated autocorrelation time [steps] over every rung's k parameters and ln L: a
+/// tempered run has mixed only when each rung has (walkers that creep along a ridge leave ln L
+/// nearly unchanged, yet what the rung hands down still depends on where they started).
+double slowest_rung_tau(const sampling::TemperedRun& run, Eigen::Index k) {
+  double slowest = 0.0;
+  for (std::size_t t = 0; t < run.levels.size(); ++t) {
+    std::vector<double> taus{sampling::autocorrelation_time(run.log_likelihood[t])};
+    for (int i = 0; i < static_cast<int>(k); ++i) {
+      taus.push_back(sampling::autocorrelation_time(sampling::parameter_chains(run.levels[t].chains, i)));
+    }
+    for (const double tau : taus) {
+      if (std::isfinite(tau)) slowest = std::max(slowest, tau);
+    }
+  }
+  return slowest;
+}
+
 }  // namespace
 
 sampling::PriorAndLikelihood evidence_integrand(const ObservationSet& data, const sediment::SedimentModel& model,
@@ -330,56 +455,13 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   const auto k = static_cast<Eigen::Index>(s.free.size());
   require_prior_covers(s, priors, theta);
   const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, priors, fit_options);
-
-  // The ladder reaches down to where the prior's typical draws are within e^1 of the best fit in
-  // L^beta_min: then the last stone, prior draws weighted by L^beta_min, has no dominant few.
-  sampling::RandomStream prior_random(options.seed ^ kPriorStream);
-  std::vector<double> pilot;
-  for (int i = 0; i < kPilotDraws; ++i) pilot.push_back(density.log_likelihood(density.draw_prior(prior_random)));
-  std::nth_element(pilot.begin(), pilot.begin() + kPilotDraws / 2, pilot.end());
-  const double best_log_l = -0.5 * detail::chi2_at(s, theta);
-  const double gap = std::isfinite(pilot[kPilotDraws / 2]) ? best_log_l - pilot[kPilotDraws / 2]
-                                                             : std::numeric_limits<double>::infinity();
-  double max_temperature = options.max_temperature;
-  int temperatures = options.temperatures;
-  if (gap > max_temperature) {
-    max_temperature = std::isfinite(gap) ? gap : 1e3 * options.max_temperature;
-    temperatures = static_cast<int>(std::ceil((options.temperatures - 1) * std::log(max_temperature) /
-                                              std::log(options.max_temperature))) + 1;
-  }
-  sampling::TemperingOptions tempering;
-  tempering.betas = sampling::evidence_ladder(temperatures, max_temperature);
-  tempering.ensemble.walkers = options.walkers;
-  tempering.ensemble.steps = options.steps;
-  tempering.ensemble.seed = options.seed;
-  tempering.ensemble.threads = options.threads;
-  tempering.ensemble.check_every = options.check_every;
+  const sampling::EnsembleOptions ensemble = ensemble_options(options);
+  TemperedStart ladder =
+      tempered_start(s, best, priors, theta, density, options.temperatures, options.max_temperature, ensemble);
+  sampling::TemperingOptions& tempering = ladder.tempering;
   // The ladder adapts during the first half of the burn-in at most (sample_tempered's rule), and the
   // burn-in is half of the run: a quarter of the cap.
   tempering.adapt_steps = std::min(options.adapt_steps, options.steps / 4);
-
-  // Rungs where the best fit is not yet e^dim likelier than a typical prior draw start from prior
-  // draws; colder ones around the best fit, as wide as L^beta there.
-  const auto inside = [&](const Eigen::VectorXd& x) {
-    return std::isfinite(density.log_prior(x)) && std::isfinite(density.log_likelihood(x));
-  };
-  std::vector<std::vector<Eigen::VectorXd>> starts;
-  for (const double beta : tempering.betas) {
-    const std::vector<Eigen::VectorXd> ball = start_walkers(s, best, priors, theta, tempering.ensemble, inside, beta);
-    if (beta * gap >= static_cast<double>(k)) {
-      starts.push_back(ball);
-      continue;
-    }
-    std::vector<Eigen::VectorXd> walkers;
-    for (const Eigen::VectorXd& fallback : ball) {
-      Eigen::VectorXd x = density.draw_prior(prior_random);
-      for (int tries = 1; beta > 0.0 && !std::isfinite(density.log_likelihood(x)); ++tries) {
-        x = tries < kStartDraws ? density.draw_prior(prior_random) : fallback;
-      }
-      walkers.push_back(x);
-    }
-    starts.push_back(walkers);
-  }
 
   ProgressReporter report(options.progress);
   sampling::Evidence evidence;
@@ -389,30 +471,19 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
     const sampling::Diagnostics d = sampling::diagnose(run.levels[0]);
     convergence = sampling::assess_convergence(d);
     const double kept = run.steps - sampling::burn_in_steps(tempering.ensemble, run.steps);
-    // Every rung must have mixed, not only the posterior's: each rung's parameters and ln L, and
-    // the ladder's series, over >= 50 tau (walkers that creep along a ridge leave ln L nearly
-    // unchanged but the rung's estimate still depends on where they started).
-    double slowest = evidence.autocorrelation_time;
-    for (std::size_t t = 0; t < run.levels.size(); ++t) {
-      std::vector<double> taus{sampling::autocorrelation_time(run.log_likelihood[t])};
-      for (int i = 0; i < static_cast<int>(k); ++i) {
-        taus.push_back(sampling::autocorrelation_time(sampling::parameter_chains(run.levels[t].chains, i)));
-      }
-      for (const double tau : taus) {
-        if (std::isfinite(tau)) slowest = std::max(slowest, tau);
-      }
-    }
+    // Every rung must have mixed, not only the posterior's, and the ladder's series too.
+    const double slowest = std::max(evidence.autocorrelation_time, slowest_rung_tau(run, k));
     const double per_tau = sampling::ConvergenceCriteria{}.min_steps_per_tau;
     const bool error_ok = evidence.uncertainty <= options.target_uncertainty && kept >= per_tau * slowest;
     const double wanted = std::max({steps_needed(d), run.steps * std::pow(evidence.uncertainty / options.target_uncertainty, 2),
                                     2.0 * per_tau * slowest});
     report(run.steps, options.steps, wanted,
-           format("ln Z %.2f +- %.2f (target %.2f)", evidence.log_evidence, evidence.uncertainty,
+           formatted("ln Z %.2f +- %.2f (target %.2f)", evidence.log_evidence, evidence.uncertainty,
                   options.target_uncertainty));
-    return error_ok && convergence.converged && run.steps >= kMinEvidenceSteps;
+    return error_ok && convergence.converged && run.steps >= kMinTemperedSteps;
   };
   tempering.stop = judge;
-  const sampling::TemperedRun run = sampling::sample_tempered(density, starts, tempering);
+  const sampling::TemperedRun run = sampling::sample_tempered(density, ladder.starts, tempering);
   const bool done = judge(run);
   // Posterior-predictive p of chi^2: replicated data at a draw theta have chi^2 ~ chi^2_n exactly
   // (Gaussian whitened residuals), so p = mean over draws of Q(n/2, chi^2(theta)/2).
@@ -432,13 +503,13 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   e.stone_overlap = evidence.stone_overlap;
   e.temperatures = static_cast<int>(tempering.betas.size());
   e.swap_acceptance.assign(run.swap_acceptance.data(), run.swap_acceptance.data() + run.swap_acceptance.size());
-  e.max_temperature = max_temperature;
+  e.max_temperature = ladder.max_temperature;
   e.steps = run.steps;
   e.predictive_p = draws > 0 ? p_sum / draws : 0.0;
   e.acceptance = run.levels[0].acceptance;
   e.converged = done;
   if (!done) {
-    e.advice = format("stopped at the cap of %.0f steps per temperature with ln Z +- %.3f (target %.3f)", run.steps,
+    e.advice = formatted("stopped at the cap of %.0f steps per temperature with ln Z +- %.3f (target %.3f)", run.steps,
                       evidence.uncertainty, options.target_uncertainty) +
                (convergence.converged ? std::string(" and a converged posterior ensemble")
                                       : "; the posterior ensemble: " + convergence.advice);
@@ -491,13 +562,8 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     const double chi2 = detail::chi2_at(s, t);
     return std::isfinite(chi2) ? lp - 0.5 * chi2 : -std::numeric_limits<double>::infinity();
   };
-  sampling::EnsembleOptions ensemble;
-  ensemble.walkers = options.walkers;
-  ensemble.steps = options.steps;
+  sampling::EnsembleOptions ensemble = ensemble_options(options);
   ensemble.burn_in = options.burn_in;
-  ensemble.seed = options.seed;
-  ensemble.threads = options.threads;
-  ensemble.check_every = options.check_every;
   ensemble.moves = sampling::differential_moves();
   // The stop test and the verdict cover the derived quantities too (a combination along a ridge can
   // mix more slowly than any parameter), each computed once per kept draw.
@@ -508,28 +574,65 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   for (const detail::Combination& c : combinations) names.push_back(c.name);
   DerivedChains derived(s, theta, combinations.size());
   ProgressReporter report(options.progress);
-  ensemble.stop = [&](const sampling::EnsembleRun& so_far) {
+  // The stop test: the posterior's ensemble has converged, and for a tempered run every rung has
+  // mixed over >= 50 of its slowest tau (rung_tau; 0 for one ensemble).
+  const double per_tau = sampling::ConvergenceCriteria{}.min_steps_per_tau;
+  const auto judge = [&](const sampling::EnsembleRun& so_far, double rung_tau) {
     const sampling::Diagnostics d =
         watched_columns(diagnose_together(so_far, derived.update(so_far), names), s.free.size(), watched);
-    report(so_far.steps, options.steps, steps_needed(d),
-           format("largest autocorrelation time %.1f steps, smallest ESS %.0f", d.autocorrelation_time.maxCoeff(),
-                  d.ess.minCoeff()));
-    return sampling::assess_convergence(d).converged;
+    const double kept = so_far.chains.empty() ? 0.0 : static_cast<double>(so_far.chains.front().rows());
+    report(so_far.steps, options.steps, std::max(steps_needed(d), 2.0 * per_tau * rung_tau),
+           formatted("largest autocorrelation time %.1f steps, smallest ESS %.0f", d.autocorrelation_time.maxCoeff(),
+                  d.ess.minCoeff()) +
+               (rung_tau > 0.0 ? formatted(", slowest rung %.1f steps", rung_tau) : std::string()));
+    return sampling::assess_convergence(d).converged && kept >= per_tau * rung_tau;
   };
-  const sampling::EnsembleRun run =
-      sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble, [&](const Eigen::VectorXd& x) {
-        return std::isfinite(log_posterior(x));
-      }), ensemble);
+  const int temperatures = options.temperatures >= 0 ? options.temperatures
+                           : open_to_the_bounds(s, theta, priors, fit_options.determined_log_sigma)
+                               ? PosteriorOptions::kAutoTemperatures
+                               : 0;
+  sampling::EnsembleRun run;
+  double rung_tau = 0.0;
+  int rungs = 0;
+  if (temperatures < 2) {
+    ensemble.stop = [&](const sampling::EnsembleRun& so_far) { return judge(so_far, 0.0); };
+    run = sampling::sample(log_posterior, start_walkers(s, best, priors, theta, ensemble, [&](const Eigen::VectorXd& x) {
+      return std::isfinite(log_posterior(x));
+    }), ensemble);
+  } else {
+    // Parallel tempering moves every rung by the stretch move (sample_tempered).
+    ensemble.moves = {};
+    const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, priors, fit_options);
+    TemperedStart ladder =
+        tempered_start(s, best, priors, theta, density, temperatures, EvidenceOptions{}.max_temperature, ensemble);
+    ladder.tempering.stop = [&](const sampling::TemperedRun& so_far) {
+      return judge(so_far.levels[0], slowest_rung_tau(so_far, k)) && so_far.steps >= kMinTemperedSteps;
+    };
+    const sampling::TemperedRun tempered = sampling::sample_tempered(density, ladder.starts, ladder.tempering);
+    run = tempered.levels[0];
+    run.evaluations = tempered.evaluations + kPilotDraws;
+    rung_tau = slowest_rung_tau(tempered, k);
+    rungs = static_cast<int>(tempered.betas.size());
+  }
   const std::vector<Eigen::MatrixXd> derived_chains = derived.update(run);
   // Every column: the parameters', then every derived quantity's.
   const sampling::Diagnostics diagnostics = diagnose_together(run, derived_chains, names);
-  const sampling::Convergence convergence =
+  sampling::Convergence convergence =
       sampling::assess_convergence(watched_columns(diagnostics, s.free.size(), watched));
+  const double kept = run.chains.empty() ? 0.0 : static_cast<double>(run.chains.front().rows());
+  if (kept < per_tau * rung_tau) {
+    convergence.advice = formatted("a rung of the tempering ladder has not mixed: its slowest autocorrelation time is "
+                                "%.0f steps, and the %.0f kept steps hold %.1f of them (50 wanted)",
+                                rung_tau, kept, kept / rung_tau) +
+                         (convergence.converged ? std::string() : "; " + convergence.advice);
+    convergence.converged = false;
+  }
 
   PosteriorResult result;
   result.walkers = static_cast<int>(run.chains.size());
   result.steps = run.steps;
   result.steps_cap = options.steps;
+  result.temperatures = rungs;
   result.evaluations = run.evaluations;
   result.acceptance = run.acceptance;
   result.converged = convergence.converged;
@@ -571,7 +674,8 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
 
 nlohmann::json posterior_report(const PosteriorResult& p) {
   nlohmann::json j;
-  j["sampler"] = {{"algorithm", kSamplerAlgorithm},
+  j["sampler"] = {{"algorithm", sampler_algorithm(p)},
+                  {"temperatures", p.temperatures},
                   {"walkers", p.walkers},
                   {"steps", p.steps},
                   {"steps_cap", p.steps_cap},
@@ -637,7 +741,7 @@ void write_posterior_samples_hdf5(const std::filesystem::path& path, const Poste
       {{"title", "sedwave posterior samples"},
        {"layout", "one dataset per free parameter, shape {walkers, kept steps}: walker w's chain in row w, burn-in "
                   "dropped; values in the dataset's unit (SI)"},
-       {"sampler", std::string(kSamplerAlgorithm) + "; " + std::to_string(p.walkers) +
+       {"sampler", sampler_algorithm(p) + "; " + std::to_string(p.walkers) +
                        " walkers x " + std::to_string(p.steps) + " steps, first half burn-in"},
        {"priors", priors},
        {"converged", p.converged ? "yes" : "no: " + p.advice}},

@@ -28,6 +28,8 @@ sedwave_cli_case(conflict.steps_without_posterior 2 "--steps is for --method pos
   invert ${OBS} --steps 500 ${FAST})
 sedwave_cli_case(conflict.walkers_without_posterior 2 "--walkers is for --method posterior. --method global does not sample"
   invert ${OBS} --walkers 32 --no-plot --out ${CLI_OUT}/conflict_never)
+sedwave_cli_case(conflict.temperatures_without_posterior 2 "--temperatures is for --method posterior. --method ceres does not sample"
+  invert ${OBS} --method ceres --temperatures 8 --no-plot --out ${CLI_OUT}/conflict_never)
 
 # ---- compare: its model list and per-model fits ------------------------------------------------------
 add_test(NAME cli.conflict.compare_models_empty COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "--models '': name at least one model"

@@ -53,7 +53,9 @@ TEST(Posterior, MatchesTheLinearisedGaussianWhereTheDataDetermineTheParameters) 
 // the lattice chain and a grain-size prior, tau = gamma / kappa mixes more slowly than kappa, d and
 // gamma: judged on the parameters alone the run stopped after 750 steps with tau's ESS at 533.
 // A derived quantity that the free parameters do not move (the saturated lattice's Wood speed, set
-// by the fixed porosity: a constant, with no R-hat) does not hold a run back.
+// by the fixed porosity: a constant, with no R-hat) does not hold a run back. One ensemble: the
+// saturated chain's kappa and gamma are left to their flat priors, which makes its default run
+// tempered, and the same judging in a tempered run costs 20 times more here.
 TEST(Posterior, JudgesTheDerivedQuantitiesThatMoveAndNotTheConstantOnes) {
   const ObservationSet field = read_observation_csv(SEDWAVE_SOURCE_DIR "/data/field/zhou2009_regression.csv");
   for (const char* name : {"lattice", "saturated-lattice"}) {
@@ -66,7 +68,7 @@ TEST(Posterior, JudgesTheDerivedQuantitiesThatMoveAndNotTheConstantOnes) {
     const FitOptions fit_options{.method = FitMethod::Ceres, .profile_likelihood = false};
     const FitResult best = fit(field, *model, start, fit_options);
     const PosteriorResult p = sample_posterior(field, *model, best, make_priors(best.fitted, {"d=log-normal:3e-4,0.3"}),
-                                               fit_options, {.seed = 1});
+                                               fit_options, {.seed = 1, .temperatures = 0});
     ASSERT_TRUE(p.converged) << p.advice;
     int moving = 0;
     for (const PosteriorQuantity& q : p.combinations) {
@@ -94,7 +96,9 @@ FitParameters sand_contact() {
 
 // The continuum chain at frequencies far below the crossover sees kappa*d^-1 ... only through c0 and
 // tau: d is not informed (its direction kappa*d*gamma is unseen). With a log-normal prior on d, the
-// posterior of d is that prior, and the report says so.
+// posterior of d is that prior, and the report says so. One ensemble (the prior on d closes the
+// ridge, but only just at kappa's linearised sd of 0.5, which by default would make the run
+// tempered; the tempered sampler is checked against a closed form below).
 TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
   const forward::ContinuumModel continuum;
   const auto frame = grain_contact_model(continuum, DampingForm::Gamma);
@@ -110,7 +114,8 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
   const FitOptions fit_options{.method = FitMethod::Ceres, .profile_likelihood = false};
   const FitResult best = fit(data, *frame, start, fit_options);
   const std::vector<Prior> priors = make_priors(best.fitted, {"d=log-normal:3e-4,0.5"});
-  const PosteriorResult p = sample_posterior(data, *frame, best, priors, fit_options, {.steps = 3000, .seed = 7});
+  const PosteriorResult p = sample_posterior(data, *frame, best, priors, fit_options,
+                                             {.steps = 3000, .seed = 7, .temperatures = 0});
   const PosteriorQuantity& d = by_name(p.parameters, "d");
   EXPECT_TRUE(d.prior_dominated);
   // The prior's median 3e-4 m and 68 % half-width 0.5 in ln, to Monte Carlo error.
@@ -122,6 +127,63 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
       EXPECT_LT(std::log(c.upper_68 / c.lower_68), 0.2) << c.name;
     }
   }
+}
+
+// Where the fit leaves a direction to the prior, the posterior is sampled by parallel tempering, and
+// it follows that direction to the prior's bounds. The continuum chain far below its crossover sees
+// only c0 ~ sqrt(kappa / d) and tau = gamma / kappa, so along kappa ~ d, gamma ~ d (in ln: (1, 1, 1))
+// the likelihood is flat; with log-uniform priors whose bounds on kappa and gamma lie beyond the
+// ridge's ends, the marginal of ln d is its prior's: uniform on [ln 3e-5, ln 1e-3] (closed form). Where
+// the data determine every parameter (the first test's EDFM set) one ensemble runs, and where a
+// log-normal prior on d (sd of ln 0.3) closes the same ridge too.
+TEST(Posterior, IsTemperedWhereTheFitLeavesADirectionOpenAndFollowsItToThePriorsBounds) {
+  const forward::ContinuumModel continuum;
+  const auto frame = grain_contact_model(continuum, DampingForm::Gamma);
+  const FitParameters truth = sand_contact();
+  const ObservationSet data = synthetic_observations(*frame, truth, {100.0, 1e3, 12, 0.05, 0.005, 5});
+  FitParameters start = truth;
+  const auto bound = [&](const char* name, double lower, double upper) {
+    start.spec[start.index_of(name)].lower = lower;
+    start.spec[start.index_of(name)].upper = upper;
+  };
+  bound("kappa", 1e4, 1e9);
+  bound("d", 3e-5, 1e-3);
+  bound("gamma", 1e-2, 1e4);
+  const FitOptions fit_options{.method = FitMethod::Ceres, .profile_likelihood = false};
+  const FitResult best = fit(data, *frame, start, fit_options);
+  const std::vector<Prior> priors = make_priors(best.fitted, {});
+  // The premise of the closed form: ln L is flat along (1, 1, 1) out to d's bounds.
+  const sampling::PriorAndLikelihood density = evidence_integrand(data, *frame, best, priors, fit_options);
+  const std::vector<double> ln_best = best.fitted.log_values();
+  const std::vector<int> free = best.fitted.free_indices();  // kappa, d, gamma
+  const Eigen::Vector3d at_best(ln_best[free[0]], ln_best[free[1]], ln_best[free[2]]);
+  const double ln_d = at_best(1);
+  for (const double end : {std::log(3e-5), std::log(1e-3)}) {
+    EXPECT_NEAR(density.log_likelihood(at_best + Eigen::Vector3d::Constant(end - ln_d)),
+                density.log_likelihood(at_best), 0.05);
+  }
+  const PosteriorResult p = sample_posterior(data, *frame, best, priors, fit_options, {.seed = 7});
+  ASSERT_TRUE(p.converged) << p.advice;
+  EXPECT_GE(p.temperatures, PosteriorOptions::kAutoTemperatures);
+  const PosteriorQuantity& d = by_name(p.parameters, "d");
+  const double lo = std::log(3e-5), width = std::log(1e-3 / 3e-5);
+  // Quantiles of a uniform, to Monte Carlo error (ESS >= 400: sd of the 2.5 % point ~0.03 width).
+  EXPECT_NEAR(std::log(d.lower_95), lo + 0.025 * width, 0.1 * width);
+  EXPECT_NEAR(std::log(d.median), lo + 0.5 * width, 0.1 * width);
+  EXPECT_NEAR(std::log(d.upper_95), lo + 0.975 * width, 0.1 * width);
+  EXPECT_TRUE(d.prior_dominated);
+  const PosteriorResult closed = sample_posterior(data, *frame, best, make_priors(best.fitted, {"d=log-normal:3e-4,0.3"}),
+                                                  fit_options, {.steps = 250, .check_every = 0});
+  EXPECT_EQ(closed.temperatures, 0);
+
+  const auto edfm = sediment::make_sediment_model("edfm");
+  FitParameters determined(edfm->parameters());
+  determined.set_free_from_list("porosity,permeability");
+  const ObservationSet edfm_data = synthetic_observations(*edfm, determined, {100.0, 1e5, 20, 0.02, 0.003, 11});
+  const FitResult edfm_best = fit(edfm_data, *edfm, determined, fit_options);
+  const PosteriorResult one = sample_posterior(edfm_data, *edfm, edfm_best, make_priors(edfm_best.fitted, {}),
+                                               fit_options, {.steps = 4000, .seed = 3});
+  EXPECT_EQ(one.temperatures, 0);
 }
 
 // A fit that ends on a search bound (here d, which these data do not see) is a valid start for the

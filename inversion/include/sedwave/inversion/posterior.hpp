@@ -34,6 +34,19 @@ struct PosteriorOptions {
   unsigned seed = 20090501;
   int threads = 1;        ///< share the model evaluations; the samples do not depend on it
   int check_every = 250;  ///< 0: run exactly `steps` updates
+  /// Parallel tempering (sampling/tempering.hpp): rungs of the ladder from beta = 1, as the
+  /// evidence's (EvidenceOptions), with beta = 0 added. The posterior is the beta = 1 rung's, and the
+  /// run stops once that rung has converged and every rung has mixed (kept steps >= 50 tau of each
+  /// rung's parameters and ln L), and not before 2000 updates. -1 (auto): kAutoTemperatures rungs
+  /// where a free parameter with a flat prior (uniform or log-uniform, the default) is left open by
+  /// the data and the other priors together (its sd in ln in the linearised posterior at the best
+  /// fit above FitOptions::determined_log_sigma: what the fit calls NOT DETERMINED, with the
+  /// priors' information added), else 0; 0: one ensemble.
+  /// There the posterior can reach along a ridge or plateau to the search bounds, and an ensemble started at the best fit can converge on the part of it
+  /// that it has found and stop short of the rest; the hot rungs, which see the whole prior, hand
+  /// the rest down (bench_posterior_defaults: docs/sampling.md).
+  int temperatures = -1;
+  static constexpr int kAutoTemperatures = 16;
   /// Given a progress line (steps run, autocorrelation time, estimated time left) about every 2 s
   /// once the run has lasted 2 s; null: silent.
   std::function<void(const std::string&)> progress = nullptr;
@@ -68,6 +81,7 @@ struct PosteriorResult {
   std::string advice;                           ///< what to change when not converged
   int walkers = 0, steps = 0, evaluations = 0;  ///< steps: updates run, burn-in (the first half) included
   int steps_cap = 0;                             ///< the most the run was allowed
+  int temperatures = 0;                          ///< rungs of a tempered run, beta = 0 included; 0: one ensemble
   double wall_seconds = 0.0;
 };
 
