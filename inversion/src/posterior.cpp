@@ -172,8 +172,9 @@ constexpr int kPilotDraws = 256;
 /// Prior draws tried for one start walker of a hot rung before it starts at the best fit instead.
 constexpr int kStartDraws = 1000;
 /// A tempered run (the evidence's, or a posterior's) is not stopped before this many updates (the
-/// first half, burn-in, lets every rung forget its start). The rungs started around the best fit begin narrower than their
-/// own distribution (a Gaussian ball where L^beta has heavier tails) and widen slowly: after 500
+/// first half, burn-in, lets every rung forget its start). The rungs started around the best fit
+/// begin narrower than their own distribution (a Gaussian ball where L^beta has heavier tails) and
+/// widen slowly: after 500
 /// steps of burn-in EDFM's ln Z on a synthetic set was still too high by +0.031 +- 0.012 over 20
 /// seeds against quadrature of the same integral, after 1000 it was not (-0.011 +- 0.008;
 /// bench/evidence_accuracy.cpp), and Biot-Stoll's on the shipped field data scattered by 0.09
@@ -381,10 +382,11 @@ TemperedStart tempered_start(const Setup& s, const FitResult& best, const std::v
 
 /// Whether a free parameter with a flat prior (uniform or log-uniform, the default) is left open by
 /// the data and the other priors together: its sd in ln, in the linearised posterior at the best
-/// fit, above determined_log_sigma (FitOptions: what the fit calls NOT DETERMINED). The linearised posterior's precision is the data's
-/// J^T J plus the priors' curvature in ln(value): 1/sd^2 for a log-normal prior, (value/sd)^2 for
-/// a normal one at its mean, 0 for the flat ones. Such a parameter's posterior is closed by nothing
-/// but the data, and where they leave it open, by the search bounds.
+/// fit, above determined_log_sigma (FitOptions: what the fit calls NOT DETERMINED). The linearised
+/// posterior's precision is the data's J^T J plus the priors' curvature in ln(value): 1/sd^2 for a
+/// log-normal prior, (value/sd)^2 for a normal one at its mean, 0 for the flat ones. Such a
+/// parameter's posterior is closed by nothing but the data, and where they leave it open, by the
+/// search bounds.
 bool open_to_the_bounds(const Setup& s, const Theta& theta, const std::vector<Prior>& priors,
                         double determined_log_sigma) {
   const Eigen::MatrixXd jacobian = detail::whitened_jacobian(s, theta);
@@ -408,6 +410,11 @@ bool open_to_the_bounds(const Setup& s, const Theta& theta, const std::vector<Pr
     if (flat[j] && !(sd <= determined_log_sigma)) return true;
   }
   return false;
+}
+
+/// Updates per walker that a run so far kept (its burn-in dropped).
+double kept_steps(const sampling::EnsembleRun& run) {
+  return run.chains.empty() ? 0.0 : static_cast<double>(run.chains.front().rows());
 }
 
 /// The largest integrated autocorrelation time [steps] over every rung's k parameters and ln L: a
@@ -479,7 +486,7 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
                                     2.0 * per_tau * slowest});
     report(run.steps, options.steps, wanted,
            formatted("ln Z %.2f +- %.2f (target %.2f)", evidence.log_evidence, evidence.uncertainty,
-                  options.target_uncertainty));
+                     options.target_uncertainty));
     return error_ok && convergence.converged && run.steps >= kMinTemperedSteps;
   };
   tempering.stop = judge;
@@ -509,8 +516,8 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   e.acceptance = run.levels[0].acceptance;
   e.converged = done;
   if (!done) {
-    e.advice = formatted("stopped at the cap of %.0f steps per temperature with ln Z +- %.3f (target %.3f)", run.steps,
-                      evidence.uncertainty, options.target_uncertainty) +
+    e.advice = formatted("stopped at the cap of %.0f steps per temperature with ln Z +- %.3f (target %.3f)",
+                         run.steps, evidence.uncertainty, options.target_uncertainty) +
                (convergence.converged ? std::string(" and a converged posterior ensemble")
                                       : "; the posterior ensemble: " + convergence.advice);
   } else {
@@ -580,12 +587,11 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const auto judge = [&](const sampling::EnsembleRun& so_far, double rung_tau) {
     const sampling::Diagnostics d =
         watched_columns(diagnose_together(so_far, derived.update(so_far), names), s.free.size(), watched);
-    const double kept = so_far.chains.empty() ? 0.0 : static_cast<double>(so_far.chains.front().rows());
     report(so_far.steps, options.steps, std::max(steps_needed(d), 2.0 * per_tau * rung_tau),
-           formatted("largest autocorrelation time %.1f steps, smallest ESS %.0f", d.autocorrelation_time.maxCoeff(),
-                  d.ess.minCoeff()) +
+           formatted("largest autocorrelation time %.1f steps, smallest ESS %.0f",
+                     d.autocorrelation_time.maxCoeff(), d.ess.minCoeff()) +
                (rung_tau > 0.0 ? formatted(", slowest rung %.1f steps", rung_tau) : std::string()));
-    return sampling::assess_convergence(d).converged && kept >= per_tau * rung_tau;
+    return sampling::assess_convergence(d).converged && kept_steps(so_far) >= per_tau * rung_tau;
   };
   const int temperatures = options.temperatures >= 0 ? options.temperatures
                            : open_to_the_bounds(s, theta, priors, fit_options.determined_log_sigma)
@@ -619,11 +625,11 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const sampling::Diagnostics diagnostics = diagnose_together(run, derived_chains, names);
   sampling::Convergence convergence =
       sampling::assess_convergence(watched_columns(diagnostics, s.free.size(), watched));
-  const double kept = run.chains.empty() ? 0.0 : static_cast<double>(run.chains.front().rows());
+  const double kept = kept_steps(run);
   if (kept < per_tau * rung_tau) {
-    convergence.advice = formatted("a rung of the tempering ladder has not mixed: its slowest autocorrelation time is "
-                                "%.0f steps, and the %.0f kept steps hold %.1f of them (50 wanted)",
-                                rung_tau, kept, kept / rung_tau) +
+    convergence.advice = formatted("a rung of the tempering ladder has not mixed: its slowest autocorrelation time "
+                                   "is %.0f steps, and the %.0f kept steps hold %.1f of them (50 wanted)",
+                                   rung_tau, kept, kept / rung_tau) +
                          (convergence.converged ? std::string() : "; " + convergence.advice);
     convergence.converged = false;
   }
