@@ -105,7 +105,8 @@ sedwave_cli_case(invert.site_file_and_site_option 2 "medium_sand.toml:7: key 'gr
 add_test(NAME cli.site.file_matches_flags
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/site_file_matches_flags.sh $<TARGET_FILE:sedwave> ${OBS} ${SITE} ${CLI_OUT}/site_file_matches_flags)
 
-# The posterior's band over the data and its samples as HDF5; compare's bands of every model.
+# The posterior's band over the data and its samples as HDF5 (compare's bands of every model: the
+# threads case below).
 sedwave_cli_case(invert.posterior_writes_band_and_hdf5 3 "samples: .*posterior_samples.csv and .h5, band over the data: .*posterior_predictive.csv"
   invert ${OBS} --method posterior --steps 200 --threads 2 --no-plot --out ${CLI_OUT}/posterior_band)
 sedwave_cli_case(compare.threads_must_be_a_count 2 "--threads: Value -1 not in range"
