@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "sedwave/inversion/fit.hpp"
@@ -35,6 +37,25 @@ struct MarginalIntervals {
 
 namespace detail {
 
+/// The p-quantile of a density given as masses of n equal cells over [lo, hi], linear inside a cell.
+inline double quantile_of_cells(const std::vector<double>& mass, double lo, double hi, double p) {
+  const double h = (hi - lo) / static_cast<double>(mass.size());
+  double total = 0.0;
+  for (const double m : mass) total += m;
+  double below = 0.0;
+  for (std::size_t i = 0; i < mass.size(); ++i) {
+    if (below + mass[i] >= p * total) return lo + h * (static_cast<double>(i) + (p * total - below) / mass[i]);
+    below += mass[i];
+  }
+  return hi;
+}
+
+/// Cells first..last of width h from lo (those within e^-40 of the largest), widened by two cells
+/// on each side and kept inside [lo, hi].
+inline std::pair<double, double> kept_span(double lo, double hi, double h, int first, int last) {
+  return {std::max(lo, lo + (first - 2) * h), std::min(hi, lo + (last + 3) * h)};
+}
+
 inline MarginalIntervals marginal_intervals_on(const sampling::PriorAndLikelihood& f, const MarginalBox& box, int n) {
   const std::size_t k = box.lo.size();
   std::size_t cells = 1;
@@ -48,7 +69,9 @@ inline MarginalIntervals marginal_intervals_on(const sampling::PriorAndLikelihoo
   double peak = -std::numeric_limits<double>::infinity();
   Eigen::VectorXd x(static_cast<Eigen::Index>(k));
   for (std::size_t cell = 0; cell < cells; ++cell) {
-    for (std::size_t a = 0; a < k; ++a) x(static_cast<Eigen::Index>(a)) = box.lo[a] + (coordinate(cell, a) + 0.5) * h[a];
+    for (std::size_t a = 0; a < k; ++a) {
+      x(static_cast<Eigen::Index>(a)) = box.lo[a] + (coordinate(cell, a) + 0.5) * h[a];
+    }
     const double lp = f.log_prior(x);
     values[cell] = std::isfinite(lp) ? lp + f.log_likelihood(x) : lp;
     peak = std::max(peak, values[cell]);
@@ -60,27 +83,20 @@ inline MarginalIntervals marginal_intervals_on(const sampling::PriorAndLikelihoo
     for (std::size_t a = 0; a < k; ++a) {
       const int i = coordinate(cell, a);
       marginal[a][static_cast<std::size_t>(i)] += weight;
-      if (values[cell] >= peak - 40.0) first[a] = std::min(first[a], i), last[a] = std::max(last[a], i);
+      if (values[cell] >= peak - 40.0) {
+        first[a] = std::min(first[a], i);
+        last[a] = std::max(last[a], i);
+      }
     }
   }
   MarginalIntervals out;
   out.box = box;
   for (std::size_t a = 0; a < k; ++a) {
-    double total = 0.0;
-    for (const double m : marginal[a]) total += m;
-    const auto quantile = [&](double p) {
-      double below = 0.0;
-      for (int i = 0; i < n; ++i) {
-        const double m = marginal[a][static_cast<std::size_t>(i)];
-        if (below + m >= p * total) return box.lo[a] + h[a] * (i + (p * total - below) / m);
-        below += m;
-      }
-      return box.hi[a];
-    };
-    out.lower_95.push_back(quantile(0.025));
-    out.upper_95.push_back(quantile(0.975));
-    out.kept.lo.push_back(std::max(box.lo[a], box.lo[a] + (first[a] - 2) * h[a]));
-    out.kept.hi.push_back(std::min(box.hi[a], box.lo[a] + (last[a] + 3) * h[a]));
+    out.lower_95.push_back(quantile_of_cells(marginal[a], box.lo[a], box.hi[a], 0.025));
+    out.upper_95.push_back(quantile_of_cells(marginal[a], box.lo[a], box.hi[a], 0.975));
+    const auto [lo, hi] = kept_span(box.lo[a], box.hi[a], h[a], first[a], last[a]);
+    out.kept.lo.push_back(lo);
+    out.kept.hi.push_back(hi);
   }
   return out;
 }
@@ -110,7 +126,6 @@ inline MarginalIntervals marginal_intervals_by_quadrature(const sampling::PriorA
   }
   return fine;
 }
-
 
 namespace detail {
 
@@ -142,12 +157,17 @@ inline double log_slice_integral(const sampling::PriorAndLikelihood& f, const Ma
       for (int j = 0; j < n; ++j) {
         const double value = v[static_cast<std::size_t>(i * n + j)];
         sum += std::exp(value - peak);
-        if (value >= peak - 40.0) lo_i = std::min(lo_i, i), hi_i = std::max(hi_i, i), lo_j = std::min(lo_j, j), hi_j = std::max(hi_j, j);
+        if (value >= peak - 40.0) {
+          lo_i = std::min(lo_i, i);
+          hi_i = std::max(hi_i, i);
+          lo_j = std::min(lo_j, j);
+          hi_j = std::max(hi_j, j);
+        }
       }
     }
     if (keep) {
-      keep[0] = std::max(lo_b, lo_b + (lo_i - 2) * hb), keep[1] = std::min(hi_b, lo_b + (hi_i + 3) * hb);
-      keep[2] = std::max(lo_c, lo_c + (lo_j - 2) * hc), keep[3] = std::min(hi_c, lo_c + (hi_j + 3) * hc);
+      std::tie(keep[0], keep[1]) = kept_span(lo_b, hi_b, hb, lo_i, hi_i);
+      std::tie(keep[2], keep[3]) = kept_span(lo_c, hi_c, hc, lo_j, hi_j);
     }
     return peak + std::log(sum * hb * hc);
   };
@@ -177,20 +197,10 @@ inline MarginalIntervals marginal_intervals_by_slices(const sampling::PriorAndLi
           detail::log_slice_integral(f, box, a, box.lo[a] + (i + 0.5) * h, n_coarse, n_fine);
       peak = std::max(peak, log_density[static_cast<std::size_t>(i)]);
     }
-    std::vector<double> mass(static_cast<std::size_t>(n_slices));
-    double total = 0.0;
-    for (int i = 0; i < n_slices; ++i) total += mass[static_cast<std::size_t>(i)] = std::exp(log_density[static_cast<std::size_t>(i)] - peak);
-    const auto quantile = [&](double p) {
-      double below = 0.0;
-      for (int i = 0; i < n_slices; ++i) {
-        const double m = mass[static_cast<std::size_t>(i)];
-        if (below + m >= p * total) return box.lo[a] + h * (i + (p * total - below) / m);
-        below += m;
-      }
-      return box.hi[a];
-    };
-    out.lower_95.push_back(quantile(0.025));
-    out.upper_95.push_back(quantile(0.975));
+    std::vector<double> mass;
+    for (const double l : log_density) mass.push_back(std::exp(l - peak));
+    out.lower_95.push_back(detail::quantile_of_cells(mass, box.lo[a], box.hi[a], 0.025));
+    out.upper_95.push_back(detail::quantile_of_cells(mass, box.lo[a], box.hi[a], 0.975));
     out.resolved.push_back(true);
   }
   out.kept = box;
