@@ -42,10 +42,11 @@ struct PosteriorOptions {
   /// the data and the other priors together (its sd in ln in the linearised posterior at the best
   /// fit above FitOptions::determined_log_sigma: what the fit calls NOT DETERMINED, with the
   /// priors' information added), else 0; 0: one ensemble.
-  /// There the posterior can reach along a ridge or plateau to the search bounds, and an ensemble started at the best fit can converge on the part of it
-  /// that it has found and stop short of the rest; the hot rungs, which see the whole prior, hand
-  /// the rest down (bench_posterior_defaults: docs/sampling.md). With 8 rungs instead of 16 the
-  /// swaps were too weak: one bounded-ridge set of that benchmark stopped short again.
+  /// There the posterior can reach along a ridge or plateau to the search bounds, and an ensemble
+  /// started at the best fit can converge on the part of it that it has found and stop short of the
+  /// rest; the hot rungs, which see the whole prior, hand the rest down (bench_posterior_defaults:
+  /// docs/sampling.md). With 8 rungs instead of 16 the swaps were too weak: one bounded-ridge set of
+  /// that benchmark stopped short again.
   int temperatures = -1;
   static constexpr int kAutoTemperatures = 16;
   /// Given a progress line (steps run, autocorrelation time, estimated time left) about every 2 s
