@@ -126,7 +126,8 @@ void print_against_quadrature(const SyntheticSet& set, const inversion::FitResul
       }
     }
   }
-  std::printf("; draws outside its box %.1f %%\n", 100.0 * static_cast<double>(outside) / static_cast<double>(p.samples.rows()));
+  std::printf("; draws outside its box %.1f %%\n",
+              100.0 * static_cast<double>(outside) / static_cast<double>(p.samples.rows()));
 }
 
 }  // namespace

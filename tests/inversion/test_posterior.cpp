@@ -172,8 +172,9 @@ TEST(Posterior, IsTemperedWhereTheFitLeavesADirectionOpenAndFollowsItToThePriors
   EXPECT_NEAR(std::log(d.median), lo + 0.5 * width, 0.1 * width);
   EXPECT_NEAR(std::log(d.upper_95), lo + 0.975 * width, 0.1 * width);
   EXPECT_TRUE(d.prior_dominated);
-  const PosteriorResult closed = sample_posterior(data, *frame, best, make_priors(best.fitted, {"d=log-normal:3e-4,0.3"}),
-                                                  fit_options, {.steps = 250, .check_every = 0});
+  const std::vector<Prior> closing = make_priors(best.fitted, {"d=log-normal:3e-4,0.3"});
+  const PosteriorResult closed =
+      sample_posterior(data, *frame, best, closing, fit_options, {.steps = 250, .check_every = 0});
   EXPECT_EQ(closed.temperatures, 0);
 
   const auto edfm = sediment::make_sediment_model("edfm");
