@@ -65,6 +65,8 @@ struct BadScene {
   std::string text;
   std::string expected;  // substring of the message
 };
+// ctest's names show the expected message, not the struct's bytes (which hold pointers).
+void PrintTo(const BadScene& s, std::ostream* os) { *os << s.expected; }
 
 class BadScenes : public ::testing::TestWithParam<BadScene> {};
 

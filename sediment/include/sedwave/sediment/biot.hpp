@@ -48,11 +48,11 @@ template <typename J>
 double value_of(const J& x) {
   return x.a;
 }
-/// |z| of the value part only: loop stopping rules need no derivatives.
+/// |term| < 1e-17 |re + i im| for a series' real term and its sum {re, im}, value parts only.
 template <typename T>
-double magnitude(const Complex<T>& z) {
-  const double re = value_of(z.re), im = value_of(z.im);
-  return std::sqrt(re * re + im * im);  // not std::hypot: several times slower, and no overflow here
+bool below_relative(const T& term, const T (&sum)[2]) {
+  const double size = value_of(term), re = value_of(sum[0]), im = value_of(sum[1]);
+  return size * size < 1e-34 * (re * re + im * im);
 }
 }  // namespace biot_detail
 
@@ -137,39 +137,87 @@ Complex<T> gassmann_bulk_modulus(const Complex<T>& frame_bulk, const T& porosity
 
 inline constexpr double kKelvinSeriesLimit = 18.0;
 
-/// sum_j w^j / (j! (j+n)!) with w = z^2/4: I_n(z) / (z/2)^n.
-template <typename T>
-Complex<T> reduced_bessel_i_series(int n, const Complex<T>& w) {
-  double factorial_n = 1.0;
-  for (int i = 2; i <= n; ++i) factorial_n *= i;
-  Complex<T> term(T(1.0 / factorial_n));
-  Complex<T> sum = term;
-  for (int j = 1; j < 80; ++j) {
-    term = term * w / T(static_cast<double>(j) * static_cast<double>(j + n));
-    sum = sum + term;
-    if (biot_detail::magnitude(term) < 1e-17 * biot_detail::magnitude(sum)) break;
+/// 1 / (j (j + n)) and 1 / (j + n + 1) for the series below, n = 0, 1, j < kKelvinSeriesTerms:
+/// multiplications by these keep divisions off the loop's chain of dependent operations.
+inline constexpr int kKelvinSeriesTerms = 81;
+struct KelvinSeriesFactors {
+  double step[2][kKelvinSeriesTerms];  ///< 1 / (j (j + n))
+  double next[2][kKelvinSeriesTerms];  ///< 1 / (j + n + 1)
+};
+inline constexpr KelvinSeriesFactors kKelvinSeriesFactors = [] {
+  KelvinSeriesFactors f{};
+  for (int n = 0; n < 2; ++n) {
+    for (int j = 0; j < kKelvinSeriesTerms; ++j) {
+      f.step[n][j] = j == 0 ? 0.0 : 1.0 / (static_cast<double>(j) * (j + n));
+      f.next[n][j] = 1.0 / (j + n + 1.0);
+    }
   }
-  return sum;
+  return f;
+}();
+
+/// The reduced series of I_n and I_{n+1} on the Kelvin ray, sum_j w^j / (j! (j+m)!) for m = n and
+/// m = n + 1 (I_m(z) / (z/2)^m), at w = z^2/4 = i t, t = x^2/4 >= 0. The j-th term is i^j times a
+/// real number, so each sum is two real series, accumulated in real arithmetic (a quarter of the
+/// multiplications of complex terms), and both orders share one loop: term j of order n + 1 is
+/// term j of order n over (j + n + 1). Orders n = 0 and 1 (I_0 with I_1, I_1 with I_2).
+template <typename T>
+struct ReducedSeriesPair {
+  Complex<T> order_n;
+  Complex<T> order_n_plus_1;
+};
+
+template <typename T>
+ReducedSeriesPair<T> reduced_bessel_i_series_on_kelvin_ray(int n, const T& t) {
+  const double* step = kKelvinSeriesFactors.step[n];
+  const double* to_next = kKelvinSeriesFactors.next[n];
+  T term(1.0);  // t^j / (j! (j+n)!) at j = 0: 1 / n! = 1 for n = 0, 1
+  // [0]: real parts (even j), [1]: imaginary parts (odd j).
+  T sum_n[2] = {term, T(0.0)};
+  T sum_next[2] = {term * to_next[0], T(0.0)};
+  for (int j = 1; j + 3 < kKelvinSeriesTerms; j += 4) {
+    T next;
+    for (int k = 0; k < 4; ++k) {  // terms j .. j+3, j = 1 mod 4: i^j = i, -1, -i, 1
+      term = term * (t * step[j + k]);
+      next = term * to_next[j + k];
+      const int part = (k + 1) % 2;
+      if (k == 0 || k == 3) {
+        sum_n[part] = sum_n[part] + term;
+        sum_next[part] = sum_next[part] + next;
+      } else {
+        sum_n[part] = sum_n[part] - term;
+        sum_next[part] = sum_next[part] - next;
+      }
+    }
+    // Converged once each order's term is below 1e-17 of its own sum (compared squared).
+    if (biot_detail::below_relative(term, sum_n) && biot_detail::below_relative(next, sum_next)) break;
+  }
+  return {{sum_n[0], sum_n[1]}, {sum_next[0], sum_next[1]}};
 }
 
-/// sum_k (-1)^k a_k(n) / z^k: I_n(z) sqrt(2 pi z) e^{-z} for large |z|, |arg z| < pi/2.
+/// sum_k (-1)^k a_k(n) / z^k: I_n(z) sqrt(2 pi z) e^{-z} for large |z|, on the Kelvin ray
+/// z = x e^{i pi/4}, x > 0. Term k is e^{-i k pi/4} times the real (-1)^k a_k(n) / x^k, so the sum
+/// is accumulated in real arithmetic with the eight phases of e^{-i k pi/4}.
 template <typename T>
-Complex<T> bessel_i_asymptotic_factor(int n, const Complex<T>& z) {
+Complex<T> bessel_i_asymptotic_factor_on_kelvin_ray(int n, const T& x) {
+  constexpr double h = std::numbers::sqrt2 / 2.0;
+  constexpr double kPhaseRe[8] = {1.0, h, 0.0, -h, -1.0, -h, 0.0, h};
+  constexpr double kPhaseIm[8] = {0.0, -h, -1.0, -h, 0.0, h, 1.0, h};
   const double mu = 4.0 * n * n;
-  const Complex<T> inverse = Complex<T>(T(1.0)) / z;
-  Complex<T> term(T(1.0));
-  Complex<T> sum = term;
+  const T inverse = T(1.0) / x;
+  T term(1.0);
+  T re(1.0), im(0.0);
   double previous = 1.0;
   for (int k = 1; k < 40; ++k) {
     const double odd = 2.0 * k - 1.0;
-    term = term * inverse * T(-(mu - odd * odd) / (8.0 * k));
-    const double size = biot_detail::magnitude(term);
+    term = term * inverse * (-(mu - odd * odd) / (8.0 * k));
+    const double size = std::abs(biot_detail::value_of(term));
     if (size > previous) break;  // the asymptotic series starts to diverge: stop at its smallest term
-    sum = sum + term;
+    re = re + term * kPhaseRe[k % 8];
+    im = im + term * kPhaseIm[k % 8];
     if (size < 1e-17) break;
     previous = size;
   }
-  return sum;
+  return {re, im};
 }
 
 /// z = x e^{i pi/4}.
@@ -185,9 +233,9 @@ Complex<T> bessel_i_on_kelvin_ray(int n, const T& x) {
   if (biot_detail::value_of(x) < kKelvinSeriesLimit) {
     Complex<T> half_power(T(1.0));
     for (int i = 0; i < n; ++i) half_power = half_power * z / T(2.0);
-    return half_power * reduced_bessel_i_series(n, z * z / T(4.0));
+    return half_power * reduced_bessel_i_series_on_kelvin_ray(n, x * x / T(4.0)).order_n;
   }
-  return exp(z) / sqrt(z * T(2.0 * std::numbers::pi)) * bessel_i_asymptotic_factor(n, z);
+  return exp(z) / sqrt(z * T(2.0 * std::numbers::pi)) * bessel_i_asymptotic_factor_on_kelvin_ray(n, x);
 }
 
 /// ber x + i bei x (Kelvin functions of order 0), x >= 0.
@@ -213,10 +261,11 @@ template <typename T>
 Complex<T> biot_viscous_correction_direct(const T& kappa) {
   const Complex<T> z = kelvin_argument(kappa);
   if (biot_detail::value_of(kappa) < kKelvinSeriesLimit) {
-    const Complex<T> w = z * z / T(4.0);
-    return reduced_bessel_i_series(1, w) / (reduced_bessel_i_series(2, w) * T(2.0));
+    const ReducedSeriesPair<T> r = reduced_bessel_i_series_on_kelvin_ray(1, kappa * kappa / T(4.0));
+    return r.order_n / (r.order_n_plus_1 * T(2.0));
   }
-  return z / T(4.0) * bessel_i_asymptotic_factor(1, z) / bessel_i_asymptotic_factor(2, z);
+  return z / T(4.0) * bessel_i_asymptotic_factor_on_kelvin_ray(1, kappa) /
+         bessel_i_asymptotic_factor_on_kelvin_ray(2, kappa);
 }
 
 inline Complex<double> biot_viscous_correction(double kappa) { return biot_viscous_correction_direct(kappa); }
