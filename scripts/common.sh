@@ -37,11 +37,17 @@ sedwave_install_packages() {
 
 # Where ccache is installed (not required), rebuilds of unchanged sources are served from its cache;
 # CCACHE_BASEDIR makes the cache shared by checkouts in different folders.
-sedwave_compiler_cache() {
-  if command -v ccache >/dev/null 2>&1; then
-    export CCACHE_BASEDIR="$SEDWAVE_ROOT"
-    echo "-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
-  fi
+if command -v ccache >/dev/null 2>&1; then export CCACHE_BASEDIR="$SEDWAVE_ROOT"; fi
+
+# The compiler launchers, as a CMake option: scripts/cpu_slot.sh where two builds share the cores
+# (SEDWAVE_CPU_SLOT_DIR set, scripts/test.sh), then ccache where it is installed; none otherwise
+# (an empty value also clears launchers a previous configuration left in the cache).
+sedwave_compiler_launcher() {
+  local launchers=()
+  [ -n "${SEDWAVE_CPU_SLOT_DIR:-}" ] && launchers+=("$SEDWAVE_ROOT/scripts/cpu_slot.sh")
+  command -v ccache >/dev/null 2>&1 && launchers+=(ccache)
+  local IFS=';'
+  echo "-DCMAKE_CXX_COMPILER_LAUNCHER=${launchers[*]}"
 }
 
 sedwave_build() {
@@ -49,6 +55,6 @@ sedwave_build() {
   shift || true
   local generator=(-G "$SEDWAVE_GENERATOR")
   [ -f "$BUILD_DIR/CMakeCache.txt" ] && generator=()
-  cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$type" $(sedwave_compiler_cache) "$@" >/dev/null
+  cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$type" "$(sedwave_compiler_launcher)" "$@" >/dev/null
   cmake --build "$BUILD_DIR" -j "$JOBS"
 }

@@ -33,7 +33,7 @@ sanitizer_pass() {
   cmake -S "$SEDWAVE_ROOT" -B "$SAN_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1" -DSEDWAVE_SANITIZE=ON \
-    -DSEDWAVE_WERROR=ON -DSEDWAVE_BUILD_BENCH=OFF $(sedwave_compiler_cache) >/dev/null
+    -DSEDWAVE_WERROR=ON -DSEDWAVE_BUILD_BENCH=OFF "$(sedwave_compiler_launcher)" >/dev/null
   # Before the build: test discovery runs the MPI test binaries (test_linear) at link time.
   export ASAN_OPTIONS=detect_leaks=0
   cmake --build "$SAN_DIR" -j "$JOBS" --target "${targets[@]}"
@@ -81,6 +81,9 @@ if [ "$SANITIZE" = 1 ]; then
   done
   CTEST_SKIP=(-E '^cli\.')
   mkdir -p "$SAN_DIR"
+  # The two builds share $JOBS compiler slots (scripts/cpu_slot.sh): no more compilers than cores.
+  export SEDWAVE_CPU_SLOTS="$JOBS" SEDWAVE_CPU_SLOT_DIR="$SAN_DIR/cpu-slots"
+  mkdir -p "$SEDWAVE_CPU_SLOT_DIR"
   # In a process group of its own (job control on for this one start), so that a failed or
   # interrupted run stops the whole pass with it.
   set -m
