@@ -8,8 +8,7 @@
 #
 # SEDWAVE_CPU_SLOT_PRIORITY=low (the sanitizer build): take a slot only when no other build is
 # waiting for it (low-priority launchers look once a second, the others wait on the lock and get it
-# as soon as it is released), and none at all while the file "yield" exists in the folder (ctest
-# is running on the other build). Without $SEDWAVE_CPU_SLOT_DIR the command simply runs.
+# as soon as it is released). Without $SEDWAVE_CPU_SLOT_DIR the command simply runs.
 #
 #   scripts/cpu_slot.sh COMMAND [ARGS...]
 set -uo pipefail
@@ -30,7 +29,7 @@ try_every_slot() {
 
 while :; do
   if [ "$low" = 1 ]; then
-    [ -e "$dir/yield" ] || try_every_slot "$@"
+    try_every_slot "$@"
     sleep 1
   else
     try_every_slot "$@"

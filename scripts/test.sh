@@ -19,7 +19,7 @@ SANITIZED_PROGRAMS=(tests/test_linear tests/forward/dem/test_dem tests/test_inve
                     tests/test_channel_table tests/test_theory tests/test_io)
 sanitizer_pass() {
   local targets=("${SANITIZED_PROGRAMS[@]##*/}" sedwave)
-  # Its compilations give way to the Release build's, and wait while ctest runs (scripts/cpu_slot.sh).
+  # Its compilations give way to the Release build's (scripts/cpu_slot.sh): ctest starts sooner.
   export SEDWAVE_CPU_SLOT_PRIORITY=low
   # Clang, the sanitizers' own compiler: it compiles this build in 70 % of GCC's CPU time, and 56 %
   # with the third-party headers left uninstrumented (cmake/sanitizer_ignorelist.txt); a second
@@ -84,10 +84,9 @@ if [ "$SANITIZE" = 1 ]; then
   CTEST_SKIP=(-E '^cli\.')
   mkdir -p "$SAN_DIR"
   # The two builds share $JOBS compiler slots (scripts/cpu_slot.sh): no more compilers than cores,
-  # the Release build's first, none of the pass's while ctest runs.
+  # the Release build's first.
   export SEDWAVE_CPU_SLOTS="$JOBS" SEDWAVE_CPU_SLOT_DIR="$SAN_DIR/cpu-slots"
   mkdir -p "$SEDWAVE_CPU_SLOT_DIR"
-  rm -f "$SEDWAVE_CPU_SLOT_DIR/yield"
   # In a process group of its own (job control on for this one start), so that a failed or
   # interrupted run stops the whole pass with it.
   set -m
@@ -100,10 +99,8 @@ release_status=0
 sedwave_build Release -DSEDWAVE_WERROR=ON "-DSEDWAVE_SANITIZED_ONLY_TESTS=$SANITIZED_ONLY" || release_status=$?
 ctest_status=0
 if [ "$release_status" = 0 ]; then
-  [ "$SANITIZE" = 1 ] && touch "$SEDWAVE_CPU_SLOT_DIR/yield"
   (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "${CTEST_SKIP[@]}" "$@") | tee "$BUILD_DIR/ctest.log" ||
     ctest_status=$?
-  [ "$SANITIZE" = 1 ] && rm -f "$SEDWAVE_CPU_SLOT_DIR/yield"
 else
   echo "sedwave: the Release build failed (output above); ctest not run" >&2
   : >"$BUILD_DIR/ctest.log"
