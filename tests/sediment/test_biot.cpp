@@ -6,6 +6,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <stdexcept>
 
 #include "sedwave/sediment/biot.hpp"
 #include "sediment_test_support.hpp"
@@ -41,6 +42,22 @@ TEST(Kelvin, SeriesAndAsymptoticFormsMatchReferenceValues) {
     EXPECT_NEAR(db.re, r.dber, tol * dscale) << "x = " << r.x;
     EXPECT_NEAR(db.im, r.dbei, tol * dscale) << "x = " << r.x;
   }
+}
+
+// I_2 on the ray (the order F's series needs beside I_1) against mpmath 1.3 (mp.besseli(2, z) at
+// z = x e^{i pi/4}, 30 digits); orders the series has no factors for are refused.
+TEST(Kelvin, SecondOrderOnTheRayMatchesReferenceValues) {
+  struct Reference {
+    double x, re, im;
+  };
+  for (const Reference& r : {Reference{3.0, -0.80836846563726819091, 0.89102236377977331571},
+                             Reference{10.0, 111.77860559843972449, 66.609510232626560509},
+                             Reference{17.5, 18302.964323417072049, -10137.98074966985212}}) {
+    const Complex<double> v = bessel_i_on_kelvin_ray(2, r.x);
+    EXPECT_NEAR(v.re, r.re, 1e-13 * std::hypot(r.re, r.im)) << "x = " << r.x;
+    EXPECT_NEAR(v.im, r.im, 1e-13 * std::hypot(r.re, r.im)) << "x = " << r.x;
+  }
+  EXPECT_THROW((void)bessel_i_on_kelvin_ray(kKelvinSeriesOrders, 1.0), std::invalid_argument);
 }
 
 // Biot's own expression F = (kappa/4) T / (1 - 2T/(i kappa)), T = (ber' + i bei')/(ber + i bei),

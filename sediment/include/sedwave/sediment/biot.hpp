@@ -37,6 +37,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "sedwave/sediment/complex.hpp"
 
@@ -137,16 +139,20 @@ Complex<T> gassmann_bulk_modulus(const Complex<T>& frame_bulk, const T& porosity
 
 inline constexpr double kKelvinSeriesLimit = 18.0;
 
-/// 1 / (j (j + n)) and 1 / (j + n + 1) for the series below, n = 0, 1, j < kKelvinSeriesTerms:
-/// multiplications by these keep divisions off the loop's chain of dependent operations.
+/// 1 / (j (j + n)) and 1 / (j + n + 1) for the series below, n < kKelvinSeriesOrders,
+/// j < kKelvinSeriesTerms: multiplications by these keep divisions off the loop's chain of
+/// dependent operations.
+inline constexpr int kKelvinSeriesOrders = 3;
 inline constexpr int kKelvinSeriesTerms = 81;
 struct KelvinSeriesFactors {
-  double step[2][kKelvinSeriesTerms];  ///< 1 / (j (j + n))
-  double next[2][kKelvinSeriesTerms];  ///< 1 / (j + n + 1)
+  double step[kKelvinSeriesOrders][kKelvinSeriesTerms];  ///< 1 / (j (j + n))
+  double next[kKelvinSeriesOrders][kKelvinSeriesTerms];  ///< 1 / (j + n + 1)
+  double first[kKelvinSeriesOrders];                     ///< 1 / n!, the term j = 0
 };
 inline constexpr KelvinSeriesFactors kKelvinSeriesFactors = [] {
   KelvinSeriesFactors f{};
-  for (int n = 0; n < 2; ++n) {
+  for (int n = 0; n < kKelvinSeriesOrders; ++n) {
+    f.first[n] = n == 0 ? 1.0 : f.first[n - 1] / n;
     for (int j = 0; j < kKelvinSeriesTerms; ++j) {
       f.step[n][j] = j == 0 ? 0.0 : 1.0 / (static_cast<double>(j) * (j + n));
       f.next[n][j] = 1.0 / (j + n + 1.0);
@@ -159,7 +165,7 @@ inline constexpr KelvinSeriesFactors kKelvinSeriesFactors = [] {
 /// m = n + 1 (I_m(z) / (z/2)^m), at w = z^2/4 = i t, t = x^2/4 >= 0. The j-th term is i^j times a
 /// real number, so each sum is two real series, accumulated in real arithmetic (a quarter of the
 /// multiplications of complex terms), and both orders share one loop: term j of order n + 1 is
-/// term j of order n over (j + n + 1). Orders n = 0 and 1 (I_0 with I_1, I_1 with I_2).
+/// term j of order n over (j + n + 1). Orders 0 <= n < kKelvinSeriesOrders.
 template <typename T>
 struct ReducedSeriesPair {
   Complex<T> order_n;
@@ -168,9 +174,13 @@ struct ReducedSeriesPair {
 
 template <typename T>
 ReducedSeriesPair<T> reduced_bessel_i_series_on_kelvin_ray(int n, const T& t) {
+  if (n < 0 || n >= kKelvinSeriesOrders) {
+    throw std::invalid_argument("Kelvin-ray series: order " + std::to_string(n) + " outside [0, " +
+                                std::to_string(kKelvinSeriesOrders - 1) + "]");
+  }
   const double* step = kKelvinSeriesFactors.step[n];
   const double* to_next = kKelvinSeriesFactors.next[n];
-  T term(1.0);  // t^j / (j! (j+n)!) at j = 0: 1 / n! = 1 for n = 0, 1
+  T term(kKelvinSeriesFactors.first[n]);  // t^j / (j! (j+n)!)
   // [0]: real parts (even j), [1]: imaginary parts (odd j).
   T sum_n[2] = {term, T(0.0)};
   T sum_next[2] = {term * to_next[0], T(0.0)};
