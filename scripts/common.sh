@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared set-up for scripts/demo.sh and scripts/test.sh: install missing Debian packages, configure,
 # build. Sourced, not executed. Honours BUILD_DIR (default: build) and JOBS (default: nproc).
 set -euo pipefail
