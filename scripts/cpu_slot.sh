@@ -2,7 +2,7 @@
 # Compiler launcher for two builds that run side by side (scripts/test.sh): runs the command once
 # one of $SEDWAVE_CPU_SLOTS slots is free, so that the builds together run no more compilers than
 # there are cores. Each build alone would start one per core; two side by side would start two per
-# core, and compilers time-sharing a core cost 12-20 % more CPU for the same work
+# core, and compilers time-sharing a core cost 12-21 % more CPU for the same work
 # (docs/performance.md, "The test command"). A slot is a lock file in $SEDWAVE_CPU_SLOT_DIR, held
 # by the command (it inherits the open descriptor) until it exits.
 #
@@ -28,14 +28,13 @@ try_every_slot() {
 }
 
 while :; do
+  try_every_slot "$@"
   if [ "$low" = 1 ]; then
-    try_every_slot "$@"
     sleep 1
-  else
-    try_every_slot "$@"
-    # All taken: wait on one of them (released ones are looked at again after a second).
-    exec 9>>"$dir/slot$(($$ % slots))"
-    if flock -w 1 9; then exec "$@"; fi
-    exec 9>&-
+    continue
   fi
+  # All taken: wait on one of them (released ones are looked at again after a second).
+  exec 9>>"$dir/slot$(($$ % slots))"
+  if flock -w 1 9; then exec "$@"; fi
+  exec 9>&-
 done
