@@ -107,7 +107,9 @@ Eigen::VectorXd autocorrelation_function(const Eigen::VectorXd& chain) {
   std::vector<double> padded(padded_size, 0.0);
   const double mean = chain.mean();
   for (std::size_t i = 0; i < n; ++i) padded[i] = chain(static_cast<Eigen::Index>(i)) - mean;
-  Eigen::FFT<double> fft;
+  // One transform object per thread: it keeps the plan (twiddle factors) of each length it has
+  // seen, which a fresh object computes again with a sine and cosine per point.
+  thread_local Eigen::FFT<double> fft;
   std::vector<std::complex<double>> spectrum;
   fft.fwd(spectrum, padded);
   for (std::complex<double>& value : spectrum) value = std::norm(value);
