@@ -321,16 +321,17 @@ class HertzPacking : public ::testing::Test {
     c["restitution"] = 0.9;
     return c;
   }
-  /// The first packing (seeds 8, 9, ...) with no pair within 1e-5 d of touching (every contact
+  /// The first packing (seeds 9, 10, ...) with no pair within 1e-5 d of touching (every contact
   /// overlaps by more, every gap is wider) and none that the tiny drive opens or closes. A relaxed frictionless packing can hold contacts at the
   /// very edge of opening (about one packing in two here has one below 1e-8 d), and gaps at the
   /// edge of closing; those clap at any drive amplitude, so comparisons that assume nothing claps
   /// must start from a packing without them. Which seed qualifies depends on the preparation's
-  /// round-off, so the fixture searches instead of naming one.
+  /// round-off, so the fixture searches instead of naming one; it starts at the first seed that
+  /// qualified when it was written (seed 8 holds a pair that claps), as each try is a preparation.
   static void SetUpTestSuite() {
     channel::ChannelGeometry g;
     g.n_grains = 150;
-    for (g.seed = 8; g.seed < 16; ++g.seed) {
+    for (g.seed = 9; g.seed < 17; ++g.seed) {
       packing_ = std::make_unique<channel::PreparedChannel>(channel::prepare_channel(
           MPI_COMM_SELF, channel::generate_channel(g), hertz(), g.width, channel::PreparationSettings{},
               forward::linear::newton_stage()));
