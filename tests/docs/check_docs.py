@@ -2,6 +2,7 @@
 """Runs the commands a documentation page shows and compares the output it prints.
 
     check_docs.py --source SRC --build BUILD --bin BIN --scratch DIR PAGE.md
+    check_docs.py --runs-mpi PAGE.md      (1 if a block the check would run starts mpirun, else 0)
 
 Conventions for writers of README.md and docs/*.md:
 
@@ -176,15 +177,32 @@ def check_page(args):
     return 1 if problems else 0
 
 
+def runs_mpi(page):
+    """Whether a block the check runs on this page starts mpirun (a page may name it in its text
+    without running it)."""
+    blocks, _ = read_blocks(page)
+    return any(b.language == "sh" and (not b.directive or b.directive[0] != "skip") and "mpirun" in b.text
+               for b in blocks)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--source", required=True, help="source tree (data/ is copied from it)")
-    parser.add_argument("--build", required=True, help="build tree, linked as ./build")
-    parser.add_argument("--bin", required=True, help="directory of the sedwave executable, put on PATH")
-    parser.add_argument("--scratch", required=True, help="working directory (emptied first)")
+    parser.add_argument("--runs-mpi", action="store_true",
+                        help="print 1 if a block the check runs starts mpirun, else 0, and run nothing")
+    parser.add_argument("--source", help="source tree (data/ is copied from it)")
+    parser.add_argument("--build", help="build tree, linked as ./build")
+    parser.add_argument("--bin", help="directory of the sedwave executable, put on PATH")
+    parser.add_argument("--scratch", help="working directory (emptied first)")
     parser.add_argument("--timeout", type=float, default=150.0, help="seconds one block may run")
     parser.add_argument("page")
-    return check_page(parser.parse_args())
+    args = parser.parse_args()
+    if args.runs_mpi:
+        print(1 if runs_mpi(args.page) else 0)
+        return 0
+    missing = [f"--{name}" for name in ("source", "build", "bin", "scratch") if getattr(args, name) is None]
+    if missing:
+        parser.error("the check needs " + ", ".join(missing))
+    return check_page(args)
 
 
 if __name__ == "__main__":
