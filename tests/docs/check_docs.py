@@ -146,6 +146,11 @@ def compare_output(shown_text, output, figures):
     return problems
 
 
+def runs(block):
+    """Whether the check runs this block: a ```sh block that no directive skips or marks as output."""
+    return block.language == "sh" and (not block.directive or block.directive[0] not in ("skip", "output"))
+
+
 def check_page(args):
     blocks, problems = read_blocks(args.page)
     name = os.path.relpath(args.page, args.source)
@@ -165,7 +170,7 @@ def check_page(args):
             found = compare_output(block.text, last_output, block.directive[1])
             print(f"{'FAIL' if found else 'OK':<5} {where}: output compared at {block.directive[1]} significant figures")
             problems += [f"{where}: {p}" for p in found]
-        elif block.language == "sh":
+        elif runs(block):
             last_output, code, seconds = run_block(block, args, environment)
             expected = block.directive[1] if kind == "exit" else 0
             print(f"{'OK' if code == expected else 'FAIL':<5} {where}: ran in {seconds:.1f} s (exit {code})")
@@ -181,8 +186,7 @@ def runs_mpi(page):
     """Whether a block the check runs on this page starts mpirun (a page may name it in its text
     without running it)."""
     blocks, _ = read_blocks(page)
-    return any(b.language == "sh" and (not b.directive or b.directive[0] != "skip") and "mpirun" in b.text
-               for b in blocks)
+    return any(runs(b) and "mpirun" in b.text for b in blocks)
 
 
 def main():
