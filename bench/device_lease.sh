@@ -3,6 +3,9 @@
 # project's packages: the pack of bench/dem/pack_for_device.sh (carried as .device/) holds the
 # programs and libraries. Phases, most wanted first; none starts after DEADLINE_S seconds, each is
 # bounded so that the whole run ends within about DEADLINE_S + 60 s:
+#   0. the machine's cores: the force loop on one 15 625-grain cell (`dem_bench loop`) and the
+#      STREAM triad (bench/dem/stream_triad.c), each on one core alone, then on 2 cores (two pairs),
+#      half the cores and all of them at once: what a core delivers when its neighbours work too
 #   1. 10^7 grains (640 stacked copies of the relaxed 15 625-grain cell, periodic): sedwave on 16
 #      ranks and 1, LAMMPS on 16 (bench/dem/device_scaling.sh, series strong_1e7)
 #   2. a 10^7-grain channel tiled on 16 ranks, run and checkpointed, then restarted on 5 ranks
@@ -15,13 +18,13 @@
 # Usage (repository root; .device made here by bench/dem/pack_for_device.sh):
 #   OUT=DIR DEADLINE_S=450 bash bench/device_lease.sh
 # DIR receives lease.log (everything printed), one table file per phase and logs.tar.gz (every
-# run's own logs), at most 8 files. PHASES (default "1 2 3 4 5") picks phases; SMALL=1 shrinks every
+# run's own logs), at most 8 files. PHASES (default "0 1 2 3 4 5") picks phases; SMALL=1 shrinks every
 # size and step count, to check the script on a small machine.
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 OUT=${OUT:-$PWD/lease-out}
 DEADLINE_S=${DEADLINE_S:-450}
-PHASES=${PHASES:-1 2 3 4 5}
+PHASES=${PHASES:-0 1 2 3 4 5}
 SMALL=${SMALL:-0}
 mkdir -p "$OUT"
 RESULTS=$(mktemp -d /tmp/sedwave-lease.XXXXXX)
@@ -80,13 +83,37 @@ channel() {  # mode, then environment settings for tiled_channel.sh
   env BENCH="$TREE/usr/bin/dem_bench" CELL="$CELL" MPIRUN="$LAUNCH" WORK="$RESULTS/channel" "$@" \
     bash "$TREE/bench/tiled_channel.sh" "$mode"
 }
-export -f scaling channel
+# The force loop's median ns per grain and the triad's median GB/s, one line per placement of
+# processes on cores ("cpus 0,8": one process on each), each process timed while the others run.
+cores() {
+  local n np set loop triad
+  # shellcheck source=/dev/null
+  source "$TREE/env.sh"
+  n=$(nproc)
+  lscpu | grep -E '^(Model name|Thread\(s\)|Core\(s\)|Socket\(s\)|NUMA node|L2|L3|CPU max MHz)' | sed 's/^/    /'
+  echo "| processes | cpus | force loop ns/grain per process (min / median / max) | triad GB/s per process (min / median / max) | triad GB/s, sum |"
+  echo "|---|---|---|---|---|"
+  for set in "0" "0,1" "0,$((n / 2))" "0-$((n / 2 - 1))" "0-$((n - 1))"; do
+    np=$(awk -F, '{k = 0; for (i = 1; i <= NF; ++i) {split($i, r, "-"); k += (r[2] == "" ? 1 : r[2] - r[1] + 1)} print k}' <<<"$set")
+    # shellcheck disable=SC2086
+    loop=$(pack_env mpirun -np "$np" --cpu-set "$set" --bind-to core dem_bench loop "$CELL" 2>/dev/null |
+           awk '$1 == "dry" {print $2}')
+    # shellcheck disable=SC2086
+    triad=$(pack_env mpirun -np "$np" --cpu-set "$set" --bind-to core stream_triad 2>/dev/null |
+            sed -nE 's/.*triad_gb_s_median=([0-9.]+).*/\1/p')
+    printf '| %s | %s | %s | %s | %s |\n' "$np" "$set" "$(summary <<<"$loop")" "$(summary <<<"$triad")" \
+      "$(awk '{s += $1} END {printf "%.1f", s}' <<<"$triad")"
+  done
+}
+summary() { sort -g | awk '{v[NR] = $1} END {if (NR) printf "%.2f / %.2f / %.2f", v[1], v[int((NR + 1) / 2)], v[NR]; else printf "failed"}'; }
+export -f scaling channel cores summary
 export RESULTS TREE CELL LAUNCH
 sedwave_wrapper=$RESULTS/sedwave
 printf '#!/bin/sh\nexec env LD_LIBRARY_PATH="%s" "%s" "$@"\n' "$PACK_LIBS" "$TREE/usr/bin/sedwave" >"$sedwave_wrapper"
 chmod +x "$sedwave_wrapper"
 mkdir -p "$RESULTS/channel"
 
+phase 0 90 "the cores: force loop and memory bandwidth, alone and with every core busy" cores
 if ((SMALL)); then
   phase 1 200 "10^7 grains, sedwave against LAMMPS (small check)" scaling huge SERIES=strong_1e7 PASSES=1 \
     BUDGET_S=60 COPIES_1E7=16 STEPS_DIVISOR=10 RANKS_1E7="2 1" LAMMPS_RANKS_1E7=2

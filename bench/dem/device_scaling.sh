@@ -11,7 +11,8 @@
 #                   RANKS_1E7 (default "16 1"), LAMMPS on LAMMPS_RANKS_1E7 (default "16"), 20 steps;
 #                   the stacked file is about 1.7 GB (COPIES_1E7 copies instead of 640, to check)
 # Each (packing, ranks) runs every packed sedwave build, then LAMMPS; the next pass runs them in the
-# reverse order, until the budget is spent.
+# reverse order, until the budget is spent. 10^7 grains on one rank (about a minute per run) runs
+# the first build, dem_bench, alone.
 #
 # Usage: bench/dem/device_scaling.sh [pack-dir]
 #   pack-dir   made by bench/dem/pack_for_device.sh (default: this script's folder if it holds
@@ -167,12 +168,14 @@ for ((pass = 1; pass <= PASSES; ++pass)); do
   for config in "${order[@]}"; do
     packing=${config%%:*} ranks=${config##*:}
     (( $(left) > 0 )) || { log "budget spent: pass $pass stops before $packing ranks=$ranks"; break 2; }
+    builds=("${BUILDS[@]}")
+    [[ $packing == strong_1e7 && $ranks == 1 && ${#builds[@]} -gt 1 ]] && builds=("${BUILDS[0]}")
     if (( pass % 2 == 1 )); then
-      for b in "${BUILDS[@]}"; do run_sedwave "$b" "$packing" "$ranks" "$pass"; done
+      for b in "${builds[@]}"; do run_sedwave "$b" "$packing" "$ranks" "$pass"; done
       lammps_wanted "$packing" "$ranks" && run_lammps "$packing" "$ranks" "$pass"
     else
       lammps_wanted "$packing" "$ranks" && run_lammps "$packing" "$ranks" "$pass"
-      for ((k = ${#BUILDS[@]} - 1; k >= 0; --k)); do run_sedwave "${BUILDS[k]}" "$packing" "$ranks" "$pass"; done
+      for ((k = ${#builds[@]} - 1; k >= 0; --k)); do run_sedwave "${builds[k]}" "$packing" "$ranks" "$pass"; done
     fi
   done
 done

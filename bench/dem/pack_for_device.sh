@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Packs what bench/dem/device_scaling.sh, bench/dem/tiled_channel.sh and bench/device_lease.sh need
 # on a bare x86-64 Linux machine (glibc >= this one's, no MPI, no LAMMPS, no network) into one
-# folder: dem_bench, sedwave (for bench/compare_threads.sh), Debian's Open MPI (mpirun, orted, the
+# folder: dem_bench, sedwave (for bench/compare_threads.sh), stream_triad, Debian's Open MPI (mpirun, orted, the
 # MCA components and help files, PMIx and its components), LAMMPS (lmp, liblammps), every shared
 # library they need apart from glibc's own, and the packings of the scaling study.
 #
@@ -53,6 +53,7 @@ cp "$(readlink -f "$(command -v lmp)")" "$PACK/usr/bin/lmp"
 cp /usr/bin/orterun /usr/bin/orted /usr/bin/ompi_info "$PACK/usr/bin/"
 ln -s orterun "$PACK/usr/bin/mpirun"
 cc -O2 -Wall -Wextra -Werror -o "$PACK/usr/bin/peak_rss" "$ROOT/bench/dem/peak_rss.c"
+cc -O2 -Wall -Wextra -Werror -o "$PACK/usr/bin/stream_triad" "$ROOT/bench/dem/stream_triad.c"
 # The scaling script and what it reads, so that the pack runs from any checkout.
 mkdir -p "$PACK/bench"
 cp "$ROOT"/bench/dem/{device_scaling.sh,tiled_channel.sh,in.thesis.lmp,scaling_table.py} "$PACK/bench/"

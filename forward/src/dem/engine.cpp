@@ -160,16 +160,17 @@ void Engine::run(std::int64_t n) {
 
 template <class Model>
 void Engine::advance(const Model& model) {
+  bool moved_too_far = true;
   {
     ScopedTimer t(timings_.integrate);
-    drift_and_half_kick();
+    moved_too_far = drift_and_half_kick();
     time_ += dt_;
     ++step_;
   }
   // Without a rebuild the ghosts' new positions travel while the pairs among held grains are
   // evaluated (evaluate_forces finishes the exchange).
   bool ghosts_in_flight = false;
-  if (rebuild_needed()) {
+  if (rebuild_needed(moved_too_far)) {
     ScopedTimer t(timings_.neighbor);
     rebuild();
   } else {
@@ -202,7 +203,10 @@ void Engine::advance(const Model& model) {
 
 // The two halves of velocity Verlet. Plain pointers: through the vectors, GCC reloads every array's
 // address after each store (it cannot rule out that a double store changes a vector's pointer).
-void Engine::drift_and_half_kick() {
+// The drift also measures each grain's distance from its position at the list's build while the new
+// position is in a register: a separate pass (NeighborList::needs_rebuild) would stream every
+// position from memory again, which is the scarce resource when all cores of a node run ranks.
+bool Engine::drift_and_half_kick() {
   for (RigidBody& b : bodies_) b.begin_step(time_, dt_);
   GrainArrays& g = grains_;
   const std::size_t n = g.n_local();
@@ -213,6 +217,10 @@ void Engine::drift_and_half_kick() {
   const Vec3* f = g.force.data();
   const double* inv_mass = g.inv_mass.data();
   const std::int32_t* body = g.body.data();
+  const std::span<const Vec3> reference = list_.reference_positions();
+  const bool compare = list_valid_ && reference.size() == n;
+  const Vec3* x_built = reference.data();
+  double farthest2 = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (body[i] == kFreeBody) {
       v[i] += (half * inv_mass[i]) * f[i];
@@ -222,8 +230,10 @@ void Engine::drift_and_half_kick() {
       x[i] += b.step_displacement();
       v[i] = b.velocity();
     }
+    if (compare) farthest2 = std::max(farthest2, norm2(x[i] - x_built[i]));
   }
   if (g.rotation()) half_kick_spins();
+  return !compare || farthest2 > list_.stale_displacement2();
 }
 
 void Engine::final_half_kick() {
@@ -248,8 +258,10 @@ void Engine::half_kick_spins() {
       g.angular_velocity[i] += (half * inverse_inertia(g.inv_mass[i], g.radius[i])) * g.torque[i];
 }
 
-bool Engine::rebuild_needed() {
-  const bool needed = force_rebuild_ || !list_valid_ || list_.needs_rebuild(grains_);
+bool Engine::rebuild_needed() { return rebuild_needed(!list_valid_ || list_.needs_rebuild(grains_)); }
+
+bool Engine::rebuild_needed(bool moved_too_far) {
+  const bool needed = force_rebuild_ || !list_valid_ || moved_too_far;
   if (domain_.size() == 1) return needed;
   ScopedTimer t(timings_.communication);
   return parallel::any(domain_.comm(), needed);

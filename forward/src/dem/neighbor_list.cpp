@@ -159,7 +159,7 @@ void NeighborList::build(const GrainArrays& g, double skin, double max_radius, b
 
 bool NeighborList::needs_rebuild(const GrainArrays& g) const {
   if (reference_.size() != g.n_local()) return true;
-  const double limit2 = 0.25 * skin_ * skin_;
+  const double limit2 = stale_displacement2();
   for (std::size_t i = 0; i < reference_.size(); ++i)
     if (norm2(g.position[i] - reference_[i]) > limit2) return true;
   return false;

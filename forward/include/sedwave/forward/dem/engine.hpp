@@ -187,11 +187,16 @@ class Engine {
   /// ghosts_in_flight: a ghost update was started (Domain::start_ghost_update) and is finished
   /// here, after the pairs among held grains.
   template <class Model> OverlapWatch evaluate_forces(const Model& model, bool watch, bool ghosts_in_flight);
-  void drift_and_half_kick();
+  /// Returns whether a local grain is now further than skin/2 from where the list was built (true
+  /// while no list is valid): the rebuild check, made in the same pass over the positions.
+  [[nodiscard]] bool drift_and_half_kick();
   void final_half_kick();
   void half_kick_spins();
   void rebuild();
+  /// Whether any rank must rebuild: a forced or invalid list, or a grain that moved too far (here,
+  /// or as the drift reported it).
   [[nodiscard]] bool rebuild_needed();
+  [[nodiscard]] bool rebuild_needed(bool moved_too_far);
   void apply_body_forces();
   void apply_fluid_drag_and_buoyancy();
   /// Whether a fluid's squeeze film acts between grains (the lubricated force loop and its films_).

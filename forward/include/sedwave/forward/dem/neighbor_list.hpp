@@ -45,6 +45,11 @@ class NeighborList {
   /// True when a local grain moved more than skin/2 since the last build (local decision: the engine
   /// reduces it over ranks).
   [[nodiscard]] bool needs_rebuild(const GrainArrays& g) const;
+  /// The local positions at the last build and the squared displacement from them, (skin/2)², past
+  /// which the list is stale: what needs_rebuild() compares, for a caller that moves the grains and
+  /// checks them in the same pass.
+  [[nodiscard]] std::span<const Vec3> reference_positions() const { return reference_; }
+  [[nodiscard]] double stale_displacement2() const { return 0.25 * skin_ * skin_; }
 
   [[nodiscard]] std::size_t n_rows() const { return ghost_begin_.size(); }
   [[nodiscard]] std::size_t n_pairs() const { return partners_.size(); }
