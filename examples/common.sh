@@ -23,9 +23,8 @@ OUT=$(cd "$OUT" && pwd)
 cd "$OUT"
 
 # Open MPI refuses to run as root unless told, and on a small machine two ranks may need to share
-# a core, where a rank waiting for a message should yield it rather than spin; all three settings
-# are harmless elsewhere.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
+# a core; both settings are harmless elsewhere.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 MPIRUN=${MPIRUN:-mpirun}
 
 : > "$OUT/results.txt"

@@ -6,10 +6,8 @@
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 # Clang, its sanitizer runtimes and OpenMP build the sanitizer pass.
 sedwave_install_packages clang libclang-rt-dev libomp-dev
-# Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may; a rank waiting
-# for a message yields its core to the other tests instead of spinning (CMakeLists.txt,
-# SEDWAVE_MPI_TEST_ENVIRONMENT).
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
+# Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
 # The sanitizer pass: under AddressSanitizer + UBSan, the theories, the sediment models, the inversion, tables and
 # HDF5 files, the DEM engine, the linear-response engine, and every command-line case (tests/cli: bad input of every
