@@ -96,18 +96,23 @@ cores() {
   for set in "0" "0,1" "0,$((n / 2))" "0-$((n / 2 - 1))" "0-$((n - 1))"; do
     np=$(awk -F, '{k = 0; for (i = 1; i <= NF; ++i) {split($i, r, "-"); k += (r[2] == "" ? 1 : r[2] - r[1] + 1)} print k}' <<<"$set")
     # shellcheck disable=SC2086
-    loop=$(pack_env mpirun -np "$np" --cpu-set "$set" --bind-to core dem_bench loop "$CELL" 2>/dev/null |
+    loop=$(pack_env mpirun -np "$np" --cpu-set "$set" $BIND dem_bench loop "$CELL" 2>/dev/null |
            awk '$1 == "dry" {print $2}')
     # shellcheck disable=SC2086
-    triad=$(pack_env mpirun -np "$np" --cpu-set "$set" --bind-to core stream_triad 2>/dev/null |
+    triad=$(pack_env mpirun -np "$np" --cpu-set "$set" $BIND stream_triad 2>/dev/null |
             sed -nE 's/.*triad_gb_s_median=([0-9.]+).*/\1/p')
-    printf '| %s | %s | %s | %s | %s |\n' "$np" "$set" "$(summary <<<"$loop")" "$(summary <<<"$triad")" \
+    printf '| %s | %s | %s | %s | %s |\n' "$np" "$set" "$(summary "$np" <<<"$loop")" "$(summary "$np" <<<"$triad")" \
       "$(awk '{s += $1} END {printf "%.1f", s}' <<<"$triad")"
   done
 }
-summary() { sort -g | awk '{v[NR] = $1} END {if (NR) printf "%.2f / %.2f / %.2f", v[1], v[int((NR + 1) / 2)], v[NR]; else printf "failed"}'; }
+# min / median / max of the numbers on stdin, and how many there are when fewer than expected ($1).
+summary() {
+  grep . | sort -g | awk -v want="${1:-0}" '{v[++k] = $1} END {
+    if (!k) {printf "failed"; exit}
+    printf "%.2f / %.2f / %.2f", v[1], v[int((k + 1) / 2)], v[k]; if (k < want) printf " (%d of %d)", k, want }'
+}
 export -f scaling channel cores summary
-export RESULTS TREE CELL LAUNCH
+export RESULTS TREE CELL LAUNCH BIND
 sedwave_wrapper=$RESULTS/sedwave
 printf '#!/bin/sh\nexec env LD_LIBRARY_PATH="%s" "%s" "$@"\n' "$PACK_LIBS" "$TREE/usr/bin/sedwave" >"$sedwave_wrapper"
 chmod +x "$sedwave_wrapper"

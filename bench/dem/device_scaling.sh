@@ -12,7 +12,7 @@
 #                   the stacked file is about 1.7 GB (COPIES_1E7 copies instead of 640, to check)
 # Each (packing, ranks) runs every packed sedwave build, then LAMMPS; the next pass runs them in the
 # reverse order, until the budget is spent. 10^7 grains on one rank (about a minute per run) runs
-# the first build, dem_bench, alone.
+# the first build alone (dem_bench, or the first variant under ONLY_VARIANTS).
 #
 # Usage: bench/dem/device_scaling.sh [pack-dir]
 #   pack-dir   made by bench/dem/pack_for_device.sh (default: this script's folder if it holds

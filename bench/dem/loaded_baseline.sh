@@ -10,17 +10,24 @@
 # (against a core as fast as it is when all cores work: the parallel code's own loss).
 #
 # Usage: bench/dem/loaded_baseline.sh PACK FILE:STEPS...   (PACK: the unpacked tree of
-#   pack_for_device.sh, with env.sh; PASSES default 2). Prints a markdown table.
+#   pack_for_device.sh, with env.sh; PASSES default 2; BIND, mpirun's binding options, default
+#   "--bind-to core --map-by core"). Prints a markdown table.
 set -uo pipefail
 PACK=$1
 shift
 # shellcheck source=/dev/null
 source "$PACK/env.sh"
 PASSES=${PASSES:-2}
+BIND=${BIND:---bind-to core --map-by core}  # mpirun's binding of the P-rank run
 P=$(nproc)
 ms_per_step() { sed -nE 's/.*ms_per_step=([0-9.]+).*/\1/p'; }
-median() { sort -g | awk '{v[NR] = $1} END {if (NR) printf "%.4g", v[int((NR + 1) / 2)]}'; }
-spread() { sort -g | awk '{v[NR] = $1} END {if (NR) printf "%.4g / %.4g / %.4g", v[1], v[int((NR + 1) / 2)], v[NR]}'; }
+# Of the numbers on stdin (empty lines, from failed runs, left out): the median; min / median / max,
+# and how many when fewer than P.
+median() { grep . | sort -g | awk '{v[++k] = $1} END {if (k) printf "%.4g", v[int((k + 1) / 2)]}'; }
+spread() {
+  grep . | sort -g | awk -v p="$P" '{v[++k] = $1} END {
+    if (k) printf "%.4g / %.4g / %.4g", v[1], v[int((k + 1) / 2)], v[k]; if (k < p) printf " (%d of %d)", k, p }'
+}
 echo "| packing | steps | pass | alone ms/step | loaded ms/step, $P at once (min / median / max) | $P ranks ms/step | t_alone / ($P t_$P) | t_loaded / ($P t_$P) |"
 echo "|---|---|---|---|---|---|---|---|"
 for spec in "$@"; do
@@ -30,7 +37,8 @@ for spec in "$@"; do
     loaded=$(for ((c = 0; c < P; ++c)); do
                DEM_BENCH_NEWTON=on pack_env taskset -c "$c" dem_bench run "$file" "$steps" 2>/dev/null | ms_per_step &
              done; wait)
-    ranks=$(DEM_BENCH_NEWTON=on pack_env mpirun -np "$P" --bind-to core --map-by core -x DEM_BENCH_NEWTON \
+    # shellcheck disable=SC2086
+    ranks=$(DEM_BENCH_NEWTON=on pack_env mpirun -np "$P" $BIND -x DEM_BENCH_NEWTON \
               dem_bench run "$file" "$steps" 2>/dev/null | ms_per_step)
     loaded_median=$(median <<<"$loaded")
     awk -v f="$(basename "$file")" -v s="$steps" -v pass="$pass" -v a="$alone" -v l="$loaded_median" \

@@ -4,6 +4,8 @@
  * counting 24 bytes per element (two reads and one write, as STREAM does). Started as
  * `mpirun -np K stream_triad` it measures what each of K processes gets while all stream at once.
  * Usage: stream_triad [ELEMENTS] (default 2^25 per array, 768 MiB in all). */
+#define _POSIX_C_SOURCE 199309L /* clock_gettime, CLOCK_MONOTONIC under -std=c99 */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -21,11 +23,16 @@ static int by_value(const void* a, const void* b) {
 
 int main(int argc, char** argv) {
   enum { kPasses = 20 };
-  const size_t n = argc > 1 ? strtoull(argv[1], NULL, 10) : (size_t)1 << 25;
+  const unsigned long long requested = argc > 1 ? strtoull(argv[1], NULL, 10) : 1ull << 25;
+  if (requested == 0 || requested > SIZE_MAX / (3 * sizeof(double))) {
+    fprintf(stderr, "stream_triad: ELEMENTS must be a count from 1 to %zu\n", SIZE_MAX / (3 * sizeof(double)));
+    return 1;
+  }
+  const size_t n = (size_t)requested;
   double* a = malloc(n * sizeof *a);
   double* b = malloc(n * sizeof *b);
   double* c = malloc(n * sizeof *c);
-  if (n == 0 || !a || !b || !c) {
+  if (!a || !b || !c) {
     fprintf(stderr, "stream_triad: cannot hold 3 x %zu doubles\n", n);
     return 1;
   }
