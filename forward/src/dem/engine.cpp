@@ -258,7 +258,9 @@ void Engine::half_kick_spins() {
       g.angular_velocity[i] += (half * inverse_inertia(g.inv_mass[i], g.radius[i])) * g.torque[i];
 }
 
-bool Engine::rebuild_needed() { return rebuild_needed(!list_valid_ || list_.needs_rebuild(grains_)); }
+bool Engine::rebuild_needed() {
+  return rebuild_needed(force_rebuild_ || !list_valid_ || list_.needs_rebuild(grains_));
+}
 
 bool Engine::rebuild_needed(bool moved_too_far) {
   const bool needed = force_rebuild_ || !list_valid_ || moved_too_far;
