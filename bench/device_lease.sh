@@ -105,12 +105,8 @@ cores() {
       "$(awk '{s += $1} END {printf "%.1f", s}' <<<"$triad")"
   done
 }
-# min / median / max of the numbers on stdin, and how many there are when fewer than expected ($1).
-summary() {
-  grep . | sort -g | awk -v want="${1:-0}" '{v[++k] = $1} END {
-    if (!k) {printf "failed"; exit}
-    printf "%.2f / %.2f / %.2f", v[1], v[int((k + 1) / 2)], v[k]; if (k < want) printf " (%d of %d)", k, want }'
-}
+# shellcheck source=dem/summary.sh
+source "$ROOT/bench/dem/summary.sh"
 export -f scaling channel cores summary
 export RESULTS TREE CELL LAUNCH BIND
 sedwave_wrapper=$RESULTS/sedwave

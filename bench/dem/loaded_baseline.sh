@@ -21,13 +21,8 @@ PASSES=${PASSES:-2}
 BIND=${BIND:---bind-to core --map-by core}  # mpirun's binding of the P-rank run
 P=$(nproc)
 ms_per_step() { sed -nE 's/.*ms_per_step=([0-9.]+).*/\1/p'; }
-# Of the numbers on stdin (empty lines, from failed runs, left out): the median; min / median / max,
-# and how many when fewer than P.
-median() { grep . | sort -g | awk '{v[++k] = $1} END {if (k) printf "%.4g", v[int((k + 1) / 2)]}'; }
-spread() {
-  grep . | sort -g | awk -v p="$P" '{v[++k] = $1} END {
-    if (k) printf "%.4g / %.4g / %.4g", v[1], v[int((k + 1) / 2)], v[k]; if (k < p) printf " (%d of %d)", k, p }'
-}
+# shellcheck source=summary.sh
+source "$(dirname "${BASH_SOURCE[0]}")/summary.sh"
 echo "| packing | steps | pass | alone ms/step | loaded ms/step, $P at once (min / median / max) | $P ranks ms/step | t_alone / ($P t_$P) | t_loaded / ($P t_$P) |"
 echo "|---|---|---|---|---|---|---|---|"
 for spec in "$@"; do
@@ -42,7 +37,7 @@ for spec in "$@"; do
               dem_bench run "$file" "$steps" 2>/dev/null | ms_per_step)
     loaded_median=$(median <<<"$loaded")
     awk -v f="$(basename "$file")" -v s="$steps" -v pass="$pass" -v a="$alone" -v l="$loaded_median" \
-        -v spread="$(spread <<<"$loaded")" -v r="$ranks" -v p="$P" 'BEGIN {
+        -v spread="$(summary "$P" <<<"$loaded")" -v r="$ranks" -v p="$P" 'BEGIN {
       if (a == "" || l == "" || r == "") { printf "| %s | %s | %s | %s | %s | %s | failed | failed |\n", f, s, pass, a, spread, r; exit }
       printf "| %s | %s | %s | %.4g | %s | %.4g | %.0f %% | %.0f %% |\n", f, s, pass, a, spread, r, 100 * a / (p * r), 100 * l / (p * r) }'
   done
