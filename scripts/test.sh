@@ -8,6 +8,9 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 sedwave_install_packages clang libclang-rt-dev libomp-dev
 # Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+# Tests run several programs per core. An OpenMP thread waiting at a barrier then sleeps instead of
+# spinning on a core that another test needs (docs/performance.md, "The test command").
+export OMP_WAIT_POLICY=PASSIVE
 
 # The sanitizer pass: under AddressSanitizer + UBSan, the theories, the sediment models, the inversion, tables and
 # HDF5 files, the DEM engine, the linear-response engine, and every command-line case (tests/cli: bad input of every
