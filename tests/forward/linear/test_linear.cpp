@@ -224,24 +224,43 @@ class Packing : public ::testing::Test {
 std::unique_ptr<channel::PreparedChannel> Packing::packing_;
 
 /// Forces of the DEM engine at the given positions and velocities (by grain index), walls frozen.
-Eigen::VectorXd dem_forces(const channel::PreparedChannel& p, const dem::ContactSpec& contact,
-                           const std::vector<dem::Grain>& grains, const DynamicMatrices& m) {
-  dem::EngineSettings s;
-  s.box = p.box;
-  s.contact = contact;
-  std::vector<dem::RigidBody> bodies{dem::RigidBody("lower", dem::Frozen{}), dem::RigidBody("upper", dem::Frozen{})};
-  dem::Engine engine(MPI_COMM_SELF, s, grains, std::move(bodies));
-  engine.compute_forces();
-  std::unordered_map<std::int64_t, dem::Vec3> by_id;
-  const dem::GrainArrays& g = engine.grains();
-  for (std::size_t i = 0; i < engine.n_local(); ++i) by_id[g.id[i]] = g.force[i];
-  Eigen::VectorXd f(m.unknowns());
-  for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
-    const dem::Vec3 v = by_id.at(grains[static_cast<std::size_t>(m.grain_of_node[n])].id);
-    f.segment<3>(static_cast<Eigen::Index>(3 * n)) << v.x, v.y, v.z;
+/// The DEM's forces on the linear engine's nodes, with grains moved in place: the finite-difference
+/// steps lie far below the Verlet skin, so the neighbour list built at rest stays valid and each
+/// evaluation refreshes only the ghosts (no list is built again, no engine is set up again).
+class DemForces {
+ public:
+  DemForces(const channel::PreparedChannel& p, const dem::ContactSpec& contact)
+      : engine_(MPI_COMM_SELF, settings(p, contact), p.grains,
+                {dem::RigidBody("lower", dem::Frozen{}), dem::RigidBody("upper", dem::Frozen{})}) {
+    const dem::GrainArrays& g = engine_.grains();
+    for (std::size_t i = 0; i < engine_.n_local(); ++i) index_of_[g.id[i]] = i;
   }
-  return f;
-}
+
+  double& position(std::int64_t id, int axis) { return engine_.grains().position[index_of_.at(id)][axis]; }
+  double& velocity(std::int64_t id, int axis) { return engine_.grains().velocity[index_of_.at(id)][axis]; }
+
+  /// Forces on the nodes of `m` (node n is grain m.grain_of_node[n] of `grains`).
+  Eigen::VectorXd at_nodes(const std::vector<dem::Grain>& grains, const DynamicMatrices& m) {
+    engine_.compute_forces();
+    const dem::GrainArrays& g = engine_.grains();
+    Eigen::VectorXd f(m.unknowns());
+    for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
+      const dem::Vec3 v = g.force[index_of_.at(grains[static_cast<std::size_t>(m.grain_of_node[n])].id)];
+      f.segment<3>(static_cast<Eigen::Index>(3 * n)) << v.x, v.y, v.z;
+    }
+    return f;
+  }
+
+ private:
+  static dem::EngineSettings settings(const channel::PreparedChannel& p, const dem::ContactSpec& contact) {
+    dem::EngineSettings s;
+    s.box = p.box;
+    s.contact = contact;
+    return s;
+  }
+  dem::Engine engine_;
+  std::unordered_map<std::int64_t, std::size_t> index_of_;
+};
 
 /// Largest deviations of K and C1 from finite-difference Jacobians of the DEM forces, relative to
 /// the largest entries of K and C1. `damped` carries a damping coefficient `coefficient`.
@@ -257,22 +276,23 @@ std::pair<double, double> jacobian_errors(const channel::PreparedChannel& packin
   for (const StaticPair& p : engine.network().gaps) smallest = std::min(smallest, -p.overlap);
   const double h = std::min(1e-7, 0.01 * smallest);
   double worst_k = 0.0, worst_c = 0.0;
-  std::vector<dem::Grain> grains = packing.grains;
-  const Eigen::VectorXd at_rest = dem_forces(packing, damped, grains, m);
+  DemForces elastic_forces(packing, elastic), damped_forces(packing, damped);
+  const Eigen::VectorXd at_rest = damped_forces.at_nodes(packing.grains, m);
   for (Eigen::Index col = 0; col < m.unknowns(); ++col) {
-    dem::Grain& g = grains[static_cast<std::size_t>(m.grain_of_node[static_cast<std::size_t>(col / 3)])];
+    const std::int64_t id = packing.grains[static_cast<std::size_t>(m.grain_of_node[static_cast<std::size_t>(col / 3)])].id;
     const int axis = static_cast<int>(col % 3);
-    const double x0 = g.position[axis];
-    g.position[axis] = x0 + h;
-    const Eigen::VectorXd plus = dem_forces(packing, elastic, grains, m);
-    g.position[axis] = x0 - h;
-    const Eigen::VectorXd minus = dem_forces(packing, elastic, grains, m);
-    g.position[axis] = x0;
+    double& x = elastic_forces.position(id, axis);
+    const double x0 = x;
+    x = x0 + h;
+    const Eigen::VectorXd plus = elastic_forces.at_nodes(packing.grains, m);
+    x = x0 - h;
+    const Eigen::VectorXd minus = elastic_forces.at_nodes(packing.grains, m);
+    x = x0;
     worst_k = std::max(worst_k, ((plus - minus) / (2.0 * h) + k.col(col)).cwiseAbs().maxCoeff());
     // The dashpot force is linear in the velocity: a one-sided difference is exact.
-    g.velocity[axis] = 1.0;
-    const Eigen::VectorXd moving = dem_forces(packing, damped, grains, m);
-    g.velocity[axis] = 0.0;
+    damped_forces.velocity(id, axis) = 1.0;
+    const Eigen::VectorXd moving = damped_forces.at_nodes(packing.grains, m);
+    damped_forces.velocity(id, axis) = 0.0;
     worst_c = std::max(worst_c, ((moving - at_rest) / coefficient + c.col(col)).cwiseAbs().maxCoeff());
   }
   return {worst_k / k.cwiseAbs().maxCoeff(), worst_c / c.cwiseAbs().maxCoeff()};
