@@ -1,9 +1,10 @@
 // A small channel driven at two frequencies and measured. The 3D packing's numbers are not a closed
 // form, so the checks are the physics every such channel must show: a finite positive sound speed
 // and attenuation growing with frequency; and a broadband pulse, a linear drive like the sinusoid,
-// must measure what sinusoids measure at each of its frequencies. The packing is the shipped one
-// of the small table (data/tables/README.md: 1000 grains, W = 3, seed 7, kn 726, e_n 0.9,
-// P = 10), prepared by `sedwave forward`; test_preparation.cpp tests the preparation itself.
+// must measure what sinusoids measure at each of its frequencies. The packing is the one shipped
+// with the small table (data/tables/README.md: 1000 grains, W = 3, seed 7, kn 726, e_n 0.9,
+// P = 10), made by an earlier version of the preparation; test_preparation.cpp tests today's
+// preparation, and the README's `sedwave forward` runs prepare and drive end to end.
 #include <gtest/gtest.h>
 #include <mpi.h>
 

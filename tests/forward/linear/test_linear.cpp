@@ -223,10 +223,10 @@ class Packing : public ::testing::Test {
 };
 std::unique_ptr<channel::PreparedChannel> Packing::packing_;
 
-/// Forces of the DEM engine at the given positions and velocities (by grain index), walls frozen.
-/// The DEM's forces on the linear engine's nodes, with grains moved in place: the finite-difference
-/// steps lie far below the Verlet skin, so the neighbour list built at rest stays valid and each
-/// evaluation refreshes only the ghosts (no list is built again, no engine is set up again).
+/// The DEM's forces on the linear engine's nodes (walls frozen), with grains moved in place: the
+/// finite-difference steps lie far below the Verlet skin, so the neighbour list built at rest stays
+/// valid, and no list is built again and no engine set up again between evaluations. Periodic
+/// ghosts read their source grain's position and velocity, so they follow the moved grain.
 class DemForces {
  public:
   DemForces(const channel::PreparedChannel& p, const dem::ContactSpec& contact)
@@ -245,7 +245,11 @@ class DemForces {
     const dem::GrainArrays& g = engine_.grains();
     Eigen::VectorXd f(m.unknowns());
     for (std::size_t n = 0; n < m.grain_of_node.size(); ++n) {
-      const dem::Vec3 v = g.force[index_of_.at(grains[static_cast<std::size_t>(m.grain_of_node[n])].id)];
+      const std::int64_t id = grains[static_cast<std::size_t>(m.grain_of_node[n])].id;
+      const std::size_t i = index_of_.at(id);
+      // A rebuild would have reordered the grains and invalidated the in-place moves.
+      EXPECT_EQ(g.id[i], id) << "the engine rebuilt its list during a finite-difference step";
+      const dem::Vec3 v = g.force[i];
       f.segment<3>(static_cast<Eigen::Index>(3 * n)) << v.x, v.y, v.z;
     }
     return f;
