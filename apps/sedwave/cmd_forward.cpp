@@ -19,6 +19,7 @@
 #include "sedwave/forward/experiment/packings.hpp"
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/experiment/scene.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::app {
 namespace {
@@ -35,12 +36,14 @@ struct ForwardOptions {
   bool quiet = false;
 };
 
-/// The scene's pore fluid and the dashpots it puts beside the contacts' gamma_hat (rank 0, which
-/// holds the packing's grains): docs/fluid.md.
-void print_fluid(const experiment::ChannelScene& scene, const forward::channel::PreparedChannel& packing) {
+/// The scene's pore fluid and the dashpots it puts beside the contacts' gamma_hat (collective over
+/// `comm`, which holds the packing's grains; printed where `talk`): docs/fluid.md.
+void print_fluid(MPI_Comm comm, const experiment::ChannelScene& scene, const forward::channel::PreparedChannel& packing,
+                 bool talk) {
   if (!scene.drive.fluid) return;
   namespace channel = forward::channel;
-  const channel::PackingUnits u = channel::packing_units(MPI_COMM_SELF, packing, scene.contact);
+  const channel::PackingUnits u = channel::packing_units(comm, packing, scene.contact);
+  if (!talk) return;
   const forward::dem::FluidSpec f = channel::fluid_in_packing_units(*scene.drive.fluid, u);
   const double unit = std::sqrt(u.kappa * u.mass), r = 0.5 * u.diameter;
   std::printf("pore fluid: %s; in sqrt(kappa m): film at the roughness %.3g (two grains of diameter d), drag %.3g "
@@ -55,13 +58,14 @@ int run_linear(const ForwardOptions& o, const experiment::ChannelScene& scene, c
   std::vector<forward::linear::LinearChannel> members;
   std::vector<forward::channel::PreparationReport> reports;
   for (int k = 0; k < scene.linear.ensemble; ++k) {
-    const experiment::ScenePacking packing =
+    experiment::ScenePacking packing =
         experiment::scene_packing(scene, k, {o.packing_in, o.packing_out}, talk ? &std::cout : nullptr);
     if (talk && packing.prepared) {
       std::cout << "member " << k << ":\n" << forward::channel::describe(packing.channel.report) << "\n";
     }
+    packing.channel.grains = forward::parallel::gather_on_root(MPI_COMM_WORLD, packing.channel.grains);
     if (mpi.rank() != 0) continue;
-    if (talk && k == 0) print_fluid(scene, packing.channel);
+    if (k == 0) print_fluid(MPI_COMM_SELF, scene, packing.channel, talk);
     reports.push_back(packing.channel.report);
     members.emplace_back(packing.channel, scene.contact, scene.linear, scene.drive.fluid);
   }
@@ -183,7 +187,7 @@ int run_forward(const ForwardOptions& o) {
     std::cout << describe(packing.channel.report) << "\n";
     if (!o.packing_out.empty()) std::cout << "packing written to " << o.packing_out << " (and .data for LAMMPS)\n";
   }
-  if (talk) print_fluid(scene, packing.channel);
+  print_fluid(MPI_COMM_WORLD, scene, packing.channel, talk);
   const AcousticResult r = run_acoustic(MPI_COMM_WORLD, packing.channel, scene.contact, scene.drive);
   if (mpi.rank() == 0) {
     experiment::write_run_file(o.out, scene, packing.channel.report, r);

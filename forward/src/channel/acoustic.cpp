@@ -285,14 +285,11 @@ dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int a
 dem::BodyMotion far_wall_motion(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
                                 const DriveSettings& d, const PackingUnits& u) {
   if (d.far_wall == FarWall::frozen) return dem::Frozen{};
-  double load[2] = {0.0, 0.0};  // the grains' static force along z, the wall's mass (rank 0 holds the grains)
-  if (parallel::rank(comm) == 0) {
-    const ContactNetwork network = find_contacts(packing.grains, packing.box, contact);
-    load[0] = static_body_force(packing.grains, network, kUpperWallBody).z;
-    load[1] = loaded_wall_mass(d, u, packing.grains);
-  }
-  parallel::broadcast(comm, std::span(load));
-  return dem::ConstantForce{{0.0, 0.0, -load[0]}, load[1], {false, false, true}};
+  const double force = static_contacts(comm, packing, contact).upper_wall_force;
+  // A given mass, or the wall grains' masses summed over the ranks.
+  const double mass = d.far_wall_mass > 0.0 ? loaded_wall_mass(d, u, {})
+                                            : parallel::sum(comm, loaded_wall_mass(d, u, packing.grains));
+  return dem::ConstantForce{{0.0, 0.0, -force}, mass, {false, false, true}};
 }
 
 /// The ascending indices up to the first gap of more than one missing index. Where layers fall

@@ -6,23 +6,39 @@
 #include <variant>
 
 namespace sedwave::forward::channel {
-namespace {
-
-double effective_mass(const dem::Grain& a, const dem::Grain& b) {
-  // A grain of a rigid wall counts as infinitely heavy, as in the DEM engine.
-  if (a.body != dem::kFreeBody) return b.mass;
-  if (b.body != dem::kFreeBody) return a.mass;
-  return a.mass * b.mass / (a.mass + b.mass);
-}
-
-}  // namespace
-
-ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
-                             const dem::ContactSpec& contact, double gap_search) {
+dem::AnyContactModel unit_damping_law(const dem::ContactSpec& contact) {
   // Unit damping coefficient: a constant dashpot of 1 (Hooke) or alpha = 1 (Hertz-Tsuji).
   dem::ContactSpec unit = dem::without_dashpot(contact);
   unit[std::string(dem::keys::gamma.key)] = 1.0;
-  const dem::AnyContactModel model = dem::make_contact_model(unit);
+  return dem::make_contact_model(unit);
+}
+
+PairLinearisation linearise_pair(const dem::AnyContactModel& unit, double effective_mass, double radius_i,
+                                 double radius_j, double overlap) {
+  PairLinearisation p;
+  const double r_eff = radius_i * radius_j / (radius_i + radius_j);
+  std::visit(
+      [&](const auto& m) {
+        const dem::ContactOscillator linearised = m.normal.oscillator(effective_mass, r_eff, std::max(overlap, 0.0));
+        p.dashpot = linearised.damping;
+        if (overlap <= 0.0) return;
+        p.force = dem::static_normal_force(m.normal, overlap, radius_i, radius_j);
+        p.stiffness = linearised.stiffness;
+        p.energy = m.normal.energy(overlap, radius_i, radius_j);
+      },
+      unit);
+  return p;
+}
+
+double pair_effective_mass(double mass_i, int body_i, double mass_j, int body_j) {
+  if (body_i != dem::kFreeBody) return mass_j;
+  if (body_j != dem::kFreeBody) return mass_i;
+  return mass_i * mass_j / (mass_i + mass_j);
+}
+
+ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box& box,
+                             const dem::ContactSpec& contact, double gap_search) {
+  const dem::AnyContactModel model = unit_damping_law(contact);
   double max_radius = 0.0;
   for (const dem::Grain& g : grains) max_radius = std::max(max_radius, g.radius);
   const double reach = 2.0 * max_radius + gap_search;
@@ -59,20 +75,10 @@ ContactNetwork find_contacts(std::span<const dem::Grain> grains, const dem::Box&
         const double distance = dem::norm(d);
         const double overlap = gi.radius + gj.radius - distance;
         if (overlap <= -gap_search) continue;
-        const double m_eff = effective_mass(gi, gj);
-        StaticPair p{i, j, (1.0 / distance) * d, distance, overlap, 0.0, 0.0, 0.0, m_eff,
-                     gi.radius - 0.5 * overlap, gj.radius - 0.5 * overlap};
-        const double r_eff = gi.radius * gj.radius / (gi.radius + gj.radius);
-        std::visit(
-            [&](const auto& m) {
-              const dem::ContactOscillator linearised = m.normal.oscillator(m_eff, r_eff, std::max(overlap, 0.0));
-              p.dashpot = linearised.damping;
-              if (overlap <= 0.0) return;
-              p.force = dem::static_normal_force(m.normal, overlap, gi.radius, gj.radius);
-              p.stiffness = linearised.stiffness;
-              p.energy = m.normal.energy(overlap, gi.radius, gj.radius);
-            },
-            model);
+        const double m_eff = pair_effective_mass(gi.mass, gi.body, gj.mass, gj.body);
+        const PairLinearisation l = linearise_pair(model, m_eff, gi.radius, gj.radius, overlap);
+        const StaticPair p{i, j, (1.0 / distance) * d, distance, overlap, l.force, l.stiffness, l.dashpot, m_eff,
+                           gi.radius - 0.5 * overlap, gj.radius - 0.5 * overlap, l.energy};
         if (overlap <= 0.0) {
           net.gaps.push_back(p);
           continue;

@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <variant>
 
+#include "sedwave/forward/channel/contact_network.hpp"
 #include "sedwave/forward/channel/geometry.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
 
@@ -51,6 +53,30 @@ std::vector<int> contact_counts(const dem::Engine& engine) {
     if (g.group[i] != kFlowGroup) counts[i] = 0;
   }
   return counts;
+}
+
+ContactMeans contact_means(const dem::Engine& engine, const dem::ContactSpec& contact) {
+  if (engine.settings().newton) throw std::logic_error("contact means: the pairs across ranks are listed once with newton on");
+  const dem::GrainArrays& g = engine.grains();
+  const dem::AnyContactModel unit = unit_damping_law(contact);
+  std::array<double, 3> sum{};  // contacts, stiffness, dashpot; a pair across ranks counts half on each
+  for_each_pair(engine, [&](std::size_t i, std::size_t j, bool ghost, const dem::Vec3&, double, double overlap) {
+    if (overlap <= 0.0 || (g.body[i] != dem::kFreeBody && g.body[j] != dem::kFreeBody)) return;
+    const double weight = ghost ? 0.5 : 1.0;
+    const double m_eff = pair_effective_mass(g.mass[i], g.body[i], g.mass[j], g.body[j]);
+    const PairLinearisation l = linearise_pair(unit, m_eff, g.radius[i], g.radius[j], overlap);
+    sum[0] += weight;
+    sum[1] += weight * l.stiffness;
+    sum[2] += weight * l.dashpot;
+  });
+  parallel::sum(engine.domain().comm(), std::span(sum));
+  ContactMeans means;
+  means.contacts = std::llround(sum[0]);
+  if (sum[0] > 0.0) {
+    means.stiffness = sum[1] / sum[0];
+    means.dashpot = sum[2] / sum[0];
+  }
+  return means;
 }
 
 PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, double width) {

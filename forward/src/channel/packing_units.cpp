@@ -1,14 +1,38 @@
 #include "sedwave/forward/channel/packing_units.hpp"
 
+#include <array>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 #include "sedwave/forward/channel/contact_network.hpp"
+#include "sedwave/forward/channel/contacts.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::channel {
+
+StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
+  std::array<double, 3> v{};  // mean stiffness, mean dashpot, force on the upper wall
+  if (parallel::sum(comm, packing.grains.empty() ? 0 : 1) <= 1) {
+    // One rank holds the packing: its contact network, as the linear engine sees it.
+    if (!packing.grains.empty()) {
+      const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
+      v = {n.mean_stiffness, n.mean_dashpot, static_body_force(packing.grains, n, kUpperWallBody).z};
+    }
+    parallel::sum(comm, std::span(v));
+  } else {
+    // Spread over ranks: the DEM engine's ghosts and lists find the pairs across them.
+    dem::EngineSettings settings;
+    settings.box = broadcast_box(comm, packing.box);
+    settings.contact = contact;
+    const dem::Engine engine(comm, settings, packing.grains,
+                             {dem::RigidBody("lower_wall", dem::Frozen{}), dem::RigidBody("upper_wall", dem::Frozen{})});
+    const ContactMeans means = contact_means(engine, contact);
+    v = {means.stiffness, means.dashpot, engine.bodies()[1].contact_force().z};
+  }
+  return {v[0], v[1], v[2]};
+}
 
 PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
   // Sums on whichever rank holds the grains: flow count, diameters, masses / volumes (density),
@@ -38,20 +62,10 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   u.kappa = dem::stiffness_at_contact(dem::undamped_contact_model(contact));
   double dashpot = 1.0;  // mean dashpot per unit coefficient
   if (!(u.kappa > 0.0)) {
-    double network[2] = {0.0, 0.0};  // mean stiffness, mean dashpot (from the rank holding the grains)
-    int holds = packing.grains.empty() ? 0 : 1;
-    if (parallel::sum(comm, holds) != 1) {
-      throw std::invalid_argument("packing units of Hertz contacts: the grains must be on one rank");
-    }
-    if (!packing.grains.empty()) {
-      const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
-      network[0] = n.mean_stiffness;
-      network[1] = n.mean_dashpot;
-    }
-    parallel::sum(comm, std::span(network));
-    if (!(network[0] > 0.0)) throw std::invalid_argument("packing units: the packing has no contacts");
-    u.kappa = network[0];
-    dashpot = network[1];
+    const StaticContacts network = static_contacts(comm, packing, contact);
+    if (!(network.mean_stiffness > 0.0)) throw std::invalid_argument("packing units: the packing has no contacts");
+    u.kappa = network.mean_stiffness;
+    dashpot = network.mean_dashpot;
   }
   u.wall_surface = s[3] / s[4];
   u.column_top = s[5] / s[6];

@@ -450,26 +450,39 @@ LammpsData read_lammps_data(const std::string& path, const std::function<bool(co
   return data;
 }
 
-void write_lammps_data(const std::string& path, const Box& box, std::span<const Grain> grains) {
-  // Whole or not at all: a kill or a full disk leaves the previous file (io::write_text_atomically).
-  io::write_text_atomically(path, [&](std::ostream& out) {
-    int types = 1;
-    for (const Grain& g : grains) types = std::max(types, g.group);
-    out << "LAMMPS data file written by sedwave (atom_style sphere)\n\n"
-        << grains.size() << " atoms\n" << types << " atom types\n\n" << std::setprecision(kFullPrecision);
-    for (int a = 0; a < 3; ++a)
-      out << box.lo[a] << ' ' << box.hi[a] << ' ' << char('x' + a) << "lo " << char('x' + a) << "hi\n";
-    out << "\nAtoms # sphere\n\n";
-    for (const Grain& g : grains) {
-      const double d = 2.0 * g.radius;
-      out << g.id << ' ' << std::max(g.group, 1) << ' ' << d << ' ' << g.mass / grain_mass(1.0, d) << ' '
-          << g.position.x << ' ' << g.position.y << ' ' << g.position.z << '\n';
-    }
-    out << "\nVelocities\n\n";
-    for (const Grain& g : grains)
-      out << g.id << ' ' << g.velocity.x << ' ' << g.velocity.y << ' ' << g.velocity.z << ' '
-          << g.angular_velocity.x << ' ' << g.angular_velocity.y << ' ' << g.angular_velocity.z << '\n';
+void write_lammps_data(MPI_Comm comm, const std::string& path, const Box& box, std::span<const Grain> grains) {
+  int types = 1;
+  for (const Grain& g : grains) types = std::max(types, g.group);
+  types = parallel::max(comm, types);
+  const auto count = parallel::sum(comm, static_cast<std::int64_t>(grains.size()));
+  // Two passes over the pieces: the atoms, then their velocities.
+  parallel::on_root_with_pieces(comm, grains, 2, [&](auto&& pieces) {
+    // Whole or not at all: a kill or a full disk leaves the previous file (io::write_text_atomically).
+    io::write_text_atomically(path, [&](std::ostream& out) {
+      out << "LAMMPS data file written by sedwave (atom_style sphere)\n\n"
+          << count << " atoms\n" << types << " atom types\n\n" << std::setprecision(kFullPrecision);
+      for (int a = 0; a < 3; ++a)
+        out << box.lo[a] << ' ' << box.hi[a] << ' ' << char('x' + a) << "lo " << char('x' + a) << "hi\n";
+      out << "\nAtoms # sphere\n\n";
+      pieces([&](std::span<const Grain> piece) {
+        for (const Grain& g : piece) {
+          const double d = 2.0 * g.radius;
+          out << g.id << ' ' << std::max(g.group, 1) << ' ' << d << ' ' << g.mass / grain_mass(1.0, d) << ' '
+              << g.position.x << ' ' << g.position.y << ' ' << g.position.z << '\n';
+        }
+      });
+      out << "\nVelocities\n\n";
+      pieces([&](std::span<const Grain> piece) {
+        for (const Grain& g : piece)
+          out << g.id << ' ' << g.velocity.x << ' ' << g.velocity.y << ' ' << g.velocity.z << ' '
+              << g.angular_velocity.x << ' ' << g.angular_velocity.y << ' ' << g.angular_velocity.z << '\n';
+      });
+    });
   });
+}
+
+void write_lammps_data(const std::string& path, const Box& box, std::span<const Grain> grains) {
+  write_lammps_data(MPI_COMM_SELF, path, box, grains);
 }
 
 // ---- dumps ---------------------------------------------------------------------------------------

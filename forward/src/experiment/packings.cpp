@@ -1,6 +1,8 @@
 #include "sedwave/forward/experiment/packings.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <filesystem>
 #include <ostream>
 #include <stdexcept>
@@ -49,6 +51,26 @@ channel::ChannelConfiguration initial_column(const ChannelScene& scene, int k, i
 
 }  // namespace
 
+std::vector<dem::Grain> spread_by_id(MPI_Comm comm, const std::vector<dem::Grain>& grains) {
+  std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = std::numeric_limits<std::int64_t>::min();
+  for (const dem::Grain& g : grains) {
+    lo = std::min(lo, g.id);
+    hi = std::max(hi, g.id);
+  }
+  lo = parallel::min(comm, lo);
+  hi = parallel::max(comm, hi);
+  const int ranks = parallel::size(comm);
+  std::vector<std::vector<dem::Grain>> outgoing(static_cast<std::size_t>(ranks));
+  if (lo <= hi) {
+    const auto span = static_cast<std::uint64_t>(hi - lo) + 1;
+    const std::uint64_t width = (span + static_cast<std::uint64_t>(ranks) - 1) / static_cast<std::uint64_t>(ranks);
+    for (const dem::Grain& g : grains) outgoing[static_cast<std::uint64_t>(g.id - lo) / width].push_back(g);
+  }
+  std::vector<dem::Grain> mine = parallel::all_to_all(comm, outgoing);
+  std::sort(mine.begin(), mine.end(), [](const dem::Grain& a, const dem::Grain& b) { return a.id < b.id; });
+  return mine;
+}
+
 std::string member_path(const std::string& path, int k) {
   if (k == 0) return path;
   const std::filesystem::path p(path);
@@ -66,10 +88,8 @@ channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int ra
   const int copies = scene.geometry.n_grains / scene.tiling->cell_grains;
   channel::PreparedChannel tiled = channel::tile_periodic_cell(
       MPI_COMM_WORLD, packing, scene.contact, copies, scene.tiling->wall_thickness);
-  // A scene's packing is handed on from rank 0 (saved, fingerprinted, shared with the task farm's
-  // groups), so its copies are collected there.
-  tiled.grains = parallel::gather_on_root(MPI_COMM_WORLD, tiled.grains);
-  std::sort(tiled.grains.begin(), tiled.grains.end(), [](const dem::Grain& a, const dem::Grain& b) { return a.id < b.id; });
+  // Saved, fingerprinted and shared with the task farm's groups in id order, no rank holding all.
+  tiled.grains = spread_by_id(MPI_COMM_WORLD, tiled.grains);
   if (log) *log << "tiled " << copies << " copies of the cell into a channel of " << scene.geometry.n_grains << " grains\n";
   return tiled;
 }
@@ -86,7 +106,7 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
   if (!files.read.empty()) {
     const std::string path = member_path(files.read, k);
     out.provenance = "packing read from " + path;
-    if (rank == 0) out.channel = read_packing(path);  // the engines take the grains from rank 0
+    out.channel = read_packing(MPI_COMM_WORLD, path);
     return out;
   }
   out.channel = prepare_member(scene, k, rank, log);
@@ -96,7 +116,7 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
   if (!out.channel.report.converged) out.provenance += " (preparation did NOT converge: see the log)";
   if (!files.save.empty()) {
     const std::string path = member_path(files.save, k);
-    if (rank == 0) write_packing(path, out.channel, scene.text);
+    write_packing(MPI_COMM_WORLD, path, out.channel, scene.text);
     out.provenance += ", saved to " + path;
   }
   return out;
@@ -104,20 +124,13 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
 
 void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point) {
   static_assert(std::is_trivially_copyable_v<dem::Grain> && std::is_trivially_copyable_v<dem::Box>);
-  const bool leader = parallel::rank(world) % ranks_per_point == 0;
-  std::uint64_t count = packing.grains.size();
-  parallel::broadcast(world, std::span(&count, 1));
   parallel::broadcast(world, std::as_writable_bytes(std::span(&packing.box, 1)));
-  // Only the groups' leaders receive the grains (world's rank 0 is one): the other ranks never
-  // hold the packing, not even for the length of the broadcast.
-  const parallel::SubCommunicator leaders(world, leader);
-  if (!leader) {
-    packing.grains.clear();
-    packing.grains.shrink_to_fit();
-    return;
-  }
-  packing.grains.resize(count);
-  parallel::broadcast(leaders.get(), std::as_writable_bytes(std::span(packing.grains)));
+  // Rank q of every group takes the grains of the world ranks w = q (mod ranks_per_point): the ranks
+  // at one place in every group meet in one communicator and each gets all its members' grains.
+  const parallel::SubCommunicator place(world, parallel::SubCommunicator::Colour{parallel::rank(world) % ranks_per_point});
+  std::vector<dem::Grain> grains = parallel::gather_on_root(place.get(), packing.grains);
+  parallel::broadcast(place.get(), grains);
+  packing.grains = std::move(grains);
 }
 
 }  // namespace sedwave::forward::experiment

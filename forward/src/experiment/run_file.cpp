@@ -8,6 +8,7 @@
 #include "sedwave/io/hdf5.hpp"
 #include "run_file_parts.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/io/fingerprint.hpp"
 #include "sedwave/version.hpp"
 
@@ -15,71 +16,114 @@ namespace sedwave::forward::experiment {
 
 using namespace channel;  // the files hold the channel's packings and measurements
 
-void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
-  io::write_file_atomically(path, [&](hid_t file) {
-    io::write_string_attribute(file, "sedwave_version", kVersion);
-    io::write_string_attribute(file, "scene", scene_text);
-    io::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
-    io::Handle grains = io::create_group(file, "grains");
-    std::vector<std::int64_t> id;
-    std::vector<std::int32_t> group, body;
-    std::vector<double> radius, mass, position;
-    for (const dem::Grain& g : p.grains) {
-      id.push_back(g.id);
-      group.push_back(g.group);
-      body.push_back(g.body);
-      radius.push_back(g.radius);
-      mass.push_back(g.mass);
-      position.insert(position.end(), {g.position.x, g.position.y, g.position.z});
-    }
-    io::write(grains, "id", id.data(), id.size());
-    io::write(grains, "group", group.data(), group.size());
-    io::write(grains, "body", body.data(), body.size());
-    io::write(grains, "radius", radius.data(), radius.size());
-    io::write(grains, "mass", mass.data(), mass.size());
-    io::write(grains, "position", position.data(), id.size(), 3);
-    io::Handle box = io::create_group(file, "box");
-    const double bounds[6] = {p.box.lo.x, p.box.lo.y, p.box.lo.z, p.box.hi.x, p.box.hi.y, p.box.hi.z};
-    io::write(box, "bounds", bounds, 2, 3);
-    const std::int32_t periodic[3] = {p.box.periodic[0], p.box.periodic[1], p.box.periodic[2]};
-    io::write(box, "periodic", periodic, 3);
-    io::Handle stats = io::create_group(file, "preparation");
-    write_stats(stats, p.report);
+void write_packing(MPI_Comm comm, const std::filesystem::path& path, const PreparedChannel& p,
+                   const std::string& scene_text) {
+  const auto n = static_cast<std::size_t>(parallel::sum(comm, static_cast<std::int64_t>(p.grains.size())));
+  parallel::on_root_with_pieces(comm, std::span(p.grains), 1, [&](auto&& pieces) {
+    io::write_file_atomically(path, [&](hid_t file) {
+      io::write_string_attribute(file, "sedwave_version", kVersion);
+      io::write_string_attribute(file, "scene", scene_text);
+      io::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
+      io::Handle grains = io::create_group(file, "grains");
+      const io::Handle sets[] = {io::create_dataset<std::int64_t>(grains, "id", n),
+                                 io::create_dataset<std::int32_t>(grains, "group", n),
+                                 io::create_dataset<std::int32_t>(grains, "body", n),
+                                 io::create_dataset<double>(grains, "radius", n),
+                                 io::create_dataset<double>(grains, "mass", n),
+                                 io::create_dataset<double>(grains, "position", n, 3)};
+      hsize_t row = 0;
+      pieces([&](std::span<const dem::Grain> piece) {
+        const hsize_t count = piece.size();
+        if (count == 0) return;
+        std::vector<std::int64_t> id;
+        std::vector<std::int32_t> group, body;
+        std::vector<double> radius, mass, position;
+        for (const dem::Grain& g : piece) {
+          id.push_back(g.id);
+          group.push_back(g.group);
+          body.push_back(g.body);
+          radius.push_back(g.radius);
+          mass.push_back(g.mass);
+          position.insert(position.end(), {g.position.x, g.position.y, g.position.z});
+        }
+        io::write_block(grains, "id", {row}, {count}, id.data());
+        io::write_block(grains, "group", {row}, {count}, group.data());
+        io::write_block(grains, "body", {row}, {count}, body.data());
+        io::write_block(grains, "radius", {row}, {count}, radius.data());
+        io::write_block(grains, "mass", {row}, {count}, mass.data());
+        io::write_block(grains, "position", {row, 0}, {count, 3}, position.data());
+        row += count;
+      });
+      io::Handle box = io::create_group(file, "box");
+      const double bounds[6] = {p.box.lo.x, p.box.lo.y, p.box.lo.z, p.box.hi.x, p.box.hi.y, p.box.hi.z};
+      io::write(box, "bounds", bounds, 2, 3);
+      const std::int32_t periodic[3] = {p.box.periodic[0], p.box.periodic[1], p.box.periodic[2]};
+      io::write(box, "periodic", periodic, 3);
+      io::Handle stats = io::create_group(file, "preparation");
+      write_stats(stats, p.report);
+    });
   });
   std::filesystem::path data = path;
   data.replace_extension(".data");
-  write_packing_lammps_data(data, p);
+  write_packing_lammps_data(comm, data, p);
+}
+
+void write_packing(const std::filesystem::path& path, const PreparedChannel& p, const std::string& scene_text) {
+  write_packing(MPI_COMM_SELF, path, p, scene_text);
+}
+
+void write_packing_lammps_data(MPI_Comm comm, const std::filesystem::path& path, const PreparedChannel& p) {
+  std::vector<dem::Grain> typed = p.grains;
+  for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
+  dem::write_lammps_data(comm, path.string(), p.box, typed);
 }
 
 void write_packing_lammps_data(const std::filesystem::path& path, const PreparedChannel& p) {
-  std::vector<dem::Grain> typed = p.grains;
-  for (dem::Grain& g : typed) g.group += 1;  // LAMMPS types start at 1: 1 flow, 2 lower, 3 upper wall
-  dem::write_lammps_data(path.string(), p.box, typed);
+  write_packing_lammps_data(MPI_COMM_SELF, path, p);
 }
 
-std::string packing_fingerprint(const PreparedChannel& packing) {
-  io::Fingerprint f;
-  for (const dem::Grain& g : packing.grains) {
-    f.add_value(g.id).add_value(g.group).add_value(g.body).add_value(g.radius).add_value(g.mass);
-    f.add_value(g.position.x).add_value(g.position.y).add_value(g.position.z);
-  }
-  for (int a = 0; a < 3; ++a) {
-    f.add_value(packing.box.lo[a]).add_value(packing.box.hi[a]).add_value(static_cast<bool>(packing.box.periodic[a]));
-  }
-  return f.hex();
+std::string packing_fingerprint(MPI_Comm comm, const PreparedChannel& packing) {
+  std::string hex;
+  parallel::on_root_with_pieces(comm, std::span(packing.grains), 1, [&](auto&& pieces) {
+    io::Fingerprint f;
+    pieces([&](std::span<const dem::Grain> piece) {
+      for (const dem::Grain& g : piece) {
+        f.add_value(g.id).add_value(g.group).add_value(g.body).add_value(g.radius).add_value(g.mass);
+        f.add_value(g.position.x).add_value(g.position.y).add_value(g.position.z);
+      }
+    });
+    for (int a = 0; a < 3; ++a) {
+      f.add_value(packing.box.lo[a]).add_value(packing.box.hi[a]).add_value(static_cast<bool>(packing.box.periodic[a]));
+    }
+    hex = f.hex();
+  });
+  parallel::broadcast(comm, hex);
+  return hex;
 }
 
-PreparedChannel read_packing(const std::filesystem::path& path) {
+std::string packing_fingerprint(const PreparedChannel& packing) { return packing_fingerprint(MPI_COMM_SELF, packing); }
+
+namespace {
+
+PreparedChannel read_packing_share(MPI_Comm comm, const std::filesystem::path& path) {
   io::Handle file = io::open_file(path.string());
   io::Handle grains = io::open_group(file, "grains");
-  const std::size_t n = io::rows(grains, "id");
-  const auto id = io::read_rows<std::int64_t>(grains, "id", 0, n);
-  const auto group = io::read_rows<std::int32_t>(grains, "group", 0, n);
-  const auto body = io::read_rows<std::int32_t>(grains, "body", 0, n);
-  const auto radius = io::read_rows<double>(grains, "radius", 0, n);
-  const auto mass = io::read_rows<double>(grains, "mass", 0, n);
-  const auto position = io::read_rows<double>(grains, "position", 0, n, 3);
+  const std::size_t rows = io::rows(grains, "id");
+  // This rank's share of the rows: contiguous, in file order.
+  const auto share = [&](int r) {
+    return static_cast<std::size_t>(static_cast<unsigned long long>(rows) * static_cast<unsigned>(r) /
+                                    static_cast<unsigned>(parallel::size(comm)));
+  };
+  const int rank = parallel::rank(comm);
+  const std::size_t first = share(rank), n = share(rank + 1) - first;
+  const auto id = io::read_rows<std::int64_t>(grains, "id", first, n);
+  const auto group = io::read_rows<std::int32_t>(grains, "group", first, n);
+  const auto body = io::read_rows<std::int32_t>(grains, "body", first, n);
+  const auto radius = io::read_rows<double>(grains, "radius", first, n);
+  const auto mass = io::read_rows<double>(grains, "mass", first, n);
+  const auto position = io::read_rows<double>(grains, "position", first, n, 3);
   PreparedChannel p;
+  p.grains.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     dem::Grain g;
     g.id = id[i];
@@ -104,6 +148,23 @@ PreparedChannel read_packing(const std::filesystem::path& path) {
   p.report.stats.coordination = io::read_attribute<double>(stats, "coordination");
   return p;
 }
+
+}  // namespace
+
+PreparedChannel read_packing(MPI_Comm comm, const std::filesystem::path& path) {
+  // Each rank reads its own rows, so one can fail where the others do not: they agree first.
+  PreparedChannel p;
+  std::string error;
+  try {
+    p = read_packing_share(comm, path);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  parallel::throw_first_failure(comm, error);
+  return p;
+}
+
+PreparedChannel read_packing(const std::filesystem::path& path) { return read_packing(MPI_COMM_SELF, path); }
 
 namespace {
 

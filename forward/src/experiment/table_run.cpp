@@ -56,13 +56,13 @@ ScenePacking table_packing(const ChannelScene& scene, const TableRun& run, int k
   return packing;
 }
 
-/// The time-domain engine: every point drives the one packing, on each group's rank 0.
+/// The time-domain engine: every point drives the one packing, spread over its group's ranks.
 table::FarmReport fill_time_domain(const table::TableGridFile& grid, const ChannelScene& scene, const TableRun& run,
                                    const table::FarmSettings& farm) {
   ScenePacking packing = table_packing(scene, run, 0);
+  const std::string hash = packing_fingerprint(MPI_COMM_WORLD, packing.channel);
   share_packing_with_groups(MPI_COMM_WORLD, packing.channel, farm.ranks_per_point);
-  const table::TableMetadata metadata =
-      table_metadata(grid, scene, run, packing.provenance, packing_fingerprint(packing.channel), 1);
+  const table::TableMetadata metadata = table_metadata(grid, scene, run, packing.provenance, hash, 1);
   return table::run_task_farm(MPI_COMM_WORLD, run.table, grid.grid, metadata,
                               dem_point_function(packing.channel, scene.contact, scene.drive, grid.grid), farm);
 }
@@ -77,8 +77,8 @@ table::FarmReport fill_linear(const table::TableGridFile& grid, const ChannelSce
   const int last = run.member >= 0 ? run.member : scene.linear.ensemble - 1;
   for (int k = first; k <= last; ++k) {
     ScenePacking packing = table_packing(scene, run, k);
+    packing_hashes.push_back(packing_fingerprint(MPI_COMM_WORLD, packing.channel));
     share_packing_with_groups(MPI_COMM_WORLD, packing.channel, 1);
-    packing_hashes.push_back(packing_fingerprint(packing.channel));
     members.emplace_back(packing.channel, scene.contact, scene.linear, scene.drive.fluid);
     provenance += (k > first ? "; " : "") + packing.provenance;
   }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -175,6 +177,70 @@ TEST(Collectives, TurnsRunInRankOrderAndAFailureReachesEveryRank) {
     EXPECT_STREQ(e.what(), ("rank " + std::to_string(failing) + " cannot open its output").c_str());
   }
   EXPECT_EQ(ran, r <= failing) << "rank " << r;  // the ranks after the failing one skip their turn
+}
+
+TEST(Collectives, ColoursCutTheRanksIntoCommunicatorsInRankOrder) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  const SubCommunicator place(MPI_COMM_WORLD, SubCommunicator::Colour{r % 2});
+  ASSERT_NE(place.get(), MPI_COMM_NULL);
+  EXPECT_EQ(size(place.get()), r % 2 == 0 ? (n + 1) / 2 : n / 2);
+  EXPECT_EQ(rank(place.get()), r / 2);
+  const std::vector<int> members = all_gather(place.get(), r);
+  for (std::size_t k = 0; k < members.size(); ++k) EXPECT_EQ(members[k], static_cast<int>(2 * k) + r % 2);
+}
+
+/// Rank r's records for the piece tests: r + 1 values r * 100 + k (rank 0's one, rank 1's two, ...).
+std::vector<std::int64_t> piece_of(int r) {
+  std::vector<std::int64_t> v(static_cast<std::size_t>(r + 1));
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = r * 100 + static_cast<std::int64_t>(k);
+  return v;
+}
+
+TEST(Collectives, RootTakesEveryRanksPieceInRankOrderOnceEachPass) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  const std::vector<std::int64_t> mine = piece_of(r);
+  std::vector<std::int64_t> expected;
+  for (int k = 0; k < n; ++k) {
+    const std::vector<std::int64_t> p = piece_of(k);
+    expected.insert(expected.end(), p.begin(), p.end());
+  }
+  for (const std::size_t max_count : {kMaxMpiCount, std::size_t{2}}) {  // 2: pieces in several messages
+    std::vector<std::int64_t> first, second;
+    std::size_t largest = 0;
+    on_root_with_pieces(MPI_COMM_WORLD, std::span<const std::int64_t>(mine), 2, [&](auto&& pieces) {
+      pieces([&](std::span<const std::int64_t> p) {
+        first.insert(first.end(), p.begin(), p.end());
+        largest = std::max(largest, p.size());
+      });
+      pieces([&](std::span<const std::int64_t> p) { second.insert(second.end(), p.begin(), p.end()); });
+    }, max_count);
+    if (r != 0) continue;
+    EXPECT_EQ(first, expected);
+    EXPECT_EQ(second, expected);
+    EXPECT_EQ(largest, static_cast<std::size_t>(n)) << "one rank's piece at a time";
+  }
+}
+
+TEST(Collectives, AFailureOnTheRootReachesEveryRankWhereverItHappens) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  const std::vector<std::int64_t> mine = piece_of(r);
+  // Before any piece is taken (the output cannot be created), in the middle of the pieces, and after
+  // one of two passes: every rank throws the root's message, and no rank waits for ever.
+  for (const int fail_at : {-1, n / 2, n}) {
+    try {
+      on_root_with_pieces(MPI_COMM_WORLD, std::span<const std::int64_t>(mine), 2, [&](auto&& pieces) {
+        if (fail_at < 0) throw std::runtime_error("cannot create the file");
+        int seen = 0;
+        pieces([&](std::span<const std::int64_t>) {
+          if (seen++ == fail_at) throw std::runtime_error("disk full");
+        });
+        throw std::runtime_error("disk full");
+      });
+      ADD_FAILURE() << "rank " << r << " did not throw";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), fail_at < 0 ? "cannot create the file" : "disk full") << "rank " << r;
+    }
+  }
 }
 
 }  // namespace

@@ -127,13 +127,20 @@ inline bool exists(hid_t parent, const std::string& name) {
   return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0;
 }
 
+/// Creates a dataset of shape {rows} (columns == 0) or {rows, columns}, to be filled by write_block
+/// (or at once by write).
+template <typename T>
+Handle create_dataset(hid_t parent, const std::string& name, std::size_t rows, std::size_t columns = 0) {
+  const std::array<hsize_t, 2> dims{rows, columns};
+  Handle space(H5Screate_simple(columns ? 2 : 1, dims.data(), nullptr), H5Sclose, "dataspace " + name);
+  return {H5Dcreate2(parent, name.c_str(), native_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+          "create dataset " + name};
+}
+
 /// Writes a dataset of shape {rows} (columns == 0) or {rows, columns}.
 template <typename T>
 void write(hid_t parent, const std::string& name, const T* data, std::size_t rows, std::size_t columns = 0) {
-  const std::array<hsize_t, 2> dims{rows, columns};
-  Handle space(H5Screate_simple(columns ? 2 : 1, dims.data(), nullptr), H5Sclose, "dataspace " + name);
-  Handle set(H5Dcreate2(parent, name.c_str(), native_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-             H5Dclose, "create dataset " + name);
+  Handle set = create_dataset<T>(parent, name, rows, columns);
   if (rows > 0) check(H5Dwrite(set, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
 }
 

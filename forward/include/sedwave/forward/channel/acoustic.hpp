@@ -184,7 +184,8 @@ struct LayerRange {
 /// the upper wall's grains. Both engines use exactly this.
 [[nodiscard]] double loaded_wall_mass(const DriveSettings& d, const PackingUnits& u, std::span<const dem::Grain> grains);
 
-/// Drives `packing` (grains on rank 0; other ranks may pass an empty one) with contact law `contact`
+/// Drives `packing` (its grains spread over the ranks of comm in any way, e.g. all on rank 0; the box
+/// as rank 0 holds it) with contact law `contact`
 /// (its damping is replaced by gamma_hat) and measures alpha_hat and c_hat. Collective over comm.
 [[nodiscard]] AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::ContactSpec contact,
                                           const DriveSettings& drive);

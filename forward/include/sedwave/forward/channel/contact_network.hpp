@@ -47,6 +47,22 @@ struct ContactNetwork {
   double mean_dashpot = 0.0;         ///< mean dashpot per unit damping coefficient over contacts
 };
 
+/// A pair's normal contact linearised about its static overlap (> 0 for a contact) under `unit`, a
+/// law whose damping coefficient is 1 (unit_damping_law): tangent stiffness, and dashpot per unit
+/// coefficient. Gaps (overlap <= 0): the dashpot at zero overlap and no stiffness.
+struct PairLinearisation {
+  double force = 0.0;
+  double stiffness = 0.0;
+  double dashpot = 0.0;
+  double energy = 0.0;
+};
+[[nodiscard]] dem::AnyContactModel unit_damping_law(const dem::ContactSpec& contact);
+[[nodiscard]] PairLinearisation linearise_pair(const dem::AnyContactModel& unit, double effective_mass,
+                                               double radius_i, double radius_j, double overlap);
+/// A pair's effective mass 1 / (1/m_i + 1/m_j), where a grain of a rigid body (body != kFreeBody)
+/// counts as infinitely heavy, as in the DEM engine.
+[[nodiscard]] double pair_effective_mass(double mass_i, int body_i, double mass_j, int body_j);
+
 /// Finds every contact, and every gap narrower than `gap_search` (same length unit), of `grains`
 /// in `box` (periodic in x, y; open or periodic in z) under the normal law of `contact` (its damping
 /// setting is ignored: dashpots are per unit coefficient). Throws std::invalid_argument for a box

@@ -40,6 +40,17 @@ struct PackingStats {
 /// neighbour-list pairs only (within the Verlet skin). `mean_diameter` sets the unit of overlaps.
 [[nodiscard]] PackingStats packing_stats(const dem::Engine& engine, double mean_diameter, double width);
 
+/// Means over the contacts of the engine's current state, as find_contacts computes them for a
+/// packing on one rank (contact_network.hpp): tangent normal stiffness, and dashpot per unit damping
+/// coefficient, under the normal law of `contact`; pairs of two rigid-body grains left out.
+struct ContactMeans {
+  std::int64_t contacts = 0;
+  double stiffness = 0.0;
+  double dashpot = 0.0;
+};
+/// Collective; needs the engine's neighbour list from both sides of a rank boundary (newton off).
+[[nodiscard]] ContactMeans contact_means(const dem::Engine& engine, const dem::ContactSpec& contact);
+
 /// Every flow grain's contact count (local grains, in local order), for rattler removal and tests.
 [[nodiscard]] std::vector<int> contact_counts(const dem::Engine& engine);
 

@@ -54,7 +54,20 @@ struct LayerGrid {
   }
 };
 
-/// Units of `packing` (its grains on any one rank; collective over comm). kappa is the Hooke kn, or
+/// What a static packing's contacts give: means over its contacts of the tangent normal stiffness
+/// and of the dashpot per unit damping coefficient, and the grains' static force on the upper wall
+/// along z (what holds it in place). Collective over comm; the grains may be spread over its ranks
+/// in any way: on one rank from its contact network (find_contacts), else from a DEM force
+/// evaluation, whose ghosts see the pairs across ranks (the two agree to round-off).
+struct StaticContacts {
+  double mean_stiffness = 0.0;
+  double mean_dashpot = 0.0;
+  double upper_wall_force = 0.0;
+};
+[[nodiscard]] StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing,
+                                             const dem::ContactSpec& contact);
+
+/// Units of `packing` (its grains spread over the ranks of comm in any way; collective). kappa is the Hooke kn, or
 /// for Hertz (no single stiffness) the mean tangent stiffness of the static contacts. Throws
 /// std::invalid_argument when the packing has no flow grains or lacks a wall.
 [[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact);

@@ -43,10 +43,13 @@ struct LammpsData {
 /// Reads a data file on this rank alone (MPI_COMM_SELF); `keep` picks the grains returned.
 [[nodiscard]] LammpsData read_lammps_data(const std::string& path,
                                           const std::function<bool(const Grain&)>& keep = {});
-/// Writes a data file (atom_style sphere) with velocities; serial (one rank, all grains given).
-/// The atom type is Grain::group, and groups below 1 are written as type 1 (LAMMPS types start at
-/// 1), so groups 0 and 1 merge: channel packings, whose flow group is 0, go through
-/// channel::write_packing_lammps_data, which shifts every group by one.
+/// Writes a data file (atom_style sphere) with velocities, whose grains are spread over the ranks of
+/// `comm` in file order (collective): rank 0 writes, taking one rank's grains at a time, so no rank
+/// holds them all; `box` as rank 0 holds it. The atom type is Grain::group, and groups below 1 are
+/// written as type 1 (LAMMPS types start at 1), so groups 0 and 1 merge: channel packings, whose
+/// flow group is 0, go through experiment::write_packing_lammps_data, which shifts every group by one.
+void write_lammps_data(MPI_Comm comm, const std::string& path, const Box& box, std::span<const Grain> grains);
+/// The same on this rank alone (MPI_COMM_SELF), all grains given.
 void write_lammps_data(const std::string& path, const Box& box, std::span<const Grain> grains);
 
 struct DumpFrame {

@@ -2,22 +2,31 @@
 // The packings a scene's runs start from, for every command that runs a scene (`sedwave forward`,
 // `sedwave table`): the loose column (generated from the scene, or imported from LAMMPS),
 // compressed and relaxed, or a packing file written earlier; for the linear engine's ensembles,
-// member k uses the scene's seed + k and its own file (member_path).
+// member k uses the scene's seed + k and its own file (member_path). A packing is spread over the
+// ranks in id order (rank 0's grains first; a column prepared without tiling is all on rank 0):
+// read, saved, fingerprinted and tiled with no rank holding it whole.
 #include <mpi.h>
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "sedwave/forward/channel/preparation.hpp"
 #include "sedwave/forward/experiment/scene.hpp"
 
 namespace sedwave::forward::experiment {
 
+/// `grains` (spread over the ranks of `comm` in any way) spread in id order (collective): rank r
+/// holds the r-th of equal ranges of ids between the smallest and the largest, sorted, so that the
+/// ranks' grains in rank order are the packing sorted by id, as its file and fingerprint take them.
+[[nodiscard]] std::vector<dem::Grain> spread_by_id(MPI_Comm comm, const std::vector<dem::Grain>& grains);
+
 /// Ensemble member k's packing file: `path` itself for k = 0, else `path` with ".member<k>" inserted
 /// before the extension (packing.h5 -> packing.member1.h5).
 [[nodiscard]] std::string member_path(const std::string& path, int k);
 
-/// Prepares member k (collective over MPI_COMM_WORLD; the result is on rank 0): the linear
+/// Prepares member k (collective over MPI_COMM_WORLD; a tiled channel spread in id order, an untiled
+/// column on rank 0): the linear
 /// engine's Newton relaxation finishes frictionless packings. Imported LAMMPS packings have no
 /// seed: only member 0 exists for them.
 [[nodiscard]] channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int rank, std::ostream* log);
@@ -34,19 +43,22 @@ struct PackingFiles {
 
 /// A member's packing and where it came from.
 struct ScenePacking {
-  channel::PreparedChannel channel;  ///< the grains on rank 0 only
+  channel::PreparedChannel channel;  ///< the grains spread over MPI_COMM_WORLD in id order
   bool prepared = false;             ///< prepared now (else read from a file)
   std::string provenance;            ///< in words, for a table's definitions
 };
 
-/// Member k's packing, read (on rank 0) or prepared (collectively over MPI_COMM_WORLD, logging to
-/// `log`) and saved as `files` say.
+/// Member k's packing, read or prepared (collectively over MPI_COMM_WORLD, logging to `log`) and saved
+/// as `files` say.
 [[nodiscard]] ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles& files,
                                          std::ostream* log);
 
-/// Copies the packing from rank 0 of `world` to the rank 0 of every group of ranks_per_point ranks,
-/// which the engines need (the time-domain engine: grains on its group's rank 0; the linear
-/// engine: ranks_per_point = 1, on every rank). Collective over `world`.
+/// Copies the packing (spread over `world` in rank order) into every group of ranks_per_point ranks,
+/// spread over the group's ranks: rank q of each group holds the grains of world ranks q, q + p,
+/// q + 2p, ... (p = ranks_per_point). So with one group every rank keeps its own grains, and with
+/// ranks_per_point = 1 every rank holds the whole packing, as the linear engines need; the
+/// time-domain engine takes grains on any rank of its group. The box goes to every rank. Collective
+/// over `world`.
 void share_packing_with_groups(MPI_Comm world, channel::PreparedChannel& packing, int ranks_per_point);
 
 }  // namespace sedwave::forward::experiment

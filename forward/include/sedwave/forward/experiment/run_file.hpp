@@ -3,7 +3,11 @@
 //  * a packing file: the prepared, static packing (grains at full precision, box, preparation
 //    report), reusable by later runs and tables; a LAMMPS data file is written beside it;
 //  * a run file: scene text, packing statistics, layer time series and the measured results.
-// Layouts are listed in docs/scenes.md. Serial: call on the rank that holds the grains (rank 0).
+// Layouts are listed in docs/scenes.md. The packing's functions take a communicator over which the
+// grains are spread, in file order (rank 0's first): no rank holds them all, and rank 0 writes the
+// files taking one rank's grains at a time. Without one: this rank alone, all grains given.
+#include <mpi.h>
+
 #include <filesystem>
 
 #include "sedwave/forward/channel/acoustic.hpp"
@@ -11,16 +15,26 @@
 
 namespace sedwave::forward::experiment {
 
-/// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1).
+/// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1);
+/// collective. The HDF5 file is built in rank 0's memory (56 B per grain) and then written
+/// atomically (io::write_file_atomically).
+void write_packing(MPI_Comm comm, const std::filesystem::path& path, const channel::PreparedChannel& packing,
+                   const std::string& scene_text);
 void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing,
                    const std::string& scene_text);
 /// Writes the packing as a LAMMPS data file (atom_style sphere): type 1 flow grains, 2 the lower
-/// (driven) wall, 3 the upper wall.
+/// (driven) wall, 3 the upper wall; collective.
+void write_packing_lammps_data(MPI_Comm comm, const std::filesystem::path& path,
+                               const channel::PreparedChannel& packing);
 void write_packing_lammps_data(const std::filesystem::path& path, const channel::PreparedChannel& packing);
-/// Reads a packing written by write_packing (grains, box, report statistics).
+/// Reads a packing written by write_packing (grains, box, report statistics); collective: each rank
+/// reads an equal share of the rows, in file order.
+[[nodiscard]] channel::PreparedChannel read_packing(MPI_Comm comm, const std::filesystem::path& path);
 [[nodiscard]] channel::PreparedChannel read_packing(const std::filesystem::path& path);
-/// A hash (io::Fingerprint, 16 hex digits) of a packing's grains and box, bit for bit: the same for
-/// a packing as prepared and as read back from its file, different for any other packing.
+/// A hash (io::Fingerprint, 16 hex digits) of a packing's grains (in rank order) and box, bit for
+/// bit: the same for a packing as prepared and as read back from its file, on any number of ranks;
+/// different for any other packing. Collective; the hash on every rank.
+[[nodiscard]] std::string packing_fingerprint(MPI_Comm comm, const channel::PreparedChannel& packing);
 [[nodiscard]] std::string packing_fingerprint(const channel::PreparedChannel& packing);
 
 /// Writes the run file, atomically (temporary file + rename).

@@ -127,12 +127,19 @@ inline std::size_t rank_for_key(std::int64_t key, int ranks) {
 }
 
 /// The ranks of `comm` that pass `member` = true, as a communicator in the same rank order
-/// (collective over `comm`; get() is MPI_COMM_NULL on the others). Freed with this object.
+/// (collective over `comm`; get() is MPI_COMM_NULL on the others), or the ranks of one colour.
+/// Freed with this object.
 class SubCommunicator {
  public:
   SubCommunicator(MPI_Comm comm, bool member) {
     MPI_Comm_split(comm, member ? 0 : MPI_UNDEFINED, rank(comm), &sub_);
   }
+  /// A colour (>= 0) that picks this rank's communicator when `comm` is cut into several.
+  struct Colour {
+    int value = 0;
+  };
+  /// The ranks of `comm` with this rank's colour, in the same rank order (every rank is in one).
+  SubCommunicator(MPI_Comm comm, Colour colour) { MPI_Comm_split(comm, colour.value, rank(comm), &sub_); }
   ~SubCommunicator() {
     if (sub_ != MPI_COMM_NULL) MPI_Comm_free(&sub_);
   }
@@ -302,6 +309,75 @@ std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outg
   return incoming;
 }
 
+/// Throws std::runtime_error on every rank of `comm` with the message of the lowest rank whose
+/// `error` is not empty, and returns where none has one (collective): ranks that each did their own
+/// part agree on the outcome before going on into a collective that a failed rank would not reach.
+inline void throw_first_failure(MPI_Comm comm, std::string error) {
+  const int me = rank(comm), n = size(comm);
+  const int first_failing = min(comm, error.empty() ? n : me);
+  if (first_failing == n) return;
+  broadcast(comm, error, first_failing);
+  throw std::runtime_error(error);
+}
+
+/// Runs `job` on rank 0 of `comm` with every rank's records, one rank's piece at a time, while the
+/// other ranks send theirs (collective): a file or hash of a spread packing that no rank holds whole.
+/// `job(pieces)` calls `pieces(visit)` up to `passes` times; each call hands visit(std::span<const T>)
+/// every rank's records in rank order, rank 0's own first, so rank 0 holds its own records and one
+/// other rank's at most. Counted in records; a piece beyond `max_count` records goes in several
+/// messages. Whatever fails on rank 0 (the job, or a visit, which skips the pieces after it), the
+/// pieces still sent are received, so no rank is left waiting, and every rank then throws
+/// std::runtime_error with the failure's message.
+template <typename T, class Job>
+void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Job job,
+                         std::size_t max_count = kMaxMpiCount) {
+  constexpr int kPieceTag = 0x7071;
+  const RecordType<T> record;
+  const std::vector<std::uint64_t> counts = all_gather(comm, std::uint64_t{local.size()});
+  std::string error;
+  if (rank(comm) != 0) {
+    for (int pass = 0; pass < passes; ++pass) {
+      detail::in_pieces(local.size(), max_count, [&](std::size_t first, int count) {
+        MPI_Send(local.data() + first, count, record.get(), 0, kPieceTag, comm);
+      });
+    }
+  } else {
+    int done = 0;
+    std::vector<T> piece;
+    const auto pieces = [&](auto&& visit) {
+      if (done == passes) throw std::logic_error("on_root_with_pieces: more passes than announced");
+      ++done;
+      std::string failure;
+      const auto take = [&](std::span<const T> records) {
+        if (!failure.empty()) return;
+        try {
+          visit(records);
+        } catch (const std::exception& e) {
+          failure = *e.what() ? e.what() : "failed on rank 0";
+        }
+      };
+      take(local);
+      for (std::size_t r = 1; r < counts.size(); ++r) {
+        piece.resize(static_cast<std::size_t>(counts[r]));
+        detail::in_pieces(piece.size(), max_count, [&](std::size_t first, int count) {
+          MPI_Recv(piece.data() + first, count, record.get(), static_cast<int>(r), kPieceTag, comm, MPI_STATUS_IGNORE);
+        });
+        take(piece);
+      }
+      if (!failure.empty()) throw std::runtime_error(failure);
+    };
+    try {
+      job(pieces);
+    } catch (const std::exception& e) {
+      error = *e.what() ? e.what() : "failed on rank 0";
+    } catch (...) {  // whatever it is, the other ranks must hear of it
+      error = "failed on rank 0";
+    }
+    while (done < passes) pieces([](std::span<const T>) {});  // receive what the others still send
+  }
+  throw_first_failure(comm, error);
+}
+
 /// Runs `turn` on every rank of `comm` one after another in rank order (rank 0 first), each rank
 /// starting once the one before has finished: ranks writing their own part of one file in turn, so
 /// that no rank holds everything (collective). A token passed along carries the failure so far: once
@@ -327,10 +403,7 @@ void in_turn(MPI_Comm comm, Turn turn) {
     }
   }
   if (me + 1 < n) MPI_Send(&failed, 1, MPI_INT, me + 1, kTokenTag, comm);
-  const int first_failing = min(comm, error.empty() ? n : me);
-  if (first_failing == n) return;
-  broadcast(comm, error, first_failing);
-  throw std::runtime_error(error);
+  throw_first_failure(comm, error);
 }
 
 }  // namespace sedwave::forward::parallel
