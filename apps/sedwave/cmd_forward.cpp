@@ -37,13 +37,12 @@ struct ForwardOptions {
 };
 
 /// The scene's pore fluid and the dashpots it puts beside the contacts' gamma_hat (collective over
-/// `comm`, which holds the packing's grains; printed where `talk`): docs/fluid.md.
-void print_fluid(MPI_Comm comm, const experiment::ChannelScene& scene, const forward::channel::PreparedChannel& packing,
-                 bool talk) {
+/// `comm`, over whose ranks the packing's grains are spread; printed on its rank 0): docs/fluid.md.
+void print_fluid(MPI_Comm comm, const experiment::ChannelScene& scene, const forward::channel::PreparedChannel& packing) {
   if (!scene.drive.fluid) return;
   namespace channel = forward::channel;
   const channel::PackingUnits u = channel::packing_units(comm, packing, scene.contact);
-  if (!talk) return;
+  if (forward::parallel::rank(comm) != 0) return;
   const forward::dem::FluidSpec f = channel::fluid_in_packing_units(*scene.drive.fluid, u);
   const double unit = std::sqrt(u.kappa * u.mass), r = 0.5 * u.diameter;
   std::printf("pore fluid: %s; in sqrt(kappa m): film at the roughness %.3g (two grains of diameter d), drag %.3g "
@@ -65,7 +64,7 @@ int run_linear(const ForwardOptions& o, const experiment::ChannelScene& scene, c
     }
     packing.channel.grains = forward::parallel::gather_on_root(MPI_COMM_WORLD, packing.channel.grains);
     if (mpi.rank() != 0) continue;
-    if (k == 0) print_fluid(MPI_COMM_SELF, scene, packing.channel, talk);
+    if (talk && k == 0) print_fluid(MPI_COMM_SELF, scene, packing.channel);
     reports.push_back(packing.channel.report);
     members.emplace_back(packing.channel, scene.contact, scene.linear, scene.drive.fluid);
   }
@@ -187,7 +186,7 @@ int run_forward(const ForwardOptions& o) {
     std::cout << describe(packing.channel.report) << "\n";
     if (!o.packing_out.empty()) std::cout << "packing written to " << o.packing_out << " (and .data for LAMMPS)\n";
   }
-  print_fluid(MPI_COMM_WORLD, scene, packing.channel, talk);
+  if (!o.quiet) print_fluid(MPI_COMM_WORLD, scene, packing.channel);  // every rank knows o.quiet
   const AcousticResult r = run_acoustic(MPI_COMM_WORLD, packing.channel, scene.contact, scene.drive);
   if (mpi.rank() == 0) {
     experiment::write_run_file(o.out, scene, packing.channel.report, r);

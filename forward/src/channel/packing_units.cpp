@@ -15,11 +15,18 @@ namespace sedwave::forward::channel {
 StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
   std::array<double, 3> v{};  // mean stiffness, mean dashpot, force on the upper wall
   if (parallel::sum(comm, packing.grains.empty() ? 0 : 1) <= 1) {
-    // One rank holds the packing: its contact network, as the linear engine sees it.
+    // One rank holds the packing: its contact network, as the linear engine sees it. A refusal
+    // there (a box too small for the network) reaches every rank.
+    std::string error;
     if (!packing.grains.empty()) {
-      const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
-      v = {n.mean_stiffness, n.mean_dashpot, static_body_force(packing.grains, n, kUpperWallBody).z};
+      try {
+        const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
+        v = {n.mean_stiffness, n.mean_dashpot, static_body_force(packing.grains, n, kUpperWallBody).z};
+      } catch (const std::exception& e) {
+        error = *e.what() ? e.what() : "contact network failed";
+      }
     }
+    parallel::throw_first_failure(comm, error);
     parallel::sum(comm, std::span(v));
   } else {
     // Spread over ranks: the DEM engine's ghosts and lists find the pairs across them.
@@ -35,8 +42,8 @@ StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing, co
 }
 
 PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
-  // Sums on whichever rank holds the grains: flow count, diameters, masses / volumes (density),
-  // lower wall (z + r) and count, upper wall (z - r) and count.
+  // Sums over every rank's grains: flow count, diameters, masses / volumes (density), lower wall
+  // (z + r) and count, upper wall (z - r) and count, flow volume.
   double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   for (const dem::Grain& g : packing.grains) {
     if (g.group == kFlowGroup) {
@@ -69,7 +76,7 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   }
   u.wall_surface = s[3] / s[4];
   u.column_top = s[5] / s[6];
-  const dem::Box box = broadcast_box(comm, packing.box);  // rank 0 holds the packing
+  const dem::Box box = broadcast_box(comm, packing.box);  // as rank 0 holds it
   const double cross_section = box.length(0) * box.length(1);
   u.porosity = 1.0 - s[7] / (cross_section * (u.column_top - u.wall_surface));
   u.damping_scale = std::sqrt(u.kappa * u.mass) / dashpot;

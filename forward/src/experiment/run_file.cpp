@@ -158,7 +158,7 @@ PreparedChannel read_packing(MPI_Comm comm, const std::filesystem::path& path) {
   try {
     p = read_packing_share(comm, path);
   } catch (const std::exception& e) {
-    error = e.what();
+    error = *e.what() ? e.what() : "cannot read the packing " + path.string();
   }
   parallel::throw_first_failure(comm, error);
   return p;

@@ -93,7 +93,9 @@ struct PreparationReport {
 
 struct PreparedChannel {
   dem::Box box;
-  std::vector<dem::Grain> grains;  ///< all grains at rest, on rank 0 only (empty elsewhere)
+  /// Grains at rest: all on rank 0 (empty elsewhere) as prepare_channel returns them; a tiled or
+  /// read packing spread over the ranks.
+  std::vector<dem::Grain> grains;
   PreparationReport report;
 };
 

@@ -43,7 +43,9 @@ struct PackingFiles {
 
 /// A member's packing and where it came from.
 struct ScenePacking {
-  channel::PreparedChannel channel;  ///< the grains spread over MPI_COMM_WORLD in id order
+  /// Spread over MPI_COMM_WORLD: in id order (tiled), in file order (read), or on rank 0 (a column
+  /// prepared whole).
+  channel::PreparedChannel channel;
   bool prepared = false;             ///< prepared now (else read from a file)
   std::string provenance;            ///< in words, for a table's definitions
 };

@@ -16,8 +16,8 @@
 namespace sedwave::forward::experiment {
 
 /// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1);
-/// collective. The HDF5 file is built in rank 0's memory (56 B per grain) and then written
-/// atomically (io::write_file_atomically).
+/// collective. The HDF5 file is built in rank 0's memory (56 B per grain, twice while its image is
+/// copied out) and then written atomically (io::write_file_atomically).
 void write_packing(MPI_Comm comm, const std::filesystem::path& path, const channel::PreparedChannel& packing,
                    const std::string& scene_text);
 void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing,

@@ -20,8 +20,8 @@ inline constexpr double kPulseBandRatio = 8.0;
 /// kPulseBandRatio.
 [[nodiscard]] std::vector<std::vector<double>> pulse_bands(const std::vector<double>& omega_hats);
 
-/// The DEM point function: every point drives the same prepared packing (which must be on rank 0 of
-/// each group; other ranks may hold an empty one) with `drive`, its omega_hat and gamma_hat replaced
+/// The DEM point function: every point drives the same prepared packing (its grains spread over the
+/// ranks of each group in any way, e.g. all on the group's rank 0) with `drive`, its omega_hat and gamma_hat replaced
 /// by the grid point's. With a pulse drive (`drive.pulse` set; its own band is ignored), the first
 /// point of a (gamma_hat, band of pulse_bands(grid.omega_hat)) that a group meets runs one pulse
 /// measuring every grid frequency of that band, and the group's next points of the same band are

@@ -320,61 +320,75 @@ inline void throw_first_failure(MPI_Comm comm, std::string error) {
   throw std::runtime_error(error);
 }
 
-/// Runs `job` on rank 0 of `comm` with every rank's records, one rank's piece at a time, while the
-/// other ranks send theirs (collective): a file or hash of a spread packing that no rank holds whole.
+/// Runs `job` on rank 0 of `comm` with every rank's records, a chunk at a time, while the other
+/// ranks send theirs (collective): a file or hash of a spread packing that no rank holds whole.
 /// `job(pieces)` calls `pieces(visit)` up to `passes` times; each call hands visit(std::span<const T>)
-/// every rank's records in rank order, rank 0's own first, so rank 0 holds its own records and one
-/// other rank's at most. Counted in records; a piece beyond `max_count` records goes in several
-/// messages. Whatever fails on rank 0 (the job, or a visit, which skips the pieces after it), the
-/// pieces still sent are received, so no rank is left waiting, and every rank then throws
-/// std::runtime_error with the failure's message.
+/// every rank's records in rank order (rank 0's own first, whole; then the others' in chunks of at
+/// most 8 MiB and `max_count` records, each message one chunk), so rank 0 holds its own records and
+/// one chunk of another rank's. The chunk's buffer is allocated before anything is sent, and a pass
+/// never stops half way: whatever fails on rank 0 (the buffer, the job, or a visit, which skips the
+/// records after it), every record sent is received, so no rank is left waiting, and every rank then
+/// throws std::runtime_error with the failure's message.
 template <typename T, class Job>
 void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Job job,
                          std::size_t max_count = kMaxMpiCount) {
   constexpr int kPieceTag = 0x7071;
+  constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
+  const std::size_t chunk = std::min(max_count, std::max<std::size_t>(1, kChunkBytes / sizeof(T)));
   const RecordType<T> record;
   const std::vector<std::uint64_t> counts = all_gather(comm, std::uint64_t{local.size()});
+  const bool root = rank(comm) == 0;
+  std::vector<T> buffer;
   std::string error;
-  if (rank(comm) != 0) {
+  if (root) {
+    try {
+      buffer.resize(chunk);
+    } catch (const std::exception&) {
+      error = "cannot hold a chunk of " + std::to_string(chunk) + " records on rank 0";
+    }
+  }
+  throw_first_failure(comm, error);
+  if (!root) {
     for (int pass = 0; pass < passes; ++pass) {
-      detail::in_pieces(local.size(), max_count, [&](std::size_t first, int count) {
+      detail::in_pieces(local.size(), chunk, [&](std::size_t first, int count) {
         MPI_Send(local.data() + first, count, record.get(), 0, kPieceTag, comm);
       });
     }
-  } else {
-    int done = 0;
-    std::vector<T> piece;
-    const auto pieces = [&](auto&& visit) {
-      if (done == passes) throw std::logic_error("on_root_with_pieces: more passes than announced");
-      ++done;
-      std::string failure;
-      const auto take = [&](std::span<const T> records) {
-        if (!failure.empty()) return;
-        try {
-          visit(records);
-        } catch (const std::exception& e) {
-          failure = *e.what() ? e.what() : "failed on rank 0";
-        }
-      };
-      take(local);
-      for (std::size_t r = 1; r < counts.size(); ++r) {
-        piece.resize(static_cast<std::size_t>(counts[r]));
-        detail::in_pieces(piece.size(), max_count, [&](std::size_t first, int count) {
-          MPI_Recv(piece.data() + first, count, record.get(), static_cast<int>(r), kPieceTag, comm, MPI_STATUS_IGNORE);
-        });
-        take(piece);
-      }
-      if (!failure.empty()) throw std::runtime_error(failure);
-    };
-    try {
-      job(pieces);
-    } catch (const std::exception& e) {
-      error = *e.what() ? e.what() : "failed on rank 0";
-    } catch (...) {  // whatever it is, the other ranks must hear of it
-      error = "failed on rank 0";
-    }
-    while (done < passes) pieces([](std::span<const T>) {});  // receive what the others still send
+    throw_first_failure(comm, error);
+    return;
   }
+  int done = 0;
+  const auto pieces = [&](auto&& visit) {
+    if (done == passes) throw std::logic_error("on_root_with_pieces: more passes than announced");
+    ++done;
+    std::string failure;
+    const auto take = [&](std::span<const T> records) {
+      if (!failure.empty()) return;
+      try {
+        visit(records);
+      } catch (const std::exception& e) {
+        failure = *e.what() ? e.what() : "failed on rank 0";
+      } catch (...) {  // whatever it is, the pass goes on receiving
+        failure = "failed on rank 0";
+      }
+    };
+    take(local);
+    for (std::size_t r = 1; r < counts.size(); ++r) {
+      detail::in_pieces(static_cast<std::size_t>(counts[r]), chunk, [&](std::size_t, int count) {
+        MPI_Recv(buffer.data(), count, record.get(), static_cast<int>(r), kPieceTag, comm, MPI_STATUS_IGNORE);
+        if (count > 0) take(std::span<const T>(buffer.data(), static_cast<std::size_t>(count)));
+      });
+    }
+    if (!failure.empty()) throw std::runtime_error(failure);
+  };
+  try {
+    job(pieces);
+  } catch (const std::exception& e) {
+    error = *e.what() ? e.what() : "failed on rank 0";
+  } catch (...) {  // whatever it is, the other ranks must hear of it
+    error = "failed on rank 0";
+  }
+  while (done < passes) pieces([](std::span<const T>) {});  // receive what the others still send
   throw_first_failure(comm, error);
 }
 
