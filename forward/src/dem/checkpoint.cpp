@@ -8,28 +8,24 @@
 //   /bodies      displacement, velocity, contact_force [B,3]
 //   /domain      boundaries [ranks+1]; grain_rows, history_rows [ranks]: each rank's rows, in rank order
 // No rank holds all grains, writing or reading. A small checkpoint on one rank is one file of
-// ordinary datasets. Otherwise every rank writes its rows in pieces of its own,
-// PATH.piece-TOKEN-RANK-PART (the same groups and datasets, at most CheckpointSettings::piece_rows
-// rows each, so a checkpoint adds one piece's memory to a rank's, whatever it holds), and /grains
-// and /history of PATH are HDF5 virtual datasets that join the pieces in rank order (any HDF5
-// reader sees one file; the pieces must stay beside it). Parallel HDF5 is not needed, and every
-// file is still written whole in memory and renamed into place: the pieces first under a fresh
-// TOKEN, then PATH, which is what switches a restart to the new state; pieces no longer named by
-// PATH are removed after that. A kill at any moment leaves the old checkpoint or the new one whole.
+// ordinary datasets. Otherwise every rank writes its rows in pieces of its own (dem/pieces.hpp: at
+// most CheckpointSettings::piece_rows rows each, so a checkpoint adds one piece's memory to a
+// rank's, whatever it holds), and /grains and /history of PATH are virtual datasets that join them;
+// PATH is replaced last, which is what switches a restart to the new state. A kill at any moment
+// leaves the old checkpoint or the new one whole.
 // Reading, each rank reads its own rows: with the same rank count, the rows it wrote (and its slab
 // boundaries); with another, an equal share of rows, and the engine then repartitions; each contact-
 // history record read then goes to the ranks holding its grains.
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <map>
-#include <random>
 #include <span>
 #include <string>
 #include <unordered_map>
 
 #include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/dem/engine.hpp"
+#include "sedwave/forward/dem/pieces.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
@@ -117,132 +113,20 @@ void write_rows(hid_t file, const GrainArrays& grains, std::size_t first, std::s
   io::write(h, "shear", shear.data(), a.size(), 3);
 }
 
-/// The datasets of write_rows, by group: name, element type, columns (0: one-dimensional).
-struct RowDataset {
-  const char* group;
-  const char* name;
-  hid_t type;
-  std::size_t columns;
-};
-
+/// The datasets of write_rows: grains (kind 0) and contact-history records (kind 1).
 std::vector<RowDataset> row_datasets(bool spins) {
-  std::vector<RowDataset> out{{"grains", "id", H5T_NATIVE_INT64, 0},   {"grains", "group", H5T_NATIVE_INT32, 0},
-                              {"grains", "body", H5T_NATIVE_INT32, 0}, {"grains", "radius", H5T_NATIVE_DOUBLE, 0},
-                              {"grains", "mass", H5T_NATIVE_DOUBLE, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3},
-                              {"grains", "velocity", H5T_NATIVE_DOUBLE, 3}, {"grains", "force", H5T_NATIVE_DOUBLE, 3}};
+  std::vector<RowDataset> out{{"grains", "id", H5T_NATIVE_INT64, 0, 0},   {"grains", "group", H5T_NATIVE_INT32, 0, 0},
+                              {"grains", "body", H5T_NATIVE_INT32, 0, 0}, {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
+                              {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0},
+                              {"grains", "velocity", H5T_NATIVE_DOUBLE, 3, 0}, {"grains", "force", H5T_NATIVE_DOUBLE, 3, 0}};
   if (spins) {
-    out.push_back({"grains", "angular_velocity", H5T_NATIVE_DOUBLE, 3});
-    out.push_back({"grains", "torque", H5T_NATIVE_DOUBLE, 3});
+    out.push_back({"grains", "angular_velocity", H5T_NATIVE_DOUBLE, 3, 0});
+    out.push_back({"grains", "torque", H5T_NATIVE_DOUBLE, 3, 0});
   }
-  out.push_back({"history", "a", H5T_NATIVE_INT64, 0});
-  out.push_back({"history", "b", H5T_NATIVE_INT64, 0});
-  out.push_back({"history", "shear", H5T_NATIVE_DOUBLE, 3});
+  out.push_back({"history", "a", H5T_NATIVE_INT64, 0, 1});
+  out.push_back({"history", "b", H5T_NATIVE_INT64, 0, 1});
+  out.push_back({"history", "shear", H5T_NATIVE_DOUBLE, 3, 1});
   return out;
-}
-
-/// One piece file: a part of one rank's rows.
-struct Piece {
-  int rank = 0;
-  std::int64_t part = 0;
-  std::int64_t grain_rows = 0, history_rows = 0;
-};
-
-/// The pieces of every rank in file order (rank by rank, part by part), from each rank's row counts:
-/// at most `piece_rows` grains and history records per piece, at least one piece per rank.
-std::vector<Piece> piece_layout(const std::vector<std::int64_t>& grain_rows, const std::vector<std::int64_t>& history_rows,
-                                std::int64_t piece_rows) {
-  std::vector<Piece> out;
-  for (std::size_t r = 0; r < grain_rows.size(); ++r) {
-    const std::int64_t most = std::max(grain_rows[r], history_rows[r]);
-    const std::int64_t parts = std::max<std::int64_t>(1, (most + piece_rows - 1) / piece_rows);
-    for (std::int64_t k = 0; k < parts; ++k) {
-      const auto rows_in = [&](std::int64_t n) { return std::clamp<std::int64_t>(n - k * piece_rows, 0, piece_rows); };
-      out.push_back({static_cast<int>(r), k, rows_in(grain_rows[r]), rows_in(history_rows[r])});
-    }
-  }
-  return out;
-}
-
-std::string piece_name(const std::filesystem::path& path, const std::string& token, const Piece& piece) {
-  return path.filename().string() + ".piece-" + token + "-" + std::to_string(piece.rank) + "-" +
-         std::to_string(piece.part);
-}
-
-/// A file name as H5Pset_virtual takes it: '%' starts a format there, so a literal one is "%%".
-std::string vds_file_name(const std::string& name) {
-  std::string out;
-  for (const char c : name) out += c == '%' ? std::string("%%") : std::string(1, c);
-  return out;
-}
-
-/// Throws unless every piece that `dataset` (a virtual one; an ordinary one has none) maps is beside
-/// the checkpoint at `path`: HDF5 reads a missing source as fill values, so a checkpoint copied
-/// without its pieces would restore grains of zero mass and radius without a word.
-void require_pieces(hid_t dataset, const std::filesystem::path& path) {
-  io::Handle create(H5Dget_create_plist(dataset), H5Pclose, "dataset creation properties of " + path.string());
-  if (H5Pget_layout(create) != H5D_VIRTUAL) return;
-  std::size_t mappings = 0;
-  io::check(H5Pget_virtual_count(create, &mappings), "count the pieces of " + path.string());
-  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  for (std::size_t k = 0; k < mappings; ++k) {
-    const ssize_t length = H5Pget_virtual_filename(create, k, nullptr, 0);
-    if (length < 0) throw std::runtime_error("DEM restart: cannot read the piece names of " + path.string());
-    std::string stored(static_cast<std::size_t>(length) + 1, '\0');
-    H5Pget_virtual_filename(create, k, stored.data(), stored.size());
-    stored.resize(static_cast<std::size_t>(length));
-    std::string name;  // undo vds_file_name
-    for (std::size_t i = 0; i < stored.size(); ++i) {
-      name += stored[i];
-      if (stored[i] == '%' && i + 1 < stored.size() && stored[i + 1] == '%') ++i;
-    }
-    if (!std::filesystem::exists(folder / name)) {
-      throw std::runtime_error("DEM restart: " + path.string() + " lacks its piece " + (folder / name).string() +
-                               " (a checkpoint written on several ranks is the file and its .piece-* files "
-                               "together; copy them together)");
-    }
-  }
-}
-
-/// A virtual dataset `d.group/d.name` under `file` that joins the pieces' datasets of the same
-/// name in order. Piece names are relative: HDF5 looks for them beside the checkpoint.
-void join_pieces(hid_t file, const RowDataset& d, const std::vector<Piece>& pieces, const std::filesystem::path& path,
-                 const std::string& token) {
-  const bool grains = std::string(d.group) == "grains";
-  const auto rows = [&](const Piece& p) { return static_cast<hsize_t>(grains ? p.grain_rows : p.history_rows); };
-  hsize_t total = 0;
-  for (const Piece& p : pieces) total += rows(p);
-  const int dims = d.columns ? 2 : 1;
-  const std::array<hsize_t, 2> extent{total, d.columns};
-  io::Handle space(H5Screate_simple(dims, extent.data(), nullptr), H5Sclose, "dataspace " + std::string(d.name));
-  io::Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
-  const std::string source = "/" + std::string(d.group) + "/" + d.name;
-  hsize_t first = 0;
-  for (const Piece& p : pieces) {
-    if (rows(p) == 0) continue;
-    const std::array<hsize_t, 2> start{first, 0}, count{rows(p), d.columns};
-    io::check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-              "select rows of " + source);
-    io::Handle piece(H5Screate_simple(dims, count.data(), nullptr), H5Sclose, "dataspace of a piece");
-    const std::string name = piece_name(path, token, p);
-    io::check(H5Pset_virtual(create, space, vds_file_name(name).c_str(), source.c_str(), piece),
-              "map " + name + source);
-    first += count[0];
-  }
-  io::check(H5Sselect_all(space), "select " + source);
-  io::Handle group = io::exists(file, d.group) ? io::open_group(file, d.group) : io::create_group(file, d.group);
-  io::Handle set(H5Dcreate2(group, d.name, d.type, space, H5P_DEFAULT, create, H5P_DEFAULT), H5Dclose,
-                 "create dataset " + source);
-}
-
-/// Removes the pieces of earlier checkpoints at `path` (those not of `token`).
-void remove_stale_pieces(const std::filesystem::path& path, const std::string& token) {
-  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  const std::string prefix = path.filename().string() + ".piece-";
-  std::error_code ignored;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, ignored)) {
-    const std::string name = entry.path().filename().string();
-    if (name.starts_with(prefix) && !name.starts_with(prefix + token + "-")) std::filesystem::remove(entry.path(), ignored);
-  }
 }
 
 /// Throws on every rank when any rank has an `error` (its own message where it has one, after
@@ -327,17 +211,12 @@ void Engine::write_checkpoint(const std::string& path) {
   const std::size_t n = grains_.n_local();
   const std::vector<std::int64_t> grain_rows = parallel::all_gather(comm, static_cast<std::int64_t>(n));
   const std::vector<std::int64_t> history_rows = parallel::all_gather(comm, static_cast<std::int64_t>(history.size()));
-  const std::vector<Piece> pieces =
-      piece_layout(grain_rows, history_rows, static_cast<std::int64_t>(std::max<std::size_t>(settings_.checkpoint.piece_rows, 1)));
+  const std::vector<Piece> pieces = piece_layout(
+      {grain_rows, history_rows}, static_cast<std::int64_t>(std::max<std::size_t>(settings_.checkpoint.piece_rows, 1)));
   const bool in_pieces = pieces.size() > 1;
 
   // A fresh token per checkpoint: the pieces of the previous one stay intact until PATH names these.
-  std::uint64_t token_bits = 0;
-  if (rank == 0) token_bits = (std::uint64_t{std::random_device{}()} << 32) ^ std::random_device{}();
-  parallel::broadcast(comm, std::span(&token_bits, 1));
-  char token_text[17];
-  std::snprintf(token_text, sizeof token_text, "%016llx", static_cast<unsigned long long>(token_bits));
-  const std::string token = token_text;
+  const std::string token = fresh_piece_token(comm);
   const std::filesystem::path target(path);
 
   std::string error;
@@ -348,12 +227,12 @@ void Engine::write_checkpoint(const std::string& path) {
       for (const Piece& p : pieces) {
         if (p.rank != rank) continue;
         io::write_file_atomically(target.parent_path() / piece_name(target, token, p), [&](const io::Handle& file) {
-          write_rows(file, grains_, static_cast<std::size_t>(first_grain), static_cast<std::size_t>(p.grain_rows),
+          write_rows(file, grains_, static_cast<std::size_t>(first_grain), static_cast<std::size_t>(p.rows[0]),
                      std::span(history).subspan(static_cast<std::size_t>(first_record),
-                                                static_cast<std::size_t>(p.history_rows)));
+                                                static_cast<std::size_t>(p.rows[1])));
         });
-        first_grain += p.grain_rows;
-        first_record += p.history_rows;
+        first_grain += p.rows[0];
+        first_record += p.rows[1];
       }
     } catch (const std::exception& e) {
       error = e.what();
@@ -462,7 +341,7 @@ void Engine::restore_checkpoint(const std::string& path) {
       return {r * n / p, (r + 1) * n / p - r * n / p};
     };
     io::Handle g(H5Gopen2(file, "grains", H5P_DEFAULT), H5Gclose, "open /grains");
-    require_pieces(io::Handle(H5Dopen2(g, "id", H5P_DEFAULT), H5Dclose, "open /grains/id"), path);
+    require_pieces(io::Handle(H5Dopen2(g, "id", H5P_DEFAULT), H5Dclose, "open /grains/id"), path, "DEM restart");
     const bool spins = grains_.rotation();
     if (spins && !io::exists(g, "angular_velocity"))
       throw std::runtime_error("DEM restart: " + path + " has no spins but the contact model rotates grains");
@@ -476,7 +355,7 @@ void Engine::restore_checkpoint(const std::string& path) {
     pending_history_.clear();
     if (needs_history(model_)) {
       io::Handle h(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, "open /history");
-      require_pieces(io::Handle(H5Dopen2(h, "a", H5P_DEFAULT), H5Dclose, "open /history/a"), path);
+      require_pieces(io::Handle(H5Dopen2(h, "a", H5P_DEFAULT), H5Dclose, "open /history/a"), path, "DEM restart");
       const auto [first_record, record_count] = rank_rows("history_rows", io::rows(h, "a"));
       for (std::size_t done = 0; done < record_count; done += kReadChunk) {
         const std::size_t first = first_record + done, count = std::min(kReadChunk, record_count - done);

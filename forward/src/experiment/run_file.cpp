@@ -8,6 +8,7 @@
 #include "sedwave/io/hdf5.hpp"
 #include "run_file_parts.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/dem/pieces.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/io/fingerprint.hpp"
 #include "sedwave/version.hpp"
@@ -16,53 +17,139 @@ namespace sedwave::forward::experiment {
 
 using namespace channel;  // the files hold the channel's packings and measurements
 
-void write_packing(MPI_Comm comm, const std::filesystem::path& path, const PreparedChannel& p,
-                   const std::string& scene_text) {
-  const auto n = static_cast<std::size_t>(parallel::sum(comm, static_cast<std::int64_t>(p.grains.size())));
+namespace {
+
+/// The grains' columns as a packing file stores them (position as rows of x y z).
+struct GrainColumns {
+  std::vector<std::int64_t> id;
+  std::vector<std::int32_t> group, body;
+  std::vector<double> radius, mass, position;
+  explicit GrainColumns(std::span<const dem::Grain> grains) {
+    for (const dem::Grain& g : grains) {
+      id.push_back(g.id);
+      group.push_back(g.group);
+      body.push_back(g.body);
+      radius.push_back(g.radius);
+      mass.push_back(g.mass);
+      position.insert(position.end(), {g.position.x, g.position.y, g.position.z});
+    }
+  }
+};
+
+/// /grains of a packing file, as rows of one kind (for files written in pieces).
+const dem::RowDataset kGrainDatasets[] = {
+    {"grains", "id", H5T_NATIVE_INT64, 0, 0},     {"grains", "group", H5T_NATIVE_INT32, 0, 0},
+    {"grains", "body", H5T_NATIVE_INT32, 0, 0},   {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
+    {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0}};
+
+/// Rows [row, row + grains.size()) of the /grains datasets under `grains_group`, created beforehand.
+void write_grain_rows(hid_t grains_group, hsize_t row, std::span<const dem::Grain> grains) {
+  const hsize_t count = grains.size();
+  if (count == 0) return;
+  const GrainColumns c(grains);
+  io::write_block(grains_group, "id", {row}, {count}, c.id.data());
+  io::write_block(grains_group, "group", {row}, {count}, c.group.data());
+  io::write_block(grains_group, "body", {row}, {count}, c.body.data());
+  io::write_block(grains_group, "radius", {row}, {count}, c.radius.data());
+  io::write_block(grains_group, "mass", {row}, {count}, c.mass.data());
+  io::write_block(grains_group, "position", {row, 0}, {count, 3}, c.position.data());
+}
+
+/// /grains with `rows` rows, to be filled by write_grain_rows.
+io::Handle create_grain_datasets(hid_t file, std::size_t rows) {
+  io::Handle grains = io::create_group(file, "grains");
+  io::create_dataset<std::int64_t>(grains, "id", rows);
+  io::create_dataset<std::int32_t>(grains, "group", rows);
+  io::create_dataset<std::int32_t>(grains, "body", rows);
+  io::create_dataset<double>(grains, "radius", rows);
+  io::create_dataset<double>(grains, "mass", rows);
+  io::create_dataset<double>(grains, "position", rows, 3);
+  return grains;
+}
+
+/// A packing file's attributes, /box and /preparation; `grains` writes /grains.
+template <class Grains>
+void fill_packing_file(hid_t file, const PreparedChannel& p, const std::string& scene_text, Grains&& grains) {
+  io::write_string_attribute(file, "sedwave_version", kVersion);
+  io::write_string_attribute(file, "scene", scene_text);
+  io::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
+  grains();
+  io::Handle box = io::create_group(file, "box");
+  const double bounds[6] = {p.box.lo.x, p.box.lo.y, p.box.lo.z, p.box.hi.x, p.box.hi.y, p.box.hi.z};
+  io::write(box, "bounds", bounds, 2, 3);
+  const std::int32_t periodic[3] = {p.box.periodic[0], p.box.periodic[1], p.box.periodic[2]};
+  io::write(box, "periodic", periodic, 3);
+  io::Handle stats = io::create_group(file, "preparation");
+  write_stats(stats, p.report);
+}
+
+/// One file, built on rank 0 from every rank's grains in turn.
+void write_packing_whole(MPI_Comm comm, const std::filesystem::path& path, const PreparedChannel& p,
+                         const std::string& scene_text, std::size_t rows) {
   parallel::on_root_with_pieces(comm, std::span(p.grains), 1, [&](auto&& pieces) {
     io::write_file_atomically(path, [&](hid_t file) {
-      io::write_string_attribute(file, "sedwave_version", kVersion);
-      io::write_string_attribute(file, "scene", scene_text);
-      io::write_string_attribute(file, "units", "lengths in mean grain diameters; masses and forces in scene units");
-      io::Handle grains = io::create_group(file, "grains");
-      const io::Handle sets[] = {io::create_dataset<std::int64_t>(grains, "id", n),
-                                 io::create_dataset<std::int32_t>(grains, "group", n),
-                                 io::create_dataset<std::int32_t>(grains, "body", n),
-                                 io::create_dataset<double>(grains, "radius", n),
-                                 io::create_dataset<double>(grains, "mass", n),
-                                 io::create_dataset<double>(grains, "position", n, 3)};
-      hsize_t row = 0;
-      pieces([&](std::span<const dem::Grain> piece) {
-        const hsize_t count = piece.size();
-        if (count == 0) return;
-        std::vector<std::int64_t> id;
-        std::vector<std::int32_t> group, body;
-        std::vector<double> radius, mass, position;
-        for (const dem::Grain& g : piece) {
-          id.push_back(g.id);
-          group.push_back(g.group);
-          body.push_back(g.body);
-          radius.push_back(g.radius);
-          mass.push_back(g.mass);
-          position.insert(position.end(), {g.position.x, g.position.y, g.position.z});
-        }
-        io::write_block(grains, "id", {row}, {count}, id.data());
-        io::write_block(grains, "group", {row}, {count}, group.data());
-        io::write_block(grains, "body", {row}, {count}, body.data());
-        io::write_block(grains, "radius", {row}, {count}, radius.data());
-        io::write_block(grains, "mass", {row}, {count}, mass.data());
-        io::write_block(grains, "position", {row, 0}, {count, 3}, position.data());
-        row += count;
+      fill_packing_file(file, p, scene_text, [&] {
+        const io::Handle grains = create_grain_datasets(file, rows);
+        hsize_t row = 0;
+        pieces([&](std::span<const dem::Grain> chunk) {
+          write_grain_rows(grains, row, chunk);
+          row += chunk.size();
+        });
       });
-      io::Handle box = io::create_group(file, "box");
-      const double bounds[6] = {p.box.lo.x, p.box.lo.y, p.box.lo.z, p.box.hi.x, p.box.hi.y, p.box.hi.z};
-      io::write(box, "bounds", bounds, 2, 3);
-      const std::int32_t periodic[3] = {p.box.periodic[0], p.box.periodic[1], p.box.periodic[2]};
-      io::write(box, "periodic", periodic, 3);
-      io::Handle stats = io::create_group(file, "preparation");
-      write_stats(stats, p.report);
     });
+    dem::remove_stale_pieces(path, "");  // of an earlier file at this path written in pieces
   });
+}
+
+/// Every rank's grains in piece files of its own, joined by PATH (dem/pieces.hpp).
+void write_packing_in_pieces(MPI_Comm comm, const std::filesystem::path& path, const PreparedChannel& p,
+                             const std::string& scene_text, const std::vector<std::int64_t>& rows,
+                             std::int64_t piece_rows) {
+  const std::vector<dem::Piece> pieces = dem::piece_layout({rows}, piece_rows);
+  const std::string token = dem::fresh_piece_token(comm);
+  const int rank = parallel::rank(comm);
+  std::string error;
+  try {
+    std::size_t first = 0;
+    for (const dem::Piece& piece : pieces) {
+      if (piece.rank != rank) continue;
+      const auto count = static_cast<std::size_t>(piece.rows[0]);
+      io::write_file_atomically(path.parent_path() / dem::piece_name(path, token, piece), [&](hid_t file) {
+        write_grain_rows(create_grain_datasets(file, count), 0, std::span(p.grains).subspan(first, count));
+      });
+      first += count;
+    }
+  } catch (const std::exception& e) {
+    error = *e.what() ? e.what() : "cannot write a piece of " + path.string();
+  }
+  parallel::throw_first_failure(comm, error);
+  if (rank == 0) {
+    try {
+      io::write_file_atomically(path, [&](hid_t file) {
+        fill_packing_file(file, p, scene_text, [&] {
+          for (const dem::RowDataset& d : kGrainDatasets) dem::join_pieces(file, d, pieces, path, token);
+        });
+      });
+      dem::remove_stale_pieces(path, token);
+    } catch (const std::exception& e) {
+      error = *e.what() ? e.what() : "cannot write " + path.string();
+    }
+  }
+  parallel::throw_first_failure(comm, error);
+}
+
+}  // namespace
+
+void write_packing(MPI_Comm comm, const std::filesystem::path& path, const PreparedChannel& p,
+                   const std::string& scene_text, PackingPieces pieces) {
+  const std::vector<std::int64_t> rows = parallel::all_gather(comm, static_cast<std::int64_t>(p.grains.size()));
+  std::int64_t total = 0;
+  for (const std::int64_t n : rows) total += n;
+  if (total <= pieces.whole_rows) {
+    write_packing_whole(comm, path, p, scene_text, static_cast<std::size_t>(total));
+  } else {
+    write_packing_in_pieces(comm, path, p, scene_text, rows, std::max<std::int64_t>(pieces.piece_rows, 1));
+  }
   std::filesystem::path data = path;
   data.replace_extension(".data");
   write_packing_lammps_data(comm, data, p);
@@ -108,6 +195,7 @@ namespace {
 PreparedChannel read_packing_share(MPI_Comm comm, const std::filesystem::path& path) {
   io::Handle file = io::open_file(path.string());
   io::Handle grains = io::open_group(file, "grains");
+  dem::require_pieces(io::open_dataset(grains, "id"), path, "packing");
   const std::size_t rows = io::rows(grains, "id");
   // This rank's share of the rows: contiguous, in file order.
   const auto share = [&](int r) {

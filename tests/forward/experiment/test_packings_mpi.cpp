@@ -90,6 +90,51 @@ TEST_F(SpreadPacking, WrittenFromSharesAreTheFilesOneRankWrites) {
   }
 }
 
+/// The piece files beside `path` (PATH.piece-*).
+std::vector<std::filesystem::path> pieces_of(const std::filesystem::path& path) {
+  std::vector<std::filesystem::path> out;
+  for (const auto& entry : std::filesystem::directory_iterator(path.parent_path())) {
+    if (entry.path().filename().string().starts_with(path.filename().string() + ".piece-")) out.push_back(entry.path());
+  }
+  return out;
+}
+
+TEST_F(SpreadPacking, ALargePackingIsWrittenInPiecesAndReadAsOneFile) {
+  std::string dir = (std::filesystem::temp_directory_path() / ("sedwave_pieces_" + std::to_string(::getpid()))).string();
+  parallel::broadcast(MPI_COMM_WORLD, dir);
+  if (rank() == 0) std::filesystem::create_directories(dir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::filesystem::path path = dir + "/packing.h5";
+  // "Large" here: more than 100 grains in all, pieces of at most 128 (each rank's third in 3).
+  write_packing(MPI_COMM_WORLD, path, spread_, "scene text", {100, 128});
+  const std::size_t pieces = pieces_of(path).size();
+  EXPECT_EQ(pieces, 3u * static_cast<std::size_t>(ranks()));
+  if (rank() == 0) {
+    const channel::PreparedChannel back = read_packing(path);
+    expect_same_grains(back.grains, whole_.grains);
+    EXPECT_EQ(back.box.hi, whole_.box.hi);
+    EXPECT_EQ(back.report.pressure, whole_.report.pressure);
+  }
+  expect_same_grains(read_packing(MPI_COMM_WORLD, path).grains, spread_.grains);
+
+  // A piece left behind when the file was copied: refused on every rank, naming the piece.
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank() == 0) std::filesystem::remove(pieces_of(path).back());
+  MPI_Barrier(MPI_COMM_WORLD);
+  try {
+    (void)read_packing(MPI_COMM_WORLD, path);
+    ADD_FAILURE() << "rank " << rank() << " read a packing without its piece";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("lacks its piece"), std::string::npos) << e.what();
+  }
+  // Written again as one file: the old pieces go.
+  write_packing(MPI_COMM_WORLD, path, spread_, "scene text");
+  MPI_Barrier(MPI_COMM_WORLD);
+  EXPECT_TRUE(pieces_of(path).empty());
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank() == 0) std::filesystem::remove_all(dir);
+}
+
 TEST_F(SpreadPacking, StaticContactsAndUnitsAreTheOneRankNetworks) {
   dem::ContactSpec hertz;
   hertz.normal = "hertz";

@@ -8,6 +8,7 @@
 // files taking one rank's grains at a time. Without one: this rank alone, all grains given.
 #include <mpi.h>
 
+#include <cstdint>
 #include <filesystem>
 
 #include "sedwave/forward/channel/acoustic.hpp"
@@ -15,11 +16,19 @@
 
 namespace sedwave::forward::experiment {
 
+/// When a packing file is written in pieces (dem/pieces.hpp), and how large they are.
+struct PackingPieces {
+  /// Up to this many grains, one file, built in rank 0's memory (56 B per grain, twice while its
+  /// image is copied out: 112 MiB at most) from every rank's grains in turn.
+  std::int64_t whole_rows = std::int64_t{1} << 20;
+  /// Beyond: every rank writes its grains in piece files of at most this many, PATH joining them.
+  std::int64_t piece_rows = std::int64_t{1} << 18;
+};
+
 /// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1);
-/// collective. The HDF5 file is built in rank 0's memory (56 B per grain, twice while its image is
-/// copied out) and then written atomically (io::write_file_atomically).
+/// collective, atomic (a failure on any rank throws on every rank and leaves the old files).
 void write_packing(MPI_Comm comm, const std::filesystem::path& path, const channel::PreparedChannel& packing,
-                   const std::string& scene_text);
+                   const std::string& scene_text, PackingPieces pieces = {});
 void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing,
                    const std::string& scene_text);
 /// Writes the packing as a LAMMPS data file (atom_style sphere): type 1 flow grains, 2 the lower
@@ -28,7 +37,7 @@ void write_packing_lammps_data(MPI_Comm comm, const std::filesystem::path& path,
                                const channel::PreparedChannel& packing);
 void write_packing_lammps_data(const std::filesystem::path& path, const channel::PreparedChannel& packing);
 /// Reads a packing written by write_packing (grains, box, report statistics); collective: each rank
-/// reads an equal share of the rows, in file order.
+/// reads an equal share of the rows, in file order. Refused, naming it, where a piece is missing.
 [[nodiscard]] channel::PreparedChannel read_packing(MPI_Comm comm, const std::filesystem::path& path);
 [[nodiscard]] channel::PreparedChannel read_packing(const std::filesystem::path& path);
 /// A hash (io::Fingerprint, 16 hex digits) of a packing's grains (in rank order) and box, bit for
