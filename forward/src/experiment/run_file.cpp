@@ -36,11 +36,13 @@ struct GrainColumns {
   }
 };
 
-/// /grains of a packing file, as rows of one kind (for files written in pieces).
-const dem::RowDataset kGrainDatasets[] = {
-    {"grains", "id", H5T_NATIVE_INT64, 0, 0},     {"grains", "group", H5T_NATIVE_INT32, 0, 0},
-    {"grains", "body", H5T_NATIVE_INT32, 0, 0},   {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
-    {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0}};
+/// /grains of a packing file, as rows of one kind (for files written in pieces). A function: the
+/// H5T_NATIVE_* ids exist once HDF5 is open.
+std::vector<dem::RowDataset> grain_datasets() {
+  return {{"grains", "id", H5T_NATIVE_INT64, 0, 0},     {"grains", "group", H5T_NATIVE_INT32, 0, 0},
+          {"grains", "body", H5T_NATIVE_INT32, 0, 0},   {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
+          {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0}};
+}
 
 /// Rows [row, row + grains.size()) of the /grains datasets under `grains_group`, created beforehand.
 void write_grain_rows(hid_t grains_group, hsize_t row, std::span<const dem::Grain> grains) {
@@ -121,18 +123,22 @@ void write_packing_in_pieces(MPI_Comm comm, const std::filesystem::path& path, c
     }
   } catch (const std::exception& e) {
     error = *e.what() ? e.what() : "cannot write a piece of " + path.string();
+  } catch (...) {  // whatever it is, the other ranks must hear of it
+    error = "cannot write a piece of " + path.string();
   }
   parallel::throw_first_failure(comm, error);
   if (rank == 0) {
     try {
       io::write_file_atomically(path, [&](hid_t file) {
         fill_packing_file(file, p, scene_text, [&] {
-          for (const dem::RowDataset& d : kGrainDatasets) dem::join_pieces(file, d, pieces, path, token);
+          for (const dem::RowDataset& d : grain_datasets()) dem::join_pieces(file, d, pieces, path, token);
         });
       });
       dem::remove_stale_pieces(path, token);
     } catch (const std::exception& e) {
       error = *e.what() ? e.what() : "cannot write " + path.string();
+    } catch (...) {
+      error = "cannot write " + path.string();
     }
   }
   parallel::throw_first_failure(comm, error);

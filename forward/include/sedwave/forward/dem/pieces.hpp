@@ -4,8 +4,9 @@
 // each), and PATH's row datasets are HDF5 virtual datasets that join the pieces in rank order, so
 // any HDF5 reader sees one file (the pieces must stay beside it). Parallel HDF5 is not needed, and
 // every file is still written whole in memory and renamed into place: the pieces first under a
-// fresh TOKEN, then PATH, which is what switches readers to the new content; pieces that PATH no
-// longer names are removed after that. A kill at any moment leaves the old file or the new one whole.
+// fresh TOKEN, then PATH, which is what switches readers to the new content; pieces of other tokens
+// are removed after that. A kill at any moment leaves the old file or the new one whole. Two
+// processes writing one PATH at once are not guarded against (the loser's pieces are removed).
 // Used by DEM checkpoints (grains and contact history) and by channel packing files (grains).
 #include <hdf5.h>
 #include <mpi.h>

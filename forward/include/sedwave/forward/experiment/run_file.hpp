@@ -4,8 +4,9 @@
 //    report), reusable by later runs and tables; a LAMMPS data file is written beside it;
 //  * a run file: scene text, packing statistics, layer time series and the measured results.
 // Layouts are listed in docs/scenes.md. The packing's functions take a communicator over which the
-// grains are spread, in file order (rank 0's first): no rank holds them all, and rank 0 writes the
-// files taking one rank's grains at a time. Without one: this rank alone, all grains given.
+// grains are spread, in file order (rank 0's first), and no rank holds them all: rank 0 writes a
+// file taking the others' grains a chunk at a time, or every rank writes pieces (PackingPieces).
+// Without one: this rank alone, all grains given.
 #include <mpi.h>
 
 #include <cstdint>
@@ -26,7 +27,9 @@ struct PackingPieces {
 };
 
 /// Writes PATH (HDF5) and PATH with extension .data (LAMMPS atom_style sphere, types = groups + 1);
-/// collective, atomic (a failure on any rank throws on every rank and leaves the old files).
+/// collective. Each file is replaced atomically, the HDF5 file first; a failure on any rank throws on
+/// every rank, leaving the old file where it struck (a failed twin: the new .h5 beside the old
+/// .data; a failed .h5 in pieces: the new pieces, removed by the next write).
 void write_packing(MPI_Comm comm, const std::filesystem::path& path, const channel::PreparedChannel& packing,
                    const std::string& scene_text, PackingPieces pieces = {});
 void write_packing(const std::filesystem::path& path, const channel::PreparedChannel& packing,
