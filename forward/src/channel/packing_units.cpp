@@ -17,15 +17,13 @@ StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing, co
   if (parallel::sum(comm, packing.grains.empty() ? 0 : 1) <= 1) {
     // One rank holds the packing: its contact network, as the linear engine sees it. A refusal
     // there (a box too small for the network) reaches every rank.
-    std::string error;
-    if (!packing.grains.empty()) {
-      try {
-        const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
-        v = {n.mean_stiffness, n.mean_dashpot, static_body_force(packing.grains, n, kUpperWallBody).z};
-      } catch (const std::exception& e) {
-        error = *e.what() ? e.what() : "contact network failed";
-      }
-    }
+    const std::string error = parallel::failure_of(
+        [&] {
+          if (packing.grains.empty()) return;
+          const ContactNetwork n = find_contacts(packing.grains, packing.box, contact);
+          v = {n.mean_stiffness, n.mean_dashpot, static_body_force(packing.grains, n, kUpperWallBody).z};
+        },
+        "contact network failed");
     parallel::throw_first_failure(comm, error);
     parallel::sum(comm, std::span(v));
   } else {

@@ -110,36 +110,32 @@ void write_packing_in_pieces(MPI_Comm comm, const std::filesystem::path& path, c
   const std::vector<dem::Piece> pieces = dem::piece_layout({rows}, piece_rows);
   const std::string token = dem::fresh_piece_token(comm);
   const int rank = parallel::rank(comm);
+  const std::string pieces_error = parallel::failure_of(
+      [&] {
+        std::size_t first = 0;
+        for (const dem::Piece& piece : pieces) {
+          if (piece.rank != rank) continue;
+          const auto count = static_cast<std::size_t>(piece.rows[0]);
+          io::write_file_atomically(path.parent_path() / dem::piece_name(path, token, piece), [&](hid_t file) {
+            write_grain_rows(create_grain_datasets(file, count), 0, std::span(p.grains).subspan(first, count));
+          });
+          first += count;
+        }
+      },
+      "cannot write a piece of " + path.string());
+  parallel::throw_first_failure(comm, pieces_error);
   std::string error;
-  try {
-    std::size_t first = 0;
-    for (const dem::Piece& piece : pieces) {
-      if (piece.rank != rank) continue;
-      const auto count = static_cast<std::size_t>(piece.rows[0]);
-      io::write_file_atomically(path.parent_path() / dem::piece_name(path, token, piece), [&](hid_t file) {
-        write_grain_rows(create_grain_datasets(file, count), 0, std::span(p.grains).subspan(first, count));
-      });
-      first += count;
-    }
-  } catch (const std::exception& e) {
-    error = *e.what() ? e.what() : "cannot write a piece of " + path.string();
-  } catch (...) {  // whatever it is, the other ranks must hear of it
-    error = "cannot write a piece of " + path.string();
-  }
-  parallel::throw_first_failure(comm, error);
   if (rank == 0) {
-    try {
-      io::write_file_atomically(path, [&](hid_t file) {
-        fill_packing_file(file, p, scene_text, [&] {
-          for (const dem::RowDataset& d : grain_datasets()) dem::join_pieces(file, d, pieces, path, token);
-        });
-      });
-      dem::remove_stale_pieces(path, token);
-    } catch (const std::exception& e) {
-      error = *e.what() ? e.what() : "cannot write " + path.string();
-    } catch (...) {
-      error = "cannot write " + path.string();
-    }
+    error = parallel::failure_of(
+        [&] {
+          io::write_file_atomically(path, [&](hid_t file) {
+            fill_packing_file(file, p, scene_text, [&] {
+              for (const dem::RowDataset& d : grain_datasets()) dem::join_pieces(file, d, pieces, path, token);
+            });
+          });
+          dem::remove_stale_pieces(path, token);
+        },
+        "cannot write " + path.string());
   }
   parallel::throw_first_failure(comm, error);
 }
@@ -248,13 +244,8 @@ PreparedChannel read_packing_share(MPI_Comm comm, const std::filesystem::path& p
 PreparedChannel read_packing(MPI_Comm comm, const std::filesystem::path& path) {
   // Each rank reads its own rows, so one can fail where the others do not: they agree first.
   PreparedChannel p;
-  std::string error;
-  try {
-    p = read_packing_share(comm, path);
-  } catch (const std::exception& e) {
-    error = *e.what() ? e.what() : "cannot read the packing " + path.string();
-  }
-  parallel::throw_first_failure(comm, error);
+  parallel::throw_first_failure(
+      comm, parallel::failure_of([&] { p = read_packing_share(comm, path); }, "cannot read the packing " + path.string()));
   return p;
 }
 

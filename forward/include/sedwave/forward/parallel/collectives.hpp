@@ -309,6 +309,21 @@ std::vector<T> all_to_all(MPI_Comm comm, const std::vector<std::vector<T>>& outg
   return incoming;
 }
 
+/// Runs `work` and returns "" where it returns, else what it threw: its message, or `fallback` for an
+/// exception without one or not derived from std::exception. A rank's own part of a collective
+/// job, whose outcome the ranks then agree on (throw_first_failure), whatever it throws.
+template <class Work>
+[[nodiscard]] std::string failure_of(Work&& work, const std::string& fallback) {
+  try {
+    work();
+    return {};
+  } catch (const std::exception& e) {
+    return *e.what() ? e.what() : fallback;
+  } catch (...) {
+    return fallback;
+  }
+}
+
 /// Throws std::runtime_error on every rank of `comm` with the message of the lowest rank whose
 /// `error` is not empty, and returns where none has one (collective): ranks that each did their own
 /// part agree on the outcome before going on into a collective that a failed rank would not reach.
@@ -341,11 +356,8 @@ void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Jo
   std::vector<T> buffer;
   std::string error;
   if (root) {
-    try {
-      buffer.resize(chunk);
-    } catch (const std::exception&) {
-      error = "cannot hold a chunk of " + std::to_string(chunk) + " records on rank 0";
-    }
+    const std::string message = "cannot hold a chunk of " + std::to_string(chunk) + " records on rank 0";
+    if (!failure_of([&] { buffer.resize(chunk); }, message).empty()) error = message;
   }
   throw_first_failure(comm, error);
   if (!root) {
@@ -362,15 +374,8 @@ void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Jo
     if (done == passes) throw std::logic_error("on_root_with_pieces: more passes than announced");
     ++done;
     std::string failure;
-    const auto take = [&](std::span<const T> records) {
-      if (!failure.empty()) return;
-      try {
-        visit(records);
-      } catch (const std::exception& e) {
-        failure = *e.what() ? e.what() : "failed on rank 0";
-      } catch (...) {  // whatever it is, the pass goes on receiving
-        failure = "failed on rank 0";
-      }
+    const auto take = [&](std::span<const T> records) {  // whatever visit throws, the pass goes on
+      if (failure.empty()) failure = failure_of([&] { visit(records); }, "failed on rank 0");
     };
     take(local);
     for (std::size_t r = 1; r < counts.size(); ++r) {
@@ -381,13 +386,7 @@ void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Jo
     }
     if (!failure.empty()) throw std::runtime_error(failure);
   };
-  try {
-    job(pieces);
-  } catch (const std::exception& e) {
-    error = *e.what() ? e.what() : "failed on rank 0";
-  } catch (...) {  // whatever it is, the other ranks must hear of it
-    error = "failed on rank 0";
-  }
+  error = failure_of([&] { job(pieces); }, "failed on rank 0");
   while (done < passes) pieces([](std::span<const T>) {});  // receive what the others still send
   throw_first_failure(comm, error);
 }
@@ -405,16 +404,8 @@ void in_turn(MPI_Comm comm, Turn turn) {
   std::string error;
   if (me > 0) MPI_Recv(&failed, 1, MPI_INT, me - 1, kTokenTag, comm, MPI_STATUS_IGNORE);
   if (failed == 0) {
-    try {
-      turn();
-    } catch (const std::exception& e) {
-      failed = 1;
-      error = e.what();
-      if (error.empty()) error = "failed on rank " + std::to_string(me);
-    } catch (...) {  // whatever it is, the token must go on
-      failed = 1;
-      error = "failed on rank " + std::to_string(me);
-    }
+    error = failure_of(turn, "failed on rank " + std::to_string(me));  // whatever it is, the token goes on
+    failed = error.empty() ? 0 : 1;
   }
   if (me + 1 < n) MPI_Send(&failed, 1, MPI_INT, me + 1, kTokenTag, comm);
   throw_first_failure(comm, error);
