@@ -281,11 +281,12 @@ dem::BodyMotion wall_motion(const DriveSettings& d, const PackingUnits& u, int a
 }
 
 /// The upper wall's motion: frozen, or free along z under the constant force that balances the
-/// grains' static force on it (so the drive starts from rest), with loaded_wall_mass.
-dem::BodyMotion far_wall_motion(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
+/// grains' static force on it (`statics`, required when loaded), so that the drive starts from
+/// rest, with loaded_wall_mass.
+dem::BodyMotion far_wall_motion(MPI_Comm comm, const PreparedChannel& packing, const std::optional<StaticContacts>& statics,
                                 const DriveSettings& d, const PackingUnits& u) {
   if (d.far_wall == FarWall::frozen) return dem::Frozen{};
-  const double force = static_contacts(comm, packing, contact).upper_wall_force;
+  const double force = statics.value().upper_wall_force;
   // A given mass, or the wall grains' masses summed over the ranks.
   const double mass = d.far_wall_mass > 0.0 ? loaded_wall_mass(d, u, {})
                                             : parallel::sum(comm, loaded_wall_mass(d, u, packing.grains));
@@ -633,7 +634,12 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
     throw std::invalid_argument("acoustic run: omega_hat and amplitude must be positive, gamma_hat non-negative");
   }
   if (d.pulse) check_pulse(d);
-  const PackingUnits u = packing_units(comm, packing, contact);
+  // The static contacts, found once where the units (Hertz) or a loaded far wall need them: spread
+  // over ranks, that is a DEM force evaluation. Static, so the dashpot set below does not enter.
+  std::optional<StaticContacts> statics;
+  if (units_need_static_contacts(contact) || d.far_wall != FarWall::frozen)
+    statics = static_contacts(comm, packing, contact);
+  const PackingUnits u = packing_units(comm, packing, contact, statics ? &*statics : nullptr);
   const double t0 = u.time();
   const double omega = centre_omega_hat(d) / t0;  // sets the absorbing layer's drag
   contact = dem::without_dashpot(contact);
@@ -647,7 +653,7 @@ AcousticResult run_acoustic(MPI_Comm comm, const PreparedChannel& packing, dem::
   settings.balance.every_rebuilds = 0;
   if (d.fluid) settings.fluid = fluid_in_packing_units(*d.fluid, u);
   std::vector<dem::RigidBody> bodies{dem::RigidBody("lower_wall", wall_motion(d, u, axis)),
-                                     dem::RigidBody("upper_wall", far_wall_motion(comm, packing, contact, d, u))};
+                                     dem::RigidBody("upper_wall", far_wall_motion(comm, packing, statics, d, u))};
   dem::Engine engine(comm, settings, packing.grains, std::move(bodies));
 
   AcousticResult r;

@@ -27,10 +27,12 @@ StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing, co
     parallel::throw_first_failure(comm, error);
     parallel::sum(comm, std::span(v));
   } else {
-    // Spread over ranks: the DEM engine's ghosts and lists find the pairs across them.
+    // Spread over ranks: the DEM engine's ghosts and lists find the pairs across them. Without its
+    // dashpot, the wall's force is the springs' alone, as in the contact network, whatever
+    // velocities the grains carry.
     dem::EngineSettings settings;
     settings.box = broadcast_box(comm, packing.box);
-    settings.contact = contact;
+    settings.contact = dem::without_dashpot(contact);
     const dem::Engine engine(comm, settings, packing.grains,
                              {dem::RigidBody("lower_wall", dem::Frozen{}), dem::RigidBody("upper_wall", dem::Frozen{})});
     const ContactMeans means = contact_means(engine, contact);
@@ -39,7 +41,12 @@ StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing, co
   return {v[0], v[1], v[2]};
 }
 
-PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact) {
+bool units_need_static_contacts(const dem::ContactSpec& contact) {
+  return !(dem::stiffness_at_contact(dem::undamped_contact_model(contact)) > 0.0);
+}
+
+PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
+                           const StaticContacts* known) {
   // Sums over every rank's grains: flow count, diameters, masses / volumes (density), lower wall
   // (z + r) and count, upper wall (z - r) and count, flow volume.
   double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
@@ -66,8 +73,8 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   // A linear normal law has one stiffness; any other is measured over the packing's contacts.
   u.kappa = dem::stiffness_at_contact(dem::undamped_contact_model(contact));
   double dashpot = 1.0;  // mean dashpot per unit coefficient
-  if (!(u.kappa > 0.0)) {
-    const StaticContacts network = static_contacts(comm, packing, contact);
+  if (units_need_static_contacts(contact)) {
+    const StaticContacts network = known != nullptr ? *known : static_contacts(comm, packing, contact);
     if (!(network.mean_stiffness > 0.0)) throw std::invalid_argument("packing units: the packing has no contacts");
     u.kappa = network.mean_stiffness;
     dashpot = network.mean_dashpot;

@@ -67,10 +67,15 @@ struct StaticContacts {
 [[nodiscard]] StaticContacts static_contacts(MPI_Comm comm, const PreparedChannel& packing,
                                              const dem::ContactSpec& contact);
 
+/// Whether packing_units needs the static contacts: a normal law without a single stiffness (Hertz).
+[[nodiscard]] bool units_need_static_contacts(const dem::ContactSpec& contact);
+
 /// Units of `packing` (its grains spread over the ranks of comm in any way; collective). kappa is the Hooke kn, or
-/// for Hertz (no single stiffness) the mean tangent stiffness of the static contacts. Throws
-/// std::invalid_argument when the packing has no flow grains or lacks a wall.
-[[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact);
+/// for Hertz (no single stiffness) the mean tangent stiffness of the static contacts: `known` when
+/// the caller has them (static_contacts of the same packing and contact law), else found here.
+/// Throws std::invalid_argument when the packing has no flow grains or lacks a wall.
+[[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
+                                         const StaticContacts* known = nullptr);
 
 /// A pore fluid given in the packing's dimensionless groups (as scene files give it) in the
 /// packing's own units: viscosity mu_hat = mu d / sqrt(kappa m), roughness and cutoff in d, density
