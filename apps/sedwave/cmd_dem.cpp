@@ -269,31 +269,38 @@ void check_dem_paths(const DemOptions& o) {
 int run_dem(const DemOptions& o, const MpiSession& mpi) {
   std::ostream& out = std::cout;
   const bool root = mpi.rank() == 0;
-  check_dem_paths(o);
-
-  // Each rank reads its share of the file's bytes; the engine then sends each grain to its slab's owner.
-  dem::LammpsData data = dem::read_lammps_data(MPI_COMM_WORLD, o.data);
+  // The options, checked alike on every rank: a mistake is told once.
   std::map<int, std::int32_t> body_of_type;
-  std::vector<dem::RigidBody> bodies = make_walls(o, body_of_type);
-  for (dem::Grain& g : data.grains) {
-    const auto it = body_of_type.find(g.group);
-    if (it != body_of_type.end()) g.body = it->second;
-  }
-
+  std::vector<dem::RigidBody> bodies;
   dem::EngineSettings s;
-  s.box = data.box;
-  s.box.periodic = parse_boundary(o.boundary);
-  s.contact = contact_spec(o);
-  if (!o.gravity.empty()) s.gravity = {o.gravity.at(0), o.gravity.at(1), o.gravity.at(2)};
-  s.fluid = fluid_spec(o);
+  mpi.alike([&] {
+    if (!o.dump.empty() && o.dump_every <= 0) throw std::invalid_argument("--dump needs --dump-every");
+    if (!o.h5md.empty() && o.h5md_every <= 0) throw std::invalid_argument("--h5md needs --h5md-every");
+    check_dem_paths(o);
+    bodies = make_walls(o, body_of_type);
+    s.box.periodic = parse_boundary(o.boundary);
+    s.contact = contact_spec(o);
+    if (!o.gravity.empty()) s.gravity = {o.gravity.at(0), o.gravity.at(1), o.gravity.at(2)};
+    s.fluid = fluid_spec(o);
+    s.checkpoint.inputs = checkpoint_inputs(o);
+  });
   s.time_step = o.dt;
   if (o.skin) s.skin = *o.skin;
   s.newton = o.newton == "on";
   s.checkpoint.path = o.checkpoint;
   s.checkpoint.every = o.checkpoint_every;
-  s.checkpoint.inputs = checkpoint_inputs(o);
   s.checkpoint.allow_changed_inputs = o.allow_changed_inputs;
   s.progress = {!o.quiet, o.progress_seconds, &out};
+
+  // Each rank reads its share of the file's bytes; the engine then sends each grain to its slab's owner.
+  dem::LammpsData data = dem::read_lammps_data(MPI_COMM_WORLD, o.data);
+  for (dem::Grain& g : data.grains) {
+    const auto it = body_of_type.find(g.group);
+    if (it != body_of_type.end()) g.body = it->second;
+  }
+  const std::array<bool, 3> periodic = s.box.periodic;
+  s.box = data.box;
+  s.box.periodic = periodic;
 
   dem::Engine engine(MPI_COMM_WORLD, s, data.grains, std::move(bodies));
   data.grains = {};
@@ -437,18 +444,8 @@ Command add_dem_command(CLI::App& app) {
   cmd->footer("Example: sedwave dem packing.data --steps 100000 --kn 725.9 --restitution 0.9 --frozen 2 "
               "--checkpoint run.h5 --every 10000 --restart --dump run.dump --dump-every 1000");
   return {cmd, [o]() {
-    if (!o->dump.empty() && o->dump_every <= 0) throw std::invalid_argument("--dump needs --dump-every");
-    if (!o->h5md.empty() && o->h5md_every <= 0) throw std::invalid_argument("--h5md needs --h5md-every");
-    MpiSession mpi;
-    try {
-      return run_dem(*o, mpi);
-    } catch (const std::exception& e) {
-      if (mpi.size() == 1) throw;
-      // An error on some ranks only would leave the others waiting in a collective call.
-      std::cerr << "sedwave: error on rank " << mpi.rank() << ": " << e.what() << '\n';
-      MPI_Abort(MPI_COMM_WORLD, 1);
-      return 1;
-    }
+    const MpiSession mpi;
+    return mpi.run([&] { return run_dem(*o, mpi); });
   }};
 }
 

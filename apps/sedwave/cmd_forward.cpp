@@ -164,15 +164,17 @@ void check_forward_paths(const ForwardOptions& o, const experiment::ChannelScene
   check_outputs(outputs, inputs, "forward");
 }
 
-int run_forward(const ForwardOptions& o) {
+int run_forward(const ForwardOptions& o, const MpiSession& mpi) {
   using namespace forward::channel;
-  const MpiSession mpi;
-  experiment::ChannelScene scene = experiment::read_scene(o.scene);
-  check_forward_paths(o, scene);
-  if (o.omega_hat && scene.drive.pulse) {
-    throw std::invalid_argument(o.scene + ": --omega-hat sets a sinusoid's frequency; this scene drives a pulse "
-                                "(set [drive] omega_hat_min/omega_hat_max instead)");
-  }
+  experiment::ChannelScene scene;
+  mpi.alike([&] {  // every rank reads the scene: a mistake in it is told once
+    scene = experiment::read_scene(o.scene);
+    check_forward_paths(o, scene);
+    if (o.omega_hat && scene.drive.pulse) {
+      throw std::invalid_argument(o.scene + ": --omega-hat sets a sinusoid's frequency; this scene drives a pulse "
+                                  "(set [drive] omega_hat_min/omega_hat_max instead)");
+    }
+  });
   if (o.omega_hat) scene.drive.omega_hat = *o.omega_hat;
   if (o.gamma_hat) scene.drive.gamma_hat = *o.gamma_hat;
   const bool talk = mpi.rank() == 0 && !o.quiet;
@@ -227,7 +229,10 @@ Command add_forward_command(CLI::App& app) {
   cmd->add_option("--omega-hat", o->omega_hat, "override the scene's drive frequency omega_hat");
   cmd->add_option("--gamma-hat", o->gamma_hat, "override the scene's dashpot gamma_hat");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");
-  return {cmd, [o]() { return run_forward(*o); }};
+  return {cmd, [o]() {
+    const MpiSession mpi;
+    return mpi.run([&] { return run_forward(*o, mpi); });
+  }};
 }
 
 }  // namespace sedwave::app

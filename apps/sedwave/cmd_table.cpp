@@ -81,6 +81,27 @@ void print_report(const table::FarmReport& report, const std::string& out, int r
             << " % of the time)\n";
 }
 
+int run_table(const TableOptions& o, const MpiSession& mpi) {
+  // Every rank reads both files: they are small, and a mistake in them is told once.
+  table::TableGridFile grid;
+  experiment::ChannelScene scene;
+  mpi.alike([&] {
+    grid = table::read_grid_file(o.grid_file);
+    scene = experiment::read_scene(grid.scene_path);
+    if (!o.engine.empty()) experiment::use_table_engine(scene, experiment::engine_named(o.engine));
+    check_table_options(o, grid, scene, scene.engine, mpi);
+    check_table_paths(o, grid, scene);
+  });
+  const experiment::EngineKind engine = scene.engine;
+  const bool talk = mpi.rank() == 0 && !o.quiet;
+  const experiment::TableRun run{o.out, o.packing, engine, o.member, talk ? &std::cout : nullptr,
+                                 mpi.rank() == 0 ? &std::cerr : nullptr};
+  const table::FarmReport report = experiment::fill_table(
+      grid, scene, run, {1, talk ? &std::cout : nullptr, o.retry_failed, o.allow_changed_inputs});
+  if (mpi.rank() == 0) print_report(report, o.out, mpi.size(), experiment::ranks_per_point(grid, engine));
+  return report.failed == 0 ? kExitOk : kExitIncomplete;
+}
+
 }  // namespace
 
 Command add_table_command(CLI::App& app) {
@@ -108,21 +129,8 @@ Command add_table_command(CLI::App& app) {
                 "table then mixes them)");
   cmd->add_flag("--quiet", o->quiet, "no progress lines");
   return {cmd, [o]() {
-    MpiSession mpi;
-    // Every rank reads both files: they are small, and errors then stop all ranks alike.
-    const table::TableGridFile grid = table::read_grid_file(o->grid_file);
-    experiment::ChannelScene scene = experiment::read_scene(grid.scene_path);
-    if (!o->engine.empty()) experiment::use_table_engine(scene, experiment::engine_named(o->engine));
-    const experiment::EngineKind engine = scene.engine;
-    check_table_options(*o, grid, scene, engine, mpi);
-    check_table_paths(*o, grid, scene);
-    const bool talk = mpi.rank() == 0 && !o->quiet;
-    const experiment::TableRun run{o->out, o->packing, engine, o->member, talk ? &std::cout : nullptr,
-                                   mpi.rank() == 0 ? &std::cerr : nullptr};
-    const table::FarmReport report = experiment::fill_table(
-        grid, scene, run, {1, talk ? &std::cout : nullptr, o->retry_failed, o->allow_changed_inputs});
-    if (mpi.rank() == 0) print_report(report, o->out, mpi.size(), experiment::ranks_per_point(grid, engine));
-    return report.failed == 0 ? kExitOk : kExitIncomplete;
+    const MpiSession mpi;
+    return mpi.run([&] { return run_table(*o, mpi); });
   }};
 }
 

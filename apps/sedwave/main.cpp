@@ -7,8 +7,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "output_paths.hpp"
+#include "mpi_session.hpp"
 #include "sedwave/io/atomic_file.hpp"
+#include "sedwave/io/hdf5.hpp"
 #include "sedwave/version.hpp"
 
 int main(int argc, char** argv) {
@@ -31,6 +32,10 @@ int main(int argc, char** argv) {
   // logging silent (a model evaluated outside a table's range, for one). The fits check and report
   // every failure themselves, so only glog's fatal messages reach the terminal.
   FLAGS_minloglevel = google::GLOG_FATAL;
+  // Every HDF5 call is checked, and a failure becomes an error that names the file and what was done
+  // to it ("HDF5: cannot open FILE"); the library's own error stack would print its internals
+  // above that line, once per rank.
+  const sedwave::io::QuietErrors hdf5_quiet;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -46,12 +51,8 @@ int main(int argc, char** argv) {
         return code;
       }
     }
-  } catch (const sedwave::app::UsageError& e) {
-    std::cerr << "sedwave: usage error: " << e.what() << "\n";
-    return sedwave::app::kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << "sedwave: error: " << e.what() << "\n";
-    return sedwave::app::kExitError;
+  } catch (...) {
+    return sedwave::app::report_failure(std::current_exception(), &std::cerr);
   }
   return sedwave::app::kExitError;
 }

@@ -1,29 +1,48 @@
 #pragma once
 // MPI for the subcommands that need it (forward, table, dem): initialised when the command starts
 // and finalised when it ends, so `sedwave invert` and `sedwave theory` never pay for it.
+//
+// How such a command fails on many ranks: a failure every rank throws alike is told once and ends
+// every rank with the same status; any other may be on some ranks only, while the rest wait in a
+// collective call (where MPI_Finalize would wait with them), so it ends the whole job.
 #include <mpi.h>
+
+#include <exception>
+#include <functional>
+#include <iosfwd>
 
 namespace sedwave::app {
 
+/// Thrown on the ranks that leave a failure to another rank to report: main prints nothing and
+/// returns `status`.
+struct QuietExit {
+  int status;
+};
+
+/// Tells `failure` on `out` as a command's last words ("sedwave: error: ...", "sedwave: usage error:
+/// ..."; nothing for QuietExit, nor for an agreed failure on any rank but its reporter) and returns
+/// the command's exit status for it. `out` null: the status alone.
+[[nodiscard]] int report_failure(const std::exception_ptr& failure, std::ostream* out);
+
 class MpiSession {
  public:
-  MpiSession() {
-    int initialised = 0;
-    MPI_Initialized(&initialised);
-    if (!initialised) {
-      MPI_Init(nullptr, nullptr);
-      owner_ = true;
-    }
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
-  }
-  ~MpiSession() {
-    if (owner_) MPI_Finalize();
-  }
+  MpiSession();
+  ~MpiSession();
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
   [[nodiscard]] int rank() const { return rank_; }
   [[nodiscard]] int size() const { return size_; }
+
+  /// Runs a command's body on every rank. A parallel::AgreedFailure thrown by every rank of the job,
+  /// and what alike() agreed on, pass to main, which reports them once. Any other failure on more
+  /// than one rank is told with this rank's number, and the job is aborted with kExitError.
+  [[nodiscard]] int run(const std::function<int()>& body) const;
+
+  /// Runs `work` (reading and checking the command's inputs, which every rank does alike) and agrees
+  /// on its outcome (collective): where it fails on any rank, the lowest failing rank throws its own
+  /// exception, for main to report with its exit status, and every other rank throws QuietExit with
+  /// that status.
+  void alike(const std::function<void()>& work) const;
 
  private:
   bool owner_ = false;

@@ -66,7 +66,7 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
     }
   }
   parallel::sum(comm, std::span(s));
-  if (s[0] < 1 || s[4] < 1 || s[6] < 1) throw std::invalid_argument("packing has no flow grains or lacks a wall");
+  if (s[0] < 1 || s[4] < 1 || s[6] < 1) throw parallel::AgreedFailure(comm, "packing has no flow grains or lacks a wall");
   PackingUnits u;
   u.diameter = s[1] / s[0];
   u.mass = grain_mass(s[2] / s[0], u.diameter);
@@ -75,7 +75,7 @@ PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const 
   double dashpot = 1.0;  // mean dashpot per unit coefficient
   if (units_need_static_contacts(contact)) {
     const StaticContacts network = known != nullptr ? *known : static_contacts(comm, packing, contact);
-    if (!(network.mean_stiffness > 0.0)) throw std::invalid_argument("packing units: the packing has no contacts");
+    if (!(network.mean_stiffness > 0.0)) throw parallel::AgreedFailure(comm, "packing units: the packing has no contacts");
     u.kappa = network.mean_stiffness;
     dashpot = network.mean_dashpot;
   }

@@ -75,7 +75,7 @@ std::int64_t compress(const Scene& s, dem::Engine& e, const PreparationSettings&
     held = carried(carried_force(s, e)) ? held + 1 : 0;
     if (held == 3) return steps;
   }
-  throw std::runtime_error("preparation: the grains never carried the pressure within max_compression_steps");
+  throw parallel::AgreedFailure(s.comm, "preparation: the grains never carried the pressure within max_compression_steps");
 }
 
 /// The servo wall of Compression::pressure: a path along z, piecewise linear in time, whose speed is
@@ -297,8 +297,9 @@ void fire_with_wall_corrections(const Scene& scene, const PreparationSettings& p
     }
     const double step = (report.wall_force - target) / slope;
     if (!std::isfinite(step)) {
-      throw std::runtime_error("preparation: cannot correct the wall height (wall force " +
-                               std::to_string(report.wall_force) + ", target " + std::to_string(target) + ")");
+      throw parallel::AgreedFailure(scene.comm, "preparation: cannot correct the wall height (wall force " +
+                                                    std::to_string(report.wall_force) + ", target " +
+                                                    std::to_string(target) + ")");
     }
     previous_shift = shift;
     previous_force = report.wall_force;
@@ -328,9 +329,9 @@ void newton_relaxation(const Scene& scene, const dem::Box& box, const Preparatio
   parallel::broadcast(scene.comm, std::span(status));
   report.newton_iterations += status[1];
   if (status[0] == 0) {
-    throw std::runtime_error("preparation: the Newton relaxation failed (" +
-                             (failure.empty() ? std::string("see rank 0") : failure) +
-                             "); set newton_relaxation = false to relax with FIRE alone");
+    throw parallel::AgreedFailure(scene.comm, "preparation: the Newton relaxation failed (" +
+                                                  (failure.empty() ? std::string("see rank 0") : failure) +
+                                                  "); set newton_relaxation = false to relax with FIRE alone");
   }
 }
 
@@ -413,7 +414,7 @@ PreparedChannel prepare_channel(MPI_Comm comm, const ChannelConfiguration& start
       // The wall keeps descending for 3 force checks after the grains first carry P W^2, which a
       // short column may not absorb: with checks 200 steps (0.9 d) apart, N = 150, W = 3, seed 11
       // tripped the guard, and so did N = 300, seed 0 once the force loop's round-off changed.
-      throw dem::GuardError(std::string(e.what()) +
+      throw dem::GuardError(e, std::string(e.what()) +
                             " (during wall compression: a short column can be over-compressed by the descending "
                             "wall; set [preparation] compression = \"pressure\" or \"affine\", or a lower "
                             "compression_speed)");

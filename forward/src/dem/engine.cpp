@@ -455,7 +455,7 @@ void Engine::guard_check(const OverlapWatch& watch) {
   if (first_failing == domain_.size()) return;
   std::string shared = message;
   parallel::broadcast(domain_.comm(), shared, first_failing);
-  throw GuardError(shared);
+  throw GuardError(domain_.comm(), shared);
 }
 
 // ---- observables -------------------------------------------------------------------------------

@@ -380,7 +380,7 @@ void agree_on_failure(MPI_Comm comm, const Failure& failure) {
   const int teller = parallel::min(comm, failure.line == first ? parallel::rank(comm) : n);
   std::string message = failure.message;
   parallel::broadcast(comm, message, teller);
-  throw std::runtime_error(message);
+  throw parallel::AgreedFailure(comm, message);
 }
 
 }  // namespace

@@ -232,8 +232,7 @@ std::vector<GridIndex> open_and_share_todo(MPI_Comm farm, const std::filesystem:
     }
   }
   // Rank 0's failure must stop every rank, not leave them waiting in the next collective.
-  parallel::broadcast(farm, error);
-  if (!error.empty()) throw std::runtime_error(error);
+  parallel::throw_first_failure(farm, error);
   parallel::broadcast(farm, flat);
   std::vector<GridIndex> todo;
   for (std::uint64_t f : flat) todo.push_back({f / grid.omega_hat.size(), f % grid.omega_hat.size()});

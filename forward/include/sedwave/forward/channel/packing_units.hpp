@@ -73,7 +73,8 @@ struct StaticContacts {
 /// Units of `packing` (its grains spread over the ranks of comm in any way; collective). kappa is the Hooke kn, or
 /// for Hertz (no single stiffness) the mean tangent stiffness of the static contacts: `known` when
 /// the caller has them (static_contacts of the same packing and contact law), else found here.
-/// Throws std::invalid_argument when the packing has no flow grains or lacks a wall.
+/// Throws parallel::AgreedFailure on every rank when the packing has no flow grains, lacks a wall, or
+/// (Hertz) has no contacts.
 [[nodiscard]] PackingUnits packing_units(MPI_Comm comm, const PreparedChannel& packing, const dem::ContactSpec& contact,
                                          const StaticContacts* known = nullptr);
 

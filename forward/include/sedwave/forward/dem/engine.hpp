@@ -37,14 +37,15 @@
 #include "sedwave/forward/dem/neighbor_list.hpp"
 #include "sedwave/forward/dem/rigid_body.hpp"
 #include "sedwave/forward/dem/time_step.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 
 namespace sedwave::forward::dem {
 
-/// Thrown (on every rank) when the guard stops a run. The message names the step, the grains, the
-/// overlap, the time step and the stable time step.
-class GuardError : public std::runtime_error {
+/// Thrown on every rank of the engine when the guard stops a run. The message names the step, the
+/// grains, the overlap, the time step and the stable time step.
+class GuardError : public parallel::AgreedFailure {
  public:
-  using std::runtime_error::runtime_error;
+  using parallel::AgreedFailure::AgreedFailure;
 };
 
 struct GuardSettings {

@@ -324,15 +324,35 @@ template <class Work>
   }
 }
 
-/// Throws std::runtime_error on every rank of `comm` with the message of the lowest rank whose
-/// `error` is not empty, and returns where none has one (collective): ranks that each did their own
-/// part agree on the outcome before going on into a collective that a failed rank would not reach.
+/// A failure that every rank of a communicator throws with the same message, after agreeing on it:
+/// those ranks end together, none waits in a collective call for another, and one of them (the
+/// communicator's rank 0) is the one to report it.
+class AgreedFailure : public std::runtime_error {
+ public:
+  AgreedFailure(MPI_Comm comm, const std::string& what)
+      : std::runtime_error(what), reporter_(rank(comm) == 0), ranks_(size(comm)) {}
+  /// The same failure told with another message (context added on its way up).
+  AgreedFailure(const AgreedFailure& failure, const std::string& what)
+      : std::runtime_error(what), reporter_(failure.reporter_), ranks_(failure.ranks_) {}
+  /// Whether this rank reports it.
+  [[nodiscard]] bool reporter() const { return reporter_; }
+  /// How many ranks throw it: the communicator's size.
+  [[nodiscard]] int ranks() const { return ranks_; }
+
+ private:
+  bool reporter_;
+  int ranks_;
+};
+
+/// Throws AgreedFailure on every rank of `comm` with the message of the lowest rank whose `error`
+/// is not empty, and returns where none has one (collective): ranks that each did their own part
+/// agree on the outcome before going on into a collective that a failed rank would not reach.
 inline void throw_first_failure(MPI_Comm comm, std::string error) {
   const int me = rank(comm), n = size(comm);
   const int first_failing = min(comm, error.empty() ? n : me);
   if (first_failing == n) return;
   broadcast(comm, error, first_failing);
-  throw std::runtime_error(error);
+  throw AgreedFailure(comm, error);
 }
 
 /// Runs `job` on rank 0 of `comm` with every rank's records, a chunk at a time, while the other
