@@ -32,6 +32,7 @@
 #include "sedwave/forward/channel/geometry.hpp"
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "../linear/bench_contact.hpp"
+#include "../one_process_mpi.hpp"
 
 namespace {
 
@@ -202,7 +203,8 @@ std::vector<std::vector<double>> layer_records(const std::string& dump, const ch
 }  // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  const sedwave::bench::OneProcessMpi mpi(argc, argv, "bench_lammps_acoustic");
+  if (!mpi.alone()) return 2;
   int status = 0;
   try {
     const Options o = parse(argc, argv);
@@ -239,6 +241,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_lammps_acoustic: %s\n", e.what());
     status = 1;
   }
-  MPI_Finalize();
   return status;
 }

@@ -17,10 +17,12 @@
 #include "sedwave/forward/linear/ensemble.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "bench_contact.hpp"
+#include "../one_process_mpi.hpp"
 
 int main(int argc, char** argv) {
   using namespace sedwave::forward;
-  MPI_Init(&argc, &argv);
+  const sedwave::bench::OneProcessMpi mpi(argc, argv, "bench_linear_vs_dem");
+  if (!mpi.alone()) return 2;
   channel::DriveSettings drive;
   drive.gamma_hat = 0.1;
   drive.far_end = channel::FarEnd::absorbing;
@@ -86,6 +88,5 @@ int main(int argc, char** argv) {
                 w, e1.mean, e1.standard_error, apart(e1, a2), e2.mean, e2.standard_error, apart(e2, c2));
     std::fflush(stdout);
   }
-  MPI_Finalize();
   return 0;
 }

@@ -17,13 +17,14 @@
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/experiment/scene.hpp"
 #include "sedwave/forward/linear/static_equilibrium.hpp"
+#include "../one_process_mpi.hpp"
 
 int main(int argc, char** argv) {
   using namespace sedwave::forward;
-  MPI_Init(&argc, &argv);
+  const sedwave::bench::OneProcessMpi mpi(argc, argv, "bench_relax");
+  if (!mpi.alone()) return 2;
   if (argc < 3) {
     std::fprintf(stderr, "usage: bench_relax SCENE.toml PACKING.h5 [MAX_TRIAL_STEPS]\n");
-    MPI_Finalize();
     return 2;
   }
   const experiment::ChannelScene scene = experiment::read_scene(argv[1]);
@@ -37,6 +38,5 @@ int main(int argc, char** argv) {
   std::printf("grains %zu: %d trial steps (%d accepted), %d solves, residual ratio %.3e, energy released %.3e, %s, %.1f s\n",
               packing.grains.size(), r.iterations, r.accepted, r.directions, r.residual_ratio, r.energy_drop,
               r.converged ? "converged" : "NOT converged", seconds);
-  MPI_Finalize();
   return r.converged ? 0 : 1;
 }

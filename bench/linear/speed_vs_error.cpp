@@ -40,6 +40,7 @@
 #include "sedwave/forward/theory/continuum.hpp"
 #include "sedwave/forward/theory/lattice.hpp"
 #include "bench_contact.hpp"
+#include "../one_process_mpi.hpp"
 
 namespace {
 
@@ -146,7 +147,8 @@ channel::PreparedChannel tiled(const channel::PreparedChannel& p, int copies) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  const sedwave::bench::OneProcessMpi mpi(argc, argv, "bench_speed_vs_error");
+  if (!mpi.alone()) return 2;
   channel::DriveSettings drive;
   drive.omega_hat = 0.5;
   drive.gamma_hat = 0.1;
@@ -342,7 +344,7 @@ int main(int argc, char** argv) {
     std::FILE* out = std::fopen(rows_file.c_str(), "w");
     if (out == nullptr) {
       std::fprintf(stderr, "cannot write %s\n", rows_file.c_str());
-      MPI_Abort(MPI_COMM_WORLD, 1);
+      return 1;
     }
     std::fprintf(out, "# model\tsize\tseconds\terr_alpha\terr_c\trel_sigma_alpha\trel_sigma_c\n");
     for (const Row& r : rows) {
@@ -353,6 +355,5 @@ int main(int argc, char** argv) {
     }
     std::fclose(out);
   }
-  MPI_Finalize();
   return 0;
 }

@@ -18,10 +18,12 @@
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/linear_channel.hpp"
 #include "bench_contact.hpp"
+#include "../one_process_mpi.hpp"
 
 int main(int argc, char** argv) {
   using namespace sedwave::forward;
-  MPI_Init(&argc, &argv);
+  const sedwave::bench::OneProcessMpi mpi(argc, argv, "bench_trajectory_vs_dem");
+  if (!mpi.alone()) return 2;
   channel::DriveSettings drive;
   drive.omega_hat = 0.6;
   drive.gamma_hat = 0.1;
@@ -91,6 +93,5 @@ int main(int argc, char** argv) {
                 lin_seconds);
     std::fflush(stdout);
   }
-  MPI_Finalize();
   return 0;
 }
