@@ -14,11 +14,14 @@ namespace {
 
 namespace parallel = sedwave::forward::parallel;
 
-/// What alike() throws on the rank that reports the failure all ranks agreed on: run() passes the
-/// exception inside on to main, as it was thrown.
-struct ToReport {
-  std::exception_ptr failure;
-};
+/// Ends every rank with `status` once the failure they agreed on has been told: each rank waits here
+/// until all have come, so that no rank exits (which makes the launcher kill the others) before the
+/// one that tells it has written its message.
+[[noreturn]] void end_together(int status) {
+  std::cerr.flush();
+  MPI_Barrier(MPI_COMM_WORLD);
+  throw QuietExit{status};
+}
 
 }  // namespace
 
@@ -63,10 +66,8 @@ MpiSession::~MpiSession() {
 int MpiSession::run(const std::function<int()>& body) const {
   try {
     return body();
-  } catch (const ToReport& agreed) {
-    std::rethrow_exception(agreed.failure);
   } catch (const parallel::AgreedFailure& failure) {
-    if (failure.ranks() == size_) throw;  // every rank of the job ends with it
+    if (failure.ranks() == size_) end_together(report_failure(std::current_exception(), &std::cerr));
     std::cerr << "sedwave: error on rank " << rank_ << ": " << failure.what() << '\n';
   } catch (const QuietExit&) {
     throw;
@@ -95,10 +96,9 @@ void MpiSession::alike(const std::function<void()>& work) const {
   }
   const int first = parallel::min(MPI_COMM_WORLD, failure ? rank_ : size_);
   if (first == size_) return;
-  int status = failure ? report_failure(failure, nullptr) : kExitError;
+  int status = rank_ == first ? report_failure(failure, &std::cerr) : kExitError;
   parallel::broadcast(MPI_COMM_WORLD, status, first);
-  if (rank_ == first) throw ToReport{failure};
-  throw QuietExit{status};
+  end_together(status);
 }
 
 }  // namespace sedwave::app

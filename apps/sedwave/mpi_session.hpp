@@ -33,15 +33,15 @@ class MpiSession {
   [[nodiscard]] int rank() const { return rank_; }
   [[nodiscard]] int size() const { return size_; }
 
-  /// Runs a command's body on every rank. A parallel::AgreedFailure thrown by every rank of the job,
-  /// and what alike() agreed on, pass to main, which reports them once. Any other failure on more
-  /// than one rank is told with this rank's number, and the job is aborted with kExitError.
+  /// Runs a command's body on every rank. A parallel::AgreedFailure thrown by every rank of the job
+  /// is told once (by its reporter), and every rank then throws QuietExit with its exit status. Any
+  /// other failure on more than one rank is told with this rank's number, and the job is aborted
+  /// with kExitError.
   [[nodiscard]] int run(const std::function<int()>& body) const;
 
   /// Runs `work` (reading and checking the command's inputs, which every rank does alike) and agrees
-  /// on its outcome (collective): where it fails on any rank, the lowest failing rank throws its own
-  /// exception, for main to report with its exit status, and every other rank throws QuietExit with
-  /// that status.
+  /// on its outcome (collective): where it fails on any rank, the lowest failing rank tells its
+  /// failure (report_failure), and every rank throws QuietExit with that failure's exit status.
   void alike(const std::function<void()>& work) const;
 
  private:

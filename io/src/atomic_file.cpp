@@ -1,7 +1,6 @@
 #include "sedwave/io/atomic_file.hpp"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -225,32 +224,24 @@ void DeferredCommits::commit_all() {
   deferred().active = false;  // what the run writes after (its plots, from these files) lands at once
 }
 
-OutputLock::OutputLock(const fs::path& directory, const std::string& option) {
+namespace {
+
+FileLock output_lock(const fs::path& directory, const std::string& option) {
   std::error_code ec;
   fs::create_directories(directory, ec);
-  const fs::path file = directory / ".sedwave.lock";
-  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-  if (fd_ < 0) throw std::runtime_error(option + " " + directory.string() + ": cannot lock: " + system_error_text());
-  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-  int status = -1;
-  if (errno == EWOULDBLOCK) {
-    std::fprintf(stderr, "sedwave: %s %s: another sedwave run is writing there; waiting for it to finish\n",
-                 option.c_str(), directory.c_str());
-    do {
-      status = ::flock(fd_, LOCK_EX);
-    } while (status != 0 && errno == EINTR);
-  }
-  if (status != 0) {
-    const std::string why = system_error_text();
-    ::close(fd_);
-    fd_ = -1;
-    throw std::runtime_error(option + " " + directory.string() + ": cannot lock: " + why);
+  try {
+    return FileLock(directory / ".sedwave.lock", [&] {
+      std::fprintf(stderr, "sedwave: %s %s: another sedwave run is writing there; waiting for it to finish\n",
+                   option.c_str(), directory.c_str());
+    });
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(option + " " + directory.string() + ": " + e.what());
   }
 }
 
-OutputLock::~OutputLock() {
-  if (fd_ >= 0) ::close(fd_);  // releases the flock
-}
+}  // namespace
+
+OutputLock::OutputLock(const fs::path& directory, const std::string& option) : lock_(output_lock(directory, option)) {}
 
 ResolvedOutput resolve_output(const fs::path& target) {
   bool descriptor = false;

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <type_traits>
@@ -14,6 +15,7 @@
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/linear/newton_stage.hpp"
 #include "sedwave/forward/parallel/collectives.hpp"
+#include "sedwave/io/file_lock.hpp"
 
 namespace sedwave::forward::experiment {
 namespace {
@@ -94,19 +96,34 @@ channel::PreparedChannel prepare_member(const ChannelScene& scene, int k, int ra
   return tiled;
 }
 
-PackingFiles PackingFiles::reuse(const std::string& path, int k) {
-  if (path.empty()) return {};
-  if (std::filesystem::exists(member_path(path, k))) return {path, {}};
-  return {{}, path};
-}
-
 ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles& files, std::ostream* log) {
   const int rank = parallel::rank(MPI_COMM_WORLD);
+  const std::string save = files.save.empty() ? std::string() : member_path(files.save, k);
+  std::string read = files.read.empty() ? std::string() : member_path(files.read, k);
+  // Rank 0 looks, so that every rank goes the same way.
+  const auto saved = [&] {
+    int found = rank == 0 && std::filesystem::exists(save) ? 1 : 0;
+    parallel::broadcast(MPI_COMM_WORLD, found);
+    return found == 1;
+  };
+  // One run at a time prepares and saves a packing path (rank 0 holds its lock): a second run saving
+  // there waits, and one reusing it (a table of another grid sharing its --packing) then reads what
+  // the first saved instead of preparing its own. A packing already there is read without the lock,
+  // so it may lie where this run cannot write.
+  std::optional<io::FileLock> lock;
+  if (!save.empty() && !(files.reuse() && saved())) {
+    parallel::throw_first_failure(MPI_COMM_WORLD, parallel::failure_of([&] {
+      if (rank != 0) return;
+      lock.emplace(save + ".lock", [&] {
+        if (log != nullptr) *log << "waiting while another process prepares or writes " << save << std::endl;
+      });
+    }, "cannot lock " + save));
+    if (files.reuse() && !saved()) read.clear();
+  }
   ScenePacking out;
-  if (!files.read.empty()) {
-    const std::string path = member_path(files.read, k);
-    out.provenance = "packing read from " + path;
-    out.channel = read_packing(MPI_COMM_WORLD, path);
+  if (!read.empty()) {
+    out.provenance = "packing read from " + read;
+    out.channel = read_packing(MPI_COMM_WORLD, read);
     return out;
   }
   out.channel = prepare_member(scene, k, rank, log);
@@ -114,10 +131,9 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
   out.provenance = "packing prepared from the scene (seed + " + std::to_string(k) + ") on " +
                    std::to_string(parallel::size(MPI_COMM_WORLD)) + " rank(s)";
   if (!out.channel.report.converged) out.provenance += " (preparation did NOT converge: see the log)";
-  if (!files.save.empty()) {
-    const std::string path = member_path(files.save, k);
-    write_packing(MPI_COMM_WORLD, path, out.channel, scene.text);
-    out.provenance += ", saved to " + path;
+  if (!save.empty()) {
+    write_packing(MPI_COMM_WORLD, save, out.channel, scene.text);
+    out.provenance += ", saved to " + save;
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "sedwave/forward/experiment/table_run.hpp"
 
+#include <filesystem>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -44,8 +45,8 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const Chan
 
 /// Member k's packing for the table: reused from run.packing, or prepared (and saved there).
 ScenePacking table_packing(const ChannelScene& scene, const TableRun& run, int k) {
-  const PackingFiles files = PackingFiles::reuse(run.packing, k);
-  if (files.read.empty() && scene.import_lammps_data) {
+  const PackingFiles files = PackingFiles::reuse(run.packing);
+  if (scene.import_lammps_data && !std::filesystem::exists(member_path(run.packing, k))) {
     throw std::invalid_argument(scene.path.string() + ": scenes with import_lammps_data are not prepared by "
                                 "`sedwave table`; prepare the packing first and pass it with --packing");
   }

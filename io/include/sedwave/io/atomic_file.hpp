@@ -15,6 +15,8 @@
 //
 // Also: outputs that would overwrite one of the run's inputs are refused before any work starts.
 #include <filesystem>
+
+#include "sedwave/io/file_lock.hpp"
 #include <functional>
 #include <iosfwd>
 #include <string>
@@ -77,19 +79,16 @@ class DeferredCommits {
   void commit_all();
 };
 
-/// An exclusive lock on an output directory (a file `.sedwave.lock` in it, flock(2)): two runs
+/// An exclusive lock on an output directory (a FileLock on `.sedwave.lock` in it): two runs
 /// writing to one --out would interleave their outputs. When another process holds it, says so on
 /// stderr (naming `option` and the directory) and waits for it; released on destruction or process
 /// exit (a killed run never leaves it held). Throws std::runtime_error if the lock cannot be taken.
 class OutputLock {
  public:
   OutputLock(const std::filesystem::path& directory, const std::string& option);
-  OutputLock(const OutputLock&) = delete;
-  OutputLock& operator=(const OutputLock&) = delete;
-  ~OutputLock();
 
  private:
-  int fd_ = -1;
+  FileLock lock_;
 };
 
 /// Writes a text file atomically: `write` fills the stream; any stream error (a full disk, say)

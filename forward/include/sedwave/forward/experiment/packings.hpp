@@ -38,7 +38,9 @@ struct PackingFiles {
   std::string save;  ///< save a prepared member here (HDF5, and its LAMMPS twin .data)
   /// A resumable run's files: member k is read from `path` where its file exists, else prepared and
   /// saved there, so that a restart skips the preparation.
-  [[nodiscard]] static PackingFiles reuse(const std::string& path, int k);
+  [[nodiscard]] static PackingFiles reuse(const std::string& path) { return {path, path}; }
+  /// Whether these are reuse()'s: read where the file exists, else prepare and save.
+  [[nodiscard]] bool reuse() const { return !read.empty() && read == save; }
 };
 
 /// A member's packing and where it came from.
@@ -51,7 +53,9 @@ struct ScenePacking {
 };
 
 /// Member k's packing, read or prepared (collectively over MPI_COMM_WORLD, logging to `log`) and saved
-/// as `files` say.
+/// as `files` say. While it prepares and saves a packing, rank 0 holds the lock file SAVE.lock beside
+/// it (io::FileLock, removed when done): another run saving to the same path waits for it, and
+/// another reusing it (PackingFiles::reuse) then reads the saved file.
 [[nodiscard]] ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles& files,
                                          std::ostream* log);
 
