@@ -172,22 +172,20 @@ void write_packing_lammps_data(const std::filesystem::path& path, const Prepared
 }
 
 std::string packing_fingerprint(MPI_Comm comm, const PreparedChannel& packing) {
-  std::string hex;
-  parallel::on_root_with_pieces(comm, std::span(packing.grains), 1, [&](auto&& pieces) {
-    io::Fingerprint f;
-    pieces([&](std::span<const dem::Grain> piece) {
-      for (const dem::Grain& g : piece) {
-        f.add_value(g.id).add_value(g.group).add_value(g.body).add_value(g.radius).add_value(g.mass);
-        f.add_value(g.position.x).add_value(g.position.y).add_value(g.position.z);
-      }
-    });
-    for (int a = 0; a < 3; ++a) {
-      f.add_value(packing.box.lo[a]).add_value(packing.box.hi[a]).add_value(static_cast<bool>(packing.box.periodic[a]));
+  // The ranks' grains in rank order are the packing in id order: the hash's state passes from rank
+  // to rank, and no grain moves. The box (as rank 0 holds it) comes last.
+  const dem::Box box = broadcast_box(comm, packing.box);
+  const std::uint64_t grains = parallel::fold_in_turn(comm, io::Fingerprint().state(), [&](std::uint64_t state) {
+    io::Fingerprint f(state);
+    for (const dem::Grain& g : packing.grains) {
+      f.add_value(g.id).add_value(g.group).add_value(g.body).add_value(g.radius).add_value(g.mass);
+      f.add_value(g.position.x).add_value(g.position.y).add_value(g.position.z);
     }
-    hex = f.hex();
+    return f.state();
   });
-  parallel::broadcast(comm, hex);
-  return hex;
+  io::Fingerprint f(grains);
+  for (int a = 0; a < 3; ++a) f.add_value(box.lo[a]).add_value(box.hi[a]).add_value(static_cast<bool>(box.periodic[a]));
+  return f.hex();
 }
 
 std::string packing_fingerprint(const PreparedChannel& packing) { return packing_fingerprint(MPI_COMM_SELF, packing); }

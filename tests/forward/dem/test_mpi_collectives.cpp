@@ -179,6 +179,29 @@ TEST(Collectives, TurnsRunInRankOrderAndAFailureReachesEveryRank) {
   EXPECT_EQ(ran, r <= failing) << "rank " << r;  // the ranks after the failing one skip their turn
 }
 
+// A fold passes its state from rank to rank: an order-dependent step (a polynomial hash of the ranks)
+// gives every rank the value one process computes with the ranks in order. A failure is agreed:
+// every rank throws it, and rank 0 alone tells it.
+TEST(Collectives, AFoldPassesItsStateInRankOrder) {
+  const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
+  const auto step = [](std::uint64_t state, int k) { return state * 1000003u + static_cast<std::uint64_t>(k + 1); };
+  std::uint64_t serial = 7;
+  for (int k = 0; k < n; ++k) serial = step(serial, k);
+  EXPECT_EQ(fold_in_turn(MPI_COMM_WORLD, std::uint64_t{7}, [&](std::uint64_t s) { return step(s, r); }), serial);
+
+  try {
+    (void)fold_in_turn(MPI_COMM_WORLD, 0.0, [&](double s) {
+      if (r == n - 1) throw std::runtime_error("the last rank fails");
+      return s + 1.0;
+    });
+    ADD_FAILURE() << "rank " << r << " did not throw";
+  } catch (const AgreedFailure& e) {
+    EXPECT_STREQ(e.what(), "the last rank fails");
+    EXPECT_EQ(e.reporter(), r == 0);
+    EXPECT_EQ(e.ranks(), n);
+  }
+}
+
 TEST(Collectives, ColoursCutTheRanksIntoCommunicatorsInRankOrder) {
   const int r = rank(MPI_COMM_WORLD), n = size(MPI_COMM_WORLD);
   const SubCommunicator place(MPI_COMM_WORLD, SubCommunicator::Colour{r % 2});

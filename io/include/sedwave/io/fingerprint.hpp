@@ -14,6 +14,10 @@ namespace sedwave::io {
 /// Accumulates bytes into a 64-bit FNV-1a hash.
 class Fingerprint {
  public:
+  Fingerprint() = default;
+  /// Goes on from the state() of another: records spread over processes are hashed in turn.
+  explicit Fingerprint(std::uint64_t state) : state_(state) {}
+  [[nodiscard]] std::uint64_t state() const { return state_; }
   Fingerprint& add(std::span<const std::byte> bytes);
   Fingerprint& add(std::string_view text) { return add(std::as_bytes(std::span(text.data(), text.size()))); }
   /// A trivially copyable value's bytes (doubles bit for bit).

@@ -411,24 +411,44 @@ void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Jo
   throw_first_failure(comm, error);
 }
 
+/// Folds `step` over the ranks of `comm` one after another in rank order (collective): rank 0 calls
+/// step(initial), rank r step(what rank r - 1's returned), each once the one before has finished,
+/// and every rank returns the last rank's result. An accumulation over records spread in rank order
+/// (a hash) that moves no record; T is trivially copyable. A token passed along carries the failure
+/// so far: once a rank's step throws, the ranks after it skip theirs, and every rank then throws
+/// AgreedFailure with the first failing rank's message (no rank is left waiting for a token).
+template <class T, class Step>
+[[nodiscard]] T fold_in_turn(MPI_Comm comm, T initial, Step step) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  constexpr int kTokenTag = 0x7070;
+  struct Token {
+    int failed;
+    T state;
+  };
+  const int me = rank(comm), n = size(comm);
+  Token token{0, initial};
+  std::string error;
+  if (me > 0) MPI_Recv(&token, sizeof(Token), MPI_BYTE, me - 1, kTokenTag, comm, MPI_STATUS_IGNORE);
+  if (token.failed == 0) {
+    // Whatever the step throws, the token goes on.
+    error = failure_of([&] { token.state = step(token.state); }, "failed on rank " + std::to_string(me));
+    token.failed = error.empty() ? 0 : 1;
+  }
+  if (me + 1 < n) MPI_Send(&token, sizeof(Token), MPI_BYTE, me + 1, kTokenTag, comm);
+  throw_first_failure(comm, error);
+  broadcast(comm, std::as_writable_bytes(std::span(&token.state, 1)), n - 1);
+  return token.state;
+}
+
 /// Runs `turn` on every rank of `comm` one after another in rank order (rank 0 first), each rank
 /// starting once the one before has finished: ranks writing their own part of one file in turn, so
-/// that no rank holds everything (collective). A token passed along carries the failure so far: once
-/// a rank's turn throws, the ranks after it skip theirs, and every rank then throws
-/// std::runtime_error with the first failing rank's message (no rank is left waiting for a token).
+/// that no rank holds everything (collective). Failures as in fold_in_turn.
 template <class Turn>
 void in_turn(MPI_Comm comm, Turn turn) {
-  constexpr int kTokenTag = 0x7070;
-  const int me = rank(comm), n = size(comm);
-  int failed = 0;
-  std::string error;
-  if (me > 0) MPI_Recv(&failed, 1, MPI_INT, me - 1, kTokenTag, comm, MPI_STATUS_IGNORE);
-  if (failed == 0) {
-    error = failure_of(turn, "failed on rank " + std::to_string(me));  // whatever it is, the token goes on
-    failed = error.empty() ? 0 : 1;
-  }
-  if (me + 1 < n) MPI_Send(&failed, 1, MPI_INT, me + 1, kTokenTag, comm);
-  throw_first_failure(comm, error);
+  (void)fold_in_turn(comm, 0, [&](int) {
+    turn();
+    return 0;
+  });
 }
 
 }  // namespace sedwave::forward::parallel
