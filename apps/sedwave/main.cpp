@@ -32,16 +32,23 @@ int main(int argc, char** argv) {
   // logging silent (a model evaluated outside a table's range, for one). The fits check and report
   // every failure themselves, so only glog's fatal messages reach the terminal.
   FLAGS_minloglevel = google::GLOG_FATAL;
-  // Every HDF5 call is checked, and a failure becomes an error that names the file and what was done
-  // to it ("HDF5: cannot open FILE"); the library's own error stack would print its internals
-  // above that line, once per rank.
+  // Every HDF5 call is checked, and a failure becomes an error that names the file, what was done
+  // to it and HDF5's reason ("HDF5: cannot open FILE (file signature not found)"); the library's
+  // own error stack would print its internals above that line, once per rank.
   const sedwave::io::QuietErrors hdf5_quiet;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version are "errors" to CLI11 with code 0; every real one is a usage error.
-    const int code = app.exit(e);
-    return code == 0 ? sedwave::app::kExitOk : sedwave::app::kExitUsage;
+    const int code = e.get_exit_code() == 0 ? sedwave::app::kExitOk : sedwave::app::kExitUsage;
+    if (!sedwave::app::under_launcher()) {
+      app.exit(e);
+      return code;
+    }
+    // Under mpirun or srun every rank met the same command line: told once, by rank 0.
+    const sedwave::app::MpiSession mpi;
+    mpi.tell_once([&] { app.exit(e); });
+    return code;
   }
   try {
     for (const sedwave::app::Command& command : commands) {

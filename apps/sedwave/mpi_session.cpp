@@ -1,5 +1,6 @@
 #include "mpi_session.hpp"
 
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <ostream>
@@ -24,6 +25,13 @@ namespace parallel = sedwave::forward::parallel;
 }
 
 }  // namespace
+
+bool under_launcher() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"}) {
+    if (const char* value = std::getenv(name); value != nullptr && std::atoi(value) > 1) return true;
+  }
+  return false;
+}
 
 int report_failure(const std::exception_ptr& failure, std::ostream* out) {
   const auto tell = [out](const char* kind, const char* what) {
@@ -81,6 +89,13 @@ int MpiSession::run(const std::function<int()>& body) const {
   std::cerr.flush();
   MPI_Abort(MPI_COMM_WORLD, kExitError);
   return kExitError;  // not reached: MPI_Abort ends every process of the job
+}
+
+void MpiSession::tell_once(const std::function<void()>& tell) const {
+  if (rank_ == 0) tell();
+  std::cout.flush();
+  std::cerr.flush();
+  MPI_Barrier(MPI_COMM_WORLD);
 }
 
 void MpiSession::alike(const std::function<void()>& work) const {

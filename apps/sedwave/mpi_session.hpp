@@ -19,6 +19,10 @@ struct QuietExit {
   int status;
 };
 
+/// Whether a launcher started this process as one of several ranks (Open MPI's, MPICH's or Slurm's
+/// environment variables), known before MPI starts.
+[[nodiscard]] bool under_launcher();
+
 /// Tells `failure` on `out` as a command's last words ("sedwave: error: ...", "sedwave: usage error:
 /// ..."; nothing for QuietExit, nor for an agreed failure on any rank but its reporter) and returns
 /// the command's exit status for it. `out` null: the status alone.
@@ -43,6 +47,10 @@ class MpiSession {
   /// on its outcome (collective): where it fails on any rank, the lowest failing rank tells its
   /// failure (report_failure), and every rank throws QuietExit with that failure's exit status.
   void alike(const std::function<void()>& work) const;
+
+  /// Rank 0 runs `tell` (a message every rank would print alike) while the others wait for it
+  /// (collective): a rank that exits first makes the launcher end the one about to tell.
+  void tell_once(const std::function<void()>& tell) const;
 
  private:
   bool owner_ = false;

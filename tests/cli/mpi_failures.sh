@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # How the MPI commands fail on several ranks (docs/cli.md, "Exit codes"): a mistake that every rank
 # meets alike (a scene's unknown key, an output that would overwrite an input, an unreadable
-# packing found during the run) is told in one line and every rank exits with its status; a failure
+# packing found during the run, a misspelt option) is told in one line and every rank exits with its status; a failure
 # on one rank alone ends the whole job, naming the rank, instead of leaving the others waiting.
 #
 # Usage: mpi_failures.sh MPIEXEC SEDWAVE PROBE SCENE WORK_DIR
@@ -33,8 +33,10 @@ cp "$scene" scene.toml
 expect output_is_input 2 1 "^sedwave: usage error: .*would overwrite the input" -- \
   "$sedwave" forward scene.toml --out scene.toml
 printf 'not an HDF5 file\n' > broken.packing.h5
-expect unreadable_packing 1 1 "^sedwave: error: .*broken.packing.h5" -- \
+expect unreadable_packing 1 1 "^sedwave: error: HDF5: cannot open broken.packing.h5 \\(file signature not found\\)" -- \
   "$sedwave" forward scene.toml --packing broken.packing.h5 --quiet
+expect misspelt_option 2 1 "^The following arguments? (was|were) not expected:.*--omega-haat" -- \
+  "$sedwave" forward scene.toml --omega-haat 0.5
 expect one_rank_fails 1 1 "^sedwave: error on rank 1: only rank 1 fails" -- "$probe"
 [[ $failures -eq 0 ]] || exit 1
 echo "PASS: agreed failures told once with their status; a one-rank failure ends the job"

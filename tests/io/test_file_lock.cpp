@@ -1,11 +1,12 @@
 // io::FileLock (io/include/sedwave/io/file_lock.hpp): a process finds the lock free and takes it at
 // once; a second process waits for the holder, is told once that it waits, and takes the lock only
-// after the holder let go; the lock file does not outlive its holder; a lock file that cannot be
-// created is an error naming it.
+// after the holder let go; a holder killed with SIGKILL leaves the lock free; a lock file that cannot
+// be created is an error naming it.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -25,7 +26,41 @@ fs::path fresh_directory() {
   return dir;
 }
 
-TEST(FileLock, IsTakenAtOnceWhenFreeAndLeavesNoFile) {
+/// A child process that takes the lock, says so through a pipe, runs `then` and exits (status 3
+/// if anything throws). Returns its pid once it holds the lock.
+template <class Then>
+pid_t child_holding(const fs::path& lock, Then then) {
+  int held[2];
+  if (::pipe(held) != 0) throw std::runtime_error("pipe");
+  const pid_t child = ::fork();
+  if (child < 0) throw std::runtime_error("fork");
+  if (child == 0) {
+    ::close(held[0]);
+    try {
+      const FileLock mine(lock);
+      const char c = 'h';
+      if (::write(held[1], &c, 1) != 1) ::_exit(2);
+      then();
+    } catch (...) {
+      ::_exit(3);
+    }
+    ::_exit(0);
+  }
+  ::close(held[1]);  // so that a child dying before it writes makes read() return 0, not block
+  char c = 0;
+  const ssize_t n = ::read(held[0], &c, 1);
+  ::close(held[0]);
+  if (n != 1) throw std::runtime_error("the child never held the lock");
+  return child;
+}
+
+int exit_status(pid_t child) {
+  int status = 0;
+  if (::waitpid(child, &status, 0) != child) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+}
+
+TEST(FileLock, IsTakenAtOnceWhenFree) {
   const fs::path lock = fresh_directory() / "packing.h5.lock";
   int waits = 0;
   {
@@ -33,41 +68,35 @@ TEST(FileLock, IsTakenAtOnceWhenFreeAndLeavesNoFile) {
     EXPECT_EQ(waits, 0);
     EXPECT_TRUE(fs::exists(lock));
   }
-  EXPECT_FALSE(fs::exists(lock));
+  const FileLock again(lock, [&] { ++waits; });  // released: free again
+  EXPECT_EQ(waits, 0);
 }
 
 TEST(FileLock, ASecondProcessWaitsUntilTheHolderLetsGo) {
   const fs::path dir = fresh_directory();
   const fs::path lock = dir / "packing.h5.lock", released = dir / "released";
-  int held[2];
-  ASSERT_EQ(::pipe(held), 0);
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    {
-      const FileLock mine(lock);
-      const char c = 'h';
-      if (::write(held[1], &c, 1) != 1) ::_exit(2);
-      ::usleep(300'000);
-      std::ofstream(released) << "about to let go\n";
-    }
-    ::_exit(0);
-  }
-  char c = 0;
-  ASSERT_EQ(::read(held[0], &c, 1), 1);  // the child holds the lock now
+  const pid_t child = child_holding(lock, [&] {
+    ::usleep(300'000);
+    std::ofstream(released) << "about to let go\n";
+  });
   int waits = 0;
   {
     const FileLock mine(lock, [&] { ++waits; });
     EXPECT_EQ(waits, 1) << "told once that it waits";
     EXPECT_TRUE(fs::exists(released)) << "taken while the other process still held it";
-    EXPECT_TRUE(fs::exists(lock)) << "the holder's removed file was not replaced by a new one";
   }
-  EXPECT_FALSE(fs::exists(lock));
+  EXPECT_EQ(exit_status(child), 0);
+}
+
+TEST(FileLock, AKilledHolderLeavesItFree) {
+  const fs::path lock = fresh_directory() / "packing.h5.lock";
+  const pid_t child = child_holding(lock, [] { ::pause(); });
+  ::kill(child, SIGKILL);
   int status = 0;
   ASSERT_EQ(::waitpid(child, &status, 0), child);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  ::close(held[0]);
-  ::close(held[1]);
+  int waits = 0;
+  const FileLock mine(lock, [&] { ++waits; });
+  EXPECT_EQ(waits, 0);
 }
 
 TEST(FileLock, NamesALockFileItCannotCreate) {

@@ -129,12 +129,10 @@ std::vector<RowDataset> row_datasets(bool spins) {
   return out;
 }
 
-/// Throws on every rank when any rank has an `error` (its own message where it has one, after
-/// `prefix`), so no rank goes on into a collective that the failed one never reaches.
-void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& what,
-                      const std::string& prefix = "DEM checkpoint: ") {
-  if (!parallel::any(comm, !error.empty())) return;
-  throw std::runtime_error(error.empty() ? "DEM checkpoint: " + what + " failed on another rank" : prefix + error);
+/// Throws parallel::AgreedFailure on every rank when any rank has an `error` (the lowest such rank's
+/// message, after `prefix`), so no rank goes on into a collective that the failed one never reaches.
+void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string& prefix = "DEM checkpoint: ") {
+  parallel::throw_first_failure(comm, error.empty() ? std::string() : prefix + error);
 }
 
 /// Rows [first, first + count) of /grains, as grains (spins when the model rotates them).
@@ -237,7 +235,7 @@ void Engine::write_checkpoint(const std::string& path) {
     } catch (const std::exception& e) {
       error = e.what();
     }
-    agree_on_failure(comm, error, "writing a piece");
+    agree_on_failure(comm, error);
   }
   if (rank == 0) {
     try {
@@ -283,7 +281,7 @@ void Engine::write_checkpoint(const std::string& path) {
       error = e.what();
     }
   }
-  agree_on_failure(comm, error, "writing " + path);
+  agree_on_failure(comm, error);
 }
 
 void Engine::restore_checkpoint(const std::string& path) {
@@ -375,7 +373,7 @@ void Engine::restore_checkpoint(const std::string& path) {
   } catch (const std::exception& e) {
     error = e.what();
   }
-  agree_on_failure(domain_.comm(), error, "reading " + path, "");
+  agree_on_failure(domain_.comm(), error, "");
   if (!same_layout && needs_history(model_))
     pending_history_ = route_to_holders(domain_.comm(), grains_, std::move(pending_history_));
   if (!same_layout) domain_.partition_by_count(grains_, ghost_cutoff_);
@@ -386,7 +384,7 @@ void Engine::restore_checkpoint(const std::string& path) {
   update_global_grain_stats();
   ghost_cutoff_ = 2.0 * max_radius_ + skin_;
   if (settings_.time_step && *settings_.time_step != dt_)
-    throw std::runtime_error("DEM restart: the scene's time step differs from the checkpoint's");
+    throw parallel::AgreedFailure(domain_.comm(), "DEM restart: the scene's time step differs from the checkpoint's");
 }
 
 }  // namespace sedwave::forward::dem

@@ -140,8 +140,8 @@ void H5mdWriter::write(const Engine& engine) {
       if (domain.rank() == 0) begin_frame(all, engine);
       write_rows(all, engine, static_cast<hsize_t>(first_row));
     });
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error("H5MD trajectory " + path_ + ": " + e.what());
+  } catch (const parallel::AgreedFailure& e) {  // every rank has it
+    throw parallel::AgreedFailure(e, "H5MD trajectory " + path_ + ": " + e.what());
   }
   started_ = true;
 }

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <system_error>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
@@ -102,7 +103,8 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
   std::string read = files.read.empty() ? std::string() : member_path(files.read, k);
   // Rank 0 looks, so that every rank goes the same way.
   const auto saved = [&] {
-    int found = rank == 0 && std::filesystem::exists(save) ? 1 : 0;
+    std::error_code unreadable;  // a folder this run cannot look into: not saved, and the lock says why
+    int found = rank == 0 && std::filesystem::exists(save, unreadable) ? 1 : 0;
     parallel::broadcast(MPI_COMM_WORLD, found);
     return found == 1;
   };
@@ -112,12 +114,16 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
   // so it may lie where this run cannot write.
   std::optional<io::FileLock> lock;
   if (!save.empty() && !(files.reuse() && saved())) {
-    parallel::throw_first_failure(MPI_COMM_WORLD, parallel::failure_of([&] {
-      if (rank != 0) return;
-      lock.emplace(save + ".lock", [&] {
-        if (log != nullptr) *log << "waiting while another process prepares or writes " << save << std::endl;
-      });
-    }, "cannot lock " + save));
+    std::string error;
+    if (rank == 0) {
+      error = parallel::failure_of([&] {
+        lock.emplace(save + ".lock", [&] {
+          if (log != nullptr) *log << "waiting while another process prepares or writes " << save << std::endl;
+        });
+      }, "cannot lock " + save);
+    }
+    parallel::barrier_sleeping(MPI_COMM_WORLD);  // the other ranks wait for rank 0's lock without spinning
+    parallel::throw_first_failure(MPI_COMM_WORLD, error);
     if (files.reuse() && !saved()) read.clear();
   }
   ScenePacking out;

@@ -4,6 +4,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "sedwave/forward/experiment/packings.hpp"
 #include "sedwave/forward/experiment/run_file.hpp"
 #include "sedwave/forward/experiment/time_domain_points.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/io/fingerprint.hpp"
 
 namespace sedwave::forward::experiment {
@@ -46,9 +48,15 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const Chan
 /// Member k's packing for the table: reused from run.packing, or prepared (and saved there).
 ScenePacking table_packing(const ChannelScene& scene, const TableRun& run, int k) {
   const PackingFiles files = PackingFiles::reuse(run.packing);
-  if (scene.import_lammps_data && !std::filesystem::exists(member_path(run.packing, k))) {
-    throw std::invalid_argument(scene.path.string() + ": scenes with import_lammps_data are not prepared by "
-                                "`sedwave table`; prepare the packing first and pass it with --packing");
+  if (scene.import_lammps_data) {  // rank 0 looks, so that every rank refuses alike
+    std::error_code unreadable;
+    int missing =
+        parallel::rank(MPI_COMM_WORLD) == 0 && !std::filesystem::exists(member_path(run.packing, k), unreadable) ? 1 : 0;
+    parallel::broadcast(MPI_COMM_WORLD, missing);
+    if (missing == 1) {
+      throw parallel::AgreedFailure(MPI_COMM_WORLD, scene.path.string() + ": scenes with import_lammps_data are not "
+                                    "prepared by `sedwave table`; prepare the packing first and pass it with --packing");
+    }
   }
   ScenePacking packing = scene_packing(scene, k, files, run.log);
   if (packing.prepared && !packing.channel.report.converged && run.warnings) {

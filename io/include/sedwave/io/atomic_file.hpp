@@ -15,12 +15,12 @@
 //
 // Also: outputs that would overwrite one of the run's inputs are refused before any work starts.
 #include <filesystem>
-
-#include "sedwave/io/file_lock.hpp"
 #include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
+
+#include "sedwave/io/file_lock.hpp"
 
 namespace sedwave::io {
 

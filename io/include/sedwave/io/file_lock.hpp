@@ -6,20 +6,20 @@
 
 namespace sedwave::io {
 
+/// The lock file is created where absent and left in place (empty): removing it would let a process
+/// that opened it before the removal lock a file no longer at the path, which attribute caches on
+/// shared filesystems make impossible to rule out. The lock itself dies with its process, so a
+/// killed run never leaves it held.
 class FileLock {
  public:
-  /// Takes the lock of `path` (the lock file, created if absent), waiting while another process
-  /// holds it; `on_wait` is called once before waiting. Throws std::runtime_error naming `path`
-  /// where the file cannot be created or locked.
-  explicit FileLock(std::filesystem::path path, const std::function<void()>& on_wait = {});
-  /// Removes the lock file and releases the lock: a process that was waiting finds the file gone
-  /// and locks a new one, so no lock file outlives its holder.
-  ~FileLock();
+  /// Takes the lock of `path`, waiting while another process holds it; `on_wait` is called once
+  /// before waiting. Throws std::runtime_error naming `path` where it cannot be opened or locked.
+  explicit FileLock(const std::filesystem::path& path, const std::function<void()>& on_wait = {});
+  ~FileLock();  ///< releases the lock
   FileLock(const FileLock&) = delete;
   FileLock& operator=(const FileLock&) = delete;
 
  private:
-  std::filesystem::path path_;
   int descriptor_ = -1;
 };
 

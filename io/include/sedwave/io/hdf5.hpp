@@ -16,13 +16,29 @@
 
 namespace sedwave::io {
 
+/// "HDF5: cannot WHAT (WHY)", where WHY is the innermost entry of HDF5's error stack, the most
+/// specific ("file signature not found" for a file that is not HDF5), which is then cleared: the
+/// command turns HDF5's own printing of the stack off.
+inline std::string failure_message(const std::string& what) {
+  std::string why;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* entry, void* out) -> herr_t {
+        if (n == 0 && entry->desc != nullptr) *static_cast<std::string*>(out) = entry->desc;
+        return 0;
+      },
+      &why);
+  H5Eclear2(H5E_DEFAULT);
+  return "HDF5: cannot " + what + (why.empty() ? std::string() : " (" + why + ")");
+}
+
 /// Owns one hid_t and closes it with the matching H5*close.
 class Handle {
  public:
   using Closer = herr_t (*)(hid_t);
   Handle() = default;
   Handle(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
+    if (id_ < 0) throw std::runtime_error(failure_message(what));
   }
   Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
   Handle& operator=(Handle&& o) noexcept {
@@ -41,7 +57,7 @@ class Handle {
     if (id_ < 0 || !close_) return;
     const herr_t status = close_(id_);
     id_ = -1;
-    if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+    if (status < 0) throw std::runtime_error(failure_message(what));
   }
   [[nodiscard]] hid_t get() const { return id_; }
   operator hid_t() const { return id_; }  // NOLINT: handles are used as hid_t throughout
@@ -52,7 +68,7 @@ class Handle {
 };
 
 inline void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+  if (status < 0) throw std::runtime_error(failure_message(what));
 }
 
 template <typename T> hid_t native_type();
@@ -104,10 +120,10 @@ void write_file_atomically(const std::filesystem::path& path, Fill&& fill) {
     fill(file);
     check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "complete " + path.string());
     const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
-    if (size < 0) throw std::runtime_error("HDF5: cannot size the image of " + path.string());
+    if (size < 0) throw std::runtime_error(failure_message("size the image of " + path.string()));
     image.resize(static_cast<std::size_t>(size));
     if (H5Fget_file_image(file.get(), image.data(), image.size()) != size)
-      throw std::runtime_error("HDF5: cannot copy the image of " + path.string());
+      throw std::runtime_error(failure_message("copy the image of " + path.string()));
     file.close_checked("close " + path.string());
   }
   io::write_seekable_atomically(
@@ -157,7 +173,7 @@ inline std::size_t rows(hid_t parent, const std::string& name) {
 inline std::vector<hsize_t> shape(hid_t dataset) {
   Handle space(H5Dget_space(dataset), H5Sclose, "get a dataspace");
   const int rank = H5Sget_simple_extent_ndims(space);
-  if (rank < 0) throw std::runtime_error("HDF5: cannot read a dataset's rank");
+  if (rank < 0) throw std::runtime_error(failure_message("read a dataset's rank"));
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space, dims.data(), nullptr);
   return dims;
@@ -206,7 +222,7 @@ T read_attribute(hid_t parent, const std::string& name) {
 
 inline bool has_attribute(hid_t object, const std::string& name) {
   const htri_t exists = H5Aexists(object, name.c_str());
-  if (exists < 0) throw std::runtime_error("HDF5: cannot look for attribute " + name);
+  if (exists < 0) throw std::runtime_error(failure_message("look for attribute " + name));
   return exists > 0;
 }
 

@@ -53,9 +53,9 @@ struct ScenePacking {
 };
 
 /// Member k's packing, read or prepared (collectively over MPI_COMM_WORLD, logging to `log`) and saved
-/// as `files` say. While it prepares and saves a packing, rank 0 holds the lock file SAVE.lock beside
-/// it (io::FileLock, removed when done): another run saving to the same path waits for it, and
-/// another reusing it (PackingFiles::reuse) then reads the saved file.
+/// as `files` say. While it prepares and saves a packing, rank 0 holds the lock of SAVE.lock beside
+/// it (io::FileLock): another run saving to the same path waits for it, and another reusing it
+/// (PackingFiles::reuse) then reads the saved file.
 [[nodiscard]] ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles& files,
                                          std::ostream* log);
 

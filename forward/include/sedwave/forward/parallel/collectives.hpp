@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <climits>
 #include <cstddef>
 #include <exception>
@@ -21,6 +22,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -356,14 +358,14 @@ inline void throw_first_failure(MPI_Comm comm, std::string error) {
 }
 
 /// Runs `job` on rank 0 of `comm` with every rank's records, a chunk at a time, while the other
-/// ranks send theirs (collective): a file or hash of a spread packing that no rank holds whole.
+/// ranks send theirs (collective): a file of a spread packing that no rank holds whole.
 /// `job(pieces)` calls `pieces(visit)` up to `passes` times; each call hands visit(std::span<const T>)
 /// every rank's records in rank order (rank 0's own first, whole; then the others' in chunks of at
 /// most 8 MiB and `max_count` records, each message one chunk), so rank 0 holds its own records and
 /// one chunk of another rank's. The chunk's buffer is allocated before anything is sent, and a pass
 /// never stops half way: whatever fails on rank 0 (the buffer, the job, or a visit, which skips the
 /// records after it), every record sent is received, so no rank is left waiting, and every rank then
-/// throws std::runtime_error with the failure's message.
+/// throws AgreedFailure with the failure's message.
 template <typename T, class Job>
 void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Job job,
                          std::size_t max_count = kMaxMpiCount) {
@@ -409,6 +411,20 @@ void on_root_with_pieces(MPI_Comm comm, std::span<const T> local, int passes, Jo
   error = failure_of([&] { job(pieces); }, "failed on rank 0");
   while (done < passes) pieces([](std::span<const T>) {});  // receive what the others still send
   throw_first_failure(comm, error);
+}
+
+/// Waits until every rank of `comm` has come here (a barrier), sleeping `nap` between looks instead
+/// of spinning as MPI's own waits do: for ranks that may wait long for one of them (rank 0 waiting
+/// for a lock that another job holds through a whole preparation).
+inline void barrier_sleeping(MPI_Comm comm, std::chrono::milliseconds nap = std::chrono::milliseconds(20)) {
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibarrier(comm, &request);
+  int done = 0;
+  MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  while (done == 0) {
+    std::this_thread::sleep_for(nap);
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  }
 }
 
 /// Folds `step` over the ranks of `comm` one after another in rank order (collective): rank 0 calls
