@@ -27,7 +27,9 @@ namespace parallel = sedwave::forward::parallel;
 }  // namespace
 
 bool under_launcher() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"}) {
+  // Slurm: the step's task count (srun), not the allocation's, which a batch script's own serial
+  // commands see too.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"}) {
     if (const char* value = std::getenv(name); value != nullptr && std::atoi(value) > 1) return true;
   }
   return false;

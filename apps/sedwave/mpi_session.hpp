@@ -19,8 +19,8 @@ struct QuietExit {
   int status;
 };
 
-/// Whether a launcher started this process as one of several ranks (Open MPI's, MPICH's or Slurm's
-/// environment variables), known before MPI starts.
+/// Whether a launcher started this process as one of several ranks (from Open MPI's, MPICH's or
+/// srun's environment variables), known before MPI starts.
 [[nodiscard]] bool under_launcher();
 
 /// Tells `failure` on `out` as a command's last words ("sedwave: error: ...", "sedwave: usage error:
