@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
-#include <system_error>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
+#include <system_error>
 #include <type_traits>
 
 #include "sedwave/forward/channel/periodic_cell.hpp"
