@@ -28,6 +28,7 @@
 #include "sedwave/forward/dem/gather.hpp"
 #include "sedwave/forward/dem/h5md.hpp"
 #include "sedwave/forward/dem/lammps_io.hpp"
+#include "sedwave/forward/parallel/collectives.hpp"
 #include "sedwave/io/fingerprint.hpp"
 #include "sedwave/version.hpp"
 
@@ -160,10 +161,8 @@ std::vector<dem::RigidBody> make_walls(const DemOptions& o, std::map<int, std::i
   return bodies;
 }
 
-bool exists_on_root(const std::string& path, const MpiSession& mpi) {
-  int found = mpi.rank() == 0 && std::filesystem::exists(path) ? 1 : 0;
-  MPI_Bcast(&found, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  return found != 0;
+bool exists_on_root(const std::string& path) {
+  return forward::parallel::root_says(MPI_COMM_WORLD, [&] { return std::filesystem::exists(path); });
 }
 
 /// Writes a trajectory frame now and every `every` steps. After a restart the frames that the
@@ -172,7 +171,7 @@ bool exists_on_root(const std::string& path, const MpiSession& mpi) {
 template <class Writer>
 void add_trajectory(dem::Engine& engine, const std::string& path, std::int64_t every, bool restarted,
                     const MpiSession& mpi, std::size_t (*truncate)(const std::string&, std::int64_t)) {
-  const bool append = restarted && exists_on_root(path, mpi);
+  const bool append = restarted && exists_on_root(path);
   if (append && mpi.rank() == 0) truncate(path, engine.step_count());
   MPI_Barrier(MPI_COMM_WORLD);
   auto writer = std::make_shared<Writer>(path, append);
@@ -307,7 +306,7 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
 
   bool restarted = false;
   if (o.restart) {
-    restarted = exists_on_root(o.checkpoint, mpi);
+    restarted = exists_on_root(o.checkpoint);
     if (restarted) engine.restore_checkpoint(o.checkpoint);
     if (root && !o.quiet)
       out << (restarted ? "dem: restarting from " + o.checkpoint + " at step " + std::to_string(engine.step_count())

@@ -115,10 +115,9 @@ void write_rows(hid_t file, const GrainArrays& grains, std::size_t first, std::s
 
 /// The datasets of write_rows: grains (kind 0) and contact-history records (kind 1).
 std::vector<RowDataset> row_datasets(bool spins) {
-  std::vector<RowDataset> out{{"grains", "id", H5T_NATIVE_INT64, 0, 0},   {"grains", "group", H5T_NATIVE_INT32, 0, 0},
-                              {"grains", "body", H5T_NATIVE_INT32, 0, 0}, {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
-                              {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0},
-                              {"grains", "velocity", H5T_NATIVE_DOUBLE, 3, 0}, {"grains", "force", H5T_NATIVE_DOUBLE, 3, 0}};
+  std::vector<RowDataset> out = grain_datasets();
+  out.push_back({"grains", "velocity", H5T_NATIVE_DOUBLE, 3, 0});
+  out.push_back({"grains", "force", H5T_NATIVE_DOUBLE, 3, 0});
   if (spins) {
     out.push_back({"grains", "angular_velocity", H5T_NATIVE_DOUBLE, 3, 0});
     out.push_back({"grains", "torque", H5T_NATIVE_DOUBLE, 3, 0});
@@ -137,12 +136,7 @@ void agree_on_failure(MPI_Comm comm, const std::string& error, const std::string
 
 /// Rows [first, first + count) of /grains, as grains (spins when the model rotates them).
 void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, GrainArrays& out) {
-  const auto id = io::read_rows<std::int64_t>(g, "id", first, count);
-  const auto group = io::read_rows<std::int32_t>(g, "group", first, count);
-  const auto body = io::read_rows<std::int32_t>(g, "body", first, count);
-  const auto radius = io::read_rows<double>(g, "radius", first, count);
-  const auto mass = io::read_rows<double>(g, "mass", first, count);
-  const auto x = io::read_rows<double>(g, "position", first, count, 3);
+  std::vector<Grain> grains = read_grain_rows(g, first, count);
   const auto vel = io::read_rows<double>(g, "velocity", first, count, 3);
   const auto force = io::read_rows<double>(g, "force", first, count, 3);
   std::vector<double> w, torque;
@@ -152,7 +146,9 @@ void read_grains(hid_t g, std::size_t first, std::size_t count, bool spins, Grai
   }
   for (std::size_t k = 0; k < count; ++k) {
     const auto at = [&](const std::vector<double>& a) { return Vec3{a[3 * k], a[3 * k + 1], a[3 * k + 2]}; };
-    Grain grain{id[k], group[k], body[k], radius[k], mass[k], at(x), at(vel), {}, at(force), {}};
+    Grain& grain = grains[k];
+    grain.velocity = at(vel);
+    grain.force = at(force);
     if (spins) {
       grain.angular_velocity = at(w);
       grain.torque = at(torque);

@@ -450,12 +450,7 @@ void Engine::guard_check(const OverlapWatch& watch) {
         << s.check_interval << " steps" << context();
   last_kinetic_energy_ = ke;
 
-  const std::string message = why.str();
-  const int first_failing = parallel::min(domain_.comm(), message.empty() ? domain_.size() : domain_.rank());
-  if (first_failing == domain_.size()) return;
-  std::string shared = message;
-  parallel::broadcast(domain_.comm(), shared, first_failing);
-  throw GuardError(domain_.comm(), shared);
+  parallel::throw_first_failure<GuardError>(domain_.comm(), why.str());
 }
 
 // ---- observables -------------------------------------------------------------------------------

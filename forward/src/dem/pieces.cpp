@@ -116,4 +116,30 @@ void remove_stale_pieces(const std::filesystem::path& path, const std::string& t
   }
 }
 
+std::vector<RowDataset> grain_datasets() {
+  return {{"grains", "id", H5T_NATIVE_INT64, 0, 0},     {"grains", "group", H5T_NATIVE_INT32, 0, 0},
+          {"grains", "body", H5T_NATIVE_INT32, 0, 0},   {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
+          {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0}};
+}
+
+std::vector<Grain> read_grain_rows(hid_t grains, std::size_t first, std::size_t count) {
+  const auto id = io::read_rows<std::int64_t>(grains, "id", first, count);
+  const auto group = io::read_rows<std::int32_t>(grains, "group", first, count);
+  const auto body = io::read_rows<std::int32_t>(grains, "body", first, count);
+  const auto radius = io::read_rows<double>(grains, "radius", first, count);
+  const auto mass = io::read_rows<double>(grains, "mass", first, count);
+  const auto position = io::read_rows<double>(grains, "position", first, count, 3);
+  std::vector<Grain> out(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    Grain& g = out[k];
+    g.id = id[k];
+    g.group = group[k];
+    g.body = body[k];
+    g.radius = radius[k];
+    g.mass = mass[k];
+    g.position = {position[3 * k], position[3 * k + 1], position[3 * k + 2]};
+  }
+  return out;
+}
+
 }  // namespace sedwave::forward::dem

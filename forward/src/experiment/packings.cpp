@@ -101,12 +101,11 @@ ScenePacking scene_packing(const ChannelScene& scene, int k, const PackingFiles&
   const int rank = parallel::rank(MPI_COMM_WORLD);
   const std::string save = files.save.empty() ? std::string() : member_path(files.save, k);
   std::string read = files.read.empty() ? std::string() : member_path(files.read, k);
-  // Rank 0 looks, so that every rank goes the same way.
   const auto saved = [&] {
-    std::error_code unreadable;  // a folder this run cannot look into: not saved, and the lock says why
-    int found = rank == 0 && std::filesystem::exists(save, unreadable) ? 1 : 0;
-    parallel::broadcast(MPI_COMM_WORLD, found);
-    return found == 1;
+    return parallel::root_says(MPI_COMM_WORLD, [&] {
+      std::error_code unreadable;  // a folder this run cannot look into: not saved, and the lock says why
+      return std::filesystem::exists(save, unreadable);
+    });
   };
   // One run at a time prepares and saves a packing path (rank 0 holds its lock): a second run saving
   // there waits, and one reusing it (a table of another grid sharing its --packing) then reads what

@@ -36,14 +36,6 @@ struct GrainColumns {
   }
 };
 
-/// /grains of a packing file, as rows of one kind (for files written in pieces). A function: the
-/// H5T_NATIVE_* ids exist once HDF5 is open.
-std::vector<dem::RowDataset> grain_datasets() {
-  return {{"grains", "id", H5T_NATIVE_INT64, 0, 0},     {"grains", "group", H5T_NATIVE_INT32, 0, 0},
-          {"grains", "body", H5T_NATIVE_INT32, 0, 0},   {"grains", "radius", H5T_NATIVE_DOUBLE, 0, 0},
-          {"grains", "mass", H5T_NATIVE_DOUBLE, 0, 0}, {"grains", "position", H5T_NATIVE_DOUBLE, 3, 0}};
-}
-
 /// Rows [row, row + grains.size()) of the /grains datasets under `grains_group`, created beforehand.
 void write_grain_rows(hid_t grains_group, hsize_t row, std::span<const dem::Grain> grains) {
   const hsize_t count = grains.size();
@@ -130,7 +122,7 @@ void write_packing_in_pieces(MPI_Comm comm, const std::filesystem::path& path, c
         [&] {
           io::write_file_atomically(path, [&](hid_t file) {
             fill_packing_file(file, p, scene_text, [&] {
-              for (const dem::RowDataset& d : grain_datasets()) dem::join_pieces(file, d, pieces, path, token);
+              for (const dem::RowDataset& d : dem::grain_datasets()) dem::join_pieces(file, d, pieces, path, token);
             });
           });
           dem::remove_stale_pieces(path, token);
@@ -204,24 +196,8 @@ PreparedChannel read_packing_share(MPI_Comm comm, const std::filesystem::path& p
   };
   const int rank = parallel::rank(comm);
   const std::size_t first = share(rank), n = share(rank + 1) - first;
-  const auto id = io::read_rows<std::int64_t>(grains, "id", first, n);
-  const auto group = io::read_rows<std::int32_t>(grains, "group", first, n);
-  const auto body = io::read_rows<std::int32_t>(grains, "body", first, n);
-  const auto radius = io::read_rows<double>(grains, "radius", first, n);
-  const auto mass = io::read_rows<double>(grains, "mass", first, n);
-  const auto position = io::read_rows<double>(grains, "position", first, n, 3);
   PreparedChannel p;
-  p.grains.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    dem::Grain g;
-    g.id = id[i];
-    g.group = group[i];
-    g.body = body[i];
-    g.radius = radius[i];
-    g.mass = mass[i];
-    g.position = {position[3 * i], position[3 * i + 1], position[3 * i + 2]};
-    p.grains.push_back(g);
-  }
+  p.grains = dem::read_grain_rows(grains, first, n);
   io::Handle box = io::open_group(file, "box");
   const auto bounds = io::read_rows<double>(box, "bounds", 0, 2, 3);
   const auto periodic = io::read_rows<std::int32_t>(box, "periodic", 0, 3);

@@ -49,11 +49,11 @@ table::TableMetadata table_metadata(const table::TableGridFile& grid, const Chan
 ScenePacking table_packing(const ChannelScene& scene, const TableRun& run, int k) {
   const PackingFiles files = PackingFiles::reuse(run.packing);
   if (scene.import_lammps_data) {  // rank 0 looks, so that every rank refuses alike
-    std::error_code unreadable;
-    int missing =
-        parallel::rank(MPI_COMM_WORLD) == 0 && !std::filesystem::exists(member_path(run.packing, k), unreadable) ? 1 : 0;
-    parallel::broadcast(MPI_COMM_WORLD, missing);
-    if (missing == 1) {
+    const bool missing = parallel::root_says(MPI_COMM_WORLD, [&] {
+      std::error_code unreadable;
+      return !std::filesystem::exists(member_path(run.packing, k), unreadable);
+    });
+    if (missing) {
       throw parallel::AgreedFailure(MPI_COMM_WORLD, scene.path.string() + ": scenes with import_lammps_data are not "
                                     "prepared by `sedwave table`; prepare the packing first and pass it with --packing");
     }

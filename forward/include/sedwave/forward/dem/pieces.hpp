@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/forward/dem/grains.hpp"
+
 namespace sedwave::forward::dem {
 
 /// One piece file: a part of one rank's rows, `rows[kind]` of each kind of row (grains, records).
@@ -47,6 +49,15 @@ struct RowDataset {
   std::size_t columns;
   std::size_t kind;
 };
+
+/// The columns of /grains that every file of grains holds, packings and checkpoints alike: id, group,
+/// body, radius, mass and position (rows of kind 0). A function: the H5T_NATIVE_* ids exist once
+/// HDF5 is open.
+[[nodiscard]] std::vector<RowDataset> grain_datasets();
+
+/// Rows [first, first + count) of grain_datasets() under the group `grains`, as grains (their other
+/// fields zero).
+[[nodiscard]] std::vector<Grain> read_grain_rows(hid_t grains, std::size_t first, std::size_t count);
 
 /// The virtual dataset `d.group/d.name` under `file` (the file at `path`) that joins the pieces'
 /// datasets of the same name in order. Piece names are stored relative: HDF5 looks for them beside

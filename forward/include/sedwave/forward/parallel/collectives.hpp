@@ -346,15 +346,27 @@ class AgreedFailure : public std::runtime_error {
   int ranks_;
 };
 
-/// Throws AgreedFailure on every rank of `comm` with the message of the lowest rank whose `error`
-/// is not empty, and returns where none has one (collective): ranks that each did their own part
-/// agree on the outcome before going on into a collective that a failed rank would not reach.
-inline void throw_first_failure(MPI_Comm comm, std::string error) {
+/// Throws `Failure` (AgreedFailure or a kind of it) on every rank of `comm` with the message of the
+/// lowest rank whose `error` is not empty, and returns where none has one (collective): ranks that
+/// each did their own part agree on the outcome before going on into a collective that a failed
+/// rank would not reach.
+template <class Failure = AgreedFailure>
+void throw_first_failure(MPI_Comm comm, std::string error) {
+  static_assert(std::is_base_of_v<AgreedFailure, Failure>);
   const int me = rank(comm), n = size(comm);
   const int first_failing = min(comm, error.empty() ? n : me);
   if (first_failing == n) return;
   broadcast(comm, error, first_failing);
-  throw AgreedFailure(comm, error);
+  throw Failure(comm, error);
+}
+
+/// Asks `question` (returning bool) on rank 0 alone and gives every rank its answer (collective):
+/// ranks that must go the same way on what one look at a shared filesystem finds.
+template <class Question>
+[[nodiscard]] bool root_says(MPI_Comm comm, Question question) {
+  int yes = rank(comm) == 0 && question() ? 1 : 0;
+  broadcast(comm, yes);
+  return yes == 1;
 }
 
 /// Runs `job` on rank 0 of `comm` with every rank's records, a chunk at a time, while the other
