@@ -17,6 +17,7 @@
 #include "output_paths.hpp"
 #include "sedwave/inversion/comparison.hpp"
 #include "sedwave/inversion/observations.hpp"
+#include "sedwave/plot/plot.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/sediment/catalog.hpp"
 
@@ -97,32 +98,17 @@ void check_fits(const std::vector<std::string>& fits, const std::vector<std::str
 }
 
 /// A model with its free parameters, values and priors (site file, then --prior), before any work:
-/// an unusable option stops the comparison before the first fit.
+/// an unusable option stops the comparison before the first fit. The shared settings apply to every
+/// model that has their parameter.
 inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
-  ModelOptions mo = o.shared;
-  mo.model = spec;
+  inversion::ModelSetup setup = setup_of(o.shared);
+  setup.model = spec;
   for (const std::string& f : o.fits) {
-    if (name_of(f) == spec) mo.fit = f.substr(f.find('=') + 1);
+    if (name_of(f) == spec) setup.free = f.substr(f.find('=') + 1);
   }
-  const auto probe = make_model(mo);  // for the names it has
-  mo.set_values.erase(std::remove_if(mo.set_values.begin(), mo.set_values.end(),
-                                     [&](const std::string& item) { return !has_parameter(*probe, name_of(item)); }),
-                      mo.set_values.end());
-  inversion::Candidate candidate;
-  candidate.label = spec;
-  candidate.model = make_model(mo);
-  std::vector<std::string> notes;
-  std::vector<inversion::SitePrior> site_priors;
-  candidate.parameters = make_parameters(mo, *candidate.model, ModelUse::Fit, &notes, &site_priors);
-  std::vector<std::string> prior_items;  // a --prior applies to every model that has its parameter free
-  for (const std::string& item : o.priors) {
-    const int i = has_parameter(*candidate.model, name_of(item)) ? candidate.parameters.index_of(name_of(item)) : -1;
-    if (i >= 0 && candidate.parameters.spec[static_cast<std::size_t>(i)].free) prior_items.push_back(item);
-  }
-  candidate.priors = inversion::default_priors(candidate.parameters);
-  inversion::apply_site_priors(candidate.parameters, site_priors, candidate.priors);
-  inversion::apply_priors(candidate.parameters, prior_items, "command line", candidate.priors);
-  return candidate;
+  setup.priors = o.priors;
+  setup.shared = true;
+  return candidate_of(setup);
 }
 
 void print_table(const inversion::Ranking& ranking) {
@@ -237,7 +223,7 @@ Command add_compare_command(CLI::App& app) {
       std::printf("posterior bands: %s/predictive_*.csv, samples: %s/samples_*.csv\n", out.c_str(), out.c_str());
       outputs.commit_all();
       if (o->plot) {
-        for (const std::string& message : inversion::draw_ranking_plots(out, ranking, data)) {
+        for (const std::string& message : plot::draw_ranking_plots(out, ranking, data)) {
           std::printf("%s\n", message.c_str());
         }
       }

@@ -20,7 +20,7 @@
 #include "sedwave/forward/catalog/models.hpp"
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
-#include "sedwave/inversion/plot.hpp"
+#include "sedwave/plot/plot.hpp"
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/study.hpp"
 #include "sedwave/inversion/report.hpp"
@@ -107,7 +107,7 @@ void print_quantity(const std::string& name, const std::string& unit, double val
   }
 }
 
-void print_summary(const inversion::FitResult& r, const inversion::PlotOutcome& plot, const std::string& out,
+void print_summary(const inversion::FitResult& r, const plot::PlotOutcome& plot, const std::string& out,
                    bool profiled) {
   std::printf("sedwave invert: model %s, method %s, %d observations, %.1f ms\n", r.model.c_str(), r.method.c_str(),
               r.n_observations, 1e3 * r.wall_seconds);
@@ -282,19 +282,16 @@ Command add_invert_command(CLI::App& app) {
             const std::filesystem::path out(o->out);
             check_outputs(output_files(out), input_files(*o), "invert");
             const inversion::ObservationSet data = read_all(*o);
-            const auto model = make_model(o->model);
-            std::vector<std::string> site_notes;
-            std::vector<inversion::SitePrior> site_priors;
-            const inversion::FitParameters parameters =
-                make_parameters(o->model, *model, ModelUse::Fit, &site_notes, &site_priors);
+            const bool posterior = o->method == "posterior";
+            if (!o->priors.empty() && !posterior) throw UsageError("--prior is for --method posterior");
+            inversion::ModelSetup setup = setup_of(o->model);
+            setup.priors = o->priors;
+            const inversion::Candidate candidate = candidate_of(setup);
+            const auto& model = candidate.model;
+            const std::vector<std::string>& site_notes = candidate.notes;
             for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
             inversion::FitOptions options = o->fit_options;
-            const bool posterior = o->method == "posterior";
             options.method = inversion::parse_fit_method(posterior ? "global" : o->method);
-            if (!o->priors.empty() && !posterior) throw UsageError("--prior is for --method posterior");
-            std::vector<inversion::Prior> priors = inversion::default_priors(parameters);
-            inversion::apply_site_priors(parameters, site_priors, priors);
-            inversion::apply_priors(parameters, o->priors, "command line", priors);
             const io::OutputLock lock(out, "--out");  // after every check: a refused run waits for nothing
             io::DeferredCommits outputs;  // a failed run leaves the previous outputs, not half of its own
             if (data.observations.size() >= kProgressObservations) {
@@ -304,7 +301,7 @@ Command add_invert_command(CLI::App& app) {
                 std::fprintf(stderr, "sedwave invert: %7.1f s: %s\n", s, stage.c_str());
               };
             }
-            const inversion::FitResult result = inversion::fit(data, *model, parameters, options);
+            const inversion::FitResult result = inversion::fit(data, *model, candidate.parameters, options);
 
             nlohmann::json report = inversion::fit_report(result, data);
             std::optional<inversion::PosteriorStudy> sampled;
@@ -314,7 +311,7 @@ Command add_invert_command(CLI::App& app) {
               posterior_options.progress = [](const std::string& line) {
                 std::fprintf(stderr, "sedwave invert: posterior: %s\n", line.c_str());
               };
-              sampled = inversion::posterior_study(data, *model, result, priors, options, posterior_options);
+              sampled = inversion::posterior_study(data, *model, result, candidate.priors, options, posterior_options);
               report["posterior"] = inversion::posterior_report(sampled->posterior);
               inversion::write_posterior_study(out, *sampled, result, data);
             }
@@ -333,17 +330,17 @@ Command add_invert_command(CLI::App& app) {
                           left_out, inversion::curve_frequencies(data).size(), result.model.c_str());
             }
             outputs.commit_all();  // the plots read them
-            inversion::PlotOutcome plot{false, "plot skipped (--no-plot)"};
+            plot::PlotOutcome plot{false, "plot skipped (--no-plot)"};
             if (o->plot) {
               const bool chain = o->model.model == "lattice" || o->model.model == "continuum";
-              plot = inversion::draw_fit_plot(out, "sedwave fit: " + result.model + (chain ? " chain model" : ""),
+              plot = plot::draw_fit_plot(out, "sedwave fit: " + result.model + (chain ? " chain model" : ""),
                                               data.water_sound_speed.has_value(), result);
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
             if (sampled) {
               print_posterior(sampled->posterior, o->out);
               if (o->plot) {
-                for (const std::string& message : inversion::draw_posterior_plots(out, *sampled, result, data)) {
+                for (const std::string& message : plot::draw_posterior_plots(out, *sampled, result, data)) {
                   std::printf("  %s\n", message.c_str());
                 }
               }

@@ -1,6 +1,7 @@
 // `sedwave synthesize`: the observations a forward model predicts for known parameters over a
 // planned band, with noise, as an observation CSV. Fitting the file back with `sedwave invert`
 // shows what a measurement of that band and precision would determine (docs/inversion.md).
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -68,25 +69,17 @@ Command add_synthesize_command(CLI::App& app) {
   cmd->add_option("--seed", o->design.seed, "seed of the noise")->capture_default_str();
   cmd->add_option("--out", o->out, "observation CSV to write")->required();
   return {cmd, [o]() {
-    const auto model = make_model(o->model);
-    std::vector<std::string> site_notes;
-    const inversion::FitParameters truth = make_parameters(o->model, *model, ModelUse::Truth, &site_notes);
-    for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
-    // The grain contact has no typical values to fall back on: its truth must be given.
-    if (model->dimensionless_engine()) {
-      const auto sets = [&](const char* name) {
-        for (const std::string& item : o->model.set_values) {
-          if (item.starts_with(std::string(name) + "=")) return true;
-        }
-        return false;
-      };
-      const bool kappa = o->model.kappa || o->model.depth || o->model.effective_pressure || sets("kappa");
-      const bool diameter = o->model.diameter || o->model.phi || sets("d");
-      if (!kappa || !diameter) {
-        throw std::invalid_argument("give the grain contact: --kappa (or --depth, --effective-pressure) and --d (or --phi)");
-      }
-      if (!o->model.gamma && !o->model.restitution) throw std::invalid_argument("give the damping: --gamma or --en");
+    const inversion::Candidate candidate = candidate_of(setup_of(o->model), ModelUse::Truth);
+    const auto& model = candidate.model;
+    const inversion::FitParameters& truth = candidate.parameters;
+    for (const std::string& note : candidate.notes) std::printf("site: %s\n", note.c_str());
+    // A grain contact has no typical values to fall back on: its truth must be given.
+    const std::vector<std::string> missing = inversion::values_not_given(candidate);
+    const auto lacks = [&](const char* name) { return std::ranges::find(missing, name) != missing.end(); };
+    if (lacks("kappa") || lacks("d")) {
+      throw std::invalid_argument("give the grain contact: --kappa (or --depth, --effective-pressure) and --d (or --phi)");
     }
+    if (lacks("gamma") || lacks("e_n")) throw std::invalid_argument("give the damping: --gamma or --en");
     if (!(o->design.highest_hz > o->design.lowest_hz)) {
       throw std::invalid_argument("--from must be below --to");
     }

@@ -8,9 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sedwave/inversion/parameters.hpp"
-#include "sedwave/inversion/site.hpp"
-#include "sedwave/sediment/sediment_model.hpp"
+#include "sedwave/inversion/setup.hpp"
 
 namespace sedwave::app {
 
@@ -23,28 +21,23 @@ struct ModelOptions {
   std::vector<std::string> set_bounds;  ///< NAME=LO,HI
   /// What users measure at a site, converted to parameters (docs/models/site-inputs.md).
   std::optional<double> phi, porosity, bulk_density, depth, effective_pressure, water_temperature, salinity;
-  std::string site;  ///< a site file (site_file.hpp): priors and values from what is known
+  std::string site;  ///< a site file (sedwave/inversion/site_file.hpp): priors and values from what is known
 };
 
-enum class ModelUse { Fit, Truth };
+using ModelUse = inversion::SetupUse;
 
 /// --model, --set, --kappa, --d, --gamma, --en, --density, the site inputs (--phi, --porosity, --bulk-density,
 /// --depth, --effective-pressure, --water-temperature, --salinity); for fits also --fit, --bounds,
 /// --*-bounds.
 void add_model_options(CLI::App& cmd, ModelOptions& options, ModelUse use);
 
-/// The model the options name (damping form and permeability mode follow from the options).
-[[nodiscard]] std::shared_ptr<const sediment::SedimentModel> make_model(const ModelOptions& options);
+/// The options as a study's setup (sedwave/inversion/setup.hpp), each value with the option it came
+/// from: candidate_of turns it into the model with its parameters and priors. Throws UsageError for a malformed --set or --bounds,
+/// or --water-temperature without --salinity.
+[[nodiscard]] inversion::ModelSetup setup_of(const ModelOptions& options);
 
-/// The model's parameters with the options applied; `site_notes` (if given) receives one line per
-/// site input converted (what it set, from what, by which relation), `site_priors` the site file's
-/// priors for the free parameters. The site options and the site file fill one typed Site each, and
-/// one conversion applies both (sedwave/inversion/site.hpp). Throws UsageError for a name the
-/// model does not have, a malformed --set/--bounds or a parameter set twice (directly and from a site
-/// input), std::invalid_argument for a value or bound outside the parameter's physical range.
-[[nodiscard]] inversion::FitParameters make_parameters(const ModelOptions& options,
-                                                       const sediment::SedimentModel& model, ModelUse use,
-                                                       std::vector<std::string>* site_notes = nullptr,
-                                                       std::vector<inversion::SitePrior>* site_priors = nullptr);
+/// inversion::make_candidate, with its SetupError (settings that do not fit together) thrown as the
+/// command line's UsageError.
+[[nodiscard]] inversion::Candidate candidate_of(const inversion::ModelSetup& setup, ModelUse use = ModelUse::Fit);
 
 }  // namespace sedwave::app

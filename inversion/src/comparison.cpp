@@ -9,7 +9,6 @@
 #include <utility>
 
 #include "job_queue.hpp"
-#include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
 
@@ -64,15 +63,6 @@ std::vector<int> order_by_evidence(const std::vector<ComparedModel>& models, boo
   return order;
 }
 
-/// The free parameters' names and units of a model, in the order of its samples' columns.
-std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(const ComparedModel& m) {
-  std::vector<std::string> names, units;
-  for (int i : m.fit.fitted.free_indices()) {
-    names.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].name);
-    units.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].unit);
-  }
-  return {names, units};
-}
 
 std::string widened_stage() {
   char text[64];
@@ -82,26 +72,13 @@ std::string widened_stage() {
 
 }  // namespace
 
-Candidate make_candidate(const std::string& spec, const Site& site) {
-  Candidate candidate = make_candidate(sediment::make_sediment_model(spec), site);
-  candidate.label = spec;
-  return candidate;
-}
-
-Candidate make_candidate(std::shared_ptr<const sediment::SedimentModel> model, const Site& site) {
-  Candidate candidate;
-  candidate.label = model->name();
-  candidate.model = std::move(model);
-  candidate.parameters = FitParameters(candidate.model->parameters());
-  candidate.parameters.set_free_from_list(sediment::typical_free_parameters(*candidate.model));
-  Site for_any_model = site;
-  for_any_model.skip_missing_parameters = true;
-  SetBy set_by;
-  const SiteApplied applied = apply_site(for_any_model, *candidate.model, candidate.parameters, set_by);
-  candidate.parameters.validate();
-  candidate.priors = default_priors(candidate.parameters);
-  apply_site_priors(candidate.parameters, applied.priors, candidate.priors);
-  return candidate;
+std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(const ComparedModel& m) {
+  std::vector<std::string> names, units;
+  for (int i : m.fit.fitted.free_indices()) {
+    names.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].name);
+    units.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].unit);
+  }
+  return {names, units};
 }
 
 bool Ranking::converged() const {
@@ -187,28 +164,6 @@ void write_ranking_files(const std::filesystem::path& dir, const Ranking& rankin
     write_samples_csv(dir / ranking_file("samples", i, ranking.models[i].label), ranking.models[i].evidence.samples,
                       names, units);
   }
-}
-
-std::vector<std::string> draw_ranking_plots(const std::filesystem::path& dir, const Ranking& ranking,
-                                            const ObservationSet& data) {
-  std::vector<BandFile> bands;
-  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
-    bands.push_back({ranking.models[i].model, ranking_file("predictive", i, ranking.models[i].label)});
-  }
-  std::vector<std::string> messages;
-  messages.push_back(draw_predictive_plot(dir, "predictive", "sedwave compare: posterior bands",
-                                          data.water_sound_speed.has_value(), ranking.models.front().fit, bands,
-                                          "predictive_residuals.csv")
-                         .message);
-  const auto best = static_cast<std::size_t>(ranking.order.front());
-  const ComparedModel& m = ranking.models[best];
-  const auto [names, units] = sample_columns(m);
-  std::vector<double> best_fit;
-  for (int i : m.fit.fitted.free_indices()) best_fit.push_back(m.fit.fitted.spec[static_cast<std::size_t>(i)].value);
-  const CornerFiles files{ranking_file("samples", best, m.label), "corner_best",
-                          "posterior of " + m.model + " (ranked first)", best_fit};
-  messages.push_back(draw_corner_plot(dir, names, units, files).message);
-  return messages;
 }
 
 }  // namespace sedwave::inversion

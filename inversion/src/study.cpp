@@ -1,6 +1,5 @@
 #include "sedwave/inversion/study.hpp"
 
-#include "sedwave/inversion/plot.hpp"
 #include "sedwave/inversion/report.hpp"
 
 namespace sedwave::inversion {
@@ -30,19 +29,6 @@ void write_posterior_study(const std::filesystem::path& dir, const PosteriorStud
   write_posterior_marginals_csv(dir / "posterior_marginals.csv", study.posterior);
   write_predictive_csv(dir / "posterior_predictive.csv", study.band, data.water_sound_speed);
   write_predictive_residuals_csv(dir / "posterior_residuals.csv", best, {study.band}, data.water_sound_speed);
-}
-
-std::vector<std::string> draw_posterior_plots(const std::filesystem::path& dir, const PosteriorStudy& study,
-                                              const FitResult& best, const ObservationSet& data) {
-  CornerFiles corner;
-  for (const std::string& name : study.posterior.sample_names) {
-    corner.best_fit.push_back(best.fitted.spec[best.fitted.index_of(name)].value);
-  }
-  return {draw_corner_plot(dir, study.posterior.sample_names, study.posterior.sample_units, corner).message,
-          draw_predictive_plot(dir, "posterior_predictive", "sedwave posterior band: " + best.model,
-                               data.water_sound_speed.has_value(), best, {{best.model, "posterior_predictive.csv"}},
-                               "posterior_residuals.csv")
-              .message};
 }
 
 }  // namespace sedwave::inversion

@@ -6,18 +6,20 @@
 namespace sedwave::sediment {
 
 std::vector<Parameter> grain_contact_parameters(DampingForm form) {
+  // A grain contact's stiffness, size and damping have defaults only to start a search from: no one
+  // value stands for sandy sediments, so a forward run must be given them (`typical` false).
   // Ranges are wide on purpose: they refuse nonsense (a negative stiffness), while
   // inversion/plausibility.hpp flags values that are possible but implausible for a sediment.
   std::vector<Parameter> ps{
-      {"kappa", "N/m", 6.0e3, 1.0e-3, 1.0e13, true, "normal contact stiffness (spring constant)"},
-      {"d", "m", 2.0e-4, 1.0e-8, 1.0, true, "grain diameter: 10 nm (clay) to 1 m (boulders)"},
-      {"gamma", "kg/s", 1.0e-2, 1.0e-12, 1.0e8, true, "normal contact dashpot"},
+      {"kappa", "N/m", 6.0e3, 1.0e-3, 1.0e13, true, "normal contact stiffness (spring constant)", false},
+      {"d", "m", 2.0e-4, 1.0e-8, 1.0, true, "grain diameter: 10 nm (clay) to 1 m (boulders)", false},
+      {"gamma", "kg/s", 1.0e-2, 1.0e-12, 1.0e8, true, "normal contact dashpot", false},
       {"rho_s", "kg/m^3", 2650.0, 1000.0, 8000.0, true, "grain density (quartz 2650)"},
   };
   if (form == DampingForm::Restitution) {
     // e_n < 1 strictly: e_n = 1 means no dashpot, where attenuation (fitted in log space) vanishes.
     ps[GrainContactModel::kDamping] = {"e_n", "1", 0.5, 1.0e-6, 0.999999, true,
-                                       "normal restitution coefficient of a collision of two equal grains"};
+                                       "normal restitution coefficient of a collision of two equal grains", false};
   }
   return ps;
 }

@@ -15,6 +15,9 @@ Conventions for writers of README.md and docs/*.md:
   A command that writes a table over a shipped one (data/tables/...) resumes it, as a user's rerun
   would: such a block checks the command line and the files, not the table's values; show values
   with `sedwave show` and an output block to check them.
+* <!-- docs-check: file PATH --> right before a block says the block shows the file PATH (relative to
+  SRC) whole: its lines must equal the file's. A program shown this way is built and run where that
+  file lives (an example's ctest), so the page shows code that runs.
 * <!-- docs-check: skip (REASON) --> right before a block (blank lines allowed) skips it; the
   reason is required and printed.
 * <!-- docs-check: exit N (REASON) --> right before a block says it is expected to exit with code N
@@ -38,6 +41,7 @@ DIRECTIVE = re.compile(r"<!--\s*docs-check:\s*(.*?)\s*-->")
 SKIP = re.compile(r"skip \((.+)\)$")
 OUTPUT = re.compile(r"output of the block above(?: \((\d+) significant figures\))?$")
 EXIT = re.compile(r"exit (\d+) \((.+)\)$")
+FILE = re.compile(r"file (\S+)$")
 FENCE = re.compile(r"^```(\S*)\s*$")
 # A number that stands alone: not a digit inside a name such as run2.h5 or thesis_w3.
 NUMBER = re.compile(r"(?<![\w.])[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?(?![\w.]*\w)")
@@ -79,7 +83,9 @@ def read_blocks(page):
 
 
 def parse_directive(page, line, text, problems):
-    skip, output, exit_code = SKIP.match(text), OUTPUT.match(text), EXIT.match(text)
+    skip, output, exit_code, file = SKIP.match(text), OUTPUT.match(text), EXIT.match(text), FILE.match(text)
+    if file:
+        return ("file", file.group(1), line)
     if skip:
         return ("skip", skip.group(1), line)
     if exit_code:
@@ -87,7 +93,7 @@ def parse_directive(page, line, text, problems):
     if output:
         return ("output", int(output.group(1) or 3), line)
     problems.append(f"{page}:{line}: unknown docs-check directive '{text}' "
-                    "(expected 'skip (REASON)', 'exit N (REASON)' or 'output of the block above')")
+                    "(expected 'skip (REASON)', 'exit N (REASON)', 'file PATH' or 'output of the block above')")
     return None
 
 
@@ -148,7 +154,7 @@ def compare_output(shown_text, output, figures):
 
 def runs(block):
     """Whether the check runs this block: a ```sh block that no directive skips or marks as output."""
-    return block.language == "sh" and (not block.directive or block.directive[0] not in ("skip", "output"))
+    return block.language == "sh" and (not block.directive or block.directive[0] not in ("skip", "output", "file"))
 
 
 def check_page(args):
@@ -163,6 +169,14 @@ def check_page(args):
         if kind == "skip":
             print(f"SKIP  {where}: {block.directive[1]}")
             last_output = None
+        elif kind == "file":
+            path = os.path.join(args.source, block.directive[1])
+            shown = open(path, encoding="utf-8").read().rstrip("\n") if os.path.isfile(path) else None
+            same = shown == block.text.rstrip("\n")
+            print(f"{'OK' if same else 'FAIL':<5} {where}: the block shows {block.directive[1]}")
+            if not same:
+                problems.append(f"{where}: the block is not the file {block.directive[1]}"
+                                + (" (no such file)" if shown is None else ": copy the file into the page"))
         elif kind == "output":
             if last_output is None:
                 print(f"SKIP  {where}: output of a block that was not run")

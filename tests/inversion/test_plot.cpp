@@ -14,10 +14,14 @@
 
 #include <unistd.h>
 
-#include "sedwave/inversion/plot.hpp"
+#include "sedwave/plot/plot.hpp"
 #include "sedwave/inversion/report.hpp"
 
 namespace sedwave::inversion {
+using plot::CornerFiles;
+using plot::draw_corner_plot;
+using plot::draw_fit_plot;
+using plot::PlotOutcome;
 namespace {
 
 namespace fs = std::filesystem;

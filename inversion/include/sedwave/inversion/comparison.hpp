@@ -5,8 +5,8 @@
 // it predicts over the data; beside chi^2, AIC, BIC and a posterior-predictive p-value
 // (docs/inversion.md, "Comparing models").
 //
-//   Site site;  // what is known of the seabed (site.hpp), or none
-//   std::vector<Candidate> candidates;
+//   Site site = read_site_file("site.toml");  // what is known of the seabed (site_file.hpp), or none
+//   std::vector<Candidate> candidates;        // each set up by make_candidate (setup.hpp)
 //   for (const char* spec : {"biot-stoll", "edfm", "lattice"}) candidates.push_back(make_candidate(spec, site));
 //   const Ranking ranking = compare_models(data, candidates, {});
 //   ranking.best().model  // the name of the model ranked first
@@ -20,6 +20,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sedwave/inversion/fit.hpp"
@@ -27,24 +28,9 @@
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/predictive.hpp"
 #include "sedwave/inversion/priors.hpp"
-#include "sedwave/inversion/site.hpp"
+#include "sedwave/inversion/setup.hpp"
 
 namespace sedwave::inversion {
-
-/// One model of a comparison, ready to fit.
-struct Candidate {
-  std::string label;  ///< names it in messages and files: the spec it was made from (e.g. "biot-stoll")
-  std::shared_ptr<const sediment::SedimentModel> model;
-  FitParameters parameters;   ///< free ones marked; values and search bounds set
-  std::vector<Prior> priors;  ///< one per parameter of `parameters` (those of the free ones are used)
-};
-
-/// The model `spec` names (sediment/catalog.hpp) with its typical free set, the site's values
-/// applied (a site value for a parameter the model lacks is skipped) and its priors: the site's
-/// where it gives one, log-uniform over the search bounds elsewhere.
-[[nodiscard]] Candidate make_candidate(const std::string& spec, const Site& site = {});
-/// The same for a model object the caller made (labelled by its name).
-[[nodiscard]] Candidate make_candidate(std::shared_ptr<const sediment::SedimentModel> model, const Site& site = {});
 
 struct ComparisonOptions {
   EvidenceOptions evidence;  ///< its threads are set from `threads` below
@@ -94,9 +80,7 @@ struct Ranking {
 /// every model's residuals from its band median (predictive_residuals.csv), in `dir`.
 void write_ranking_files(const std::filesystem::path& dir, const Ranking& ranking, const ObservationSet& data);
 
-/// Every model's band over the data in one plot (predictive), and the corner plot of the model
-/// ranked first (corner_best), from the files written above; one message per plot.
-[[nodiscard]] std::vector<std::string> draw_ranking_plots(const std::filesystem::path& dir, const Ranking& ranking,
-                                                          const ObservationSet& data);
+/// The free parameters' names and units of a model, in the order of its samples' columns.
+[[nodiscard]] std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(const ComparedModel& m);
 
 }  // namespace sedwave::inversion

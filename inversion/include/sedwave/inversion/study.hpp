@@ -40,10 +40,4 @@ struct PosteriorStudy {
 void write_posterior_study(const std::filesystem::path& dir, const PosteriorStudy& study, const FitResult& best,
                            const ObservationSet& data);
 
-/// The corner plot (best fit marked) and the band over the data, from the files written above; one
-/// message per plot (what was written, or why not).
-[[nodiscard]] std::vector<std::string> draw_posterior_plots(const std::filesystem::path& dir,
-                                                            const PosteriorStudy& study, const FitResult& best,
-                                                            const ObservationSet& data);
-
 }  // namespace sedwave::inversion

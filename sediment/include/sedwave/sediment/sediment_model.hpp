@@ -34,6 +34,9 @@ struct Parameter {
   /// parameter is positive, and the inversion steps all of them in ln.
   bool log_scale = true;
   std::string meaning;  ///< one line, with its source where it has one
+  /// The default stands for a typical sediment, so a forward run may use it; false where a default
+  /// is only a place to start a search from (a grain contact's stiffness), and a run must be given it.
+  bool typical = true;
 };
 
 /// The compressional wave at one frequency.

@@ -1,4 +1,9 @@
 #pragma once
+// Figures drawn by gnuplot from the files a study writes (the plotting layer at the edge: the
+// numerical libraries never run a program). Each figure is driven through a script written next to
+// its output, so the user can restyle and re-run it; a missing or failing gnuplot is reported, never
+// thrown.
+//
 // The fit plot: attenuation (dB/m, log-log) and sound speed (ratio to water when known) against
 // frequency, data with error bars, the fitted curve and its 1-sigma band, each above a panel of
 // normalised residuals; points the model misses by more than 3 sigma are marked, the frequencies
@@ -8,9 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/inversion/comparison.hpp"
 #include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/study.hpp"
 
-namespace sedwave::inversion {
+namespace sedwave::plot {
+
+using inversion::FitResult;
 
 struct PlotOutcome {
   bool drawn = false;
@@ -55,4 +64,17 @@ PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::st
                                  bool ratio_axis, const FitResult& any_fit, const std::vector<BandFile>& bands,
                                  const std::string& residuals_file);
 
-}  // namespace sedwave::inversion
+/// The corner plot (best fit marked) and the band over the data of a posterior study, from the files
+/// write_posterior_study wrote in `dir`; one message per plot (what was written, or why not).
+[[nodiscard]] std::vector<std::string> draw_posterior_plots(const std::filesystem::path& dir,
+                                                            const inversion::PosteriorStudy& study,
+                                                            const FitResult& best,
+                                                            const inversion::ObservationSet& data);
+
+/// Every model's band over the data in one plot (predictive), and the corner plot of the model
+/// ranked first (corner_best), from the files write_ranking_files wrote in `dir`; one message per plot.
+[[nodiscard]] std::vector<std::string> draw_ranking_plots(const std::filesystem::path& dir,
+                                                          const inversion::Ranking& ranking,
+                                                          const inversion::ObservationSet& data);
+
+}  // namespace sedwave::plot

@@ -16,11 +16,11 @@
 
 #include "sedwave/inversion/site.hpp"
 
-namespace sedwave::app {
+namespace sedwave::inversion {
 
 /// Throws std::invalid_argument naming FILE:LINE and key for a syntax error, an unknown key, a
 /// missing key of a table that is there, or a value outside its range. Each value's origin is its
 /// FILE:LINE and key, for the conversion's messages.
-[[nodiscard]] inversion::Site read_site_file(const std::filesystem::path& path);
+[[nodiscard]] Site read_site_file(const std::filesystem::path& path);
 
-}  // namespace sedwave::app
+}  // namespace sedwave::inversion

@@ -1,11 +1,11 @@
-#include "site_file.hpp"
+#include "sedwave/inversion/site_file.hpp"
 
 #include <stdexcept>
 #include <string>
 
 #include "sedwave/io/toml_table.hpp"
 
-namespace sedwave::app {
+namespace sedwave::inversion {
 namespace {
 
 using Error = std::invalid_argument;
@@ -13,7 +13,7 @@ using io::Range;
 using Table = io::Table<Error>;
 
 /// The value of `key` in table `t`, checked against `range`, with its FILE:LINE and key as origin.
-inversion::SiteValue site_value(Table& t, const char* key, const Range& range, const std::string& origin) {
+SiteValue site_value(Table& t, const char* key, const Range& range, const std::string& origin) {
   const toml::value& v = t.at(key);
   const double x = t.number_value(v, t.name(key), range);
   return {x, io::where(v, origin) + ": key '" + t.name(key) + "'"};
@@ -21,12 +21,12 @@ inversion::SiteValue site_value(Table& t, const char* key, const Range& range, c
 
 }  // namespace
 
-inversion::Site read_site_file(const std::filesystem::path& path) {
+Site read_site_file(const std::filesystem::path& path) {
   const std::string origin = path.string();
   const toml::value root = io::parse<Error>(io::read_text<Error>(path, "site file"), origin);
   Table top(root, "", origin);
   top.allow_only({"grain_size", "porosity", "depth", "water", "restitution"});
-  inversion::Site site;
+  Site site;
   site.source = "site file " + origin;
   site.skip_missing_parameters = true;
   if (top.has("grain_size")) {
@@ -65,4 +65,4 @@ inversion::Site read_site_file(const std::filesystem::path& path) {
   return site;
 }
 
-}  // namespace sedwave::app
+}  // namespace sedwave::inversion

@@ -1,4 +1,4 @@
-#include "sedwave/inversion/plot.hpp"
+#include "sedwave/plot/plot.hpp"
 
 #include "sedwave/io/atomic_file.hpp"
 
@@ -15,7 +15,9 @@
 
 #include "sedwave/io/atomic_file.hpp"
 
-namespace sedwave::inversion {
+namespace sedwave::plot {
+
+using namespace inversion;
 namespace {
 
 // Columns of the files the script reads (report.cpp writes them).
@@ -702,4 +704,4 @@ PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::st
                      predictive_body(title, ratio_axis, any_fit, bands, residuals_file, largest));
 }
 
-}  // namespace sedwave::inversion
+}  // namespace sedwave::plot
