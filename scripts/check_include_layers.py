@@ -9,8 +9,14 @@ files in and out, sedwave/io/...) is the layer "io", below all of forward/: it i
 them. An include names its folder by its path ("sedwave/forward/linear/x.hpp", "sedwave/io/x.hpp")
 or, for private headers, relative to the including file ("../table/hdf5_table_io.hpp").
 
+Above forward/, the top-level folders are layers too, each including only those below it:
+io < forward < sampling < sediment < inversion < plot < apps. sampling/, sediment/ and inversion/
+run without MPI: they include neither <mpi.h> nor a layer of forward/ that uses MPI (dem, channel,
+linear, experiment, parallel, interface), so a program linked against them needs no MPI.
+
 Prints the folder graph (with the files behind each edge on request) and every loop found; the exit
-status is 1 when there is a loop or io/ includes a layer of forward/.
+status is 1 when there is a loop, io/ includes a layer of forward/, or a top-level folder includes
+one above it or MPI where it may not.
 """
 import argparse
 import pathlib
@@ -84,6 +90,32 @@ def loops(graph):
     return sorted(found, key=lambda loop: (len(loop), loop))
 
 
+# The top-level folders from the lowest layer up; each may include only the folders before it.
+TOP_LAYERS = ["io", "forward", "sampling", "sediment", "inversion", "plot", "apps"]
+MPI_FREE = {"sampling", "sediment", "inversion"}
+MPI_FORWARD_LAYERS = {"dem", "channel", "linear", "experiment", "parallel", "interface"}
+
+
+def top_level_problems(root):
+    """Includes of a higher top-level folder, and MPI in a folder that must run without it."""
+    problems = []
+    for rank, folder in enumerate(TOP_LAYERS):
+        for path in sorted((root / folder).rglob("*")):
+            if path.suffix not in {".hpp", ".cpp", ".h"}:
+                continue
+            where = path.relative_to(root)
+            for name in INCLUDE.findall(path.read_text(encoding="utf-8")):
+                parts = name.split("/")
+                if parts[0] == "sedwave" and len(parts) > 2 and parts[1] in TOP_LAYERS:
+                    if TOP_LAYERS.index(parts[1]) > rank:
+                        problems.append(f"{where} includes {name}: {parts[1]}/ sits above {folder}/")
+                    if folder in MPI_FREE and parts[1] == "forward" and len(parts) > 3 and parts[2] in MPI_FORWARD_LAYERS:
+                        problems.append(f"{where} includes {name}: {folder}/ runs without MPI")
+                if folder in MPI_FREE and name == "mpi.h":
+                    problems.append(f"{where} includes <mpi.h>: {folder}/ runs without MPI")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("forward", nargs="?", default=pathlib.Path(__file__).resolve().parent.parent / "forward",
@@ -107,9 +139,13 @@ def main():
             print(f"    {a} -> {b}: {', '.join(sorted(set(graph[a][b])))}")
     if found:
         print(f"{len(found)} include loop(s) between the folders of {args.forward}")
-    if found or above_io:
+    misplaced = top_level_problems(args.forward.resolve().parent)
+    for problem in misplaced:
+        print(problem)
+    if found or above_io or misplaced:
         return 1
     print("no include loops between the folders of forward/; io/ includes none of them")
+    print("the top-level folders include only those below them; sampling/, sediment/ and inversion/ no MPI")
     return 0
 
 
