@@ -207,20 +207,16 @@ AttenuationUnit ToolboxEnvironment::attenuation_unit() const {
 
 ToolboxEnvironment toolbox_environment(const std::string& title, double frequency_hz, double water_depth,
                                        const AcousticMedium& halfspace, AttenuationUnit unit) {
-  ToolboxEnvironment env;
-  env.title = title;
-  env.frequency_hz = frequency_hz;
-  env.media = 1;
-  env.options = std::string("CV") + attenuation_unit_letter(unit);
-  env.bottom_option = "A";
   const double cp = halfspace.compressional_speed, cs = halfspace.shear_speed;
-  env.halfspace = {water_depth,
-                   cp,
-                   cs,
-                   halfspace.density / 1000.0,
-                   attenuation_in_unit(halfspace.compressional_attenuation, cp, frequency_hz, unit),
-                   cs > 0.0 ? attenuation_in_unit(halfspace.shear_attenuation, cs, frequency_hz, unit) : 0.0};
-  return env;
+  // Built whole: GCC 12 at -O3 warns falsely (-Wrestrict) on assigning short literals to the members.
+  return {title,
+          frequency_hz,
+          1,
+          std::string{'C', 'V', attenuation_unit_letter(unit)},  // C-linear sound speed, vacuum above, the unit
+          std::string(1, 'A'),                                   // an acousto-elastic half-space below
+          {water_depth, cp, cs, halfspace.density / 1000.0,
+           attenuation_in_unit(halfspace.compressional_attenuation, cp, frequency_hz, unit),
+           cs > 0.0 ? attenuation_in_unit(halfspace.shear_attenuation, cs, frequency_hz, unit) : 0.0}};
 }
 
 void write_toolbox_environment(std::ostream& out, const ToolboxEnvironment& env, double water_speed,

@@ -1,0 +1,28 @@
+# `sedwave reflect` (docs/reflection.md): a seabed of sediment models, its reflection coefficient and
+# the files propagation codes read; layers named per layer; models without a density and malformed
+# layer settings refused by name.
+set(REFLECT_OUT --out ${CLI_OUT}/reflect_never)
+
+# (expect.sh matches one line: one case per line that must be there)
+sedwave_cli_case(models.lists_the_shear_wave 0 "^  shear wave: k_s = \\(omega / sqrt\\(gamma_s/rho_0\\)\\)" models grain-shearing)
+sedwave_cli_case(models.edfm_has_no_shear_wave 0 "^  shear wave: none" models edfm)
+sedwave_cli_case(reflect.grain_shearing_halfspace 0 "^  half-space grain-shearing +1000 +1783\\.99 "
+  reflect --frequency 1000 --angle-step 5 --out ${CLI_OUT}/reflect_gs)
+sedwave_cli_case(reflect.layer_and_files 0 "^refl_cli\\.brc: BELLHOP bottom reflection table, 19 grazing angles"
+  IN ${CLI_OUT} reflect --layer edfm --set l1.thickness=2 --set l1.porosity=0.7 --frequency 3000 --angle-step 5
+  --band 0.3333 --band-samples 5 --out reflect_layer --brc refl_cli.brc)
+sedwave_cli_case(reflect.env_file 0 "^refl_cli\\.env: Acoustics Toolbox environment \\(blocks 1-6\\), 2 frequencies, attenuation unit 'Q'"
+  IN ${CLI_OUT} reflect --frequency 1000,2000 --angle-step 10 --out reflect_env --env refl_cli.env --water-depth 50
+  --env-unit Q)
+sedwave_cli_case(reflect.layer_without_thickness 2 "layer l1 \\(--layer edfm\\): give --set l1.thickness=METRES"
+  reflect --layer edfm --frequency 1000 ${REFLECT_OUT})
+sedwave_cli_case(reflect.setting_for_a_missing_layer 2 "--set l2.porosity=0.5: layer l2 does not exist \\(1 --layer given\\)"
+  reflect --layer edfm --set l1.thickness=1 --set l2.porosity=0.5 --frequency 1000 ${REFLECT_OUT})
+sedwave_cli_case(reflect.layer_unknown_parameter 2 "unknown parameter 'porosty'"
+  reflect --layer edfm --set l1.thickness=1 --set l1.porosty=0.5 --frequency 1000 ${REFLECT_OUT})
+sedwave_cli_case(reflect.dry_frame_has_no_density 1 "half-space: model 'lattice' fixes no bulk density"
+  reflect --model lattice --kappa 1e6 --d 3e-4 --gamma 5 --frequency 1000 ${REFLECT_OUT})
+sedwave_cli_case(reflect.brc_needs_one_frequency 2 "--brc is for one --frequency"
+  reflect --frequency 1000,2000 ${REFLECT_OUT} --brc ${CLI_OUT}/never.brc)
+sedwave_cli_case(reflect.env_needs_water_depth 2 "--env needs --water-depth"
+  reflect --frequency 1000 ${REFLECT_OUT} --env ${CLI_OUT}/never.env)
