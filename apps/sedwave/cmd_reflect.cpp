@@ -16,8 +16,11 @@
 #include "model_options.hpp"
 #include "option_checks.hpp"
 #include "output_paths.hpp"
+#include "sedwave/inversion/predictive.hpp"
 #include "sedwave/inversion/reflection_plot.hpp"
+#include "sedwave/inversion/samples_file.hpp"
 #include "sedwave/io/atomic_file.hpp"
+#include "sedwave/sampling/summary.hpp"
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/propagation_files.hpp"
 #include "sedwave/sediment/reflection.hpp"
@@ -44,6 +47,8 @@ struct ReflectOptions {
   std::string env;
   std::string env_unit = "W";
   double water_depth = 0.0;
+  std::string posterior;  ///< posterior_samples.csv of a posterior over the seabed's parameters
+  int posterior_draws = 200;
 };
 
 std::string number(double x) {
@@ -165,6 +170,74 @@ void write_media_csv(const std::filesystem::path& file, const sediment::SeabedMo
   });
 }
 
+/// Where a posterior's column goes: the half-space's parameter NAME, layer N's lN.NAME or its
+/// thickness lN.thickness.
+struct SampleTarget {
+  sediment::SeabedPart* part = nullptr;
+  int index = -1;  ///< parameter index; -1: the thickness
+};
+
+SampleTarget sample_target(sediment::SeabedModel& seabed, const std::string& name, const std::string& file) {
+  try {
+    const std::size_t dot = name.find('.');
+    if (name.size() > 2 && name[0] == 'l' && dot != std::string::npos && dot > 1 &&
+        name.find_first_not_of("0123456789", 1) == dot) {
+      const std::size_t layer = std::stoul(name.substr(1, dot - 1));
+      if (layer < 1 || layer > seabed.layers.size()) throw std::invalid_argument("no layer l" + std::to_string(layer));
+      sediment::SeabedPart& part = seabed.layers[layer - 1];
+      const std::string parameter = name.substr(dot + 1);
+      return {&part, parameter == "thickness" ? -1 : part.model->index_of(parameter)};
+    }
+    return {&seabed.halfspace, seabed.halfspace.model->index_of(name)};
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(file + ": column '" + name + "' names no parameter of this seabed: " + e.what());
+  }
+}
+
+/// The 2.5, 16, 50, 84 and 97.5 % quantiles of the bottom loss over posterior draws of the seabed's
+/// parameters (the other parameters at their values), as reflection_band.csv.
+void write_posterior_band(const ReflectOptions& o, const sediment::SeabedModel& seabed,
+                          const std::vector<double>& angles, const std::vector<double>& angles_deg,
+                          const std::filesystem::path& file) {
+  const inversion::SamplesTable samples = inversion::read_samples_csv(o.posterior);
+  sediment::SeabedModel drawn = seabed;
+  std::vector<SampleTarget> targets;
+  for (const std::string& name : samples.names) targets.push_back(sample_target(drawn, name, o.posterior));
+  const std::vector<Eigen::Index> rows = inversion::evenly_spread_rows(samples.draws.rows(), o.posterior_draws);
+  const std::size_t n_f = o.frequencies.size(), n_a = angles.size();
+  std::vector<Eigen::VectorXd> loss(n_f * n_a, Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())));
+  for (std::size_t d = 0; d < rows.size(); ++d) {
+    for (std::size_t j = 0; j < targets.size(); ++j) {
+      const double value = samples.draws(rows[d], static_cast<Eigen::Index>(j));
+      if (targets[j].index < 0) {
+        targets[j].part->thickness = value;
+      } else {
+        targets[j].part->values[static_cast<std::size_t>(targets[j].index)] = value;
+      }
+    }
+    for (std::size_t i = 0; i < n_f; ++i) {
+      const std::vector<std::complex<double>> r =
+          sediment::reflection_coefficients(sediment::layered_halfspace_at(drawn, o.frequencies[i]), angles,
+                                            o.frequencies[i]);
+      for (std::size_t a = 0; a < n_a; ++a) loss[i * n_a + a](static_cast<Eigen::Index>(d)) = sediment::bottom_loss_db(r[a]);
+    }
+  }
+  io::write_text_atomically(file, [&](std::ostream& out) {
+    out << "# sedwave reflect: bottom loss -20 log10|R| [dB] over " << rows.size() << " posterior draws of "
+        << o.posterior << "; quantiles 2.5, 16, 50, 84, 97.5 %\n"
+        << "frequency_hz,grazing_deg,loss_db_q025,loss_db_q16,loss_db_q50,loss_db_q84,loss_db_q975\n";
+    for (std::size_t i = 0; i < n_f; ++i) {
+      for (std::size_t a = 0; a < n_a; ++a) {
+        out << number(o.frequencies[i]) << ',' << number(angles_deg[a]);
+        for (const double q : inversion::kBandQuantiles) out << ',' << number(sampling::quantile(loss[i * n_a + a], q) + 0.0);
+        out << "\n";
+      }
+    }
+  });
+  std::printf("posterior: bottom loss quantiles over %zu draws of %s in %s\n", rows.size(), o.posterior.c_str(),
+              file.string().c_str());
+}
+
 int run_reflect(const ReflectOptions& o) {
   std::vector<std::string> halfspace_sets = o.model.set_values;
   const auto layer_sets = split_layer_settings(halfspace_sets, static_cast<int>(o.layers.size()));
@@ -192,8 +265,8 @@ int run_reflect(const ReflectOptions& o) {
 
   const std::filesystem::path out(o.out);
   std::vector<OutputPath> outputs;
-  for (const char* name : {"reflection.csv", "media.csv", "bottom_loss.gp", "bottom_loss.png", "bottom_loss.svg",
-                           "waves.gp", "waves.png", "waves.svg"}) {
+  for (const char* name : {"reflection.csv", "reflection_band.csv", "media.csv", "bottom_loss.gp", "bottom_loss.png",
+                           "bottom_loss.svg", "waves.gp", "waves.png", "waves.svg"}) {
     outputs.push_back({"--out", out / name});
   }
   if (!o.brc.empty()) outputs.push_back({"--brc", o.brc});
@@ -201,6 +274,7 @@ int run_reflect(const ReflectOptions& o) {
   std::vector<std::filesystem::path> inputs;
   if (const auto table = sediment::sediment_model_file(o.model.model)) inputs.emplace_back(*table);
   if (!o.model.site.empty()) inputs.emplace_back(o.model.site);
+  if (!o.posterior.empty()) inputs.emplace_back(o.posterior);
   check_outputs(outputs, inputs, "reflect");
 
   std::vector<double> angles_deg, angles;
@@ -248,6 +322,7 @@ int run_reflect(const ReflectOptions& o) {
     high = std::max(high, f);
   }
   write_media_csv(out / "media.csv", seabed, low / 100.0, high * 100.0);
+  if (!o.posterior.empty()) write_posterior_band(o, seabed, angles, angles_deg, out / "reflection_band.csv");
   std::printf("# grazing_deg bottom_loss_dB at each frequency (reflection.csv holds every %g deg)\n", o.angle_step);
   for (const double a : {5.0, 10.0, 20.0, 30.0, 45.0, 60.0, 90.0}) {
     std::size_t j = 0;
@@ -263,7 +338,7 @@ int run_reflect(const ReflectOptions& o) {
   const std::string band_label = o.band > 0.0 ? number(o.band) + "-octave band average" : "";
   std::string title = "seabed: ";
   for (std::size_t k = 0; k < names.size(); ++k) title += (k ? " over " : "") + names[k];
-  std::printf("%s\n", inversion::draw_bottom_loss_plot(out, title, frequency_labels, band_label).message.c_str());
+  std::printf("%s\n", inversion::draw_bottom_loss_plot(out, title, frequency_labels, band_label, !o.posterior.empty()).message.c_str());
   std::vector<bool> has_shear;
   for (const sediment::SeabedPart* part : parts_of(seabed)) has_shear.push_back(!o.fluid && part->model->has_shear());
   std::printf("%s\n", inversion::draw_waves_plot(out, title, names, has_shear).message.c_str());
@@ -328,6 +403,12 @@ Command add_reflect_command(CLI::App& app) {
                                              "W (dB/wavelength), Q (quality factor)")
       ->capture_default_str()->check(CLI::IsMember({"N", "M", "F", "W", "Q"}));
   cmd->add_option("--water-depth", o->water_depth, "water depth for --env [m]")->check(finite_positive());
+  cmd->add_option("--posterior", o->posterior,
+                  "posterior_samples.csv of sedwave invert --method posterior (columns: the half-space's parameters, "
+                  "lN.NAME, lN.thickness): also the bottom loss's 2.5-97.5 % quantiles (reflection_band.csv, drawn as "
+                  "a band); the other parameters as the options give them");
+  cmd->add_option("--posterior-draws", o->posterior_draws, "posterior draws evaluated, evenly spread")
+      ->capture_default_str()->check(CLI::Range(2, 100000));
   return {cmd, [o]() { return run_reflect(*o); }};
 }
 

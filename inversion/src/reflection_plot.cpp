@@ -21,7 +21,8 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 PlotOutcome draw_bottom_loss_plot(const std::filesystem::path& dir, const std::string& title,
-                                  const std::vector<std::string>& frequencies, const std::string& band) {
+                                  const std::vector<std::string>& frequencies, const std::string& band,
+                                  bool posterior_band) {
   std::ostringstream g;
   g << "set datafile separator ','\nset title " << quoted(title) << " noenhanced\n"
     << "set xlabel 'grazing angle (deg)'\nset ylabel 'bottom loss -20 log_{10}|R| (dB)'\n"
@@ -29,7 +30,19 @@ PlotOutcome draw_bottom_loss_plot(const std::filesystem::path& dir, const std::s
   g << "plot ";
   for (std::size_t i = 0; i < frequencies.size(); ++i) {
     const std::string& f = frequencies[i];
-    g << (i ? ", \\\n  " : "") << "'reflection.csv' skip " << kReflectionCsvHeaderLines << " using 2:($1==" << f
+    if (posterior_band) {  // shaded first, so that the curves lie on top
+      const auto between = [&](int low, int high) {
+        return "'reflection_band.csv' skip " + std::to_string(kReflectionBandCsvHeaderLines) + " using 2:($1==" + f +
+               " ? $" + std::to_string(low) + " : NaN):($1==" + f + " ? $" + std::to_string(high) + " : NaN)";
+      };
+      g << (i ? ", \\\n  " : "") << between(3, 7) << " with filledcurves fs transparent solid 0.15 lc rgb '"
+        << colour(i) << "' title " << quoted(f + " Hz posterior 95 %") << ", \\\n  " << between(4, 6)
+        << " with filledcurves fs transparent solid 0.3 lc rgb '" << colour(i) << "' title "
+        << quoted(f + " Hz posterior 68 %") << ", \\\n  ";
+    } else if (i) {
+      g << ", \\\n  ";
+    }
+    g << "'reflection.csv' skip " << kReflectionCsvHeaderLines << " using 2:($1==" << f
       << " ? $7 : NaN) with lines lw 1.5 lc rgb '" << colour(i) << "' title " << quoted(f + " Hz");
     if (!band.empty()) {
       g << ", \\\n  '' skip " << kReflectionCsvHeaderLines << " using 2:($1==" << f

@@ -26,3 +26,9 @@ sedwave_cli_case(reflect.brc_needs_one_frequency 2 "--brc is for one --frequency
   reflect --frequency 1000,2000 ${REFLECT_OUT} --brc ${CLI_OUT}/never.brc)
 sedwave_cli_case(reflect.env_needs_water_depth 2 "--env needs --water-depth"
   reflect --frequency 1000 ${REFLECT_OUT} --env ${CLI_OUT}/never.env)
+# A band of bottom loss over posterior draws; its columns name the half-space's and the layers' parameters.
+sedwave_cli_case(reflect.posterior_band 0 "^posterior: bottom loss quantiles over 3 draws of .*draws.csv"
+  reflect --layer edfm --set l1.thickness=2 --frequency 1000 --angle-step 10 --out ${CLI_OUT}/reflect_posterior
+  --posterior ${CLI_DATA}/reflect/draws.csv)
+sedwave_cli_case(reflect.posterior_unknown_column 1 "unknown_column.csv: column 'porosty' names no parameter of this seabed"
+  reflect --frequency 1000 ${REFLECT_OUT} --posterior ${CLI_DATA}/reflect/unknown_column.csv)
