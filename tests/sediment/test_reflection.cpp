@@ -65,6 +65,14 @@ TEST(FluidHalfspace, VanishesAtTheIntromissionAngle) {
   const AcousticMedium mud{c_b, 0.0, 0.0, 0.0, rho_b};
   EXPECT_LT(std::abs(reflection_coefficient(over(mud), theta, 1e3)), 1e-14);
   EXPECT_GT(std::abs(reflection_coefficient(over(mud), theta + 1.0 * kDegree, 1e3)), 1e-3);
+  // A slower bottom of lower impedance than water (rho_b c_b < rho_w c_w) has none: the ratio exceeds 1.
+  const AcousticMedium light{1450.0, 0.0, 0.0, 0.0, 1020.0};
+  ASSERT_GT((n * n - 1.0) / ((1.02 * 1.02) - 1.0), 1.0);
+  // Its smallest |R| is at normal incidence, |Z_b - Z_w| / (Z_b + Z_w) = 0.0071, not zero.
+  const double normal = (1500.0 * 1000.0 - 1450.0 * 1020.0) / (1500.0 * 1000.0 + 1450.0 * 1020.0);
+  for (double deg = 0.0; deg <= 90.0; deg += 0.25) {
+    EXPECT_GE(std::abs(reflection_coefficient(over(light), deg * kDegree, 1e3)), normal * (1.0 - 1e-12)) << deg;
+  }
   // A faster, denser bottom (n < 1 < m) has no such angle: (n^2 - 1) / (m^2 - 1) < 0.
   const AcousticMedium sand{1700.0, 0.0, 0.0, 0.0, 1900.0};
   for (double deg = 0.0; deg <= 90.0; deg += 0.25) {

@@ -180,6 +180,12 @@ TEST(ShearGradients, AreExact) {
   expect_shear_gradient_matches_central_differences(gs, gs.default_values(), 3e3);
   expect_shear_gradient_matches_central_differences(vgs, vgs.default_values(), 3e3);
   expect_shear_gradient_matches_central_differences(bs, bs.default_values(), 3e3);
+  const SaturatedGranularModel sat(testing::chain("lattice"), DampingForm::Gamma, PermeabilityFrom::KozenyCarman);
+  std::vector<double> v = sat.default_values();
+  v[SaturatedGranularModel::kKappa] = 1e6;
+  v[SaturatedGranularModel::kDiameter] = 3e-4;
+  v[SaturatedGranularModel::kDamping] = 5.0;
+  expect_shear_gradient_matches_central_differences(sat, v, 3e3);
 }
 
 TEST(Shear, ModelsWithoutAShearWaveSaySo) {
