@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -47,6 +48,7 @@ struct ReflectOptions {
   std::string env;
   std::string env_unit = "W";
   double water_depth = 0.0;
+  std::string from_fit;   ///< fit.json of sedwave invert: the half-space's parameter values
   std::string posterior;  ///< posterior_samples.csv of a posterior over the seabed's parameters
   int posterior_draws = 200;
 };
@@ -170,6 +172,39 @@ void write_media_csv(const std::filesystem::path& file, const sediment::SeabedMo
   });
 }
 
+/// The half-space's values from a fit report (fit.json of sedwave invert): every parameter's fitted
+/// or fixed value. Throws naming the file for another model, a missing parameter or a parameter
+/// also given by --set.
+void apply_fit_report(const std::string& file, sediment::SeabedPart& halfspace, const std::vector<std::string>& sets) {
+  std::ifstream in(file);
+  if (!in) throw std::invalid_argument(file + ": cannot open the fit report");
+  nlohmann::json report;
+  try {
+    report = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(file + ": not a fit report (JSON): " + e.what());
+  }
+  const std::string model = report.value("model", std::string());
+  if (model != halfspace.model->name()) {
+    throw UsageError("--from-fit " + file + ": a fit of model '" + model + "', the half-space is '" +
+                     halfspace.model->name() + "' (--model)");
+  }
+  const std::vector<sediment::Parameter>& ps = halfspace.model->parameters();
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    for (const std::string& item : sets) {
+      if (item.starts_with(ps[i].name + "=")) {
+        throw UsageError("--set " + item + ": " + ps[i].name + " is also given by --from-fit " + file);
+      }
+    }
+    const auto& entry = report["parameters"][ps[i].name];
+    if (!entry.is_object() || !entry["value"].is_number()) {
+      throw std::invalid_argument(file + ": no value of parameter '" + ps[i].name + "'");
+    }
+    halfspace.values[i] = entry["value"].get<double>();
+  }
+  halfspace.model->check_values(halfspace.values);
+}
+
 /// Where a posterior's column goes: the half-space's parameter NAME, layer N's lN.NAME or its
 /// thickness lN.thickness.
 struct SampleTarget {
@@ -255,6 +290,7 @@ int run_reflect(const ReflectOptions& o) {
   const auto model = make_model(halfspace_options);
   std::vector<std::string> site_notes;
   seabed.halfspace = {model, make_parameters(halfspace_options, *model, ModelUse::Truth, &site_notes).values(), 0.0};
+  if (!o.from_fit.empty()) apply_fit_report(o.from_fit, seabed.halfspace, halfspace_sets);
   for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
   if (!o.brc.empty() && o.frequencies.size() != 1) throw UsageError("--brc is for one --frequency (a table per frequency)");
   if (!o.env.empty() && !(o.water_depth > 0.0)) throw UsageError("--env needs --water-depth (the half-space's depth [m])");
@@ -275,6 +311,7 @@ int run_reflect(const ReflectOptions& o) {
   if (const auto table = sediment::sediment_model_file(o.model.model)) inputs.emplace_back(*table);
   if (!o.model.site.empty()) inputs.emplace_back(o.model.site);
   if (!o.posterior.empty()) inputs.emplace_back(o.posterior);
+  if (!o.from_fit.empty()) inputs.emplace_back(o.from_fit);
   check_outputs(outputs, inputs, "reflect");
 
   std::vector<double> angles_deg, angles;
@@ -403,6 +440,9 @@ Command add_reflect_command(CLI::App& app) {
                                              "W (dB/wavelength), Q (quality factor)")
       ->capture_default_str()->check(CLI::IsMember({"N", "M", "F", "W", "Q"}));
   cmd->add_option("--water-depth", o->water_depth, "water depth for --env [m]")->check(finite_positive());
+  cmd->add_option("--from-fit", o->from_fit,
+                  "fit.json of sedwave invert: the half-space's parameter values (fitted and fixed); its model must "
+                  "be --model");
   cmd->add_option("--posterior", o->posterior,
                   "posterior_samples.csv of sedwave invert --method posterior (columns: the half-space's parameters, "
                   "lN.NAME, lN.thickness): also the bottom loss's 2.5-97.5 % quantiles (reflection_band.csv, drawn as "

@@ -32,3 +32,8 @@ sedwave_cli_case(reflect.posterior_band 0 "^posterior: bottom loss quantiles ove
   --posterior ${CLI_DATA}/reflect/draws.csv)
 sedwave_cli_case(reflect.posterior_unknown_column 1 "unknown_column.csv: column 'porosty' names no parameter of this seabed"
   reflect --frequency 1000 ${REFLECT_OUT} --posterior ${CLI_DATA}/reflect/unknown_column.csv)
+# A fitted seabed from invert's fit.json: its values (porosity 0.44: 0.44 x 1005 + 0.56 x 2730 = 1971.0 kg/m^3).
+sedwave_cli_case(reflect.from_fit 0 "^  half-space grain-shearing +1000 .* 1971\\.0$"
+  reflect --from-fit ${CLI_DATA}/reflect/gs_fit.json --frequency 1000 --angle-step 10 --out ${CLI_OUT}/reflect_fit)
+sedwave_cli_case(reflect.from_fit_of_another_model 2 "--from-fit .*gs_fit.json: a fit of model 'grain-shearing', the half-space is 'edfm'"
+  reflect --model edfm --from-fit ${CLI_DATA}/reflect/gs_fit.json --frequency 1000 ${REFLECT_OUT})
