@@ -17,6 +17,7 @@
 #include "model_options.hpp"
 #include "option_checks.hpp"
 #include "output_paths.hpp"
+#include "sedwave/inversion/plausibility.hpp"
 #include "sedwave/inversion/predictive.hpp"
 #include "sedwave/inversion/reflection_plot.hpp"
 #include "sedwave/inversion/samples_file.hpp"
@@ -273,6 +274,27 @@ void write_posterior_band(const ReflectOptions& o, const sediment::SeabedModel& 
               file.string().c_str());
 }
 
+/// Flags a part's waves no sediment can have: a compressional speed outside the plausible range of
+/// sediments, or a shear speed at or above sqrt(3)/2 c_p (a negative bulk modulus). Returns whether
+/// it flagged.
+bool flag_implausible_medium(const sediment::AcousticMedium& m, const std::string& part, double frequency_hz) {
+  const inversion::PlausibleRange& range = *inversion::plausible_range("sound_speed");
+  bool flagged = false;
+  if (m.compressional_speed < range.lower || m.compressional_speed > range.upper) {
+    std::printf("! %s at %g Hz: c_p = %.5g m/s outside [%g, %g] m/s (%s): likely %s\n", part.c_str(), frequency_hz,
+                m.compressional_speed, range.lower, range.upper, range.basis,
+                m.compressional_speed < range.lower ? range.below_cause : range.above_cause);
+    flagged = true;
+  }
+  if (m.shear_speed >= std::sqrt(0.75) * m.compressional_speed) {
+    std::printf("! %s at %g Hz: c_s / c_p = %.4g >= sqrt(3)/2, a negative bulk modulus: likely a shear parameter "
+                "far too large\n",
+                part.c_str(), frequency_hz, m.shear_speed / m.compressional_speed);
+    flagged = true;
+  }
+  return flagged;
+}
+
 int run_reflect(const ReflectOptions& o) {
   std::vector<std::string> halfspace_sets = o.model.set_values;
   const auto layer_sets = split_layer_settings(halfspace_sets, static_cast<int>(o.layers.size()));
@@ -337,6 +359,7 @@ int run_reflect(const ReflectOptions& o) {
                   m.compressional_attenuation * kDbPerNeper, m.shear_speed, m.shear_attenuation * kDbPerNeper,
                   m.density);
     }
+    for (std::size_t k = 0; k < listed.size(); ++k) flagged = flag_implausible_medium(listed[k], names[k], f) || flagged;
     r.push_back(sediment::reflection_coefficients(media, angles, f));
     if (o.band > 0.0) {
       band_power.push_back(sediment::band_averaged_power(
@@ -401,6 +424,7 @@ int run_reflect(const ReflectOptions& o) {
                 o.env.c_str(), o.frequencies.size(), o.frequencies.size() == 1 ? "y" : "ies", o.env_unit.c_str());
   }
   std::printf("%s: reflection.csv, media.csv\n", out.string().c_str());
+  if (flagged) std::printf("WARNING: results flagged above (lines starting with '!'); exit status 3\n");
   return flagged ? kExitIncomplete : kExitOk;
 }
 

@@ -37,3 +37,6 @@ sedwave_cli_case(reflect.from_fit 0 "^  half-space grain-shearing +1000 .* 1971\
   reflect --from-fit ${CLI_DATA}/reflect/gs_fit.json --frequency 1000 --angle-step 10 --out ${CLI_OUT}/reflect_fit)
 sedwave_cli_case(reflect.from_fit_of_another_model 2 "--from-fit .*gs_fit.json: a fit of model 'grain-shearing', the half-space is 'edfm'"
   reflect --model edfm --from-fit ${CLI_DATA}/reflect/gs_fit.json --frequency 1000 ${REFLECT_OUT})
+# A seabed no sediment can be (gamma_p 2500 times the reference sand's: c_p 32 km/s) is flagged, exit 3.
+sedwave_cli_case(reflect.flags_an_impossible_speed 3 "^! half-space grain-shearing at 1000 Hz: c_p = 3[0-9]+ m/s outside \\[100, 20000\\] m/s"
+  reflect --set gamma_p=1e12 --frequency 1000 --angle-step 10 --out ${CLI_OUT}/reflect_flagged)
