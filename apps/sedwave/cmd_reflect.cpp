@@ -3,15 +3,17 @@
 // and the files propagation codes read (a BELLHOP .brc table, an Acoustics Toolbox environment)
 // (docs/reflection.md).
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "model_options.hpp"
