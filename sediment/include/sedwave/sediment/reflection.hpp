@@ -10,7 +10,7 @@
 //             incidence); the horizontal slowness is p = cos(theta) / c_w.
 //   R         the ratio of reflected to incident pressure at the water-seabed interface.
 //             BELLHOP's reflection files carry the complex conjugate (its e^{+i omega t}
-//             convention): export.hpp converts.
+//             convention): propagation_files.hpp converts.
 //   vertical  q = sqrt(s^2 - p^2) with Im q >= 0 (and q >= 0 when real): downgoing waves decay or
 //             propagate downward; evanescent waves decay away from the interface.
 //
