@@ -1,6 +1,6 @@
 // `sedwave models`: every sediment model `invert` and `synthesize` accept, with each parameter's
-// unit, default and physical range, and its derived quantities with their plausible ranges
-// (docs/models/).
+// unit, default and physical range, its derived quantities with their plausible ranges, and whether
+// it predicts a shear wave (docs/models/).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -25,6 +25,9 @@ Command add_models_command(CLI::App& app) {
     for (const auto& m : models) {
       std::printf("\n%s: %s\n", m->name().c_str(), m->summary().c_str());
       std::printf("  fitted unless --fit says otherwise: %s\n", sediment::typical_free_parameters(*m).c_str());
+      std::printf("  shear wave: %s\n", m->has_shear() ? m->shear_summary().c_str() : "none");
+      std::printf("  bulk density (for reflection): %s\n",
+                  m->bulk_density(m->default_values()) ? "yes" : "none (not a seabed on its own)");
       std::printf("  %-16s %-8s %12s  %-25s %s\n", "parameter", "unit", "default", "physical range", "meaning");
       for (const sediment::Parameter& p : m->parameters()) {
         char range[64];

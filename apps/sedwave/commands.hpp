@@ -29,5 +29,6 @@ Command add_show_command(CLI::App& app);
 Command add_models_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_interface_command(CLI::App& app);
+Command add_reflect_command(CLI::App& app);
 
 }  // namespace sedwave::app

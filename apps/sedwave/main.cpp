@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
                                                     sedwave::app::add_show_command(app),
                                                     sedwave::app::add_models_command(app),
                                                     sedwave::app::add_compare_command(app),
-                                                    sedwave::app::add_interface_command(app)};
+                                                    sedwave::app::add_interface_command(app),
+                                                    sedwave::app::add_reflect_command(app)};
   // Ceres logs through glog a line for every failed evaluation of a local fit, even with its own
   // logging silent (a model evaluated outside a table's range, for one). The fits check and report
   // every failure themselves, so only glog's fatal messages reach the terminal.

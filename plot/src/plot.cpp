@@ -397,12 +397,6 @@ double largest_residual_in(const std::filesystem::path& file) {
 
 }  // namespace
 
-namespace {
-
-/// Writes DIR/STEM.gp (the body drawn once to a PNG, once to an SVG of `size`) and runs gnuplot on
-/// it. The figure files are drawn under temporary names and renamed into place, like every output:
-/// a gnuplot killed half-way never leaves a truncated STEM.png. Re-running `gnuplot STEM.gp` by
-/// hand writes STEM.png and STEM.svg directly.
 PlotOutcome run_gnuplot(const std::filesystem::path& dir, const std::string& stem, const std::string& size,
                         const std::string& body) {
   const std::string script_name = stem + ".gp";
@@ -437,6 +431,8 @@ PlotOutcome run_gnuplot(const std::filesystem::path& dir, const std::string& ste
   }
   return {true, "plot written to " + (dir / (stem + ".png")).string() + " and " + stem + ".svg"};
 }
+
+namespace {
 
 // ---- The corner plot ------------------------------------------------------------------------------
 // As corner.py draws one (Foreman-Mackey 2016, JOSS 1, 24): physical values on log axes (the

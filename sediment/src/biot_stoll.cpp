@@ -22,4 +22,9 @@ std::string BiotStollModel::summary() const {
          "(docs/models/poroelastic.md)";
 }
 
+std::string BiotStollModel::shear_summary() const {
+  return "Biot's shear wave of the frame shear modulus mu (1 - i delta_s/pi) with the pore fluid's inertia and drag "
+         "(Stoll 1989)";
+}
+
 }  // namespace sedwave::sediment

@@ -58,12 +58,25 @@ ViscousGrainShearingModel::ViscousGrainShearingModel()
                {"viscous_frequency", "Hz",
                 "transition frequency 1/(2 pi tau_p) of VGS(lambda): viscous (alpha ~ f^2) below, GS above "
                 "(Buckingham 2007, 2010)",
+                0.0, 0.0, "", "", ""},
+               {"tau_s", "s",
+                "shear viscous time constant, from tau_p: both waves turn viscous at one wavelength "
+                "(Buckingham 2010)",
                 0.0, 0.0, "", "", ""}} {
   const std::string source = "Buckingham 2010, SAX99 sand";
   parameters_ = mixture_parameters({0.385, 2690.0, 1023.0, 3.2e10, 2.395e9}, source);
   append_shearing_parameters(parameters_, 3.796e8, 1.711e7, 0.0617, source);
   parameters_.push_back({"tau_p", "s", 1.2e-4, 1.0e-9, 1.0e3, true,
                          "compressional viscous time constant; transition frequency 1/(2 pi tau_p) (" + source + ")"});
+}
+
+std::string GrainShearingModel::shear_summary() const {
+  return "k_s = (omega / sqrt(gamma_s/rho_0)) (i omega T)^(-n/2) (Buckingham 2000, 2005)";
+}
+
+std::string ViscousGrainShearingModel::shear_summary() const {
+  return "k_s = (omega / sqrt(gamma_s/rho_0)) [(i omega T)^n (1 + 1/(i omega tau_s))^(n-1)]^(-1/2), tau_s from "
+         "tau_p by equal transition wavelengths (Buckingham 2010)";
 }
 
 std::string ViscousGrainShearingModel::summary() const {

@@ -83,4 +83,27 @@ Wave SaturatedGranularModel::evaluate(std::span<const double> values, double fre
   return evaluate_with_jets<kAllParameters>(name(), values, frequency_hz, derivatives, wave_of);
 }
 
+Wave SaturatedGranularModel::evaluate_shear(std::span<const double> values, double frequency_hz,
+                                            bool derivatives) const {
+  const auto wave_of = [&](const auto* x) {
+    using T = std::remove_cvref_t<decltype(*x)>;
+    return shear_wave<T>(x, frequency_hz);
+  };
+  const std::string label = name() + " (shear)";
+  if (permeability_ == PermeabilityFrom::KozenyCarman) {
+    return evaluate_with_jets<kDerivedParameters>(label, values, frequency_hz, derivatives, wave_of);
+  }
+  return evaluate_with_jets<kAllParameters>(label, values, frequency_hz, derivatives, wave_of);
+}
+
+std::string SaturatedGranularModel::shear_summary() const {
+  return "Biot's shear wave of the frame shear modulus mu = M_frame (1 - 2 nu_frame) / (2 (1 - nu_frame)), the "
+         "dry frame's P-wave modulus split by the frame Poisson ratio nu_frame (a parameter)";
+}
+
+std::optional<double> SaturatedGranularModel::bulk_density(std::span<const double> values) const {
+  check_values(values);
+  return mixture_density(values[kPorosity], values[kGrainDensity], values[kWaterDensity]);
+}
+
 }  // namespace sedwave::sediment

@@ -19,6 +19,10 @@ std::string SedimentModel::typical_free_parameters() const {
   return list;
 }
 
+Wave SedimentModel::evaluate_shear(std::span<const double>, double, bool) const {
+  throw std::logic_error("model '" + name() + "' predicts no shear wave");
+}
+
 std::optional<DimensionlessWave> SedimentModel::dimensionless_wave(std::span<const double>, double) const {
   return std::nullopt;
 }

@@ -26,6 +26,13 @@ struct PlotOutcome {
   std::string message;  ///< where the plot is, or why it was skipped
 };
 
+/// Writes DIR/STEM.gp (the gnuplot `body` drawn once to a PNG, once to an SVG of `size`, e.g.
+/// "1150,1250") and runs gnuplot on it. The figure files are drawn under temporary names and renamed
+/// into place, like every output: a gnuplot killed half-way never leaves a truncated STEM.png.
+/// Re-running `gnuplot STEM.gp` by hand writes STEM.png and STEM.svg directly. Never throws.
+PlotOutcome run_gnuplot(const std::filesystem::path& dir, const std::string& stem, const std::string& size,
+                        const std::string& body);
+
 /// Expects DIR/curves.csv and DIR/observations.csv (report.hpp) written from `result`; writes
 /// DIR/fit.gp, DIR/fit.png and DIR/fit.svg. Never throws for a missing or failing gnuplot: the
 /// outcome says the plot was skipped.

@@ -371,6 +371,19 @@ Complex<T> biot_slow_wavenumber(const BiotMedium<T>& m, double omega) {
   return wavenumber_from_slowness_squared((q.b + q.root) / (q.a * T(2.0)), omega);
 }
 
+/// The shear wave's wave number [1/m] (Stoll 1989, ch. 2; Biot 1956): the frame's shear modulus mu
+/// against the inertia of the frame with the pore fluid it drags,
+///   k_s^2 = omega^2 (rho m~ - rho_f^2) / (mu m~),
+/// which is omega^2 rho / mu when the fluid moves with the frame (m~ -> infinity, low frequency) and
+/// omega^2 (rho - beta rho_f / alpha_inf) / mu without viscous drag (high frequency).
+template <typename T>
+Complex<T> biot_shear_wavenumber(const BiotMedium<T>& m, double omega) {
+  const Complex<T> m_eff = biot_effective_fluid_density(m, omega);
+  const T rho = mixture_density(m.porosity, m.grain_density, m.fluid_density);
+  const Complex<T> inertia = rho - Complex<T>(m.fluid_density * m.fluid_density) / m_eff;
+  return wavenumber_from_slowness_squared(inertia / m.frame_shear, omega);
+}
+
 /// Attenuation [Np/m] and phase speed [m/s] of a wave number.
 template <typename T>
 struct AttenuationSpeed {

@@ -47,14 +47,38 @@ class BiotStollModel final : public JetEvaluated<BiotStollModel>, public PoreSpa
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
     const double omega = 2.0 * std::numbers::pi * frequency_hz;
-    const Complex<T> bulk(v[kFrameBulk], -v[kFrameBulk] * v[kBulkDecrement] / std::numbers::pi);
-    const Complex<T> shear(v[kFrameShear], -v[kFrameShear] * v[kShearDecrement] / std::numbers::pi);
-    const BiotMedium<T> medium = pore_space_medium(v, bulk, shear);
+    const BiotMedium<T> medium = pore_space_medium(v, frame_bulk(v), frame_shear(v));
     const AttenuationSpeed<T> fast = attenuation_and_speed(biot_fast_wavenumber(medium, omega), omega);
     return {fast.attenuation, fast.speed};
   }
 
+  /// The shear wave of the frame's shear modulus mu (1 - i delta_s / pi) (biot_shear_wavenumber):
+  /// mu is a parameter, so no Poisson ratio is assumed.
+  template <typename T>
+  WaveOf<T> shear_wave(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const BiotMedium<T> medium = pore_space_medium(v, frame_bulk(v), frame_shear(v));
+    const AttenuationSpeed<T> shear = attenuation_and_speed(biot_shear_wavenumber(medium, omega), omega);
+    return {shear.attenuation, shear.speed};
+  }
+  [[nodiscard]] std::string shear_summary() const override;
+
+  template <typename T>
+  T density(const T* v) const {
+    return mixture_density(v[kPorosity], v[kGrainDensity], v[kWaterDensity]);
+  }
+
  private:
+  /// K_b (1 - i delta_b / pi) and mu (1 - i delta_s / pi) (see the top of this file).
+  template <typename T>
+  static Complex<T> frame_bulk(const T* v) {
+    return {v[kFrameBulk], -v[kFrameBulk] * v[kBulkDecrement] / std::numbers::pi};
+  }
+  template <typename T>
+  static Complex<T> frame_shear(const T* v) {
+    return {v[kFrameShear], -v[kFrameShear] * v[kShearDecrement] / std::numbers::pi};
+  }
+
   std::vector<Parameter> parameters_;
 };
 

@@ -49,6 +49,12 @@ class EffectiveDensityFluidModel final : public JetEvaluated<EffectiveDensityFlu
     return {fast.attenuation, fast.speed};
   }
 
+  /// A fluid: no shear wave, and the density of grains and pore water.
+  template <typename T>
+  T density(const T* v) const {
+    return mixture_density(v[kPorosity], v[kGrainDensity], v[kWaterDensity]);
+  }
+
  private:
   std::vector<Parameter> parameters_;
 };

@@ -7,10 +7,15 @@
 //   template <typename T> WaveOf<T> wave(const T* values, double frequency_hz) const;
 // and derives from JetEvaluated<M>. A model with derived quantities also provides
 //   template <typename T> std::vector<T> derived(const T* values) const;
-// in the order of its derived_quantities(); the same Jets give their exact gradients.
+// in the order of its derived_quantities(); the same Jets give their exact gradients. A model with a
+// shear wave provides
+//   template <typename T> WaveOf<T> shear_wave(const T* values, double frequency_hz) const;
+// (has_shear() and evaluate_shear() then answer with it), and one that fixes its bulk density
+//   template <typename T> T density(const T* values) const;   [kg/m^3]
 #include <ceres/jet.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -87,6 +92,10 @@ std::vector<DerivedValue> evaluate_derived_with_jets(const std::string& model_na
   return out;
 }
 
+/// A model class that provides a shear wave (see the top of this file).
+template <typename M>
+concept HasShearWave = requires(const M& model, const double* v) { model.template shear_wave<double>(v, 1.0); };
+
 template <typename M>
 class JetEvaluated : public SedimentModel {
  public:
@@ -100,6 +109,35 @@ class JetEvaluated : public SedimentModel {
       });
     } else {
       return SedimentModel::derived_values(values, derivatives);
+    }
+  }
+
+  [[nodiscard]] bool has_shear() const final { return HasShearWave<M>; }
+
+  [[nodiscard]] Wave evaluate_shear(std::span<const double> values, double frequency_hz,
+                                    bool derivatives) const final {
+    const M& model = static_cast<const M&>(*this);
+    if constexpr (HasShearWave<M>) {
+      return evaluate_with_jets<M::kParameters>(name() + " (shear)", values, frequency_hz, derivatives,
+                                                [&](const auto* x) {
+                                                  using T = std::remove_cvref_t<decltype(*x)>;
+                                                  return model.template shear_wave<T>(x, frequency_hz);
+                                                });
+    } else {
+      return SedimentModel::evaluate_shear(values, frequency_hz, derivatives);
+    }
+  }
+
+  [[nodiscard]] std::optional<double> bulk_density(std::span<const double> values) const final {
+    const M& model = static_cast<const M&>(*this);
+    if constexpr (requires(const double* v) { model.template density<double>(v); }) {
+      if (values.size() != static_cast<std::size_t>(M::kParameters)) {
+        throw std::invalid_argument(name() + ": " + std::to_string(M::kParameters) +
+                                    " parameter values expected, got " + std::to_string(values.size()));
+      }
+      return model.template density<double>(values.data());
+    } else {
+      return std::nullopt;
     }
   }
 

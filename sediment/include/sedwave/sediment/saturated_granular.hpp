@@ -69,6 +69,13 @@ class SaturatedGranularModel final : public SedimentModel {
   [[nodiscard]] Wave evaluate(std::span<const double> values, double frequency_hz,
                               bool derivatives) const override;
   [[nodiscard]] PermeabilityFrom permeability_from() const { return permeability_; }
+  /// The shear wave of the frame's shear modulus, the frame P-wave modulus split by the frame Poisson
+  /// ratio nu_frame (a parameter: the one assumption), in Biot's theory (biot_shear_wavenumber).
+  [[nodiscard]] bool has_shear() const override { return true; }
+  [[nodiscard]] Wave evaluate_shear(std::span<const double> values, double frequency_hz,
+                                    bool derivatives) const override;
+  [[nodiscard]] std::string shear_summary() const override;
+  [[nodiscard]] std::optional<double> bulk_density(std::span<const double> values) const override;
   [[nodiscard]] std::string uncertainty_caveat() const override { return model_->uncertainty_caveat(); }
   /// The grain contact's (without c0, which is the dry frame's speed, not this model's), then the
   /// poroelastic ones (Wood's speed, Biot's characteristic frequency).
@@ -94,6 +101,25 @@ class SaturatedGranularModel final : public SedimentModel {
   template <typename T>
   WaveOf<T> wave(const T* v, double frequency_hz) const {
     const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const AttenuationSpeed<T> fast =
+        attenuation_and_speed(biot_fast_wavenumber(medium(v, frequency_hz), omega), omega);
+    return {fast.attenuation, fast.speed};
+  }
+
+  /// The shear wave for values in parameters() order (SI).
+  template <typename T>
+  WaveOf<T> shear_wave(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
+    const AttenuationSpeed<T> shear =
+        attenuation_and_speed(biot_shear_wavenumber(medium(v, frequency_hz), omega), omega);
+    return {shear.attenuation, shear.speed};
+  }
+
+ private:
+  /// Biot's medium: the frame's moduli at frequency_hz and the pore space.
+  template <typename T>
+  BiotMedium<T> medium(const T* v, double frequency_hz) const {
+    const double omega = 2.0 * std::numbers::pi * frequency_hz;
     const FrameWave<T> frame =
         frame_wave(*model_, form_, v[kKappa], v[kDiameter], v[kDamping], v[kGrainDensity], frequency_hz);
     const T& porosity = v[kPorosity];
@@ -102,7 +128,7 @@ class SaturatedGranularModel final : public SedimentModel {
     const Complex<T> p_wave_modulus = omega_over_k * omega_over_k * ((1.0 - porosity) * v[kGrainDensity]);
     const FrameModuli<T> moduli = split_p_wave_modulus(p_wave_modulus, v[kFramePoisson]);
     const bool derived = permeability_ == PermeabilityFrom::KozenyCarman;
-    const BiotMedium<T> medium{
+    const BiotMedium<T> result{
         moduli.bulk,
         moduli.shear,
         porosity,
@@ -115,11 +141,9 @@ class SaturatedGranularModel final : public SedimentModel {
         v[kTortuosity],
         derived ? hydraulic_pore_size(v[kDiameter], porosity) : v[kPoreSize],
     };
-    const AttenuationSpeed<T> fast = attenuation_and_speed(biot_fast_wavenumber(medium, omega), omega);
-    return {fast.attenuation, fast.speed};
+    return result;
   }
 
- private:
   template <typename T>
   T permeability_of(const T* v) const {
     const bool derived = permeability_ == PermeabilityFrom::KozenyCarman;

@@ -1,6 +1,7 @@
 #pragma once
 // A sediment model: named physical parameters in SI, and the compressional wave it predicts at a
-// frequency (attenuation [Np/m], phase speed [m/s]) with exact derivatives.
+// frequency (attenuation [Np/m], phase speed [m/s]) with exact derivatives; where the model has one,
+// also its shear wave and its bulk density (what plane-wave reflection at the seabed needs).
 //
 // This is the level the inversion works at. The dimensionless grain-contact engines of forward/
 // (chain theories, 3D tables) enter through one family (grain_contact.hpp); poroelastic and
@@ -95,6 +96,23 @@ class SedimentModel {
   /// answer (a table's range); never returns NaN silently.
   [[nodiscard]] virtual Wave evaluate(std::span<const double> values, double frequency_hz,
                                       bool derivatives) const = 0;
+
+  /// Whether the model predicts a shear wave (evaluate_shear answers): the grain-shearing models and
+  /// those with a frame shear modulus do; a fluid-like model (EDFM) and the dry chain do not.
+  [[nodiscard]] virtual bool has_shear() const { return false; }
+  /// The shear wave at `frequency_hz` (attenuation [Np/m], phase speed [m/s], as evaluate() for the
+  /// compressional wave, with the same exact derivatives). Throws std::logic_error naming the model
+  /// where has_shear() is false.
+  [[nodiscard]] virtual Wave evaluate_shear(std::span<const double> values, double frequency_hz,
+                                            bool derivatives) const;
+  /// One line: where the shear wave comes from and what it assumes (e.g. a frame Poisson ratio);
+  /// empty where the model has none.
+  [[nodiscard]] virtual std::string shear_summary() const { return {}; }
+  /// The sediment's bulk density [kg/m^3] at parameter `values`, which reflection at the seabed
+  /// needs; nothing for a model that does not fix it (the dry frame alone).
+  [[nodiscard]] virtual std::optional<double> bulk_density(std::span<const double> /*values*/) const {
+    return std::nullopt;
+  }
 
   /// What the model's own sigmas are known to leave out, in words (an inversion flags it); empty
   /// when nothing is known to be missing.
