@@ -145,6 +145,9 @@ void GranularPlate::build_pairs() {
     x_at_build_[i] = g.x;
     y_at_build_[i] = g.y;
   }
+  if (!std::isfinite(x1 - x0) || !std::isfinite(y1 - y0))
+    throw std::runtime_error("interface: a grain's position is no longer finite at t = " + std::to_string(time_) +
+                             " s: the integration is unstable (a fixed step above a contact's stability limit?)");
   const double cell = 2.0 * r_max + skin_;
   const int nx = static_cast<int>((x1 - x0) / cell) + 1;
   const int ny = static_cast<int>((y1 - y0) / cell) + 1;
@@ -177,7 +180,7 @@ bool GranularPlate::pairs_stale() const {
   const double limit = 0.25 * skin_ * skin_;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const double dx = grains_[i].x - x_at_build_[i], dy = grains_[i].y - y_at_build_[i];
-    if (dx * dx + dy * dy > limit) return true;
+    if (!(dx * dx + dy * dy <= limit)) return true;  // moved, or no longer finite: build_pairs says which
   }
   return false;
 }
