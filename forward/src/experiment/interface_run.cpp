@@ -161,7 +161,7 @@ void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimat
     throw std::invalid_argument("interface: " + cause + load + " would press a bead " + text(e.peak_overlap) +
                                 " m into the plate, " + text(e.peak_overlap / r) +
                                 " of its radius: Hertz's small-strain contact holds below " +
-                                text(kMaxOverlapFraction) + " of it; strike softer or use larger beads");
+                                text(kMaxOverlapFraction) + " of it; strike or load it more softly");
   }
   const double t = scene.plate_material.thickness;
   if (e.contact_radius >= 0.5 * t) {
