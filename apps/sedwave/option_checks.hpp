@@ -50,7 +50,8 @@ inline CLI::Validator output_path() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         if (text.empty()) return "an empty path names no file (leave the option out for the default)";
-        if (text.front() == '-') return "'" + text + "' looks like an option, not a path (write ./" + text + " for a file of that name)";
+        if (text.front() == '-')
+          return "'" + text + "' looks like an option, not a path (write ./" + text + " for a file of that name)";
         return "";
       },
       "PATH");

@@ -24,7 +24,8 @@ std::string message_of(const std::string& text) {
 }
 
 std::string nested(int depth) {
-  return "x = " + std::string(static_cast<std::size_t>(depth), '[') + "1" + std::string(static_cast<std::size_t>(depth), ']') + "\n";
+  const auto n = static_cast<std::size_t>(depth);
+  return "x = " + std::string(n, '[') + "1" + std::string(n, ']') + "\n";
 }
 
 TEST(TomlShape, NestingIsBoundedBeforeParsing) {

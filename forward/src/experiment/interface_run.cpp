@@ -50,13 +50,6 @@ double arrival_time(const std::vector<double>& t, const std::vector<double>& v, 
   return nan;
 }
 
-/// Velocity-Verlet limit of an oscillator with omega^2 and dashpot rate beta (as granular_plate.cpp):
-/// 4 / (beta + sqrt(beta^2 + 4 omega^2)).
-double oscillator_limit(double omega_squared, double beta) {
-  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
-  return denominator > 0.0 ? 4.0 / denominator : std::numeric_limits<double>::infinity();
-}
-
 /// One Hertz contact at the run's peak: the overlap its strike (kinetic energy of approach at
 /// `speed`) or a static `force` reaches, whichever is larger, and its limits.
 struct PeakContact {
@@ -76,11 +69,12 @@ PeakContact peak_contact(double modulus, double radius, double inverse_mass, dou
   const double loaded = std::pow(force / k, 2.0 / 3.0);
   p.overlap = std::max(struck, loaded);
   if (!(p.overlap > 0.0)) return p;
-  p.hertz_limit = oscillator_limit(omega_squared + 1.5 * k * std::sqrt(p.overlap) * inverse_mass, 0.0);
+  p.hertz_limit = interface::oscillator_limit(omega_squared + 1.5 * k * std::sqrt(p.overlap) * inverse_mass, 0.0);
   const double normal_force = k * p.overlap * std::sqrt(p.overlap);
-  if (c.friction > 0.0)
-    p.friction_limit =
-        oscillator_limit(omega_squared, c.friction * c.tanh_velocity_scale * normal_force * inverse_tangential_mass);
+  if (c.friction > 0.0) {
+    const double beta = c.friction * c.tanh_velocity_scale * normal_force * inverse_tangential_mass;
+    p.friction_limit = interface::oscillator_limit(omega_squared, beta);
+  }
   return p;
 }
 

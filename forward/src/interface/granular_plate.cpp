@@ -17,14 +17,6 @@ namespace {
 using dem::Vec3;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-/// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
-/// omega^2 = k/m, beta = c/m, the dashpot seeing the half-step velocity (docs/dem.md, "Numerics"):
-/// h_c = 4 / (beta + sqrt(beta^2 + 4 omega^2)).
-double oscillator_limit(double omega_squared, double beta) {
-  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
-  return denominator > 0.0 ? 4.0 / denominator : inf;
-}
-
 /// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
 /// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
 /// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing.
@@ -36,6 +28,11 @@ double reach_energy(double overlap, double normal_velocity, double effective_mas
 }
 
 }  // namespace
+
+double oscillator_limit(double omega_squared, double beta) {
+  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
+  return denominator > 0.0 ? 4.0 / denominator : inf;
+}
 
 double StepLimits::tightest() const { return std::min({plate, hertz, friction}); }
 
