@@ -4,13 +4,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "output_paths.hpp"
+#include "sedwave/io/atomic_file.hpp"
 #include "sedwave/forward/experiment/interface_run.hpp"
 #include "sedwave/forward/experiment/interface_scene.hpp"
 #include "sedwave/forward/experiment/interface_spectrum.hpp"
@@ -28,8 +32,72 @@ struct InterfaceOptions {
   std::optional<double> tolerance;
   bool direct = false;
   std::optional<double> fixed_step;
+  double max_steps = 1e7;
+  double max_memory_gb = 4.0;
   bool quiet = false;
 };
+
+/// Every file the run writes: the run file and, with --csv, the CSV tables (one per snapshot).
+std::vector<OutputPath> output_files(const InterfaceOptions& o, const experiment::InterfaceScene& scene) {
+  std::vector<OutputPath> outputs{{"--out", o.out, io::OutputFormat::seekable}};
+  if (o.csv.empty()) return outputs;
+  const std::filesystem::path dir(o.csv);
+  outputs.push_back({"--csv", dir / "energies.csv"});
+  outputs.push_back({"--csv", dir / "probes.csv"});
+  for (int k = 1; k <= scene.recording.snapshots; ++k)
+    outputs.push_back({"--csv", dir / ("snapshot_" + std::to_string(k) + ".csv")});
+  return outputs;
+}
+
+/// The command line's overrides, on the scene's ranges; a value out of them is a usage error.
+void apply_overrides(const InterfaceOptions& o, experiment::InterfaceScene& scene) {
+  if (o.tolerance && (o.fixed_step || scene.recording.fixed_step > 0.0))
+    throw UsageError("--tolerance sets the adaptive step's theta, and this run has a fixed step (" +
+                     std::string(o.fixed_step ? "--fixed-step" : "run.fixed_step in " + o.scene) + "): give one of them");
+  if (o.speed && scene.drive.kind != experiment::InterfaceDrive::Kind::velocity)
+    throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene drives a force pulse");
+  try {
+    if (o.speed) experiment::override_speed(scene, *o.speed, "--speed");
+    if (o.tolerance) experiment::override_tolerance(scene, *o.tolerance, "--tolerance");
+    if (o.fixed_step) experiment::override_fixed_step(scene, *o.fixed_step, "--fixed-step");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  scene.drive.direct = o.direct;
+}
+
+/// Refuses a run beyond the step or memory budget, naming the estimate, the budget and the option
+/// that raises it; otherwise announces the estimate.
+void check_budget(const InterfaceOptions& o, const experiment::InterfaceEstimate& e) {
+  char text[600];
+  const double gb = e.memory_bytes / 1e9;
+  if (!(gb <= o.max_memory_gb)) {
+    std::snprintf(text, sizeof text,
+                  "%s: the run would hold about %.3g GB (%.3g plate nodes, %.3g grains, %.3g samples), above the "
+                  "budget of %.3g GB: use fewer elements, grains or samples, or raise the budget with --max-memory",
+                  o.scene.c_str(), gb, e.nodes, e.grains, e.samples, o.max_memory_gb);
+    throw std::invalid_argument(text);
+  }
+  if (!(e.steps <= o.max_steps)) {
+    std::snprintf(text, sizeof text,
+                  "%s: the run would take about %.3g steps (step %.3g s over run.duration; limits: plate %.3g s, "
+                  "Hertz %.3g s, Coulomb-tanh %.3g s; %.3g samples), above the budget of %.3g steps: shorten "
+                  "run.duration, lengthen the step or run.output_interval, or raise the budget with --max-steps",
+                  o.scene.c_str(), e.steps, e.step, e.plate_limit, e.hertz_limit, e.friction_limit, e.samples,
+                  o.max_steps);
+    throw std::invalid_argument(text);
+  }
+  if (o.quiet) return;
+  std::printf("estimate: about %.3g steps (step down to %.3g s; limits: plate %.3g s, Hertz %.3g s, Coulomb-tanh %.3g s) "
+              "of %.3g plate nodes and %.3g grains, %.3g samples, %.3g GB (budgets: --max-steps %.3g, --max-memory "
+              "%.3g GB)\n",
+              e.steps, e.step, e.plate_limit, e.hertz_limit, e.friction_limit, e.nodes, e.grains, e.samples, gb,
+              o.max_steps, o.max_memory_gb);
+  if (e.step > std::min(e.hertz_limit, e.friction_limit))
+    std::printf("note: the fixed step %.3g s exceeds the estimated contact limit %.3g s; the run stops if its "
+                "energy balance blows up\n", e.step, std::min(e.hertz_limit, e.friction_limit));
+  std::fflush(stdout);
+}
 
 void print_summary(const experiment::InterfaceScene& scene, const experiment::InterfaceRun& r) {
   const auto& e = r.series.energies.back();
@@ -83,26 +151,18 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
 
 int run_interface_command(const InterfaceOptions& o) {
   experiment::InterfaceScene scene = experiment::read_interface_scene(o.scene);
-  std::vector<OutputPath> outputs{{"--out", o.out}};
-  check_outputs(outputs, {o.scene}, "interface");
-  if (o.speed) {
-    if (scene.drive.kind != experiment::InterfaceDrive::Kind::velocity)
-      throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene drives a force pulse");
-    if (!(*o.speed > 0.0)) throw std::invalid_argument("--speed must be > 0");
-    scene.drive.speed = *o.speed;
-  }
-  scene.drive.direct = o.direct;
-  if (o.tolerance) {
-    if (!(*o.tolerance > 0.0 && *o.tolerance <= 0.5)) throw std::invalid_argument("--tolerance must lie in (0, 0.5]");
-    scene.recording.tolerance = *o.tolerance;
-  }
-  if (o.fixed_step) {
-    if (!(*o.fixed_step > 0.0)) throw std::invalid_argument("--fixed-step must be > 0");
-    scene.recording.fixed_step = *o.fixed_step;
-  }
+  check_outputs(output_files(o, scene), {o.scene}, "interface");
+  apply_overrides(o, scene);
+  const experiment::InterfaceEstimate estimate = experiment::estimate_interface_run(scene);
+  experiment::check_interface_physics(scene, estimate);
+  check_budget(o, estimate);
   const experiment::InterfaceRun r = experiment::run_interface(scene, o.quiet ? nullptr : &std::cout);
-  experiment::write_interface_run_file(o.out, scene, r);
-  if (!o.csv.empty()) experiment::write_interface_csv(o.csv, scene, r);
+  {
+    io::DeferredCommits outputs;  // the run file and the tables together, or none of them
+    experiment::write_interface_run_file(o.out, scene, r);
+    if (!o.csv.empty()) experiment::write_interface_csv(o.csv, scene, r);
+    outputs.commit_all();
+  }
   if (!o.quiet) {
     print_summary(scene, r);
     std::printf("written to %s%s\n", o.out.c_str(), o.csv.empty() ? "" : (" and " + o.csv + "/*.csv").c_str());
@@ -112,6 +172,12 @@ int run_interface_command(const InterfaceOptions& o) {
   if (r.max_contact_radius > 0.5 * r.element_size) {
     std::printf("flagged: the contact radius exceeds half the element size; the plate's local compliance is "
                 "counted twice\n");
+    return kExitIncomplete;
+  }
+  // The beads' collective push can exceed the single strike the estimate checked before the run.
+  if (r.max_contact_radius >= 0.5 * scene.plate_material.thickness) {
+    std::printf("flagged: the contact radius reached half the plate's thickness; the plane-stress plate does not "
+                "describe such a contact\n");
     return kExitIncomplete;
   }
   return kExitOk;
@@ -124,11 +190,20 @@ Command add_interface_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "interface", "Run a granular-solid interface scene: 2D grains on an elastic plate (docs/interface.md)");
   cmd->add_option("scene", o->scene, "interface scene file (TOML, SI units)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--out", o->out, "run file to write (HDF5)")->capture_default_str();
-  cmd->add_option("--csv", o->csv, "also write energies.csv, probes.csv and snapshot_K.csv (K = 1, 2, ...) into this directory");
-  cmd->add_option("--speed", o->speed, "override the drive's speed [m/s] (velocity drives)");
-  cmd->add_option("--tolerance", o->tolerance, "override the adaptive step's tolerance theta, in (0, 0.5]");
-  cmd->add_option("--fixed-step", o->fixed_step, "a fixed step [s] instead of the adaptive one (for comparisons)");
+  cmd->add_option("--out", o->out, "run file to write (HDF5)")->capture_default_str()->check(output_path());
+  cmd->add_option("--csv", o->csv, "also write energies.csv, probes.csv and snapshot_K.csv (K = 1, 2, ...) into this directory")
+      ->check(output_path());
+  cmd->add_option("--speed", o->speed, "override the drive's speed [m/s] (velocity drives), in (0, 1e4]")
+      ->check(finite_positive());
+  cmd->add_option("--tolerance", o->tolerance, "override the adaptive step's tolerance theta, in (0, 0.5]")
+      ->check(finite_positive());
+  cmd->add_option("--fixed-step", o->fixed_step,
+                  "a fixed step [s] instead of the adaptive one (for comparisons; at most the plate's stability limit)")
+      ->check(finite_positive());
+  cmd->add_option("--max-steps", o->max_steps, "refuse a run estimated to take more steps")
+      ->capture_default_str()->check(finite_in(1.0));
+  cmd->add_option("--max-memory", o->max_memory_gb, "refuse a run estimated to hold more memory [GB]")
+      ->capture_default_str()->check(finite_positive());
   cmd->add_flag("--direct", o->direct,
                 "strike the plate's edge directly (no beads) with the driven beads' energy: the delay's reference");
   cmd->add_flag("--quiet", o->quiet, "print nothing but errors");

@@ -44,6 +44,19 @@ inline CLI::Validator non_empty_list() {
       "LIST");
 }
 
+/// An output path: not empty (`--csv ''` names nothing) and not an option (`--out --quiet` would
+/// write a file named "--quiet"; write ./--quiet for that).
+inline CLI::Validator output_path() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty()) return "an empty path names no file (leave the option out for the default)";
+        if (text.front() == '-')
+          return "'" + text + "' looks like an option, not a path (write ./" + text + " for a file of that name)";
+        return "";
+      },
+      "PATH");
+}
+
 /// A finite number > 0.
 inline CLI::Validator finite_positive() {
   return finite_in(std::numeric_limits<double>::denorm_min());

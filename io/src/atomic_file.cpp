@@ -350,6 +350,9 @@ void refuse_overwriting_inputs(const std::vector<fs::path>& outputs, const std::
 }
 
 void require_writable_location(const fs::path& path, const std::string& option, OutputFormat format) {
+  // "run/" names a directory even before it exists: refused now, not after the run has created it.
+  if (!path.has_filename())
+    throw std::invalid_argument(option + " " + path.string() + ": names a directory; give a file name");
   ResolvedOutput resolved;
   try {
     resolved = resolve_output(path);

@@ -11,3 +11,79 @@ sedwave_cli_case(interface.output_over_scene 2 [=[--out: output .*would overwrit
 sedwave_cli_case(interface.tiny_run 0 [=[largest share in the plate [0-9.]+. energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/tiny.h5)
 sedwave_cli_case(interface.precompression_needs_a_clamped_edge 1 [=[unsupported_precompression\.toml:13: key 'packing\.precompression': a static load needs a clamped plate edge]=] interface ${INTERFACE_DATA}/unsupported_precompression.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.direct_strike 0 [=[direct strike on the plate's edge over x = 0\.00575 \.\. 0\.02075 m with the energy of 3 beads]=] interface ${INTERFACE_DATA}/tiny.toml --direct --out ${INTERFACE_OUT}/direct.h5)
+
+# Bad input of every kind, each refused before the run with its cause (docs/interface.md, "Limits
+# and budgets"). Outputs: none may replace the scene or another output of the same run.
+file(MAKE_DIRECTORY ${INTERFACE_OUT}/csv_scene)
+configure_file(${INTERFACE_DATA}/tiny.toml ${INTERFACE_OUT}/csv_scene/energies.csv COPYONLY)
+sedwave_cli_case(interface.csv_over_scene 2 [=[--csv: output .*energies\.csv would overwrite the input]=] interface ${INTERFACE_OUT}/csv_scene/energies.csv --csv ${INTERFACE_OUT}/csv_scene --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.csv_over_run_file 2 [=[--out and --csv both name .*energies\.csv]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/both/energies.csv --csv ${INTERFACE_OUT}/both)
+# Values that overflowed the solver's integer conversions or allocations.
+sedwave_cli_case(interface.huge_packing_density 1 [=[huge_packing_density\.toml:[0-9]+: key 'packing\.density' = 1e\+308: accepted range \[1, 30000\] kg/m\^3]=] interface ${INTERFACE_DATA}/huge_packing_density.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_precompression 1 [=[key 'packing\.precompression' = 1e\+308: accepted range \[0, 1000000\] N]=] interface ${INTERFACE_DATA}/huge_precompression.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_mesh 1 [=[would hold about [0-9.e+]+ GB \(1e\+10 plate nodes.*budget of 4 GB.*--max-memory]=] interface ${INTERFACE_DATA}/huge_mesh.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_packing 1 [=[would hold about [0-9.e+]+ GB \(.*1e\+10 grains.*--max-memory]=] interface ${INTERFACE_DATA}/huge_packing.toml --out ${INTERFACE_OUT}/never.h5)
+string(REPEAT "[" 100000 open)
+string(REPEAT "]" 100000 close)
+file(WRITE ${INTERFACE_OUT}/deep_probes.toml "[run]\nduration = 4e-5\nprobe_x = ${open}0.01${close}\n")
+sedwave_cli_case(interface.deeply_nested_probes 1 [=[deep_probes\.toml:3: syntax error: arrays or inline tables nested deeper than 64 levels]=] interface ${INTERFACE_OUT}/deep_probes.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.integer_beyond_64_bits 1 [=[key 'plate\.elements_x' = 99999999999999999999: accepted range \[1, 100000\]]=] interface ${INTERFACE_DATA}/overflowing_elements.toml --out ${INTERFACE_OUT}/never.h5)
+# Runs that would not end in any useful time: estimated and refused, with the budget and its option.
+sedwave_cli_case(interface.strike_beyond_hertz 1 [=[strike at 1e\+04 m/s .* would press a bead .* of its radius: Hertz's small-strain contact holds below 0\.1]=] interface ${INTERFACE_DATA}/tiny.toml --speed 1e4 --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tiny_tolerance_option 1 [=[about [0-9.]+e\+0?[89] steps .*above the budget of 1e\+07 steps.*--max-steps]=] interface ${INTERFACE_DATA}/tiny.toml --tolerance 1e-6 --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tiny_fixed_step_option 1 [=[about 4e\+295 steps .*--max-steps]=] interface ${INTERFACE_DATA}/tiny.toml --fixed-step 1e-300 --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_run_duration 1 [=[key 'run\.duration' = 1e\+308: accepted range \(0, 1000\] s]=] interface ${INTERFACE_DATA}/huge_run_duration.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.long_run 1 [=[about [0-9.]+e\+(09|10) steps .*--max-steps]=] interface ${INTERFACE_DATA}/long_run.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.long_strip 1 [=[about [0-9.]+e\+06 steps \(step [0-9.e-]+ s .* plate [0-9.]+e-11 s.*above the budget of 1e\+06 steps]=] interface ${INTERFACE_DATA}/long_strip.toml --max-steps 1e6 --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.fine_sampling 1 [=[4e\+08 samples.*(--max-memory|--max-steps)]=] interface ${INTERFACE_DATA}/fine_sampling.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tiny_interval 1 [=[4e\+295 samples]=] interface ${INTERFACE_DATA}/tiny_interval.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.sharp_friction 1 [=[Coulomb-tanh [0-9.]+e-1[4-7] s.*--max-steps]=] interface ${INTERFACE_DATA}/sharp_friction.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tiny_tolerance_key 1 [=[about [0-9.]+e\+30[0-9] steps .*--max-steps]=] interface ${INTERFACE_DATA}/tiny_tolerance.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tiny_fixed_step_key 1 [=[about 4e\+10 steps .*--max-steps]=] interface ${INTERFACE_DATA}/tiny_fixed_step.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.light_plate 1 [=[key 'plate\.density' = 0\.000785: accepted range \[1, 30000\] kg/m\^3]=] interface ${INTERFACE_DATA}/light_plate.toml --out ${INTERFACE_OUT}/never.h5)
+# Nonsense that ran to exit 0.
+sedwave_cli_case(interface.huge_pulse_duration 1 [=[key 'drive\.duration' = 1e\+308: accepted range \(0, 1000\] s]=] interface ${INTERFACE_DATA}/long_pulse.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.pulse_outlasts_run 1 [=[key 'drive\.duration': the pulse \(0\.001 s\) outlasts the run]=] interface ${INTERFACE_DATA}/pulse_outlasts_run.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_lift 1 [=[key 'packing\.lift' = 1e\+308: accepted range \[0, 10\] m]=] interface ${INTERFACE_DATA}/huge_lift.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_plate_density 1 [=[key 'plate\.density' = 1e\+308: accepted range]=] interface ${INTERFACE_DATA}/huge_plate_density.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_fixed_step 1 [=[key 'run\.fixed_step' = 1e\+308: accepted range \[0, 4e-05\] s]=] interface ${INTERFACE_DATA}/huge_fixed_step.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.infinite_fixed_step 2 [=[--fixed-step: 'inf' is not a finite number]=] interface ${INTERFACE_DATA}/tiny.toml --fixed-step inf --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.contact_wider_than_plate 1 [=[contact radius of [0-9.e-]+ m, above half the plate's thickness \(plate\.thickness / 2 = 5e-06 m\)]=] interface ${INTERFACE_DATA}/thin_plate.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.fixed_step_beyond_plate_limit 1 [=[fixed step 1\.07e-06 s .* exceeds the plate's stability limit 2/omega_max = 3\.57e-07 s]=] interface ${INTERFACE_DATA}/unstable_fixed_step.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.unstable_run_stopped 1 [=[energy balance is off by [0-9.e+]+ times the input energy .*the fixed step .* exceeds a contact's limit]=] interface ${INTERFACE_DATA}/fixed_step_over_contacts.toml --out ${INTERFACE_OUT}/never.h5)
+# Checked before the run, not after it.
+sedwave_cli_case(interface.out_is_a_device 1 [=[--out: .*/dev/null]=] interface ${INTERFACE_DATA}/tiny.toml --out /dev/null)
+sedwave_cli_case(interface.out_in_missing_unwritable_directory 1 [=[--out /proc/no/such/run\.h5: cannot create directory]=] interface ${INTERFACE_DATA}/tiny.toml --out /proc/no/such/run.h5)
+sedwave_cli_case(interface.csv_unwritable 1 [=[--csv /proc/no/such/energies\.csv: cannot create directory]=] interface ${INTERFACE_DATA}/tiny.toml --csv /proc/no/such --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.csv_is_a_file 1 [=[--csv .*bad_poisson\.toml/energies\.csv: cannot create directory]=] interface ${INTERFACE_DATA}/tiny.toml --csv ${INTERFACE_DATA}/bad_poisson.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tolerance_with_fixed_step 2 [=[--tolerance sets the adaptive step's theta, and this run has a fixed step \(--fixed-step\)]=] interface ${INTERFACE_DATA}/tiny.toml --fixed-step 1e-8 --tolerance 0.1 --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tolerance_with_scene_fixed_step 2 [=[this run has a fixed step \(run\.fixed_step in .*fixed_step_scene\.toml\)]=] interface ${INTERFACE_DATA}/fixed_step_scene.toml --tolerance 0.1 --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.option_as_out 2 [=[--out: '--quiet' looks like an option]=] interface ${INTERFACE_DATA}/tiny.toml --out --quiet)
+add_test(NAME cli.interface.out_is_a_fifo
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 1 [=[--out: .*a FIFO]=] -- bash -c
+          "rm -f \"$1\" && mkfifo \"$1\" && exec \"$0\" interface \"$2\" --out \"$1\""
+          $<TARGET_FILE:sedwave> ${INTERFACE_OUT}/fifo.h5 ${INTERFACE_DATA}/tiny.toml)
+set_tests_properties(cli.interface.out_is_a_fifo PROPERTIES TIMEOUT 150)
+# A long run (100000 x 1 elements: about 3e6 steps over 2e5 nodes) announces its estimate and prints
+# its progress with the time left within 30 s, then is stopped.
+add_test(NAME cli.interface.long_run_announces
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/interface_announces.sh $<TARGET_FILE:sedwave>
+          ${INTERFACE_DATA}/long_strip.toml ${INTERFACE_OUT}/long_strip.h5 30)
+set_tests_properties(cli.interface.long_run_announces PROPERTIES TIMEOUT 150)
+# 40 000 probes: on one line (toml11 scans a value's whole line, so one line of n values parses in
+# n^2) the file is refused at once with the fix; over many lines it parses in linear time.
+string(REPEAT "0.01, " 40000 probes)
+file(WRITE ${INTERFACE_OUT}/probes_one_line.toml "[run]\nduration = 4e-5\nprobe_x = [${probes}]\n")
+sedwave_cli_case(interface.probes_on_one_line 1 [=[probes_one_line\.toml:3: syntax error: a line longer than 65536 characters \(break a long array over several lines]=] interface ${INTERFACE_OUT}/probes_one_line.toml --out ${INTERFACE_OUT}/never.h5)
+string(REPEAT "0.01,\n" 40000 probes)
+file(WRITE ${INTERFACE_OUT}/probes_many_lines.toml "[run]\nduration = 4e-5\nprobe_x = [\n${probes}]\nmisspelt = 1\n")
+sedwave_cli_case(interface.probes_on_many_lines 1 [=[probes_many_lines\.toml:40005: key 'run\.misspelt': unknown key]=] interface ${INTERFACE_OUT}/probes_many_lines.toml --out ${INTERFACE_OUT}/never.h5)
+# An empty value (CMake drops "" from a command's arguments: passed through bash).
+foreach(empty speed csv)
+  add_test(NAME cli.interface.empty_${empty}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "--${empty}: ('' is not a number|an empty path names no file)" -- bash -c
+            "exec \"$0\" interface \"$1\" --${empty} '' --out \"$2\""
+            $<TARGET_FILE:sedwave> ${INTERFACE_DATA}/tiny.toml ${INTERFACE_OUT}/never.h5)
+  set_tests_properties(cli.interface.empty_${empty} PROPERTIES TIMEOUT 150)
+endforeach()
+sedwave_cli_case(interface.out_names_a_missing_directory 1 [=[--out .*/missing_run_dir/: names a directory. give a file name]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/missing_run_dir/)

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "sedwave/io/hdf5.hpp"
 #include "sedwave/forward/experiment/interface_spectrum.hpp"
 #include "sedwave/io/atomic_file.hpp"
+#include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::experiment {
 namespace {
@@ -48,9 +50,128 @@ double arrival_time(const std::vector<double>& t, const std::vector<double>& v, 
   return nan;
 }
 
+/// One Hertz contact at the run's peak: the overlap its strike (kinetic energy of approach at
+/// `speed`) or a static `force` reaches, whichever is larger, and its limits.
+struct PeakContact {
+  double overlap = 0.0;
+  double hertz_limit = std::numeric_limits<double>::infinity();
+  double friction_limit = std::numeric_limits<double>::infinity();
+};
+
+/// `modulus` E*, `radius` R*, `inverse_mass` 1/m*, `inverse_tangential_mass` 1/m_t, and the
+/// stiffness the contact adds to (the mesh's omega_max^2 for a bead on the plate, else 0).
+PeakContact peak_contact(double modulus, double radius, double inverse_mass, double inverse_tangential_mass,
+                         double omega_squared, double speed, double force, const interface::InterfaceContacts& c) {
+  PeakContact p;
+  const double k = (4.0 / 3.0) * modulus * std::sqrt(radius);
+  // (2/5) k delta^(5/2) = m* v^2 / 2 for a strike; F = k delta^(3/2) for a static force.
+  const double struck = std::pow(1.25 * speed * speed / (inverse_mass * k), 0.4);
+  const double loaded = std::pow(force / k, 2.0 / 3.0);
+  p.overlap = std::max(struck, loaded);
+  if (!(p.overlap > 0.0)) return p;
+  p.hertz_limit = interface::oscillator_limit(omega_squared + 1.5 * k * std::sqrt(p.overlap) * inverse_mass, 0.0);
+  const double normal_force = k * p.overlap * std::sqrt(p.overlap);
+  if (c.friction > 0.0) {
+    const double beta = c.friction * c.tanh_velocity_scale * normal_force * inverse_tangential_mass;
+    p.friction_limit = interface::oscillator_limit(omega_squared, beta);
+  }
+  return p;
+}
+
+// Bytes the run holds per plate node (displacement, velocity, two force arrays, mass, damping and the
+// velocity the friction sees, 2 doubles each; the constraints; the node positions; a temporary for
+// the strain energy), per node and snapshot, per grain (three copies of its state, its forces by
+// kind, the neighbour list and cells), and per sample (the series, the probes, the line's two
+// velocity components and their flattened copies for the file).
+constexpr double kBytesPerNode = 7 * 16 + 2 + 16 + 16;
+constexpr double kBytesPerSnapshotNode = 16;
+constexpr double kBytesPerGrain = 3 * 64 + 4 * 24 + 24 + 16 + 72;
+constexpr double kBytesPerSample = 7 * 8 + 72 + 32 + 48;
+constexpr double kBytesPerSampleProbe = 8;
+constexpr double kBytesPerSampleLineNode = 32;
+
 }  // namespace
 
-InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) {
+InterfaceEstimate estimate_interface_run(const InterfaceScene& scene) {
+  InterfaceEstimate e;
+  const auto& mesh = scene.mesh;
+  const auto& pm = scene.plate_material;
+  const double a = mesh.length_x / mesh.elements_x, b = mesh.length_y / mesh.elements_y;
+  // Every element is the same rectangle: one element gives the mesh's bound (elastic_plate.hpp).
+  const plate::ElasticPlate cell(pm, {1, 1, a, b}, scene.edges);
+  e.plate_limit = cell.stable_time_step();
+  const double omega2 = std::pow(cell.max_frequency_bound(), 2);
+  e.nodes = (static_cast<double>(mesh.elements_x) + 1.0) * (static_cast<double>(mesh.elements_y) + 1.0);
+  e.grains = static_cast<double>(scene.packing.rows) * static_cast<double>(scene.packing.columns);
+  e.hertz_limit = e.friction_limit = std::numeric_limits<double>::infinity();
+  const double r = scene.packing.radius;
+  const double m = (4.0 / 3.0) * std::numbers::pi * r * r * r * scene.packing.density;
+  const double rotation = scene.contacts.rotation ? r * r / (0.4 * m * r * r) : 0.0;  // a^2/I with a = r
+  double travel = std::numeric_limits<double>::infinity();
+  if (!scene.drive.direct) {
+    const auto& g = scene.grain_material;
+    const bool strike = scene.drive.kind == InterfaceDrive::Kind::velocity;
+    const double speed = strike ? scene.drive.speed : 0.0;
+    const double force = std::max(strike ? 0.0 : scene.drive.peak, scene.packing_load);
+    const double edge_mass = 0.5 * pm.density * pm.thickness * a * b;  // a top-edge node's
+    const PeakContact plate_contact =
+        peak_contact(hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, pm.youngs_modulus, pm.poisson_ratio), r,
+                     1.0 / m + 1.0 / edge_mass, 1.0 / m + 1.0 / edge_mass + rotation, omega2, speed, force,
+                     scene.contacts);
+    const PeakContact grain_contact =
+        peak_contact(hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, g.youngs_modulus, g.poisson_ratio),
+                     0.5 * r, 2.0 / m, 2.0 / m + 2.0 * rotation, 0.0, speed, force, scene.contacts);
+    e.peak_overlap = plate_contact.overlap;
+    e.contact_radius = std::sqrt(r * plate_contact.overlap);
+    e.hertz_limit = std::min(plate_contact.hertz_limit, grain_contact.hertz_limit);
+    e.friction_limit = std::min(plate_contact.friction_limit, grain_contact.friction_limit);
+    if (speed > 0.0) travel = 0.1 * r / speed;  // half the skin of 0.2 r
+  }
+  const auto& rec = scene.recording;
+  e.step = rec.fixed_step > 0.0
+               ? rec.fixed_step
+               : std::min(rec.tolerance * std::min({e.plate_limit, e.hertz_limit, e.friction_limit}), travel);
+  e.samples = rec.duration / rec.output_interval;
+  e.steps = std::max(rec.duration / e.step, e.samples);
+  const double probes = rec.probe_x.empty() ? 1.0 : static_cast<double>(rec.probe_x.size());
+  e.memory_bytes = e.nodes * (kBytesPerNode + kBytesPerSnapshotNode * rec.snapshots) + e.grains * kBytesPerGrain +
+                   (e.samples + 1.0) * (kBytesPerSample + kBytesPerSampleProbe * probes +
+                                        kBytesPerSampleLineNode * (mesh.elements_x + 1.0));
+  return e;
+}
+
+void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimate& e) {
+  const auto text = [](double x) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.3g", x);
+    return std::string(s);
+  };
+  const std::string cause = scene.drive.kind == InterfaceDrive::Kind::velocity
+                                ? "the strike at " + text(scene.drive.speed) + " m/s (drive.speed, --speed)"
+                                : "the force of " + text(scene.drive.peak) + " N (drive.peak)";
+  const std::string load = scene.packing_load > 0.0 ? " and the precompression (packing.precompression)" : "";
+  const double r = scene.packing.radius;
+  if (e.peak_overlap > kMaxOverlapFraction * r) {
+    throw std::invalid_argument("interface: " + cause + load + " would press a bead " + text(e.peak_overlap) +
+                                " m into the plate, " + text(e.peak_overlap / r) +
+                                " of its radius: Hertz's small-strain contact holds below " +
+                                text(kMaxOverlapFraction) + " of it; strike or load it more softly");
+  }
+  const double t = scene.plate_material.thickness;
+  if (e.contact_radius >= 0.5 * t) {
+    throw std::invalid_argument("interface: " + cause + load + " gives a grain-plate contact radius of " +
+                                text(e.contact_radius) + " m, above half the plate's thickness (plate.thickness / 2 = " +
+                                text(0.5 * t) + " m): the plane-stress plate cannot carry such a contact "
+                                "(docs/interface.md, \"The coupling\")");
+  }
+  if (scene.recording.fixed_step > e.plate_limit) {
+    throw std::invalid_argument("interface: the fixed step " + text(scene.recording.fixed_step) +
+                                " s (run.fixed_step, --fixed-step) exceeds the plate's stability limit 2/omega_max = " +
+                                text(e.plate_limit) + " s: the explicit integration would blow up; use at most that");
+  }
+}
+
+InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, double progress_seconds) {
   const auto start = std::chrono::steady_clock::now();
   InterfaceRun out;
   plate::ElasticPlate plate(scene.plate_material, scene.mesh, scene.edges);
@@ -145,7 +266,41 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
   };
   sample();
   const auto& rec = scene.recording;
-  const long samples = std::max(1L, std::lround(rec.duration / rec.output_interval));
+  const double wanted_samples = std::round(rec.duration / rec.output_interval);
+  if (!(wanted_samples < 1e15))
+    throw std::invalid_argument("interface: " + std::to_string(wanted_samples) + " samples: more than a run can record");
+  const long samples = std::max(1L, static_cast<long>(wanted_samples));
+  // A balance off by as much as the input is no result: the step outran a stability limit.
+  const auto stop_if_unstable = [&](const interface::Energies& e) {
+    const double input = initial - static_energy + e.drive_work;
+    const double drift = std::abs(e.balance() - initial);
+    if (std::isfinite(drift) && !(input > 0.0 && drift > kUnstableBalance * input)) return;
+    const auto& l = run.last_limits();
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "interface: the energy balance is off by %.3g times the input energy at t = %.6g s (step %.3g s; "
+                  "limits now: plate %.3g s, Hertz %.3g s, Coulomb-tanh %.3g s): the integration is unstable; %s",
+                  drift / input, run.time(), last_step, l.plate, l.hertz, l.friction,
+                  rec.fixed_step > 0.0 ? "the fixed step (run.fixed_step, --fixed-step) exceeds a contact's limit: "
+                                         "shorten it or use the adaptive step"
+                                       : "lower the tolerance (run.tolerance, --tolerance)");
+    throw std::runtime_error(text);
+  };
+  const auto started = std::chrono::steady_clock::now();
+  auto reported = started;
+  // At least every progress_seconds of wall time: a line with the time left at the rate so far.
+  const auto report_if_due = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - reported).count() < progress_seconds) return;
+    reported = now;
+    const interface::Energies e = run.energies();
+    stop_if_unstable(e);
+    if (!progress) return;
+    const double done = run.time() / rec.duration, spent = std::chrono::duration<double>(now - started).count();
+    *progress << "t = " << run.time() << " s (" << std::lround(100.0 * done) << " % of the run), " << run.steps()
+              << " steps, plate holds " << (e.plate_kinetic + e.plate_strain) << " J; about "
+              << std::lround(done > 0.0 ? spent * (1.0 - done) / done : 0.0) << " s left" << std::endl;
+  };
   int next_snapshot = 1;
   for (long k = 1; k <= samples; ++k) {
     const double target = rec.duration * static_cast<double>(k) / static_cast<double>(samples);
@@ -153,8 +308,10 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
       last_step = run.step_towards(target);
       interval_min = std::min(interval_min, last_step);
       interval_max = std::max(interval_max, last_step);
+      if (run.steps() % 256 == 0) report_if_due();
     }
     sample();
+    stop_if_unstable(out.series.energies.back());
     while (rec.snapshots > 0 && next_snapshot <= rec.snapshots &&
            run.time() >= rec.duration * next_snapshot / rec.snapshots * (1.0 - 1e-12)) {
       out.snapshot_time.push_back(run.time());
@@ -164,7 +321,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress) 
     if (progress && (k * 10) / samples != ((k - 1) * 10) / samples) {
       const auto& e = out.series.energies.back();
       *progress << "t = " << run.time() << " s, " << run.steps() << " steps, plate holds "
-                << (e.plate_kinetic + e.plate_strain) << " J\n";
+                << (e.plate_kinetic + e.plate_strain) << " J" << std::endl;  // flushed: a pipe sees it now
     }
   }
   out.input_energy = initial - static_energy + out.series.energies.back().drive_work;

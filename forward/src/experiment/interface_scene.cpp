@@ -12,6 +12,28 @@ namespace {
 using Section = io::Table<InterfaceSceneError>;
 using Range = io::Range;
 
+// Physical ranges (docs/interface.md, "Limits"): what a laboratory solid, bead or strike can be, so
+// that no value reaches the solver where it would overflow or name the wrong cause. One range per
+// quantity: the plate and the beads bound a modulus or a density alike.
+const Range kModulus = Range::closed(1e3, 2e12, "Pa");        // soft gels .. diamond (1.2e12 Pa)
+const Range kPoisson{0.0, 0.5, false, true, ""};
+const Range kDensity = Range::closed(1.0, 3e4, "kg/m^3");     // aerogels .. osmium (22 590 kg/m^3)
+const Range kSize = Range::closed(1e-6, 10.0, "m");           // plate sizes and thickness, bead radius
+const Range kSpacing = Range::closed(0.0, 10.0, "m");         // gap, lift
+const Range kCount = Range::closed(1, 1e5);                   // elements and grains along one side
+const Range kForce = Range::closed(0.0, 1e6, "N");
+const Range kRunTime = Range::above(0.0, 1e3, "s");
+
+// Shared by the keys and the command line's overrides.
+Range strike_speed_range() { return Range::above(0.0, 1e4, "m/s"); }
+Range tolerance_range() { return Range::above(0.0, 0.5); }
+Range fixed_step_range(double duration) { return Range::closed(0.0, duration, "s (at most run.duration; 0: adaptive)"); }
+
+void check_override(double x, const std::string& option, const Range& range) {
+  if (!range.contains(x))
+    throw std::invalid_argument(option + " " + io::shortest(x) + ": accepted range " + range.describe());
+}
+
 plate::EdgeCondition edge(Section& s, const std::string& key, plate::EdgeCondition fallback) {
   const std::string names[] = {"free", "clamped", "absorbing"};
   const std::string chosen = s.choice(key, names[static_cast<int>(fallback)], {"free", "clamped", "absorbing"});
@@ -21,15 +43,15 @@ plate::EdgeCondition edge(Section& s, const std::string& key, plate::EdgeConditi
 
 void read_plate(Section s, InterfaceScene& scene) {
   auto& m = scene.plate_material;
-  m.youngs_modulus = s.positive("youngs_modulus", m.youngs_modulus, "Pa");
-  m.poisson_ratio = s.number("poisson_ratio", m.poisson_ratio, Range{0.0, 0.5, false, true, ""});
-  m.density = s.positive("density", m.density, "kg/m^3");
-  m.thickness = s.positive("thickness", m.thickness, "m");
+  m.youngs_modulus = s.number("youngs_modulus", m.youngs_modulus, kModulus);
+  m.poisson_ratio = s.number("poisson_ratio", m.poisson_ratio, kPoisson);
+  m.density = s.number("density", m.density, kDensity);
+  m.thickness = s.number("thickness", m.thickness, kSize);
   auto& mesh = scene.mesh;
-  mesh.length_x = s.positive("length_x", mesh.length_x, "m");
-  mesh.length_y = s.positive("length_y", mesh.length_y, "m");
-  mesh.elements_x = s.integer<int>("elements_x", mesh.elements_x, Range::closed(1, 1e5));
-  mesh.elements_y = s.integer<int>("elements_y", mesh.elements_y, Range::closed(1, 1e5));
+  mesh.length_x = s.number("length_x", mesh.length_x, kSize);
+  mesh.length_y = s.number("length_y", mesh.length_y, kSize);
+  mesh.elements_x = s.integer<int>("elements_x", mesh.elements_x, kCount);
+  mesh.elements_y = s.integer<int>("elements_y", mesh.elements_y, kCount);
   Section edges = s.sub("edges");
   scene.edges.top = edge(edges, "top", scene.edges.top);
   scene.edges.bottom = edge(edges, "bottom", scene.edges.bottom);
@@ -47,24 +69,24 @@ std::string metres(double x) {
 
 void read_packing(Section s, InterfaceScene& scene) {
   auto& p = scene.packing;
-  p.rows = s.integer<int>("rows", 10, Range::closed(1, 1e5));
-  p.columns = s.integer<int>("columns", 20, Range::closed(1, 1e5));
-  p.radius = s.positive("radius", 2.5e-3, "m");
-  p.density = s.positive("density", 7850.0, "kg/m^3");
-  p.gap = s.number("gap", 0.0, Range::non_negative("m"));
-  p.lift = s.number("lift", 0.0, Range::non_negative("m"));
+  p.rows = s.integer<int>("rows", 10, kCount);
+  p.columns = s.integer<int>("columns", 20, kCount);
+  p.radius = s.number("radius", 2.5e-3, kSize);
+  p.density = s.number("density", 7850.0, kDensity);
+  p.gap = s.number("gap", 0.0, kSpacing);
+  p.lift = s.number("lift", 0.0, kSpacing);
   p.orientation = s.choice("orientation", "rows_parallel", {"rows_parallel", "rows_perpendicular"}) == "rows_parallel"
                       ? interface::HexOrientation::rows_parallel
                       : interface::HexOrientation::rows_perpendicular;
-  scene.packing_load = s.number("precompression", 0.0, Range::non_negative("N"));
-  scene.relaxation_time = s.positive("relaxation_time", scene.relaxation_time, "s");
+  scene.packing_load = s.number("precompression", 0.0, kForce);
+  scene.relaxation_time = s.number("relaxation_time", scene.relaxation_time, Range::above(0.0, 1.0, "s"));
   if (scene.packing_load > 0.0 && scene.edges.top != plate::EdgeCondition::clamped &&
       scene.edges.bottom != plate::EdgeCondition::clamped && scene.edges.left != plate::EdgeCondition::clamped &&
       scene.edges.right != plate::EdgeCondition::clamped)
     s.fail_key("precompression", "a static load needs a clamped plate edge to hold it (plate.edges)");
-  scene.grain_material.youngs_modulus = s.positive("youngs_modulus", scene.grain_material.youngs_modulus, "Pa");
+  scene.grain_material.youngs_modulus = s.number("youngs_modulus", scene.grain_material.youngs_modulus, kModulus);
   scene.grain_material.poisson_ratio =
-      s.number("poisson_ratio", scene.grain_material.poisson_ratio, Range{0.0, 0.5, false, true, ""});
+      s.number("poisson_ratio", scene.grain_material.poisson_ratio, kPoisson);
   // Centred on the plate unless placed.
   const double pitch = 2.0 * p.radius + p.gap;
   const double span = p.orientation == interface::HexOrientation::rows_parallel
@@ -79,8 +101,8 @@ void read_packing(Section s, InterfaceScene& scene) {
 
 void read_contact(Section s, InterfaceScene& scene) {
   auto& c = scene.contacts;
-  c.friction = s.number("friction", 0.0, Range::non_negative());
-  c.tanh_velocity_scale = s.positive("tanh_velocity_scale", c.tanh_velocity_scale, "s/m");
+  c.friction = s.number("friction", 0.0, Range::closed(0.0, 10.0, "(Coulomb coefficient)"));
+  c.tanh_velocity_scale = s.number("tanh_velocity_scale", c.tanh_velocity_scale, Range::above(0.0, 1e12, "s/m"));
   c.restitution = s.number("restitution", 1.0, Range::above(0.0, 1.0));
   c.rotation = s.boolean("rotation", true);
   s.finish();
@@ -91,20 +113,20 @@ void read_drive(Section s, InterfaceScene& scene) {
   const bool force = s.choice("kind", "velocity", {"velocity", "force"}) == "force";
   d.kind = force ? InterfaceDrive::Kind::force : InterfaceDrive::Kind::velocity;
   if (force) {
-    d.peak = s.required_positive("peak");
-    d.duration = s.required_positive("duration");
+    d.peak = s.number_value(s.at("peak"), s.name("peak"), Range::above(0.0, 1e6, "N"));
+    d.duration = s.number_value(s.at("duration"), s.name("duration"), kRunTime);
   } else {
-    d.speed = s.positive("speed", d.speed, "m/s");
+    d.speed = s.number("speed", d.speed, strike_speed_range());
   }
-  d.width = s.integer<int>("width", 0, Range::closed(0, 1e5));
+  d.width = s.integer<int>("width", 0, Range::closed(0, 1e5, "beads"));
   s.finish();
 }
 
 void read_recording(Section s, InterfaceScene& scene) {
   auto& r = scene.recording;
-  r.duration = s.required_positive("duration");
-  r.tolerance = s.number("tolerance", r.tolerance, Range::above(0.0, 0.5));
-  r.fixed_step = s.number("fixed_step", 0.0, Range::non_negative("s"));
+  r.duration = s.number_value(s.at("duration"), s.name("duration"), kRunTime);
+  r.tolerance = s.number("tolerance", r.tolerance, tolerance_range());
+  r.fixed_step = s.number("fixed_step", 0.0, fixed_step_range(r.duration));
   r.output_interval = s.number("output_interval", r.duration / 1000.0, Range::above(0.0, r.duration, "s"));
   r.snapshots = s.integer<int>("snapshots", r.snapshots, Range::closed(0, 1000));
   if (s.has("probe_x")) {
@@ -133,6 +155,11 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   read_drive(top.sub("drive"), scene);
   if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");
   read_recording(top.sub("run"), scene);
+  if (scene.drive.kind == InterfaceDrive::Kind::force && scene.drive.duration > scene.recording.duration) {
+    Section drive = top.sub("drive");
+    drive.fail_key("duration", "the pulse (" + io::shortest(scene.drive.duration) + " s) outlasts the run (run.duration = " +
+                                   io::shortest(scene.recording.duration) + " s): most of its work would never be done");
+  }
   top.finish();
   return scene;
 }
@@ -144,6 +171,22 @@ InterfaceScene parse_interface_scene(const std::string& text, const std::string&
   scene.text = text;
   scene.path = origin;
   return scene;
+}
+
+void override_speed(InterfaceScene& scene, double speed, const std::string& option) {
+  check_override(speed, option, strike_speed_range());
+  scene.drive.speed = speed;
+}
+
+void override_tolerance(InterfaceScene& scene, double tolerance, const std::string& option) {
+  check_override(tolerance, option, tolerance_range());
+  scene.recording.tolerance = tolerance;
+}
+
+void override_fixed_step(InterfaceScene& scene, double step, const std::string& option) {
+  check_override(step, option, fixed_step_range(scene.recording.duration));
+  if (!(step > 0.0)) throw std::invalid_argument(option + " must be > 0");
+  scene.recording.fixed_step = step;
 }
 
 InterfaceScene read_interface_scene(const std::filesystem::path& path) {

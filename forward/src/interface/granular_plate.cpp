@@ -17,14 +17,6 @@ namespace {
 using dem::Vec3;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-/// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
-/// omega^2 = k/m, beta = c/m, the dashpot seeing the half-step velocity (docs/dem.md, "Numerics"):
-/// h_c = 4 / (beta + sqrt(beta^2 + 4 omega^2)).
-double oscillator_limit(double omega_squared, double beta) {
-  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
-  return denominator > 0.0 ? 4.0 / denominator : inf;
-}
-
 /// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
 /// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
 /// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing.
@@ -36,6 +28,11 @@ double reach_energy(double overlap, double normal_velocity, double effective_mas
 }
 
 }  // namespace
+
+double oscillator_limit(double omega_squared, double beta) {
+  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
+  return denominator > 0.0 ? 4.0 / denominator : inf;
+}
 
 double StepLimits::tightest() const { return std::min({plate, hertz, friction}); }
 
@@ -145,6 +142,9 @@ void GranularPlate::build_pairs() {
     x_at_build_[i] = g.x;
     y_at_build_[i] = g.y;
   }
+  if (!std::isfinite(x1 - x0) || !std::isfinite(y1 - y0))
+    throw std::runtime_error("interface: a grain's position is no longer finite at t = " + std::to_string(time_) +
+                             " s: the integration is unstable (a fixed step above a contact's stability limit?)");
   const double cell = 2.0 * r_max + skin_;
   const int nx = static_cast<int>((x1 - x0) / cell) + 1;
   const int ny = static_cast<int>((y1 - y0) / cell) + 1;
@@ -177,7 +177,7 @@ bool GranularPlate::pairs_stale() const {
   const double limit = 0.25 * skin_ * skin_;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const double dx = grains_[i].x - x_at_build_[i], dy = grains_[i].y - y_at_build_[i];
-    if (dx * dx + dy * dy > limit) return true;
+    if (!(dx * dx + dy * dy <= limit)) return true;  // moved, or no longer finite: build_pairs says which
   }
   return false;
 }

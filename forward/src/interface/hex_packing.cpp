@@ -1,6 +1,8 @@
 #include "sedwave/forward/interface/hex_packing.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -8,6 +10,9 @@ namespace sedwave::forward::interface {
 
 std::vector<Grain> make_hex_packing(const HexPacking& p) {
   if (p.rows < 1 || p.columns < 1) throw std::invalid_argument("hex packing: rows and columns must be >= 1");
+  // Grains are indexed by int: the count is taken in 64 bits and refused before it overflows.
+  if (std::int64_t{p.rows} * p.columns > std::numeric_limits<int>::max())
+    throw std::invalid_argument("hex packing: more grains than an int indexes");
   if (!(p.radius > 0.0) || !(p.density > 0.0))
     throw std::invalid_argument("hex packing: radius and density must be > 0");
   if (!(p.gap >= 0.0) || !(p.lift >= 0.0)) throw std::invalid_argument("hex packing: gap and lift must be >= 0");

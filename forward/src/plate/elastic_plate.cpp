@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +18,11 @@ void check(const PlateMaterial& m, const PlateMesh& mesh) {
   if (!(m.thickness > 0.0)) throw std::invalid_argument("plate: thickness must be > 0");
   if (mesh.elements_x < 1 || mesh.elements_y < 1)
     throw std::invalid_argument("plate: elements_x and elements_y must be >= 1");
+  // Node and degree-of-freedom indices are int: counted in 64 bits, refused before they overflow.
+  const std::int64_t dofs = 2 * (std::int64_t{mesh.elements_x} + 1) * (std::int64_t{mesh.elements_y} + 1);
+  if (dofs > std::numeric_limits<int>::max())
+    throw std::invalid_argument("plate: " + std::to_string(mesh.elements_x) + " x " + std::to_string(mesh.elements_y) +
+                                " elements: more degrees of freedom than an int indexes");
   if (!(mesh.length_x > 0.0 && mesh.length_y > 0.0))
     throw std::invalid_argument("plate: length_x and length_y must be > 0");
 }
@@ -146,7 +153,9 @@ double ElasticPlate::strain_energy(const std::vector<double>& u) const {
 }
 
 ElasticPlate::EdgePoint ElasticPlate::top_edge_point(double x) const {
-  const int column = std::clamp(static_cast<int>(std::floor(x / a_)), 0, mesh_.elements_x - 1);
+  // Clamped as a double: a NaN or far-off abscissa must not reach the conversion to int.
+  const double cell = std::floor(x / a_);
+  const int column = cell >= 0.0 ? static_cast<int>(std::min(cell, static_cast<double>(mesh_.elements_x - 1))) : 0;
   const double xi = x / a_ - column;
   const int j = mesh_.elements_y;
   return {node(column, j), node(column + 1, j), 1.0 - xi, xi};

@@ -74,10 +74,31 @@ struct Range {
   }
 };
 
-/// Throws Error("FILE:LINE: key 'KEY' = VALUE: accepted range RANGE") for value `v`.
+/// The text `v` was written as in its file ("99999999999999999999", which toml11 reads as the
+/// largest 64-bit integer), or "" when toml11 does not know it (a value built in code).
+inline std::string written_text(const toml::value& v) {
+  const toml::source_location at = v.location();
+  if (at.column() < 1 || at.column() - 1 + at.region() > at.line_str().size()) return "";
+  return at.line_str().substr(at.column() - 1, at.region());
+}
+
+/// Whether toml11 read `v` as an integer other than the one written (it saturates a decimal integer
+/// beyond 64 bits at the type's limits).
+inline bool integer_overflowed(const toml::value& v) {
+  if (!v.is_integer()) return false;
+  std::string digits;
+  for (const char c : written_text(v)) {
+    if (c != '_' && c != '+') digits += c;
+  }
+  const bool decimal = digits.find_first_of("xob") == std::string::npos;
+  return decimal && !digits.empty() && digits != std::to_string(v.as_integer());
+}
+
+/// Throws Error("FILE:LINE: key 'KEY' = VALUE: accepted range RANGE") for value `v`, VALUE as written.
 template <class Error>
 [[noreturn]] void fail_range(const toml::value& v, const std::string& key, const Range& range, const std::string& origin) {
-  const std::string value = v.is_integer() ? std::to_string(v.as_integer())
+  const std::string text = written_text(v);
+  const std::string value = v.is_integer() ? (text.empty() ? std::to_string(v.as_integer()) : text)
                             : v.is_floating() ? shortest(v.as_floating())
                                               : toml::format(v);
   throw Error(where(v, origin) + ": key '" + key + "' = " + value + ": accepted range " + range.describe());
@@ -93,9 +114,61 @@ std::string read_text(const std::filesystem::path& path, const std::string& what
   return text.str();
 }
 
+/// Arrays and inline tables nested deeper than this are refused before parsing: toml11 descends
+/// one call per level, and a deep enough file would overflow the stack. No scene needs more than 2.
+inline constexpr int kMaxTomlNesting = 64;
+/// Lines longer than this are refused before parsing: toml11 scans a value's whole line for its
+/// comments, so one line of n values costs n^2 (40 000 probes on one line: seconds). Arrays may
+/// run over several lines, which parse in linear time.
+inline constexpr std::size_t kMaxTomlLine = 65536;
+
+/// What makes `text` unfit for toml11, as "LINE: why" (LINE 1-based), or "" when nothing does: arrays
+/// and inline tables nested deeper than kMaxTomlNesting, or a line longer than kMaxTomlLine. A
+/// linear scan that skips strings and comments; brackets in table headers count like any other.
+inline std::string toml_shape_problem(const std::string& text) {
+  std::size_t line = 1, line_start = 0;
+  int depth = 0;
+  const auto too_long = [&](std::size_t end) { return end - line_start > kMaxTomlLine; };
+  const auto long_line = [&] {
+    return std::to_string(line) + ": syntax error: a line longer than " + std::to_string(kMaxTomlLine) +
+           " characters (break a long array over several lines: TOML allows newlines between its values)";
+  };
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (c == '\n') {
+      if (too_long(k)) return long_line();
+      ++line;
+      line_start = k + 1;
+    } else if (c == '#') {
+      while (k + 1 < text.size() && text[k + 1] != '\n') ++k;
+    } else if (c == '"' || c == '\'') {
+      const bool multiline = text.compare(k, 3, std::string(3, c)) == 0;
+      const std::string close = multiline ? std::string(3, c) : std::string(1, c);
+      for (k += close.size(); k < text.size() && text.compare(k, close.size(), close) != 0; ++k) {
+        if (text[k] == '\n') {
+          if (too_long(k)) return long_line();
+          ++line;
+          line_start = k + 1;
+        }
+        if (c == '"' && text[k] == '\\') ++k;  // an escape: the next character never closes the string
+      }
+      k += close.size() - 1;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxTomlNesting) {
+        return std::to_string(line) + ": syntax error: arrays or inline tables nested deeper than " +
+               std::to_string(kMaxTomlNesting) + " levels";
+      }
+    } else if (c == ']' || c == '}') {
+      depth = std::max(depth - 1, 0);
+    }
+  }
+  return too_long(text.size()) ? long_line() : "";
+}
+
 /// Parses TOML text; a syntax error becomes Error("ORIGIN:LINE: syntax error: <toml11's message>").
 template <class Error>
 toml::value parse(const std::string& text, const std::string& origin) {
+  if (const std::string problem = toml_shape_problem(text); !problem.empty()) throw Error(origin + ":" + problem);
   try {
     std::istringstream stream(text);
     return toml::parse(stream, origin);
@@ -163,7 +236,7 @@ class Table {
     range.low = std::max(range.low, static_cast<double>(std::numeric_limits<T>::min()));
     range.high = std::min(range.high, static_cast<double>(std::numeric_limits<T>::max()));
     const std::int64_t x = v.as_integer();
-    const bool fits = std::in_range<T>(x) && range.contains(static_cast<double>(x));
+    const bool fits = !integer_overflowed(v) && std::in_range<T>(x) && range.contains(static_cast<double>(x));
     if (!fits) fail_range<Error>(v, name(key), range, origin_);
     return static_cast<T>(x);
   }
@@ -197,7 +270,10 @@ class Table {
   /// A number, checked finite and within `range`.
   [[nodiscard]] double number_value(const toml::value& v, const std::string& key, const Range& range = {}) const {
     double x = 0.0;
-    if (v.is_integer()) {
+    if (integer_overflowed(v)) {
+      fail<Error>(v, key, written_text(v) + " does not fit a 64-bit integer (a number: write 1e20, not 100000000000000000000)",
+                  origin_);
+    } else if (v.is_integer()) {
       x = static_cast<double>(v.as_integer());
     } else if (v.is_floating()) {
       x = v.as_floating();

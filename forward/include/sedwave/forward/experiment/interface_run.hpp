@@ -47,9 +47,40 @@ struct InterfaceRun {
   double seconds = 0.0;                        ///< wall-clock time of the run
 };
 
+/// What a run will cost and how hard it strikes, from closed forms before anything is allocated
+/// (docs/interface.md, "Budgets"). Counts are doubles: a nonsensical scene may ask for more than
+/// any integer holds, and is refused on that number.
+struct InterfaceEstimate {
+  double plate_limit = 0.0;       ///< [s] the mesh's stable step 2/omega_max (exact)
+  double hertz_limit = 0.0;       ///< [s] a Hertz contact's limit at the strike's or load's peak overlap
+  double friction_limit = 0.0;    ///< [s] Coulomb-tanh's limit at that contact force (inf without friction)
+  double step = 0.0;              ///< [s] the step at its tightest: theta times the tightest limit, or the fixed step
+  double peak_overlap = 0.0;      ///< [m] the grain-plate Hertz overlap at that peak (0: no beads)
+  double contact_radius = 0.0;    ///< [m] sqrt(r delta) there
+  double steps = 0.0;             ///< duration / step, and at least one per sample
+  double samples = 0.0;           ///< output samples
+  double nodes = 0.0;             ///< plate nodes
+  double grains = 0.0;
+  double memory_bytes = 0.0;      ///< the run's arrays and recorded series
+};
+[[nodiscard]] InterfaceEstimate estimate_interface_run(const InterfaceScene& scene);
+
+/// Refuses (std::invalid_argument naming the cause and the keys or options that set it) a scene the
+/// models cannot describe: a Hertz overlap above a tenth of the bead radius (small-strain contact),
+/// a contact radius reaching half the plate's thickness (the plane-stress plate), a fixed step above
+/// the mesh's stability limit.
+void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimate& estimate);
+
+/// The largest overlap, as a fraction of the bead radius, that check_interface_physics accepts.
+inline constexpr double kMaxOverlapFraction = 0.1;
+/// A run stops once its energy balance is off by more than this times the input: it is unstable.
+inline constexpr double kUnstableBalance = 1.0;
+
 /// Builds the scene's plate and packing, drives the free row and records. `progress` (may be null)
-/// gets a line per tenth of the run.
-InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress);
+/// gets a line per tenth of the run, and one at least every `progress_seconds` of wall time with
+/// the time left. Throws std::runtime_error naming the step and its limits when the energy balance
+/// drifts by more than kUnstableBalance times the input.
+InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, double progress_seconds = 10.0);
 
 /// Writes the run atomically (every dataset states its unit in an attribute).
 void write_interface_run_file(const std::filesystem::path& path, const InterfaceScene& scene, const InterfaceRun& run);

@@ -61,4 +61,10 @@ struct InterfaceScene {
 InterfaceScene parse_interface_scene(const std::string& text, const std::string& origin);
 InterfaceScene read_interface_scene(const std::filesystem::path& path);
 
+/// Command-line overrides, checked against the ranges of the keys they replace (run.fixed_step: at
+/// most run.duration); std::invalid_argument naming `option` and the range otherwise.
+void override_speed(InterfaceScene& scene, double speed, const std::string& option);
+void override_tolerance(InterfaceScene& scene, double tolerance, const std::string& option);
+void override_fixed_step(InterfaceScene& scene, double step, const std::string& option);
+
 }  // namespace sedwave::forward::experiment

@@ -42,6 +42,11 @@ struct StepControl {
   double fixed_step = 0.0;
 };
 
+/// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
+/// omega^2 = k/m, beta = c/m, the dashpot seeing the half-step velocity (docs/dem.md, "Numerics"):
+/// h_c = 4 / (beta + sqrt(beta^2 + 4 omega^2)); infinite when both are zero.
+[[nodiscard]] double oscillator_limit(double omega_squared, double beta);
+
 /// Each limit of the last step (infinite where no such contact exists) and the step taken.
 struct StepLimits {
   double plate = std::numeric_limits<double>::infinity();
