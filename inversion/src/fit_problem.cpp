@@ -1,11 +1,15 @@
 #include "fit_problem.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <optional>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "sedwave/sediment/seabed_reflection.hpp"
 
 namespace sedwave::inversion::detail {
 namespace {
@@ -101,6 +105,80 @@ class ConstraintResidual final : public ceres::CostFunction {
   Constraint constraint_;
 };
 
+/// The water density a data set declares, else sea water's 1025 kg/m^3.
+double water_density_of(const ObservationSet& data) {
+  const auto it = data.metadata.find("water_density_kg_per_m3");
+  if (it == data.metadata.end()) return 1025.0;
+  double rho = 0.0;
+  const std::string& text = it->second;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), rho);
+  if (error != std::errc{} || end != text.data() + text.size() || !(rho > 0.0) || !std::isfinite(rho)) {
+    throw std::invalid_argument("metadata 'water_density_kg_per_m3' = '" + text +
+                                "' is not one positive number [kg/m^3]");
+  }
+  return rho;
+}
+
+/// The bottom loss [dB] of every reflection row for parameter values: water over a half-space of
+/// the model (elastic where the model has a shear wave). False where the model has no answer there.
+bool bottom_losses_at(const Setup& s, const std::vector<double>& values, std::vector<double>& loss,
+                      std::string* why = nullptr) {
+  loss.clear();
+  // The medium of each frequency once; the model is held by the setup (a non-owning pointer).
+  std::vector<std::optional<sediment::AcousticMedium>> media(s.frequencies.size());
+  const sediment::SeabedPart part{std::shared_ptr<const sediment::SedimentModel>(
+                                      std::shared_ptr<const sediment::SedimentModel>{}, s.model),
+                                  values, 0.0};
+  const sediment::AcousticMedium water{s.water_speed, 0.0, 0.0, 0.0, s.water_density};
+  try {
+    for (std::size_t r : s.reflection_rows) {
+      const std::size_t k = s.frequency_of[r];
+      if (!media[k]) media[k] = sediment::medium_of(part, s.frequencies[k], false, "half-space");
+      const sediment::LayeredHalfspace seabed{water, {}, *media[k]};
+      const Observation& o = s.observations[r];
+      loss.push_back(sediment::bottom_loss_db(sediment::reflection_coefficient(seabed, o.grazing_angle, o.frequency_hz)));
+    }
+  } catch (const std::domain_error& e) {
+    if (why) *why = e.what();
+    return false;
+  } catch (const std::invalid_argument& e) {  // a medium the reflection code refuses (e.g. negative attenuation)
+    if (why) *why = e.what();
+    return false;
+  }
+  return std::ranges::all_of(loss, [](double x) { return std::isfinite(x); });
+}
+
+/// Whitened bottom-loss residuals (model - observed) / sigma [dB/dB] into `residuals` and, with a
+/// Jacobian, their central differences over every free theta (zero for fixed parameters).
+bool bottom_loss_residuals(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian,
+                           std::string* why) {
+  std::vector<double> loss;
+  if (!bottom_losses_at(s, values_of(theta), loss, why)) return false;
+  for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) {
+    const std::size_t r = s.reflection_rows[k];
+    residuals[r] = (loss[k] - s.observations[r].value) / s.sigmas[r];
+  }
+  if (!jacobian) return true;
+  for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) jacobian->row(static_cast<Eigen::Index>(s.reflection_rows[k])).setZero();
+  for (int i : s.free) {
+    Theta up = theta;
+    Theta down = theta;
+    up[static_cast<std::size_t>(i)] += kBottomLossStep;
+    down[static_cast<std::size_t>(i)] -= kBottomLossStep;
+    std::vector<double> loss_up;
+    std::vector<double> loss_down;
+    if (!bottom_losses_at(s, values_of(up), loss_up) || !bottom_losses_at(s, values_of(down), loss_down)) {
+      if (why) *why = "the bottom loss cannot be differentiated here (the model has no answer a step away)";
+      return false;
+    }
+    for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) {
+      const std::size_t r = s.reflection_rows[k];
+      (*jacobian)(static_cast<Eigen::Index>(r), i) = (loss_up[k] - loss_down[k]) / (2.0 * kBottomLossStep * s.sigmas[r]);
+    }
+  }
+  return true;
+}
+
 std::vector<double*> blocks_of(Theta& theta) {
   std::vector<double*> blocks;
   for (double& t : theta) blocks.push_back(&t);
@@ -133,6 +211,23 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
     s.defaulted.push_back(missing);
   }
   index_frequencies(s);
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    if (s.observations[r].quantity == Quantity::BottomLoss) s.reflection_rows.push_back(r);
+  }
+  if (!s.reflection_rows.empty()) {
+    const Observation& first = s.observations[s.reflection_rows.front()];
+    if (!data.water_sound_speed) {
+      throw std::invalid_argument(first.file + ":" + std::to_string(first.line) +
+                                  ": a bottom loss needs the water sound speed ('# water_sound_speed_m_per_s: ...')");
+    }
+    s.water_speed = *data.water_sound_speed;
+    s.water_density = water_density_of(data);
+    // Refuses, in the model's words, a model that fixes no bulk density.
+    (void)sediment::medium_of({std::shared_ptr<const sediment::SedimentModel>(
+                                   std::shared_ptr<const sediment::SedimentModel>{}, &model),
+                               parameters.values(), 0.0},
+                              first.frequency_hz, false, "half-space");
+  }
   return s;
 }
 
@@ -147,6 +242,10 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
     subset.defaulted.push_back(s.defaulted[i]);
   }
   index_frequencies(subset);
+  subset.reflection_rows.clear();
+  for (std::size_t r = 0; r < subset.observations.size(); ++r) {
+    if (subset.observations[r].quantity == Quantity::BottomLoss) subset.reflection_rows.push_back(r);
+  }
   return subset;
 }
 
@@ -158,13 +257,14 @@ bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
   Eigen::VectorXd row(n);
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    if (s.observations[r].quantity == Quantity::BottomLoss) continue;  // below, all rows at once
     const sediment::Wave& w = waves[s.frequency_of[r]];
     if (!whitened_residual(s.observations[r], s.sigmas[r], w, values, residuals[r], jacobian ? row.data() : nullptr)) {
       return false;
     }
     if (jacobian) jacobian->row(static_cast<Eigen::Index>(r)) = row;
   }
-  return true;
+  return s.reflection_rows.empty() || bottom_loss_residuals(s, theta, residuals, jacobian, why);
 }
 
 std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
@@ -173,6 +273,9 @@ std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
   if (!waves_at(s, values_of(theta), false, waves, &why)) throw std::runtime_error(why);
   std::vector<double> out;
   for (std::size_t r = 0; r < s.observations.size(); ++r) out.push_back(predicted_value(s.observations[r], waves[s.frequency_of[r]]));
+  std::vector<double> loss;
+  if (!bottom_losses_at(s, values_of(theta), loss, &why)) throw std::runtime_error(why);
+  for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) out[s.reflection_rows[k]] = loss[k];
   return out;
 }
 

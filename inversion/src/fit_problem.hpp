@@ -34,10 +34,20 @@ struct Setup {
   const sediment::SedimentModel* model = nullptr;
   FitParameters parameters;
   std::vector<int> free;
+  /// Bottom-loss rows (indices into observations) and the water above the seabed they need.
+  std::vector<std::size_t> reflection_rows;
+  double water_speed = 0.0;       ///< [m/s]
+  double water_density = 1025.0;  ///< [kg/m^3]
 };
 
+/// Step in theta = ln(value) of the central differences that give d bottom loss / d theta: the
+/// reflection code is not differentiated, and a model's density has no derivatives.
+inline constexpr double kBottomLossStep = 1e-5;
+
 /// Throws std::invalid_argument, naming file and line, for a sigma that is not a usable positive
-/// number; and if `parameters` are not those of `model`.
+/// number; if `parameters` are not those of `model`; and where bottom-loss rows are given without a
+/// water sound speed or to a model that fixes no bulk density. The water density is the data's
+/// "water_density_kg_per_m3" metadata, else 1025 kg/m^3.
 [[nodiscard]] Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& model,
                                const FitParameters& parameters, const FitOptions& options);
 

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <span>
 #include <string_view>
@@ -29,6 +30,7 @@ constexpr std::array<std::string_view, 3> kFrequencyUnitNames{"Hz", "kHz", "MHz"
 constexpr std::array<std::string_view, 5> kAttenuationUnits{"dB/m", "Np/m", "dB/lambda", "dB/λ", "dB/m/kHz"};
 constexpr std::array<std::string_view, 2> kSoundSpeedUnits{"m/s", "km/s"};
 constexpr std::array<std::string_view, 1> kRatioUnits{"ratio"};
+constexpr std::array<std::string_view, 1> kBottomLossUnits{"dB"};
 
 /// A quantity name of the file formats, what it becomes, and the value units it accepts.
 struct QuantitySpec {
@@ -36,15 +38,19 @@ struct QuantitySpec {
   Quantity quantity;
   std::span<const std::string_view> units;
 };
-constexpr std::array<QuantitySpec, 3> kQuantities{{
+constexpr std::array<QuantitySpec, 4> kQuantities{{
     {"attenuation", Quantity::Attenuation, kAttenuationUnits},
     {"sound_speed", Quantity::SoundSpeed, kSoundSpeedUnits},
     {"sound_speed_ratio", Quantity::SoundSpeed, kRatioUnits},
+    {"bottom_loss", Quantity::BottomLoss, kBottomLossUnits},
 }};
 
-constexpr std::array<std::string_view, 6> kHeader{"quantity", "frequency",  "frequency_unit",
-                                                  "value",    "value_unit", "sigma"};
+/// The header; its last column is optional (only bottom-loss rows need an angle).
+constexpr std::array<std::string_view, 7> kHeader{"quantity", "frequency",  "frequency_unit",   "value",
+                                                  "value_unit", "sigma", "grazing_angle_deg"};
+constexpr std::size_t kShortHeader = 6;
 constexpr std::string_view kHeaderText = "quantity,frequency,frequency_unit,value,value_unit,sigma";
+constexpr std::string_view kAngleHeaderText = "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg";
 
 constexpr std::string_view kWaterSpeedKey = "water_sound_speed_m_per_s";
 constexpr std::string_view kSedimentSpeedKey = "sediment_sound_speed_m_per_s";
@@ -283,6 +289,7 @@ std::string missing_speed(std::string_view unit, const ReferenceSpeeds& speeds, 
     return std::string(unit) + " needs a sediment sound speed" + hint(kSedimentSpeedKey);
   }
   if (unit == "ratio" && !speeds.water) return "ratio needs a water sound speed" + hint(kWaterSpeedKey);
+  if (unit == "dB" && !speeds.water) return "bottom loss needs a water sound speed" + hint(kWaterSpeedKey);
   return {};
 }
 
@@ -292,6 +299,7 @@ std::string missing_speed(std::string_view unit, const ReferenceSpeeds& speeds, 
 double value_to_si(const QuantitySpec& spec, double value, std::string_view unit, double frequency_hz,
                    const ReferenceSpeeds& speeds) {
   const std::string unit_text(unit);
+  if (spec.quantity == Quantity::BottomLoss) return value;  // dB, the unit it is fitted in
   return spec.quantity == Quantity::Attenuation
              ? attenuation_to_np_per_m(value, unit_text, frequency_hz, speeds.sediment)
              : sound_speed_to_m_per_s(value, unit_text, speeds.water);
@@ -362,13 +370,40 @@ void check_value_unit(const LineRef& at, const Field& field, const QuantitySpec&
   }
 }
 
+/// A bottom-loss row: a loss >= 0 dB (0 is total reflection), a sigma in dB (a relative default
+/// means nothing for a loss that may be 0), and a grazing angle in (0, 90] degrees.
+Observation parse_bottom_loss_row(const LineRef& at, const std::function<Field(int)>& field, const QuantitySpec& spec,
+                                  double frequency_hz, const ReferenceSpeeds& speeds) {
+  const double value = parse_number(at, field(4));
+  if (value < 0.0) at.fail(4, "value", "bottom loss must be >= 0 dB (|R| <= 1), got '" + std::string(field(4).text) + "'");
+  check_value_unit(at, field(5), spec, speeds, SpeedSource::FileOrOption);
+  if (field(6).text.empty()) at.fail(6, "sigma", "a bottom-loss row needs its 1-sigma uncertainty in dB");
+  const double sigma = parse_positive(at, field(6), "sigma");
+  if (field(7).text.empty()) {
+    at.fail(7, "grazing_angle_deg", "a bottom-loss row needs its grazing angle in degrees (header '" +
+                                        std::string(kAngleHeaderText) + "')");
+  }
+  const double angle = parse_number(at, field(7));
+  if (!(angle > 0.0 && angle <= 90.0)) {
+    at.fail(7, "grazing_angle_deg", "grazing angle must be in (0, 90] degrees, got '" + std::string(field(7).text) + "'");
+  }
+  Observation obs = make_observation(at, {&spec, frequency_hz, value, sigma, field(5).text}, speeds);
+  obs.grazing_angle = angle * std::numbers::pi / 180.0;
+  return obs;
+}
+
 Observation parse_csv_row(const LineRef& at, const std::vector<std::string_view>& cells,
                           const ReferenceSpeeds& speeds) {
   const auto field = [&cells](int column) {
-    return Field{cells[static_cast<std::size_t>(column - 1)], column,
-                 kHeader[static_cast<std::size_t>(column - 1)]};
+    const auto i = static_cast<std::size_t>(column - 1);
+    return Field{i < cells.size() ? cells[i] : std::string_view{}, column, kHeader[i]};
   };
   const auto& spec = parse_quantity(at, field(1));
+  if (spec.quantity == Quantity::BottomLoss) {
+    const double frequency = parse_positive(at, field(2), "frequency");
+    return parse_bottom_loss_row(at, field, spec, frequency * parse_frequency_unit(at, field(3)), speeds);
+  }
+  if (!field(7).text.empty()) at.fail(7, "grazing_angle_deg", "only a bottom-loss row has a grazing angle");
   const double frequency = parse_positive(at, field(2), "frequency");
   const double to_hz = parse_frequency_unit(at, field(3));
   const double value = parse_positive(at, field(4), positive_what(spec));
@@ -379,12 +414,12 @@ Observation parse_csv_row(const LineRef& at, const std::vector<std::string_view>
 }
 
 void check_header(const LineRef& at, const std::vector<std::string_view>& cells) {
-  if (cells.size() != kHeader.size()) {
+  if (cells.size() != kShortHeader && cells.size() != kHeader.size()) {
     at.fail(0, "",
-            "header must have " + std::to_string(kHeader.size()) + " columns '" + std::string(kHeaderText) +
-                "', found " + std::to_string(cells.size()));
+            "header must have the 6 columns '" + std::string(kHeaderText) + "' or the 7 columns '" +
+                std::string(kAngleHeaderText) + "', found " + std::to_string(cells.size()));
   }
-  for (std::size_t i = 0; i < kHeader.size(); ++i) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
     if (cells[i] != kHeader[i]) {
       at.fail(
           static_cast<int>(i + 1), kHeader[i],
@@ -404,6 +439,7 @@ bool looks_like_header(const std::vector<std::string_view>& cells) {
 void read_rows(const std::string& file, const std::vector<std::string>& lines, const ReferenceSpeeds& speeds,
                ObservationSet& set) {
   int header_line = 0;
+  std::size_t columns = kShortHeader;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (is_blank(lines[i]) || is_comment(lines[i])) continue;
     const LineRef at(file, static_cast<int>(i + 1));
@@ -414,15 +450,17 @@ void read_rows(const std::string& file, const std::vector<std::string>& lines, c
       }
       check_header(at, cells);
       header_line = at.line();
+      columns = cells.size();
       continue;
     }
     if (header_line == 0) {
       at.fail(0, "", "data row before the header line '" + std::string(kHeaderText) + "'");
     }
-    if (cells.size() != kHeader.size()) {
+    if (cells.size() != columns) {
       at.fail(0, "",
-              "wrong number of columns: expected " + std::to_string(kHeader.size()) + " (" +
-                  std::string(kHeaderText) + "), found " + std::to_string(cells.size()));
+              "wrong number of columns: expected " + std::to_string(columns) + " (" +
+                  std::string(columns == kShortHeader ? kHeaderText : kAngleHeaderText) + "), found " +
+                  std::to_string(cells.size()));
     }
     set.observations.push_back(parse_csv_row(at, cells, speeds));
   }
@@ -449,6 +487,9 @@ DigitizedSpec check_columns(const std::string& file, const DigitizedColumns& col
                             const ReferenceSpeeds& speeds) {
   const LineRef at(file, 0);
   const auto& quantity = parse_quantity(at, {columns.quantity, 0, "quantity"});
+  if (quantity.quantity == Quantity::BottomLoss) {
+    at.fail(0, "quantity", "a digitized file has no angle column: give bottom loss in a sedwave observation CSV");
+  }
   const double to_hz = parse_frequency_unit(at, {columns.frequency_unit, 0, "frequency_unit"});
   check_value_unit(at, {columns.value_unit, 0, "value_unit"}, quantity, speeds, SpeedSource::OptionOnly);
   if (columns.relative_sigma && !(std::isfinite(*columns.relative_sigma) && *columns.relative_sigma > 0.0)) {

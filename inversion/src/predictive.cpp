@@ -77,6 +77,10 @@ PredictiveBand predictive_band(const std::string& label, const sediment::Sedimen
   const DrawTable points = evaluate_draws(model, best, samples, observed_at, max_draws);
   for (std::size_t i = 0; i < best.residuals.size(); ++i) {
     const PointResidual& p = best.residuals[i];
+    if (p.observation.quantity == Quantity::BottomLoss) {  // no band of R here: not a wave of the model
+      band.residual.push_back(NAN);
+      continue;
+    }
     const bool attenuation = p.observation.quantity == Quantity::Attenuation;
     const auto c = static_cast<Eigen::Index>(i);
     const double median =

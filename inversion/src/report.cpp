@@ -1,6 +1,7 @@
 #include "sedwave/inversion/report.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -18,8 +19,19 @@ nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::js
 /// A missing end of a profile interval (open: it reaches the search bound) becomes null.
 nlohmann::json optional_or_null(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(); }
 
-const char* quantity_name(Quantity q) { return q == Quantity::Attenuation ? "attenuation" : "sound_speed"; }
-const char* quantity_unit(Quantity q) { return q == Quantity::Attenuation ? "Np/m" : "m/s"; }
+const char* quantity_name(Quantity q) {
+  if (q == Quantity::BottomLoss) return "bottom_loss";
+  return q == Quantity::Attenuation ? "attenuation" : "sound_speed";
+}
+const char* quantity_unit(Quantity q) {
+  if (q == Quantity::BottomLoss) return "dB";
+  return q == Quantity::Attenuation ? "Np/m" : "m/s";
+}
+/// The code of a quantity in the observations table.
+int quantity_code(Quantity q) {
+  if (q == Quantity::BottomLoss) return 2;
+  return q == Quantity::Attenuation ? 0 : 1;
+}
 
 }  // namespace
 
@@ -97,6 +109,9 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                               {"sigma_defaulted", p.default_sigma},
                               {"normalized_residual", p.normalized},
                               {"source", p.observation.file + ":" + std::to_string(p.observation.line)}});
+    if (p.observation.quantity == Quantity::BottomLoss) {
+      j["residuals"].back()["grazing_angle_deg"] = p.observation.grazing_angle * 180.0 / std::numbers::pi;
+    }
   }
   j["observations_with_default_sigma"] = defaulted;
   j["wall_seconds"] = r.wall_seconds;
@@ -135,7 +150,8 @@ void write_curves_csv(const std::filesystem::path& file, const std::vector<Curve
 
 void write_observations_table(const std::filesystem::path& file, const ObservationSet& data, const FitResult& result) {
   io::write_text_atomically(file, [&](std::ostream& out) {
-  out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s];\n"
+  out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s], "
+         "2 = bottom loss [dB] (its display columns in dB too);\n"
       << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s;\n"
       << "# normalized_residual = (observed - model)/sigma as fitted (attenuation in log space) [1]\n"
       << "quantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,display_model_value,"
@@ -144,9 +160,9 @@ void write_observations_table(const std::filesystem::path& file, const Observati
   for (const PointResidual& p : result.residuals) {
     const Observation& o = p.observation;
     const bool attenuation = o.quantity == Quantity::Attenuation;
-    const double scale = attenuation ? kDecibelPerNeper : 1.0 / speed_unit;
+    const double scale = attenuation ? kDecibelPerNeper : o.quantity == Quantity::BottomLoss ? 1.0 : 1.0 / speed_unit;
     // The fit's residual is model minus observed; a plot reads better as observed minus model.
-    out << (attenuation ? 0 : 1) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
+    out << quantity_code(o.quantity) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
         << ',' << p.sigma * scale << ',' << p.model << ',' << p.model * scale << ',' << -p.normalized << "\n";
   }
   });

@@ -3,11 +3,12 @@
 //
 // Two formats (documented in docs/file-formats.md):
 //  * the sedwave observation CSV: '#' metadata lines ("# key: value"), one header line
-//      quantity,frequency,frequency_unit,value,value_unit,sigma
-//    and one observation per row, each with its own units;
+//      quantity,frequency,frequency_unit,value,value_unit,sigma[,grazing_angle_deg]
+//    (the last column only where a row is a bottom loss) and one observation per row, each with its own units;
 //  * the two-column "x,y" CSV that WebPlotDigitizer exports, with quantity and units given by the
 //    caller (command-line options), since the file itself carries none.
-// Everything is converted to SI on reading: frequency in Hz, attenuation in Np/m, sound speed in m/s.
+// Everything is converted to SI on reading: frequency in Hz, attenuation in Np/m, sound speed in m/s,
+// grazing angle in rad; bottom loss stays in dB.
 // Bad input throws InputError naming file, line, column and the reason; nothing is skipped.
 #include <filesystem>
 #include <map>
@@ -19,8 +20,9 @@
 namespace sedwave::inversion {
 
 /// What an observation measures. Sound-speed ratios are converted to SoundSpeed with the water
-/// sound speed on reading (the original unit is kept in Observation::unit for display).
-enum class Quantity { Attenuation, SoundSpeed };
+/// sound speed on reading (the original unit is kept in Observation::unit for display). BottomLoss
+/// is the plane-wave bottom loss -20 log10 |R| [dB] at a grazing angle (docs/reflection.md).
+enum class Quantity { Attenuation, SoundSpeed, BottomLoss };
 
 /// One measured value, in SI.
 struct Observation {
@@ -31,6 +33,7 @@ struct Observation {
   std::string unit;             ///< the value unit as written in the file (e.g. "dB/m", "ratio")
   std::string file;             ///< where it came from, for messages
   int line = 0;
+  double grazing_angle = 0.0;   ///< [rad] from the horizontal, BottomLoss only
 };
 
 /// The observations of one or more files plus the metadata they declared.

@@ -1,0 +1,158 @@
+// Bottom loss against grazing angle as observations: read from the observation file, fitted with a
+// sediment model's half-space through the reflection coefficient (docs/reflection.md), alone and
+// jointly with attenuation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "sedwave/inversion/fit.hpp"
+#include "sedwave/inversion/setup.hpp"
+#include "sedwave/sediment/seabed_reflection.hpp"
+
+namespace sedwave::inversion {
+namespace {
+
+constexpr double kWaterSpeed = 1500.0;
+constexpr double kWaterDensity = 1025.0;
+constexpr double kSigmaDb = 0.2;
+
+std::filesystem::path write_file(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("sedwave_bottom_loss_" + name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// Error text of reading `text` as an observation CSV.
+std::string read_error(const std::string& text) {
+  try {
+    (void)read_observation_csv(write_file("bad.csv", text));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+/// Noise-free bottom loss of EDFM with `truth` at the angles and frequencies, from the reflection
+/// code directly, as an observation file; `attenuation` adds the model's attenuation at each
+/// frequency (5 % sigma).
+std::string synthetic_file(const Candidate& truth, bool attenuation) {
+  const sediment::SeabedPart part{truth.model, truth.parameters.values(), 0.0};
+  std::ostringstream out;
+  out.precision(12);
+  out << "# water_sound_speed_m_per_s: " << kWaterSpeed << "\n# water_density_kg_per_m3: " << kWaterDensity << "\n"
+      << "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
+  for (double f : {2e3, 20e3}) {
+    const sediment::LayeredHalfspace seabed{{kWaterSpeed, 0.0, 0.0, 0.0, kWaterDensity}, {},
+                                            sediment::medium_of(part, f, false, "half-space")};
+    for (double degrees = 4.0; degrees <= 88.0; degrees += 6.0) {
+      const double loss =
+          sediment::bottom_loss_db(sediment::reflection_coefficient(seabed, degrees * std::numbers::pi / 180.0, f));
+      out << "bottom_loss," << f << ",Hz," << loss << ",dB," << kSigmaDb << ',' << degrees << '\n';
+    }
+    if (attenuation) {
+      const double alpha = truth.model->evaluate(truth.parameters.values(), f, false).attenuation;
+      out << "attenuation," << f << ",Hz," << alpha << ",Np/m," << 0.05 * alpha << ",\n";
+    }
+  }
+  return out.str();
+}
+
+Candidate edfm(double porosity, double permeability) {
+  ModelSetup setup;
+  setup.model = "edfm";
+  setup.free = "porosity,permeability";
+  setup.values.push_back({"porosity", porosity, "test", ""});
+  setup.values.push_back({"permeability", permeability, "test", ""});
+  return make_candidate(setup);
+}
+
+const ParameterResult& parameter(const FitResult& r, const std::string& name) {
+  for (const ParameterResult& p : r.parameters) {
+    if (p.name == name) return p;
+  }
+  throw std::out_of_range(name);
+}
+
+void expect_recovered(const FitResult& r, double porosity, double permeability) {
+  ASSERT_TRUE(r.converged) << r.solver_message;
+  EXPECT_LT(r.chi2, 1e-6);  // noise-free data: the truth fits exactly
+  for (const auto& [name, truth] : {std::pair{"porosity", porosity}, std::pair{"permeability", permeability}}) {
+    const ParameterResult& p = parameter(r, name);
+    EXPECT_TRUE(p.determined) << name;
+    EXPECT_NEAR(p.value, truth, 1e-3 * truth) << name;
+    EXPECT_GT(p.sigma, 0.0) << name;
+    EXPECT_LT(std::abs(p.value - truth), p.sigma) << name;  // within its sigma
+  }
+}
+
+FitOptions quick() {
+  FitOptions o;
+  o.method = FitMethod::Ceres;
+  o.profile_likelihood = false;
+  return o;
+}
+
+TEST(BottomLossFit, HalfSpaceRoundTripRecoversTheParameters) {
+  const Candidate truth = edfm(0.42, 3e-11);
+  const ObservationSet data = read_observation_csv(write_file("truth.csv", synthetic_file(truth, false)));
+  ASSERT_EQ(data.observations.size(), 30U);
+  EXPECT_EQ(data.observations.front().quantity, Quantity::BottomLoss);
+  EXPECT_NEAR(data.observations.front().grazing_angle, 4.0 * std::numbers::pi / 180.0, 1e-15);
+  const Candidate start = edfm(0.35, 1e-10);
+  expect_recovered(fit(data, *start.model, start.parameters, quick()), 0.42, 3e-11);
+}
+
+TEST(BottomLossFit, JointFitWithAttenuation) {
+  const Candidate truth = edfm(0.38, 1e-11);
+  const ObservationSet data = read_observation_csv(write_file("joint.csv", synthetic_file(truth, true)));
+  ASSERT_EQ(data.observations.size(), 32U);
+  const Candidate start = edfm(0.45, 5e-11);
+  const FitResult r = fit(data, *start.model, start.parameters, quick());
+  expect_recovered(r, 0.38, 1e-11);
+  int attenuation_rows = 0;
+  for (const PointResidual& p : r.residuals) attenuation_rows += p.observation.quantity == Quantity::Attenuation;
+  EXPECT_EQ(attenuation_rows, 2);
+}
+
+TEST(BottomLossFit, BadRowsNameFileLineAndField) {
+  const std::string water = "# water_sound_speed_m_per_s: 1500\n";
+  const std::string header = "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
+  const auto error = [&](const std::string& row, const std::string& head) { return read_error(head + row); };
+  EXPECT_NE(error("bottom_loss,1,kHz,-1,dB,0.5,30\n", water + header).find("bad.csv:3:4: field 'value': bottom loss must be >= 0 dB"),
+            std::string::npos);
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,,30\n", water + header).find(":3:6: field 'sigma': a bottom-loss row needs"),
+            std::string::npos);
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,\n", water + header).find(":3:7: field 'grazing_angle_deg': a bottom-loss row needs"),
+            std::string::npos);
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,95\n", water + header).find(":3:7: field 'grazing_angle_deg': grazing angle must be in (0, 90]"),
+            std::string::npos);
+  EXPECT_NE(error("bottom_loss,1,kHz,3,Np/m,0.5,30\n", water + header).find(":3:5: field 'value_unit': unknown unit 'Np/m'"),
+            std::string::npos);
+  EXPECT_NE(error("attenuation,1,kHz,3,dB/m,0.5,30\n", water + header).find(":3:7: field 'grazing_angle_deg': only a bottom-loss row"),
+            std::string::npos);
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,30\n", header).find(":2:5: field 'value_unit': bottom loss needs a water sound speed"),
+            std::string::npos);
+  // Without the angle column a bottom-loss row is missing its angle.
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5\n", water + "quantity,frequency,frequency_unit,value,value_unit,sigma\n")
+                .find(":3:7: field 'grazing_angle_deg'"),
+            std::string::npos);
+}
+
+TEST(BottomLossFit, AModelWithoutDensityIsRefused) {
+  ModelSetup setup;
+  setup.model = "lattice";
+  const Candidate dry = make_candidate(setup);
+  const ObservationSet data = read_observation_csv(write_file(
+      "dry.csv", "# water_sound_speed_m_per_s: 1500\n"
+                 "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n"
+                 "bottom_loss,1,kHz,3,dB,0.5,30\n"));
+  EXPECT_THROW((void)fit(data, *dry.model, dry.parameters, quick()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sedwave::inversion
