@@ -71,3 +71,12 @@ set_tests_properties(cli.theory.stdout_full_disk PROPERTIES WILL_FAIL TRUE)
 # kill -9 at any moment of `invert` leaves the previous outputs whole (each is renamed into place).
 add_test(NAME cli.invert.kill_9_keeps_previous_outputs
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/kill_during_invert.sh $<TARGET_FILE:sedwave> ${OBS} ${CLI_OUT}/kill9)
+# Bottom loss against grazing angle (docs/reflection.md, "Fitting bottom-loss data"): noise-free EDFM
+# data (porosity 0.42, permeability 3e-11 m^2) fitted back; eta and permeability enter the bottom
+# loss nearly as one ratio, so fitting both leaves them NOT DETERMINED; a row without its angle.
+sedwave_cli_case(invert.bottom_loss_halfspace 0 "^  porosity +\\[1   \\] 0\\.42 \\+- 0\\.004"
+  invert ${INV}/bottom_loss_edfm.csv --model edfm --fit porosity,permeability ${FAST})
+sedwave_cli_case(invert.bottom_loss_unseen_parameter 0 "^  eta +\\[Pa s\\] NOT DETERMINED by these data"
+  invert ${INV}/bottom_loss_edfm.csv --model edfm --fit porosity,permeability,eta ${FAST})
+sedwave_cli_case(invert.bottom_loss_without_angle 1 "bottom_loss_no_angle\\.csv:4:7: field 'grazing_angle_deg': a bottom-loss row needs its grazing angle"
+  invert ${INV}/bottom_loss_no_angle.csv --model edfm ${FAST})
