@@ -42,12 +42,17 @@ void index_frequencies(Setup& s) {
   }
 }
 
-/// The model at every distinct frequency; false where it has no answer (and why, if asked).
+/// The model at every distinct frequency; false where it has no answer (and why, if asked). With
+/// shear rows, `shear` receives the shear wave at each frequency too.
 bool waves_at(const Setup& s, const std::vector<double>& values, bool derivatives, std::vector<sediment::Wave>& waves,
-              std::string* why = nullptr) {
+              std::string* why = nullptr, std::vector<sediment::Wave>* shear = nullptr) {
   waves.resize(s.frequencies.size());
+  if (shear) shear->resize(s.shear_rows ? s.frequencies.size() : 0);
   try {
-    for (std::size_t k = 0; k < s.frequencies.size(); ++k) waves[k] = s.model->evaluate(values, s.frequencies[k], derivatives);
+    for (std::size_t k = 0; k < s.frequencies.size(); ++k) {
+      waves[k] = s.model->evaluate(values, s.frequencies[k], derivatives);
+      if (shear && s.shear_rows) (*shear)[k] = s.model->evaluate_shear(values, s.frequencies[k], derivatives);
+    }
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();
     return false;
@@ -212,7 +217,13 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
   }
   index_frequencies(s);
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
-    if (s.observations[r].quantity == Quantity::BottomLoss) s.reflection_rows.push_back(r);
+    const Observation& o = s.observations[r];
+    if (o.quantity == Quantity::BottomLoss) s.reflection_rows.push_back(r);
+    if (is_shear(o.quantity) && !model.has_shear()) {
+      throw std::invalid_argument(o.file + ":" + std::to_string(o.line) + ": a shear-wave observation, and model '" +
+                                  model.name() + "' has no shear wave (sedwave models lists those that do)");
+    }
+    s.shear_rows = s.shear_rows || is_shear(o.quantity);
   }
   if (!s.reflection_rows.empty()) {
     const Observation& first = s.observations[s.reflection_rows.front()];
@@ -252,13 +263,14 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
 bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian, std::string* why) {
   const std::vector<double> values = values_of(theta);
   std::vector<sediment::Wave> waves;
-  if (!waves_at(s, values, jacobian != nullptr, waves, why)) return false;
+  std::vector<sediment::Wave> shear;
+  if (!waves_at(s, values, jacobian != nullptr, waves, why, &shear)) return false;
   const auto n = static_cast<Eigen::Index>(values.size());
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
   Eigen::VectorXd row(n);
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
     if (s.observations[r].quantity == Quantity::BottomLoss) continue;  // below, all rows at once
-    const sediment::Wave& w = waves[s.frequency_of[r]];
+    const sediment::Wave& w = (is_shear(s.observations[r].quantity) ? shear : waves)[s.frequency_of[r]];
     if (!whitened_residual(s.observations[r], s.sigmas[r], w, values, residuals[r], jacobian ? row.data() : nullptr)) {
       return false;
     }
@@ -269,10 +281,14 @@ bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::
 
 std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
   std::vector<sediment::Wave> waves;
+  std::vector<sediment::Wave> shear;
   std::string why;
-  if (!waves_at(s, values_of(theta), false, waves, &why)) throw std::runtime_error(why);
+  if (!waves_at(s, values_of(theta), false, waves, &why, &shear)) throw std::runtime_error(why);
   std::vector<double> out;
-  for (std::size_t r = 0; r < s.observations.size(); ++r) out.push_back(predicted_value(s.observations[r], waves[s.frequency_of[r]]));
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    const Observation& o = s.observations[r];
+    out.push_back(predicted_value(o, (is_shear(o.quantity) ? shear : waves)[s.frequency_of[r]]));
+  }
   std::vector<double> loss;
   if (!bottom_losses_at(s, values_of(theta), loss, &why)) throw std::runtime_error(why);
   for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) out[s.reflection_rows[k]] = loss[k];

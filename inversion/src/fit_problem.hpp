@@ -36,6 +36,7 @@ struct Setup {
   std::vector<int> free;
   /// Bottom-loss rows (indices into observations) and the water above the seabed they need.
   std::vector<std::size_t> reflection_rows;
+  bool shear_rows = false;  ///< whether any row is of the shear wave (the model then runs it too)
   double water_speed = 0.0;       ///< [m/s]
   double water_density = 1025.0;  ///< [kg/m^3]
 };

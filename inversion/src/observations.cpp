@@ -31,6 +31,8 @@ constexpr std::array<std::string_view, 5> kAttenuationUnits{"dB/m", "Np/m", "dB/
 constexpr std::array<std::string_view, 2> kSoundSpeedUnits{"m/s", "km/s"};
 constexpr std::array<std::string_view, 1> kRatioUnits{"ratio"};
 constexpr std::array<std::string_view, 1> kBottomLossUnits{"dB"};
+// dB/lambda would need the shear speed, which no file declares.
+constexpr std::array<std::string_view, 3> kShearAttenuationUnits{"dB/m", "Np/m", "dB/m/kHz"};
 
 /// A quantity name of the file formats, what it becomes, and the value units it accepts.
 struct QuantitySpec {
@@ -38,11 +40,13 @@ struct QuantitySpec {
   Quantity quantity;
   std::span<const std::string_view> units;
 };
-constexpr std::array<QuantitySpec, 4> kQuantities{{
+constexpr std::array<QuantitySpec, 6> kQuantities{{
     {"attenuation", Quantity::Attenuation, kAttenuationUnits},
     {"sound_speed", Quantity::SoundSpeed, kSoundSpeedUnits},
     {"sound_speed_ratio", Quantity::SoundSpeed, kRatioUnits},
     {"bottom_loss", Quantity::BottomLoss, kBottomLossUnits},
+    {"shear_speed", Quantity::ShearSpeed, kSoundSpeedUnits},
+    {"shear_attenuation", Quantity::ShearAttenuation, kShearAttenuationUnits},
 }};
 
 /// The header; its last column is optional (only bottom-loss rows need an angle).
@@ -300,7 +304,7 @@ double value_to_si(const QuantitySpec& spec, double value, std::string_view unit
                    const ReferenceSpeeds& speeds) {
   const std::string unit_text(unit);
   if (spec.quantity == Quantity::BottomLoss) return value;  // dB, the unit it is fitted in
-  return spec.quantity == Quantity::Attenuation
+  return is_attenuation(spec.quantity)
              ? attenuation_to_np_per_m(value, unit_text, frequency_hz, speeds.sediment)
              : sound_speed_to_m_per_s(value, unit_text, speeds.water);
 }
@@ -308,6 +312,8 @@ double value_to_si(const QuantitySpec& spec, double value, std::string_view unit
 /// What a value must satisfy, named for the message: attenuation is fitted in log space.
 std::string_view positive_what(const QuantitySpec& spec) {
   if (spec.quantity == Quantity::Attenuation) return "attenuation (fitted in log space)";
+  if (spec.quantity == Quantity::ShearAttenuation) return "shear attenuation (fitted in log space)";
+  if (spec.quantity == Quantity::ShearSpeed) return "shear speed";
   return spec.name == "sound_speed" ? "sound speed" : "sound-speed ratio";
 }
 

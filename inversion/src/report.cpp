@@ -21,15 +21,19 @@ nlohmann::json optional_or_null(const std::optional<double>& x) { return x ? nlo
 
 const char* quantity_name(Quantity q) {
   if (q == Quantity::BottomLoss) return "bottom_loss";
+  if (q == Quantity::ShearSpeed) return "shear_speed";
+  if (q == Quantity::ShearAttenuation) return "shear_attenuation";
   return q == Quantity::Attenuation ? "attenuation" : "sound_speed";
 }
 const char* quantity_unit(Quantity q) {
   if (q == Quantity::BottomLoss) return "dB";
-  return q == Quantity::Attenuation ? "Np/m" : "m/s";
+  return is_attenuation(q) ? "Np/m" : "m/s";
 }
 /// The code of a quantity in the observations table.
 int quantity_code(Quantity q) {
   if (q == Quantity::BottomLoss) return 2;
+  if (q == Quantity::ShearSpeed) return 3;
+  if (q == Quantity::ShearAttenuation) return 4;
   return q == Quantity::Attenuation ? 0 : 1;
 }
 
@@ -151,7 +155,8 @@ void write_curves_csv(const std::filesystem::path& file, const std::vector<Curve
 void write_observations_table(const std::filesystem::path& file, const ObservationSet& data, const FitResult& result) {
   io::write_text_atomically(file, [&](std::ostream& out) {
   out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s], "
-         "2 = bottom loss [dB] (its display columns in dB too);\n"
+         "2 = bottom loss [dB] (its display columns in dB too), 3 = shear speed [m/s] (display m/s), "
+         "4 = shear attenuation [Np/m] (display dB/m);\n"
       << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s;\n"
       << "# normalized_residual = (observed - model)/sigma as fitted (attenuation in log space) [1]\n"
       << "quantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,display_model_value,"
@@ -159,8 +164,9 @@ void write_observations_table(const std::filesystem::path& file, const Observati
   const double speed_unit = data.water_sound_speed.value_or(1.0);
   for (const PointResidual& p : result.residuals) {
     const Observation& o = p.observation;
-    const bool attenuation = o.quantity == Quantity::Attenuation;
-    const double scale = attenuation ? kDecibelPerNeper : o.quantity == Quantity::BottomLoss ? 1.0 : 1.0 / speed_unit;
+    const double scale = is_attenuation(o.quantity)                                                ? kDecibelPerNeper
+                         : o.quantity == Quantity::BottomLoss || o.quantity == Quantity::ShearSpeed ? 1.0
+                                                                                                    : 1.0 / speed_unit;
     // The fit's residual is model minus observed; a plot reads better as observed minus model.
     out << quantity_code(o.quantity) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
         << ',' << p.sigma * scale << ',' << p.model << ',' << p.model * scale << ',' << -p.normalized << "\n";

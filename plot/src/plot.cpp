@@ -71,6 +71,8 @@ struct QuantityPanel {
 std::vector<QuantityPanel> panels_with_data(const FitResult& result) {
   std::vector<QuantityPanel> panels{{Quantity::Attenuation, 0}, {Quantity::SoundSpeed, 1}};
   for (const PointResidual& p : result.residuals) {
+    // Panels of the compressional wave against frequency; bottom loss is drawn by `sedwave reflect`.
+    if (p.observation.quantity != Quantity::Attenuation && p.observation.quantity != Quantity::SoundSpeed) continue;
     QuantityPanel& panel = panels[p.observation.quantity == Quantity::Attenuation ? 0 : 1];
     panel.lowest_hz = std::min(panel.lowest_hz, p.observation.frequency_hz);
     panel.highest_hz = std::max(panel.highest_hz, p.observation.frequency_hz);

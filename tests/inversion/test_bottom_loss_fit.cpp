@@ -154,5 +154,49 @@ TEST(BottomLossFit, AModelWithoutDensityIsRefused) {
   EXPECT_THROW((void)fit(data, *dry.model, dry.parameters, quick()), std::invalid_argument);
 }
 
+/// Shear-wave rows: the grain-shearing model's shear speed and attenuation beside its compressional
+/// ones, noise-free, fitted back.
+TEST(ShearObservations, RoundTripWithTheCompressionalWave) {
+  ModelSetup setup;
+  setup.model = "grain-shearing";
+  const Candidate truth = make_candidate(setup);
+  const std::vector<double> values = truth.parameters.values();
+  std::ostringstream out;
+  out.precision(12);
+  out << "quantity,frequency,frequency_unit,value,value_unit,sigma\n";
+  for (double f : {1e3, 10e3, 100e3}) {
+    const sediment::Wave p = truth.model->evaluate(values, f, false);
+    const sediment::Wave s = truth.model->evaluate_shear(values, f, false);
+    out << "attenuation," << f << ",Hz," << p.attenuation << ",Np/m," << 0.05 * p.attenuation << '\n'
+        << "sound_speed," << f << ",Hz," << p.speed << ",m/s,5\n"
+        << "shear_speed," << f << ",Hz," << s.speed << ",m/s,5\n"
+        << "shear_attenuation," << f << ",Hz," << s.attenuation * kDecibelPerNeper << ",dB/m,"
+        << 0.05 * s.attenuation * kDecibelPerNeper << '\n';
+  }
+  const ObservationSet data = read_observation_csv(write_file("shear.csv", out.str()));
+  ASSERT_EQ(data.observations.size(), 12U);
+  EXPECT_EQ(data.observations[3].quantity, Quantity::ShearAttenuation);
+  ModelSetup away = setup;
+  const Candidate start_candidate = make_candidate(away);
+  FitParameters start = start_candidate.parameters;
+  for (int i : start.free_indices()) start.spec[static_cast<std::size_t>(i)].value *= 1.3;
+  const FitResult r = fit(data, *truth.model, start, quick());
+  ASSERT_TRUE(r.converged) << r.solver_message;
+  EXPECT_LT(r.chi2, 1e-6);
+  for (int i : start.free_indices()) {
+    const ParameterResult& p = r.parameters[static_cast<std::size_t>(i)];
+    EXPECT_NEAR(p.value, values[static_cast<std::size_t>(i)], 1e-4 * values[static_cast<std::size_t>(i)]) << p.name;
+  }
+  // A model without a shear wave cannot fit shear rows.
+  const Candidate fluid = edfm(0.4, 1e-11);
+  EXPECT_THROW((void)fit(data, *fluid.model, fluid.parameters, quick()), std::invalid_argument);
+}
+
+TEST(ShearObservations, DecibelPerWavelengthIsRefused) {
+  EXPECT_NE(read_error("quantity,frequency,frequency_unit,value,value_unit,sigma\nshear_attenuation,1,kHz,3,dB/lambda,\n")
+                .find(":2:5: field 'value_unit': unknown unit 'dB/lambda' for shear_attenuation"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace sedwave::inversion

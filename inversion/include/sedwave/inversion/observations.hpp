@@ -21,14 +21,22 @@ namespace sedwave::inversion {
 
 /// What an observation measures. Sound-speed ratios are converted to SoundSpeed with the water
 /// sound speed on reading (the original unit is kept in Observation::unit for display). BottomLoss
-/// is the plane-wave bottom loss -20 log10 |R| [dB] at a grazing angle (docs/reflection.md).
-enum class Quantity { Attenuation, SoundSpeed, BottomLoss };
+/// is the plane-wave bottom loss -20 log10 |R| [dB] at a grazing angle (docs/reflection.md);
+/// ShearSpeed and ShearAttenuation those of the shear wave of a model that has one.
+enum class Quantity { Attenuation, SoundSpeed, BottomLoss, ShearSpeed, ShearAttenuation };
+
+/// Whether a quantity is an attenuation (fitted in log space), of either wave.
+[[nodiscard]] inline bool is_attenuation(Quantity q) {
+  return q == Quantity::Attenuation || q == Quantity::ShearAttenuation;
+}
+/// Whether a quantity is of the shear wave.
+[[nodiscard]] inline bool is_shear(Quantity q) { return q == Quantity::ShearSpeed || q == Quantity::ShearAttenuation; }
 
 /// One measured value, in SI.
 struct Observation {
   Quantity quantity = Quantity::Attenuation;
   double frequency_hz = 0.0;    ///< [Hz]
-  double value = 0.0;           ///< attenuation [Np/m] or sound speed [m/s]
+  double value = 0.0;           ///< attenuation [Np/m], speed [m/s] or bottom loss [dB]
   std::optional<double> sigma;  ///< 1-sigma uncertainty in the same SI unit, if the file gave one
   std::string unit;             ///< the value unit as written in the file (e.g. "dB/m", "ratio")
   std::string file;             ///< where it came from, for messages

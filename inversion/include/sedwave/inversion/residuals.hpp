@@ -18,16 +18,16 @@ namespace sedwave::inversion {
 /// the fit computes it from the reflection coefficient (NaN here).
 [[nodiscard]] inline double predicted_value(const Observation& o, const sediment::Wave& w) {
   if (o.quantity == Quantity::BottomLoss) return std::nan("");
-  return o.quantity == Quantity::Attenuation ? w.attenuation : w.speed;
+  return is_attenuation(o.quantity) ? w.attenuation : w.speed;
 }
 
 /// The whitened residual of observation `o` (1-sigma `sigma` in SI) against the wave `w` the model
-/// predicts at its frequency for parameter `values`; with `d_theta` non-null (and `w` holding
+/// predicts at its frequency (the shear wave for a shear row) for parameter `values`; with `d_theta` non-null (and `w` holding
 /// derivatives) also d residual / d ln value_i into d_theta[0 .. values.size()). False where the
 /// residual is not defined (a non-positive attenuation).
 [[nodiscard]] inline bool whitened_residual(const Observation& o, double sigma, const sediment::Wave& w,
                                             std::span<const double> values, double& residual, double* d_theta) {
-  if (o.quantity == Quantity::Attenuation) {
+  if (is_attenuation(o.quantity)) {
     if (!(w.attenuation > 0.0)) return false;
     const double relative_model = w.sigma_attenuation / w.attenuation;
     const double relative_data = sigma / o.value;
