@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <complex>
 #include <optional>
 #include <cmath>
 #include <limits>
@@ -124,8 +125,8 @@ double water_density_of(const ObservationSet& data) {
   return rho;
 }
 
-/// The bottom loss [dB] of every reflection row for parameter values: water over a half-space of
-/// the model (elastic where the model has a shear wave). False where the model has no answer there.
+/// The bottom loss [dB] or |R| of every reflection row for parameter values: water over a half-space
+/// of the model (elastic where the model has a shear wave). False where the model has no answer there.
 bool bottom_losses_at(const Setup& s, const std::vector<double>& values, std::vector<double>& loss,
                       std::string* why = nullptr) {
   loss.clear();
@@ -141,7 +142,8 @@ bool bottom_losses_at(const Setup& s, const std::vector<double>& values, std::ve
       if (!media[k]) media[k] = sediment::medium_of(part, s.frequencies[k], false, "half-space");
       const sediment::LayeredHalfspace seabed{water, {}, *media[k]};
       const Observation& o = s.observations[r];
-      loss.push_back(sediment::bottom_loss_db(sediment::reflection_coefficient(seabed, o.grazing_angle, o.frequency_hz)));
+      const std::complex<double> reflection = sediment::reflection_coefficient(seabed, o.grazing_angle, o.frequency_hz);
+      loss.push_back(o.quantity == Quantity::BottomLoss ? sediment::bottom_loss_db(reflection) : std::abs(reflection));
     }
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();
@@ -218,7 +220,7 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
   index_frequencies(s);
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
     const Observation& o = s.observations[r];
-    if (o.quantity == Quantity::BottomLoss) s.reflection_rows.push_back(r);
+    if (is_reflection(o.quantity)) s.reflection_rows.push_back(r);
     if (is_shear(o.quantity) && !model.has_shear()) {
       throw std::invalid_argument(o.file + ":" + std::to_string(o.line) + ": a shear-wave observation, and model '" +
                                   model.name() + "' has no shear wave (sedwave models lists those that do)");
@@ -229,7 +231,7 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
     const Observation& first = s.observations[s.reflection_rows.front()];
     if (!data.water_sound_speed) {
       throw std::invalid_argument(first.file + ":" + std::to_string(first.line) +
-                                  ": a bottom loss needs the water sound speed ('# water_sound_speed_m_per_s: ...')");
+                                  ": reflection data need the water sound speed ('# water_sound_speed_m_per_s: ...')");
     }
     s.water_speed = *data.water_sound_speed;
     s.water_density = water_density_of(data);
@@ -255,7 +257,7 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
   index_frequencies(subset);
   subset.reflection_rows.clear();
   for (std::size_t r = 0; r < subset.observations.size(); ++r) {
-    if (subset.observations[r].quantity == Quantity::BottomLoss) subset.reflection_rows.push_back(r);
+    if (is_reflection(subset.observations[r].quantity)) subset.reflection_rows.push_back(r);
   }
   return subset;
 }
@@ -269,7 +271,7 @@ bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
   Eigen::VectorXd row(n);
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
-    if (s.observations[r].quantity == Quantity::BottomLoss) continue;  // below, all rows at once
+    if (is_reflection(s.observations[r].quantity)) continue;  // below, all rows at once
     const sediment::Wave& w = (is_shear(s.observations[r].quantity) ? shear : waves)[s.frequency_of[r]];
     if (!whitened_residual(s.observations[r], s.sigmas[r], w, values, residuals[r], jacobian ? row.data() : nullptr)) {
       return false;

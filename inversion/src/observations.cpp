@@ -31,6 +31,7 @@ constexpr std::array<std::string_view, 5> kAttenuationUnits{"dB/m", "Np/m", "dB/
 constexpr std::array<std::string_view, 2> kSoundSpeedUnits{"m/s", "km/s"};
 constexpr std::array<std::string_view, 1> kRatioUnits{"ratio"};
 constexpr std::array<std::string_view, 1> kBottomLossUnits{"dB"};
+constexpr std::array<std::string_view, 1> kReflectionUnits{"1"};
 // dB/lambda would need the shear speed, which no file declares.
 constexpr std::array<std::string_view, 3> kShearAttenuationUnits{"dB/m", "Np/m", "dB/m/kHz"};
 
@@ -40,13 +41,14 @@ struct QuantitySpec {
   Quantity quantity;
   std::span<const std::string_view> units;
 };
-constexpr std::array<QuantitySpec, 6> kQuantities{{
+constexpr std::array<QuantitySpec, 7> kQuantities{{
     {"attenuation", Quantity::Attenuation, kAttenuationUnits},
     {"sound_speed", Quantity::SoundSpeed, kSoundSpeedUnits},
     {"sound_speed_ratio", Quantity::SoundSpeed, kRatioUnits},
     {"bottom_loss", Quantity::BottomLoss, kBottomLossUnits},
     {"shear_speed", Quantity::ShearSpeed, kSoundSpeedUnits},
     {"shear_attenuation", Quantity::ShearAttenuation, kShearAttenuationUnits},
+    {"reflection_magnitude", Quantity::ReflectionMagnitude, kReflectionUnits},
 }};
 
 /// The header; its last column is optional (only bottom-loss rows need an angle).
@@ -293,7 +295,9 @@ std::string missing_speed(std::string_view unit, const ReferenceSpeeds& speeds, 
     return std::string(unit) + " needs a sediment sound speed" + hint(kSedimentSpeedKey);
   }
   if (unit == "ratio" && !speeds.water) return "ratio needs a water sound speed" + hint(kWaterSpeedKey);
-  if (unit == "dB" && !speeds.water) return "bottom loss needs a water sound speed" + hint(kWaterSpeedKey);
+  if ((unit == "dB" || unit == "1") && !speeds.water) {
+    return "reflection data need a water sound speed" + hint(kWaterSpeedKey);
+  }
   return {};
 }
 
@@ -303,7 +307,7 @@ std::string missing_speed(std::string_view unit, const ReferenceSpeeds& speeds, 
 double value_to_si(const QuantitySpec& spec, double value, std::string_view unit, double frequency_hz,
                    const ReferenceSpeeds& speeds) {
   const std::string unit_text(unit);
-  if (spec.quantity == Quantity::BottomLoss) return value;  // dB, the unit it is fitted in
+  if (is_reflection(spec.quantity)) return value;  // dB or |R|, the unit it is fitted in
   return is_attenuation(spec.quantity)
              ? attenuation_to_np_per_m(value, unit_text, frequency_hz, speeds.sediment)
              : sound_speed_to_m_per_s(value, unit_text, speeds.water);
@@ -376,17 +380,22 @@ void check_value_unit(const LineRef& at, const Field& field, const QuantitySpec&
   }
 }
 
-/// A bottom-loss row: a loss >= 0 dB (0 is total reflection), a sigma in dB (a relative default
-/// means nothing for a loss that may be 0), and a grazing angle in (0, 90] degrees.
+/// A bottom-loss or |R| row: a loss >= 0 dB (0 is total reflection) or an |R| >= 0, a sigma in its
+/// unit (a relative default means nothing for a value that may be 0), and a grazing angle in
+/// (0, 90] degrees. A measured |R| may exceed 1 by its noise.
 Observation parse_bottom_loss_row(const LineRef& at, const std::function<Field(int)>& field, const QuantitySpec& spec,
                                   double frequency_hz, const ReferenceSpeeds& speeds) {
   const double value = parse_number(at, field(4));
-  if (value < 0.0) at.fail(4, "value", "bottom loss must be >= 0 dB (|R| <= 1), got '" + std::string(field(4).text) + "'");
+  if (value < 0.0) {
+    at.fail(4, "value", std::string(spec.quantity == Quantity::BottomLoss ? "bottom loss must be >= 0 dB (|R| <= 1)"
+                                                                          : "|R| must be >= 0") +
+                            ", got '" + std::string(field(4).text) + "'");
+  }
   check_value_unit(at, field(5), spec, speeds, SpeedSource::FileOrOption);
-  if (field(6).text.empty()) at.fail(6, "sigma", "a bottom-loss row needs its 1-sigma uncertainty in dB");
+  if (field(6).text.empty()) at.fail(6, "sigma", "a reflection row needs its 1-sigma uncertainty in its own unit");
   const double sigma = parse_positive(at, field(6), "sigma");
   if (field(7).text.empty()) {
-    at.fail(7, "grazing_angle_deg", "a bottom-loss row needs its grazing angle in degrees (header '" +
+    at.fail(7, "grazing_angle_deg", "a reflection row needs its grazing angle in degrees (header '" +
                                         std::string(kAngleHeaderText) + "')");
   }
   const double angle = parse_number(at, field(7));
@@ -405,11 +414,11 @@ Observation parse_csv_row(const LineRef& at, const std::vector<std::string_view>
     return Field{i < cells.size() ? cells[i] : std::string_view{}, column, kHeader[i]};
   };
   const auto& spec = parse_quantity(at, field(1));
-  if (spec.quantity == Quantity::BottomLoss) {
+  if (is_reflection(spec.quantity)) {
     const double frequency = parse_positive(at, field(2), "frequency");
     return parse_bottom_loss_row(at, field, spec, frequency * parse_frequency_unit(at, field(3)), speeds);
   }
-  if (!field(7).text.empty()) at.fail(7, "grazing_angle_deg", "only a bottom-loss row has a grazing angle");
+  if (!field(7).text.empty()) at.fail(7, "grazing_angle_deg", "only a reflection row (bottom loss, |R|) has a grazing angle");
   const double frequency = parse_positive(at, field(2), "frequency");
   const double to_hz = parse_frequency_unit(at, field(3));
   const double value = parse_positive(at, field(4), positive_what(spec));
@@ -493,8 +502,8 @@ DigitizedSpec check_columns(const std::string& file, const DigitizedColumns& col
                             const ReferenceSpeeds& speeds) {
   const LineRef at(file, 0);
   const auto& quantity = parse_quantity(at, {columns.quantity, 0, "quantity"});
-  if (quantity.quantity == Quantity::BottomLoss) {
-    at.fail(0, "quantity", "a digitized file has no angle column: give bottom loss in a sedwave observation CSV");
+  if (is_reflection(quantity.quantity)) {
+    at.fail(0, "quantity", "a digitized file has no angle column: give reflection data in a sedwave observation CSV");
   }
   const double to_hz = parse_frequency_unit(at, {columns.frequency_unit, 0, "frequency_unit"});
   check_value_unit(at, {columns.value_unit, 0, "value_unit"}, quantity, speeds, SpeedSource::OptionOnly);

@@ -77,7 +77,7 @@ PredictiveBand predictive_band(const std::string& label, const sediment::Sedimen
   const DrawTable points = evaluate_draws(model, best, samples, observed_at, max_draws);
   for (std::size_t i = 0; i < best.residuals.size(); ++i) {
     const PointResidual& p = best.residuals[i];
-    if (p.observation.quantity == Quantity::BottomLoss || is_shear(p.observation.quantity)) {
+    if (is_reflection(p.observation.quantity) || is_shear(p.observation.quantity)) {
       // Bands of the compressional wave only: no band of R or of the shear wave here.
       band.residual.push_back(NAN);
       continue;

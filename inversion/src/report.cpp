@@ -21,12 +21,14 @@ nlohmann::json optional_or_null(const std::optional<double>& x) { return x ? nlo
 
 const char* quantity_name(Quantity q) {
   if (q == Quantity::BottomLoss) return "bottom_loss";
+  if (q == Quantity::ReflectionMagnitude) return "reflection_magnitude";
   if (q == Quantity::ShearSpeed) return "shear_speed";
   if (q == Quantity::ShearAttenuation) return "shear_attenuation";
   return q == Quantity::Attenuation ? "attenuation" : "sound_speed";
 }
 const char* quantity_unit(Quantity q) {
   if (q == Quantity::BottomLoss) return "dB";
+  if (q == Quantity::ReflectionMagnitude) return "1";
   return is_attenuation(q) ? "Np/m" : "m/s";
 }
 /// The code of a quantity in the observations table.
@@ -34,6 +36,7 @@ int quantity_code(Quantity q) {
   if (q == Quantity::BottomLoss) return 2;
   if (q == Quantity::ShearSpeed) return 3;
   if (q == Quantity::ShearAttenuation) return 4;
+  if (q == Quantity::ReflectionMagnitude) return 5;
   return q == Quantity::Attenuation ? 0 : 1;
 }
 
@@ -113,7 +116,7 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                               {"sigma_defaulted", p.default_sigma},
                               {"normalized_residual", p.normalized},
                               {"source", p.observation.file + ":" + std::to_string(p.observation.line)}});
-    if (p.observation.quantity == Quantity::BottomLoss) {
+    if (is_reflection(p.observation.quantity)) {
       j["residuals"].back()["grazing_angle_deg"] = p.observation.grazing_angle * 180.0 / std::numbers::pi;
     }
   }
@@ -156,7 +159,7 @@ void write_observations_table(const std::filesystem::path& file, const Observati
   io::write_text_atomically(file, [&](std::ostream& out) {
   out << "# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s], "
          "2 = bottom loss [dB] (its display columns in dB too), 3 = shear speed [m/s] (display m/s), "
-         "4 = shear attenuation [Np/m] (display dB/m);\n"
+         "4 = shear attenuation [Np/m] (display dB/m), 5 = |R| [1] (display |R|);\n"
       << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s;\n"
       << "# normalized_residual = (observed - model)/sigma as fitted (attenuation in log space) [1]\n"
       << "quantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,display_model_value,"
@@ -165,7 +168,7 @@ void write_observations_table(const std::filesystem::path& file, const Observati
   for (const PointResidual& p : result.residuals) {
     const Observation& o = p.observation;
     const double scale = is_attenuation(o.quantity)                                                ? kDecibelPerNeper
-                         : o.quantity == Quantity::BottomLoss || o.quantity == Quantity::ShearSpeed ? 1.0
+                         : is_reflection(o.quantity) || o.quantity == Quantity::ShearSpeed ? 1.0
                                                                                                     : 1.0 / speed_unit;
     // The fit's residual is model minus observed; a plot reads better as observed minus model.
     out << quantity_code(o.quantity) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale

@@ -78,5 +78,5 @@ sedwave_cli_case(invert.bottom_loss_halfspace 0 "^  porosity +\\[1   \\] 0\\.42 
   invert ${INV}/bottom_loss_edfm.csv --model edfm --fit porosity,permeability ${FAST})
 sedwave_cli_case(invert.bottom_loss_unseen_parameter 0 "^  eta +\\[Pa s\\] NOT DETERMINED by these data"
   invert ${INV}/bottom_loss_edfm.csv --model edfm --fit porosity,permeability,eta ${FAST})
-sedwave_cli_case(invert.bottom_loss_without_angle 1 "bottom_loss_no_angle\\.csv:4:7: field 'grazing_angle_deg': a bottom-loss row needs its grazing angle"
+sedwave_cli_case(invert.bottom_loss_without_angle 1 "bottom_loss_no_angle\\.csv:4:7: field 'grazing_angle_deg': a reflection row needs its grazing angle"
   invert ${INV}/bottom_loss_no_angle.csv --model edfm ${FAST})

@@ -119,23 +119,45 @@ TEST(BottomLossFit, JointFitWithAttenuation) {
   EXPECT_EQ(attenuation_rows, 2);
 }
 
+TEST(BottomLossFit, ReflectionMagnitudeRoundTrip) {
+  const Candidate truth = edfm(0.5, 2e-11);
+  const sediment::SeabedPart part{truth.model, truth.parameters.values(), 0.0};
+  std::ostringstream out;
+  out.precision(12);
+  out << "# water_sound_speed_m_per_s: " << kWaterSpeed << "\n"
+      << "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
+  for (double f : {1e3, 8e3}) {
+    const sediment::LayeredHalfspace seabed{{kWaterSpeed, 0.0, 0.0, 0.0, kWaterDensity}, {},
+                                            sediment::medium_of(part, f, false, "half-space")};
+    for (double degrees = 5.0; degrees <= 90.0; degrees += 5.0) {
+      const double r = std::abs(sediment::reflection_coefficient(seabed, degrees * std::numbers::pi / 180.0, f));
+      out << "reflection_magnitude," << f / 1e3 << ",kHz," << r << ",1,0.01," << degrees << '\n';
+    }
+  }
+  const ObservationSet data = read_observation_csv(write_file("magnitude.csv", out.str()));
+  ASSERT_EQ(data.observations.size(), 36U);
+  EXPECT_EQ(data.observations.front().quantity, Quantity::ReflectionMagnitude);
+  const Candidate start = edfm(0.4, 1e-10);
+  expect_recovered(fit(data, *start.model, start.parameters, quick()), 0.5, 2e-11);
+}
+
 TEST(BottomLossFit, BadRowsNameFileLineAndField) {
   const std::string water = "# water_sound_speed_m_per_s: 1500\n";
   const std::string header = "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
   const auto error = [&](const std::string& row, const std::string& head) { return read_error(head + row); };
   EXPECT_NE(error("bottom_loss,1,kHz,-1,dB,0.5,30\n", water + header).find("bad.csv:3:4: field 'value': bottom loss must be >= 0 dB"),
             std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,,30\n", water + header).find(":3:6: field 'sigma': a bottom-loss row needs"),
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,,30\n", water + header).find(":3:6: field 'sigma': a reflection row needs"),
             std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,\n", water + header).find(":3:7: field 'grazing_angle_deg': a bottom-loss row needs"),
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,\n", water + header).find(":3:7: field 'grazing_angle_deg': a reflection row needs"),
             std::string::npos);
   EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,95\n", water + header).find(":3:7: field 'grazing_angle_deg': grazing angle must be in (0, 90]"),
             std::string::npos);
   EXPECT_NE(error("bottom_loss,1,kHz,3,Np/m,0.5,30\n", water + header).find(":3:5: field 'value_unit': unknown unit 'Np/m'"),
             std::string::npos);
-  EXPECT_NE(error("attenuation,1,kHz,3,dB/m,0.5,30\n", water + header).find(":3:7: field 'grazing_angle_deg': only a bottom-loss row"),
+  EXPECT_NE(error("attenuation,1,kHz,3,dB/m,0.5,30\n", water + header).find(":3:7: field 'grazing_angle_deg': only a reflection row"),
             std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,30\n", header).find(":2:5: field 'value_unit': bottom loss needs a water sound speed"),
+  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,30\n", header).find(":2:5: field 'value_unit': reflection data need a water sound speed"),
             std::string::npos);
   // Without the angle column a bottom-loss row is missing its angle.
   EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5\n", water + "quantity,frequency,frequency_unit,value,value_unit,sigma\n")

@@ -337,7 +337,7 @@ std::vector<BadCase> bad_cases() {
       {"UnitOfAnotherQuantity", with_header("sound_speed,100,Hz,1.05,ratio,\n"), 2, 5, "value_unit",
        "unknown unit 'ratio' for sound_speed (accepted: m/s, km/s)"},
       {"UnknownQuantity", with_header("density,100,Hz,1,kg/m3,\n"), 2, 1, "quantity",
-       "unknown quantity 'density' (accepted: attenuation, sound_speed, sound_speed_ratio, bottom_loss, shear_speed, shear_attenuation)"},
+       "unknown quantity 'density' (accepted: attenuation, sound_speed, sound_speed_ratio, bottom_loss, shear_speed, shear_attenuation, reflection_magnitude)"},
       {"MissingQuantity", with_header(",100,Hz,1,dB/m,\n"), 2, 1, "quantity", "missing quantity"},
       {"ZeroAttenuation", with_header("attenuation,100,Hz,0,dB/m,\n"), 2, 4, "value",
        "attenuation (fitted in log space) must be positive"},

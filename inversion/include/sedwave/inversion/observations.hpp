@@ -4,11 +4,11 @@
 // Two formats (documented in docs/file-formats.md):
 //  * the sedwave observation CSV: '#' metadata lines ("# key: value"), one header line
 //      quantity,frequency,frequency_unit,value,value_unit,sigma[,grazing_angle_deg]
-//    (the last column only where a row is a bottom loss) and one observation per row, each with its own units;
+//    (the last column only where a row is a bottom loss or |R|) and one observation per row, each with its own units;
 //  * the two-column "x,y" CSV that WebPlotDigitizer exports, with quantity and units given by the
 //    caller (command-line options), since the file itself carries none.
 // Everything is converted to SI on reading: frequency in Hz, attenuation in Np/m, sound speed in m/s,
-// grazing angle in rad; bottom loss stays in dB.
+// grazing angle in rad; bottom loss stays in dB, |R| as it is.
 // Bad input throws InputError naming file, line, column and the reason; nothing is skipped.
 #include <filesystem>
 #include <map>
@@ -22,8 +22,14 @@ namespace sedwave::inversion {
 /// What an observation measures. Sound-speed ratios are converted to SoundSpeed with the water
 /// sound speed on reading (the original unit is kept in Observation::unit for display). BottomLoss
 /// is the plane-wave bottom loss -20 log10 |R| [dB] at a grazing angle (docs/reflection.md);
-/// ShearSpeed and ShearAttenuation those of the shear wave of a model that has one.
-enum class Quantity { Attenuation, SoundSpeed, BottomLoss, ShearSpeed, ShearAttenuation };
+/// ReflectionMagnitude |R| itself [1]; ShearSpeed and ShearAttenuation those of the shear wave of a
+/// model that has one.
+enum class Quantity { Attenuation, SoundSpeed, BottomLoss, ShearSpeed, ShearAttenuation, ReflectionMagnitude };
+
+/// Whether a quantity is of the plane-wave reflection coefficient (it has a grazing angle).
+[[nodiscard]] inline bool is_reflection(Quantity q) {
+  return q == Quantity::BottomLoss || q == Quantity::ReflectionMagnitude;
+}
 
 /// Whether a quantity is an attenuation (fitted in log space), of either wave.
 [[nodiscard]] inline bool is_attenuation(Quantity q) {
@@ -36,12 +42,12 @@ enum class Quantity { Attenuation, SoundSpeed, BottomLoss, ShearSpeed, ShearAtte
 struct Observation {
   Quantity quantity = Quantity::Attenuation;
   double frequency_hz = 0.0;    ///< [Hz]
-  double value = 0.0;           ///< attenuation [Np/m], speed [m/s] or bottom loss [dB]
+  double value = 0.0;           ///< attenuation [Np/m], speed [m/s], bottom loss [dB] or |R| [1]
   std::optional<double> sigma;  ///< 1-sigma uncertainty in the same SI unit, if the file gave one
   std::string unit;             ///< the value unit as written in the file (e.g. "dB/m", "ratio")
   std::string file;             ///< where it came from, for messages
   int line = 0;
-  double grazing_angle = 0.0;   ///< [rad] from the horizontal, BottomLoss only
+  double grazing_angle = 0.0;   ///< [rad] from the horizontal, is_reflection() rows only
 };
 
 /// The observations of one or more files plus the metadata they declared.

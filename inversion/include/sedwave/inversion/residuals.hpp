@@ -17,7 +17,7 @@ namespace sedwave::inversion {
 /// The model's value of an observation's quantity [SI]. A bottom loss is no property of one wave:
 /// the fit computes it from the reflection coefficient (NaN here).
 [[nodiscard]] inline double predicted_value(const Observation& o, const sediment::Wave& w) {
-  if (o.quantity == Quantity::BottomLoss) return std::nan("");
+  if (is_reflection(o.quantity)) return std::nan("");
   return is_attenuation(o.quantity) ? w.attenuation : w.speed;
 }
 
