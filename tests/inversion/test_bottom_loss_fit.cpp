@@ -9,6 +9,8 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/setup.hpp"
