@@ -213,7 +213,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
   // Goodness of fit and per-point residuals.
   std::vector<double> normalized(s.observations.size());
   std::string why = "a residual is not defined at the solution (a non-positive model attenuation)";
-  if (!detail::residuals_at(s, theta, normalized.data(), nullptr, &why)) throw std::runtime_error(why);
+  if (!detail::row_residuals_at(s, theta, normalized.data(), &why)) throw std::runtime_error(why);
   const std::vector<double> model = detail::predictions_at(s, theta);
   result.chi2 = 0.0;
   for (size_t r = 0; r < s.observations.size(); ++r) {

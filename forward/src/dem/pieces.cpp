@@ -62,7 +62,9 @@ void join_pieces(hid_t file, const RowDataset& d, const std::vector<Piece>& piec
   const std::array<hsize_t, 2> extent{total, d.columns};
   io::Handle space(H5Screate_simple(dims, extent.data(), nullptr), H5Sclose, "dataspace " + std::string(d.name));
   io::Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
-  const std::string source = "/" + std::string(d.group) + "/" + d.name;
+  // Appended, not concatenated: GCC 12 warns falsely (-Wrestrict) on "/" + std::string.
+  std::string source = "/";
+  source.append(d.group).append("/").append(d.name);
   hsize_t first = 0;
   for (const Piece& p : pieces) {
     if (rows(p) == 0) continue;
