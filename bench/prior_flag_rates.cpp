@@ -6,7 +6,10 @@
 // binomial standard errors, each parameter's rate, the rates of the combinations c0 and tau (which
 // the straight ridge sets determine), and the range of the prior shares.
 //
-//   build/bin/bench_prior_flag_rates [data_sets=60] [seed=1] [steps=3000] [each: list every set]
+// The fits compute their likelihood profiles first, as `sedwave invert --method posterior` does;
+// `no-profiles` leaves them out (the posterior's own tests alone).
+//
+//   build/bin/bench_prior_flag_rates [data_sets=60] [seed=1] [steps=3000] [each|quiet] [profiles|no-profiles]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,8 +23,10 @@ int main(int argc, char** argv) {
   const unsigned seed = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 1u;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 3000;
   const bool each_set = argc > 4 && std::string(argv[4]) == "each";
+  const bool profiles = !(argc > 5 && std::string(argv[5]) == "no-profiles");
   using sedwave::bench::FlagSet;
-  std::printf("prior-controlled flag: lattice model; %d sets of each kind (seed %u, %d steps)\n", n, seed, steps);
+  std::printf("prior-controlled flag: lattice model; %d sets of each kind (seed %u, %d steps, %s)\n", n, seed, steps,
+              profiles ? "fits with likelihood profiles" : "fits without likelihood profiles");
   std::printf("%-40s | %9s %9s | %6s %6s %6s | %6s %6s | %-11s | %9s\n", "sets", "flagged", "+- 1 se", "kappa", "d",
               "gamma", "c0", "tau", "prior share", "converged");
   using sedwave::bench::FlagPriors;
@@ -34,7 +39,7 @@ int main(int argc, char** argv) {
       double lowest = 1.0, highest = 0.0;
       bool d_free = true;
       for (int k = 0; k < n; ++k) {
-        const sedwave::bench::FlagSetResult r = sedwave::bench::run_flag_set(kind, seed, k, steps, priors);
+        const sedwave::bench::FlagSetResult r = sedwave::bench::run_flag_set(kind, seed, k, steps, priors, profiles);
         flagged += sedwave::bench::set_flagged(kind, r);
         converged += r.converged;
         c0 += r.c0_flagged;

@@ -105,8 +105,11 @@ inline inversion::ObservationSet attenuation_only(inversion::ObservationSet set)
   return set;
 }
 
+/// `profiles`: the fit computes its likelihood profiles first, as `sedwave invert` does by default,
+/// and the flag judges each credible interval against them too (posterior.hpp); without them it
+/// has the posterior's own two tests only.
 inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int steps,
-                                  FlagPriors prior_kind = FlagPriors::Default) {
+                                  FlagPriors prior_kind = FlagPriors::Default, bool profiles = true) {
   // The first two kinds keep the streams they had before the others were added.
   const unsigned stream = kind == FlagSet::Ridge ? 0u : kind == FlagSet::WellDetermined ? 1u
                                                                                          : static_cast<unsigned>(kind) + 2u;
@@ -147,7 +150,7 @@ inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int st
     data = inversion::synthetic_observations(*frame, truth, design);
     if (kind == FlagSet::CurvedValleyKnownD) data = attenuation_only(std::move(data));
   }
-  const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
+  const inversion::FitOptions fit_options{.method = inversion::FitMethod::Global, .profile_likelihood = profiles};
   inversion::FitParameters start;  // kappa, d, gamma free from their defaults, as a user starts
   const bool d_known = kind == FlagSet::OneFrequencyKnownD || kind == FlagSet::CurvedValleyKnownD;
   if (d_known) {
