@@ -14,8 +14,10 @@
 //     all three). d in [0.3, 2] mm, c0 in [1500, 1900] m/s, gamma_hat in [5, 60]; 2-5 % attenuation
 //     noise, 0.5-1 % in speed.
 //   one-frequency ridge: the same truths, kappa, d, gamma free; ten rows of sound speed and ten of
-//     attenuation at one frequency, omega_hat in [0.05, 1]: two numbers for three parameters, a
-//     ridge that bends where the dispersion begins.
+//     attenuation at one frequency, omega_hat in [0.005, 0.05]: the two numbers are c0 and tau, and
+//     kappa d gamma is unseen as in the ridge sets. (Nearer the dispersion, omega_hat in [0.05, 1],
+//     the data bound kappa and gamma on both sides, over decades, and leave d open below: such a
+//     set has no answer by design for kappa and gamma.)
 //   curved ridge: ten rows of attenuation alone at one frequency (as a user with one measurement),
 //     omega_hat in [0.05, 1]: one number for three parameters, a curved surface through the prior's
 //     box, which the data's information at one draw does not see whole.
@@ -124,8 +126,9 @@ inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int st
   const double c0 = log_uniform(1500.0, 1900.0);
   const double gamma_hat = ridge_truths ? log_uniform(5.0, 60.0) : log_uniform(0.3, 3.0);
   const double top_omega_hat = kind == FlagSet::Ridge              ? log_uniform(0.02, 0.1)
+                               : kind == FlagSet::OneFrequencyRidge ? log_uniform(0.005, 0.05)
                                : kind == FlagSet::OneFrequencyKnownD ? log_uniform(0.1, 1.0)
-                               : one_frequency                      ? log_uniform(0.05, 1.0)
+                               : kind == FlagSet::CurvedRidge       ? log_uniform(0.05, 1.0)
                                                                     : log_uniform(1.3, 1.9);
   const double alpha_noise = ridge_truths ? log_uniform(0.02, 0.05) : log_uniform(0.01, 0.03);
   const double speed_noise = alpha_noise / (ridge_truths ? log_uniform(3.0, 5.0) : 5.0);

@@ -124,13 +124,16 @@ PosteriorQuantity summarize(const std::string& name, const std::string& unit, co
           false, 0.0};
 }
 
-/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow,
-/// or whose marginal spans most of its prior's (prior_control.hpp): `ln_values` its posterior draws
-/// in ln, `own` and `prior_own` its posterior draws and its prior's in the prior's own coordinate.
-/// `profile` (where the fit computed likelihood profiles) its 68 % profile interval.
+/// A 68 % profile-likelihood interval (FitResult): a missing end is open.
 struct ProfileInterval {
   std::optional<double> lower, upper;
 };
+
+/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow,
+/// or whose marginal spans most of its prior's, or whose credible interval the prior narrowed from
+/// what the data alone allow (prior_control.hpp): `ln_values` its posterior draws in ln, `own` and
+/// `prior_own` its posterior draws and its prior's in the prior's own coordinate, `profile` (where
+/// the fit computed likelihood profiles) its profile interval.
 void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& control, const Eigen::VectorXd& ln_values,
                         const Eigen::VectorXd& own, const Eigen::VectorXd& prior_own,
                         const std::optional<ProfileInterval>& profile) {

@@ -386,17 +386,20 @@ std::optional<std::string> not_a_table(const std::filesystem::path& path) {
 
 }  // namespace
 
+void require_table_or_nothing(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) return;
+  if (const std::optional<std::string> why = not_a_table(path)) {
+    throw std::runtime_error("cannot write table " + path.string() + ": the file exists and is not a sedwave "
+                             "dispersion table (" + *why + "); name another file, or move it away");
+  }
+}
+
 TableFile TableFile::resume_or_create(const std::filesystem::path& path, const TableGrid& grid,
                                       const TableMetadata& metadata, bool allow_changed_inputs) {
   // Before anything is opened: a device or FIFO is neither read as a damaged table nor moved aside.
   io::require_seekable_output(path, "HDF5");
   // Nor is a file of another kind (a typing error in the path): only a damaged table is rebuilt.
-  if (std::filesystem::exists(path)) {
-    if (const std::optional<std::string> why = not_a_table(path)) {
-      throw std::runtime_error("cannot write table " + path.string() + ": the file exists and is not a sedwave "
-                               "dispersion table (" + *why + "); name another file, or move it away");
-    }
-  }
+  require_table_or_nothing(path);
   // The journal lock first: a file that fails to open because another live writer holds it must
   // not be mistaken for a damaged one.
   Journal journal(journal_path(path));
