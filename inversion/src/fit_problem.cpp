@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace sedwave::inversion::detail {
 namespace {
@@ -27,7 +28,8 @@ void check_sigma(const Observation& o, double sigma, bool defaulted) {
 }
 
 /// Attenuation and speed are usually measured at the same frequencies: the model runs once for each.
-void index_frequencies(Setup& s) {
+/// Rows that repeat a quantity, a frequency and a sigma form one group (Setup::RowGroup).
+void index_rows(Setup& s) {
   std::map<double, std::size_t> index;
   s.frequencies.clear();
   s.frequency_of.clear();
@@ -35,6 +37,33 @@ void index_frequencies(Setup& s) {
     const auto [at, inserted] = index.emplace(o.frequency_hz, s.frequencies.size());
     if (inserted) s.frequencies.push_back(o.frequency_hz);
     s.frequency_of.push_back(at->second);
+  }
+  using Key = std::tuple<Quantity, std::size_t, double>;
+  std::map<Key, std::size_t> group_of;
+  std::vector<std::vector<double>> members;
+  s.groups.clear();
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    const Observation& o = s.observations[r];
+    const double sigma = compared_sigma(o, s.sigmas[r]);
+    const auto [at, inserted] = group_of.emplace(Key{o.quantity, s.frequency_of[r], sigma}, s.groups.size());
+    if (inserted) {
+      s.groups.push_back({o.quantity, s.frequency_of[r], 0.0, sigma, 0.0, 0.0});
+      members.emplace_back();
+    }
+    members[at->second].push_back(compared_value(o));
+  }
+  s.residual_count = 0;
+  for (std::size_t g = 0; g < s.groups.size(); ++g) {
+    Setup::RowGroup& group = s.groups[g];
+    const std::vector<double>& values = members[g];
+    group.count = static_cast<double>(values.size());
+    double sum = 0.0;
+    for (const double v : values) sum += v;
+    group.observed = values.size() == 1 ? values.front() : sum / group.count;
+    double squares = 0.0;
+    for (const double v : values) squares += (v - group.observed) * (v - group.observed);
+    group.scatter = std::sqrt(squares);
+    s.residual_count += group.scatter > 0.0 ? 2 : 1;
   }
 }
 
@@ -57,7 +86,7 @@ bool waves_at(const Setup& s, const std::vector<double>& values, bool derivative
 class ObservationResiduals final : public ceres::CostFunction {
  public:
   explicit ObservationResiduals(const Setup& s) : setup_(&s) {
-    set_num_residuals(static_cast<int>(s.observations.size()));
+    set_num_residuals(static_cast<int>(s.residual_count));
     for (int i = 0; i < s.parameters.size(); ++i) mutable_parameter_block_sizes()->push_back(1);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
@@ -132,7 +161,7 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
     s.sigmas.push_back(sigma);
     s.defaulted.push_back(missing);
   }
-  index_frequencies(s);
+  index_rows(s);
   return s;
 }
 
@@ -146,7 +175,7 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
     subset.sigmas.push_back(s.sigmas[i]);
     subset.defaulted.push_back(s.defaulted[i]);
   }
-  index_frequencies(subset);
+  index_rows(subset);
   return subset;
 }
 
@@ -155,14 +184,36 @@ bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::
   std::vector<sediment::Wave> waves;
   if (!waves_at(s, values, jacobian != nullptr, waves, why)) return false;
   const auto n = static_cast<Eigen::Index>(values.size());
-  if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
+  if (jacobian) jacobian->setZero(static_cast<Eigen::Index>(s.residual_count), n);
   Eigen::VectorXd row(n);
-  for (std::size_t r = 0; r < s.observations.size(); ++r) {
-    const sediment::Wave& w = waves[s.frequency_of[r]];
-    if (!whitened_residual(s.observations[r], s.sigmas[r], w, values, residuals[r], jacobian ? row.data() : nullptr)) {
+  Eigen::Index k = 0;
+  for (const Setup::RowGroup& g : s.groups) {
+    double total = 0.0;
+    if (!whitened_residual(g.quantity, g.observed, g.data_sigma, waves[g.frequency], values, residuals[k],
+                           jacobian ? row.data() : nullptr, &total)) {
       return false;
     }
-    if (jacobian) jacobian->row(static_cast<Eigen::Index>(r)) = row;
+    const double weight = g.count == 1.0 ? 1.0 : std::sqrt(g.count);
+    residuals[k] *= weight;
+    if (jacobian) jacobian->row(k) = weight * row;
+    ++k;
+    if (g.scatter > 0.0) {
+      // The rows' scatter about their mean: what no parameter can change (the model's own sigma, which
+      // may, is not differentiated, as in every residual).
+      residuals[k++] = g.scatter / total;
+    }
+  }
+  return true;
+}
+
+bool row_residuals_at(const Setup& s, const Theta& theta, double* residuals, std::string* why) {
+  const std::vector<double> values = values_of(theta);
+  std::vector<sediment::Wave> waves;
+  if (!waves_at(s, values, false, waves, why)) return false;
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    if (!whitened_residual(s.observations[r], s.sigmas[r], waves[s.frequency_of[r]], values, residuals[r], nullptr)) {
+      return false;
+    }
   }
   return true;
 }
@@ -177,7 +228,7 @@ std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
 }
 
 double chi2_at(const Setup& s, const Theta& theta) {
-  std::vector<double> r(s.observations.size());
+  std::vector<double> r(s.residual_count);
   if (!residuals_at(s, theta, r.data(), nullptr)) return std::numeric_limits<double>::infinity();
   double chi2 = 0.0;
   for (double x : r) chi2 += x * x;
@@ -221,7 +272,7 @@ LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held, 
 }
 
 Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
-  std::vector<double> r(s.observations.size());
+  std::vector<double> r(s.residual_count);
   Eigen::MatrixXd all;
   std::string why = "a residual is not defined at the solution (a non-positive model attenuation)";
   if (!residuals_at(s, theta, r.data(), &all, &why)) throw std::runtime_error(why);

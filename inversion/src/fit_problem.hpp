@@ -31,6 +31,22 @@ struct Setup {
   std::vector<bool> defaulted;
   std::vector<double> frequencies;        ///< distinct frequencies [Hz]: the model runs once per frequency
   std::vector<std::size_t> frequency_of;  ///< row -> index into frequencies
+  /// Rows of one quantity at one frequency with one sigma, as the fit compares them (residuals.hpp:
+  /// compared_value, compared_sigma). Their whitening does not depend on the observed values, so
+  /// their squared residuals sum exactly to n (model - mean)^2 / sigma^2 + scatter^2 / sigma^2: one
+  /// residual for the mean and one for the scatter stand for all n rows, with the same chi^2,
+  /// gradient and J^T J, and a fit costs what its distinct rows cost, not its rows. A group of one
+  /// row has no scatter residual, and its residual is that row's to the last bit.
+  struct RowGroup {
+    Quantity quantity = Quantity::Attenuation;
+    std::size_t frequency = 0;  ///< index into frequencies
+    double observed = 0.0;      ///< mean of the rows' compared values
+    double data_sigma = 0.0;    ///< their common compared sigma
+    double count = 0.0;
+    double scatter = 0.0;       ///< sqrt of the sum of squared deviations from the mean (0 for one row)
+  };
+  std::vector<RowGroup> groups;  ///< in the order of their first rows
+  std::size_t residual_count = 0;  ///< the whitened residuals of the groups: one each, plus one per scatter
   const sediment::SedimentModel* model = nullptr;
   FitParameters parameters;
   std::vector<int> free;
@@ -44,11 +60,15 @@ struct Setup {
 /// The rows 0, stride, 2 stride, ... of s (frequencies re-indexed).
 [[nodiscard]] Setup every_kth_row(const Setup& s, std::size_t stride);
 
-/// Whitened residuals at theta, and (if `jacobian`) d residual / d theta for every parameter
-/// (rows x parameters). False where the model cannot be evaluated (std::domain_error) or a residual
-/// is not defined; `why` (if given) then receives the model's reason.
+/// The groups' whitened residuals at theta (residual_count of them, Setup::RowGroup), and (if
+/// `jacobian`) d residual / d theta for every parameter (residuals x parameters). False where the
+/// model cannot be evaluated (std::domain_error) or a residual is not defined; `why` (if given) then
+/// receives the model's reason.
 [[nodiscard]] bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian,
                                 std::string* why = nullptr);
+
+/// Every row's own whitened residual at theta (observations.size() of them), for the report.
+[[nodiscard]] bool row_residuals_at(const Setup& s, const Theta& theta, double* residuals, std::string* why = nullptr);
 
 /// The model's wave at every row's frequency (SI).
 [[nodiscard]] std::vector<double> predictions_at(const Setup& s, const Theta& theta);
@@ -104,7 +124,7 @@ inline constexpr double kRankTolerance = 1e-8;
 void build_problem(const Setup& s, Theta& theta, ceres::Problem& problem, int held = -1,
                    const Constraint* constraint = nullptr);
 
-/// Whitened Jacobian d residual / d theta_free. Throws std::runtime_error if the model cannot be
+/// Whitened Jacobian d residual / d theta_free, one row per residual of residuals_at. Throws std::runtime_error if the model cannot be
 /// evaluated there or its derivatives are not finite.
 [[nodiscard]] Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta);
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -123,11 +124,38 @@ PosteriorQuantity summarize(const std::string& name, const std::string& unit, co
           false, 0.0};
 }
 
-/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow
-/// (prior_control.hpp).
-void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& control, const Eigen::VectorXd& ln_values) {
-  q.prior_share = control.prior_share(ln_values);
+/// A 68 % profile-likelihood interval (FitResult): a missing end is open.
+struct ProfileInterval {
+  std::optional<double> lower, upper;
+};
+
+/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow,
+/// or whose marginal spans most of its prior's, or whose credible interval the prior narrowed from
+/// what the data alone allow (prior_control.hpp): `ln_values` its posterior draws in ln, `own` and
+/// `prior_own` its posterior draws and its prior's in the prior's own coordinate, `profile` (where
+/// the fit computed likelihood profiles) its profile interval.
+void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& control, const Eigen::VectorXd& ln_values,
+                        const Eigen::VectorXd& own, const Eigen::VectorXd& prior_own,
+                        const std::optional<ProfileInterval>& profile) {
+  q.prior_share = std::max(control.prior_share(ln_values), detail::prior_width_share(own, prior_own));
+  if (profile) {
+    q.prior_share = std::max(q.prior_share, detail::prior_share_against_profile(q.lower_68, q.upper_68,
+                                                                                profile->lower, profile->upper));
+  }
   q.prior_dominated = q.prior_share > detail::kPriorControlledShare;
+}
+
+/// The fit's profile interval of a parameter or combination named `name`; nothing where the fit
+/// computed no profiles.
+std::optional<ProfileInterval> profile_of(const FitResult& best, const FitOptions& options, const std::string& name) {
+  if (!options.profile_likelihood) return std::nullopt;
+  for (const ParameterResult& p : best.parameters) {
+    if (p.name == name) return ProfileInterval{p.profile_lower, p.profile_upper};
+  }
+  for (const CombinationResult& c : best.combinations) {
+    if (c.name == name) return ProfileInterval{c.profile_lower, c.profile_upper};
+  }
+  return std::nullopt;
 }
 
 /// The free ln-parameters of x placed into theta.
@@ -152,6 +180,47 @@ Eigen::VectorXd draw_free_from_priors(const Setup& s, const std::vector<Prior>& 
     x(j) = priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])].draw_theta(random);
   }
   return x;
+}
+
+/// A value in its prior's own coordinate: ln for a log-uniform or log-normal prior, else the value.
+double in_prior_coordinate(const Prior& prior, double ln_value) {
+  return prior.kind == PriorKind::LogUniform || prior.kind == PriorKind::LogNormal ? ln_value : std::exp(ln_value);
+}
+
+/// Draws from the priors alone, for the width each quantity has without the data.
+constexpr int kPriorWidthDraws = 4000;
+constexpr std::uint64_t kPriorWidthStream = 0x9E3779B97F4A7C15ULL;
+
+/// The priors' draws of every free parameter (in its prior's own coordinate) and of every
+/// combination (ln; draws where one is not a positive number are left out of its column).
+struct PriorQuantities {
+  Eigen::MatrixXd parameters;
+  std::vector<Eigen::VectorXd> combinations;
+};
+
+PriorQuantities prior_quantities(const Setup& s, const std::vector<Prior>& priors, const Theta& theta,
+                                 std::size_t combinations, unsigned seed) {
+  sampling::RandomStream random(seed ^ kPriorWidthStream);
+  const auto k = static_cast<Eigen::Index>(s.free.size());
+  PriorQuantities out{Eigen::MatrixXd(kPriorWidthDraws, k), {}};
+  std::vector<std::vector<double>> columns(combinations);
+  for (Eigen::Index r = 0; r < kPriorWidthDraws; ++r) {
+    const Eigen::VectorXd x = draw_free_from_priors(s, priors, random);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      out.parameters(r, j) = in_prior_coordinate(priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])], x(j));
+    }
+    if (combinations == 0) continue;
+    try {
+      const std::vector<double> derived = detail::derived_at(s, with_free(s, theta, x));
+      for (std::size_t c = 0; c < combinations; ++c) columns[c].push_back(std::log(derived[c]));
+    } catch (const std::exception&) {
+      // not a positive number at this corner of the priors: the draw is left out
+    }
+  }
+  for (const std::vector<double>& column : columns) {
+    out.combinations.push_back(Eigen::Map<const Eigen::VectorXd>(column.data(), static_cast<Eigen::Index>(column.size())));
+  }
+  return out;
 }
 
 /// What sample_posterior ran, as its outputs name it.
@@ -652,6 +721,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const Eigen::MatrixXd jacobian =
       detail::whitened_jacobian(s, with_free(s, theta, pooled.row(detail::central_draw(pooled)).transpose()));
   const detail::PriorControl control(pooled, jacobian.transpose() * jacobian);
+  const PriorQuantities prior_alone = prior_quantities(s, priors, theta, combinations.size(), options.seed);
   for (Eigen::Index j = 0; j < k; ++j) {
     const int i = s.free[static_cast<std::size_t>(j)];
     const ParameterSpec& spec = s.parameters.spec[i];
@@ -660,7 +730,9 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     result.sample_units.push_back(spec.unit);
     result.priors.push_back(spec.name + ": " + prior.describe(spec.unit));
     PosteriorQuantity q = summarize(spec.name, spec.unit, result.samples.col(j), diagnostics.rhat(j), diagnostics.ess(j));
-    flag_prior_control(q, control, pooled.col(j));
+    const Eigen::VectorXd own = pooled.col(j).unaryExpr([&](double x) { return in_prior_coordinate(prior, x); });
+    flag_prior_control(q, control, pooled.col(j), own, prior_alone.parameters.col(j),
+                       profile_of(best, fit_options, spec.name));
     result.parameters.push_back(q);
   }
 
@@ -671,7 +743,9 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
       const auto col = static_cast<Eigen::Index>(c);
       result.combinations.push_back(summarize(combinations[c].name, combinations[c].unit, all.col(col),
                                               diagnostics.rhat(k + col), diagnostics.ess(k + col)));
-      flag_prior_control(result.combinations.back(), control, all.col(col).array().log().matrix());
+      const Eigen::VectorXd ln_values = all.col(col).array().log().matrix();
+      flag_prior_control(result.combinations.back(), control, ln_values, ln_values, prior_alone.combinations[c],
+                         profile_of(best, fit_options, combinations[c].name));
     }
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -1,5 +1,6 @@
 #include "sedwave/inversion/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -118,14 +119,20 @@ std::vector<double> curve_frequencies(const ObservationSet& data, int count) {
 void write_curves_csv(const std::filesystem::path& file, const std::vector<CurvePoint>& curves,
                       std::optional<double> water_sound_speed) {
   io::write_text_atomically(file, [&](std::ostream& out) {
+  // The dimensionless columns only for a model with a dry grain-contact frame: for any other they
+  // would be NaN throughout.
+  const bool dimensionless =
+      std::any_of(curves.begin(), curves.end(), [](const CurvePoint& c) { return !std::isnan(c.omega_hat); });
   out << "# sedwave model curves; sigma columns are 1-sigma bands from the fit covariance\n";
-  out << "frequency_hz,omega_hat,gamma_hat,alpha_hat,c_hat,alpha_np_per_m,alpha_np_per_m_sigma,"
-         "alpha_db_per_m,alpha_db_per_m_sigma,sound_speed_m_per_s,sound_speed_m_per_s_sigma";
+  out << "frequency_hz," << (dimensionless ? "omega_hat,gamma_hat,alpha_hat,c_hat," : "")
+      << "alpha_np_per_m,alpha_np_per_m_sigma,alpha_db_per_m,alpha_db_per_m_sigma,sound_speed_m_per_s,"
+         "sound_speed_m_per_s_sigma";
   if (water_sound_speed) out << ",sound_speed_ratio,sound_speed_ratio_sigma";
   out << "\n";
   for (const CurvePoint& c : curves) {
-    out << c.frequency_hz << ',' << c.omega_hat << ',' << c.gamma_hat << ',' << c.alpha_hat << ',' << c.c_hat << ','
-        << c.alpha << ',' << c.alpha_sigma << ',' << c.alpha * kDecibelPerNeper << ','
+    out << c.frequency_hz << ',';
+    if (dimensionless) out << c.omega_hat << ',' << c.gamma_hat << ',' << c.alpha_hat << ',' << c.c_hat << ',';
+    out << c.alpha << ',' << c.alpha_sigma << ',' << c.alpha * kDecibelPerNeper << ','
         << c.alpha_sigma * kDecibelPerNeper << ',' << c.speed << ',' << c.speed_sigma;
     if (water_sound_speed) out << ',' << c.speed / *water_sound_speed << ',' << c.speed_sigma / *water_sound_speed;
     out << "\n";

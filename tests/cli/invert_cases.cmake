@@ -71,3 +71,9 @@ set_tests_properties(cli.theory.stdout_full_disk PROPERTIES WILL_FAIL TRUE)
 # kill -9 at any moment of `invert` leaves the previous outputs whole (each is renamed into place).
 add_test(NAME cli.invert.kill_9_keeps_previous_outputs
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/kill_during_invert.sh $<TARGET_FILE:sedwave> ${OBS} ${CLI_OUT}/kill9)
+
+# One measurement repeated: the posterior flags every quantity the data cannot place, however its
+# ridge curves through the priors' box.
+add_test(NAME cli.invert.prior_flag_one_frequency
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/prior_flag_one_frequency.sh $<TARGET_FILE:sedwave>
+          ${CMAKE_CURRENT_SOURCE_DIR}/data/invert/one_attenuation_ten_times.csv)

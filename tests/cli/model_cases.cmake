@@ -9,6 +9,9 @@ sedwave_cli_case(models.lists_the_saturated_frame 0 "^saturated-lattice: granula
 sedwave_cli_case(models.lists_vgs_parameters 0 "^  tau_p +s +0.00012 +\\[1e-09, 1e\\+03\\]" models)
 sedwave_cli_case(models.lists_derived_quantities 0 "^  biot_frequency +Hz +\\[0.1, 2e\\+11\\] +Biot.s characteristic frequency" models biot-stoll)
 sedwave_cli_case(models.one_model 0 "^  permeability +m\\^2 +4e-11 +\\[1e-20, 1e-05\\]" models edfm)
+# An empty name given (an unset shell variable) is refused as `compare --models ''` is, not read as "all".
+add_test(NAME cli.models.empty_name COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "models '': an empty model name"
+  -- sh -c "exec \"$0\" models ''" $<TARGET_FILE:sedwave>)
 sedwave_cli_case(models.unknown 1 "unknown model 'bort'.*accepted: continuum, lattice.*vgs-lambda" models bort)
 sedwave_cli_case(invert.model_typical_fit 0 "^  porosity +\\[1 +\\] 0\\.44[0-9]* \\+- " invert ${OBS} --model biot-stoll ${FAST})
 sedwave_cli_case(invert.model_unknown_parameter 1 "--fit 'kappa': unknown parameter 'kappa'.*accepted: porosity"

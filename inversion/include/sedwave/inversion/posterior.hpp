@@ -63,9 +63,12 @@ struct PosteriorQuantity {
   double split_rhat = 0.0;
   double effective_samples = 0.0;
   /// The prior, not the data, made this interval: the prior supplies more than half of the
-  /// posterior precision behind the quantity's spread (prior_share > 0.5), judged over the whole
-  /// posterior against the data's information at its central draw, so that a ridge through several
-  /// parameters (e.g. kappa d gamma unseen), which no single marginal shows, is flagged too.
+  /// posterior precision behind the quantity's spread (prior_share > 0.5). Judged two ways, the
+  /// larger share counting: over the whole posterior against the data's information at its central
+  /// draw, so that a ridge through several parameters (e.g. kappa d gamma unseen), which no single
+  /// marginal shows, is flagged; and by the marginal's width against the prior's, (w_posterior /
+  /// w_prior)^2 of the central 95 % intervals in the prior's own coordinate, so that a curved ridge,
+  /// which the information at one draw misses, is flagged too.
   bool prior_dominated = false;
   double prior_share = 0.0;  ///< the prior's share, 0 (the data alone) .. 1 (the prior alone)
 };

@@ -19,31 +19,44 @@ namespace sedwave::inversion {
   return o.quantity == Quantity::Attenuation ? w.attenuation : w.speed;
 }
 
-/// The whitened residual of observation `o` (1-sigma `sigma` in SI) against the wave `w` the model
-/// predicts at its frequency for parameter `values`; with `d_theta` non-null (and `w` holding
-/// derivatives) also d residual / d ln value_i into d_theta[0 .. values.size()). False where the
-/// residual is not defined (a non-positive attenuation).
-[[nodiscard]] inline bool whitened_residual(const Observation& o, double sigma, const sediment::Wave& w,
-                                            std::span<const double> values, double& residual, double* d_theta) {
-  if (o.quantity == Quantity::Attenuation) {
-    if (!(w.attenuation > 0.0)) return false;
-    const double relative_model = w.sigma_attenuation / w.attenuation;
-    const double relative_data = sigma / o.value;
-    const double sigma_log = std::sqrt(relative_data * relative_data + relative_model * relative_model);
-    residual = (std::log(w.attenuation) - std::log(o.value)) / sigma_log;
-    if (d_theta) {
-      for (std::size_t i = 0; i < values.size(); ++i) {
-        d_theta[i] = w.d_attenuation[i] * values[i] / (w.attenuation * sigma_log);
-      }
-    }
-  } else {
-    const double total = std::sqrt(sigma * sigma + w.sigma_speed * w.sigma_speed);
-    residual = (w.speed - o.value) / total;
-    if (d_theta) {
-      for (std::size_t i = 0; i < values.size(); ++i) d_theta[i] = w.d_speed[i] * values[i] / total;
+/// An observation's value where residuals compare it: ln for attenuation, the value for speed.
+[[nodiscard]] inline double compared_value(const Observation& o) {
+  return o.quantity == Quantity::Attenuation ? std::log(o.value) : o.value;
+}
+
+/// The data's 1-sigma where residuals compare it: relative for attenuation (sigma / value), in m/s
+/// for speed.
+[[nodiscard]] inline double compared_sigma(const Observation& o, double sigma) {
+  return o.quantity == Quantity::Attenuation ? sigma / o.value : sigma;
+}
+
+/// The whitened residual of a quantity observed as `observed` with 1-sigma `data_sigma` (both where
+/// residuals compare them: compared_value, compared_sigma) against the wave `w` the model predicts at
+/// its frequency for parameter `values`; with `d_theta` non-null (and `w` holding derivatives) also
+/// d residual / d ln value_i into d_theta[0 .. values.size()). `sigma_total` (if given) receives the
+/// residual's whole 1-sigma, the model's own added. False where the residual is not defined (a
+/// non-positive attenuation).
+[[nodiscard]] inline bool whitened_residual(Quantity quantity, double observed, double data_sigma,
+                                            const sediment::Wave& w, std::span<const double> values,
+                                            double& residual, double* d_theta, double* sigma_total = nullptr) {
+  const bool attenuation = quantity == Quantity::Attenuation;
+  if (attenuation && !(w.attenuation > 0.0)) return false;
+  const double model_sigma = attenuation ? w.sigma_attenuation / w.attenuation : w.sigma_speed;
+  const double total = std::sqrt(data_sigma * data_sigma + model_sigma * model_sigma);
+  residual = ((attenuation ? std::log(w.attenuation) : w.speed) - observed) / total;
+  if (d_theta) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      d_theta[i] = attenuation ? w.d_attenuation[i] * values[i] / (w.attenuation * total) : w.d_speed[i] * values[i] / total;
     }
   }
+  if (sigma_total) *sigma_total = total;
   return std::isfinite(residual);
+}
+
+/// The same for observation `o` with 1-sigma `sigma` in SI.
+[[nodiscard]] inline bool whitened_residual(const Observation& o, double sigma, const sediment::Wave& w,
+                                            std::span<const double> values, double& residual, double* d_theta) {
+  return whitened_residual(o.quantity, compared_value(o), compared_sigma(o, sigma), w, values, residual, d_theta);
 }
 
 }  // namespace sedwave::inversion
