@@ -100,6 +100,7 @@ if [ "$SANITIZE" = 1 ]; then
 fi
 release_status=0
 sedwave_build Release -DSEDWAVE_WERROR=ON "-DSEDWAVE_SANITIZED_ONLY_TESTS=$SANITIZED_ONLY" || release_status=$?
+[ "$release_status" = 0 ] && { sedwave_install_python || release_status=$?; }
 ctest_status=0
 if [ "$release_status" = 0 ]; then
   (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "${CTEST_SKIP[@]}" "$@") | tee "$BUILD_DIR/ctest.log" ||

@@ -1,0 +1,83 @@
+"""Studies from Python equal the command's for the same inputs: fit, posterior, compare and
+synthesize run the same library calls, so their reports are identical but for wall-clock times."""
+import numpy as np
+import pytest
+
+import sedwave
+from conftest import FIELD, SITE, load, run_sedwave, without_timings
+
+
+def test_fit_equals_invert(sedwave_command, field_data, tmp_path):
+    run_sedwave(sedwave_command, "invert", FIELD, "--model", "biot-stoll", "--no-plot", "--out", tmp_path)
+    with pytest.warns(sedwave.NotDeterminedWarning):
+        result = sedwave.fit(field_data, model="biot-stoll")
+    cli = load(tmp_path / "fit.json")
+    assert without_timings(load_text(result.to_json())) == without_timings(cli)
+    assert result.chi2 == cli["chi2"]
+    assert "delta_b" in result.not_determined
+
+
+def test_fit_with_settings_equals_invert_with_options(sedwave_command, field_data, tmp_path):
+    run_sedwave(sedwave_command, "invert", FIELD, "--model", "edfm", "--fit", "porosity,permeability", "--set",
+                "rho_s=2600", "--bounds", "permeability=1e-12,1e-9", "--method", "ceres", "--no-profile", "--no-plot",
+                "--out", tmp_path)
+    result = sedwave.fit(field_data, model="edfm", free=["porosity", "permeability"], values={"rho_s": 2600.0},
+                         bounds={"permeability": (1e-12, 1e-9)}, method="ceres", profile=False)
+    assert without_timings(load_text(result.to_json())) == without_timings(load(tmp_path / "fit.json"))
+    i = sedwave.Model("edfm").parameter_names.index("rho_s")
+    assert result.values[i] == 2600.0
+
+
+def test_posterior_equals_invert_posterior(sedwave_command, field_data, tmp_path):
+    run_sedwave(sedwave_command, "invert", FIELD, "--model", "biot-stoll", "--method", "posterior", "--site", SITE,
+                "--steps", "300", "--temperatures", "0", "--no-plot", "--out", tmp_path)
+    with pytest.warns(sedwave.SedwaveWarning):
+        result = sedwave.posterior(field_data, model="biot-stoll", site=SITE, steps=300, temperatures=0)
+    assert without_timings(load_text(result.to_json())) == without_timings(load(tmp_path / "fit.json"))
+    # The CSV holds 9 significant digits.
+    cli_samples = np.loadtxt(tmp_path / "posterior_samples.csv", delimiter=",", skiprows=2)
+    assert result.sample_names == result.free and result.samples.shape == cli_samples.shape
+    np.testing.assert_allclose(result.samples, cli_samples, rtol=1e-8)
+    band = result.band
+    assert band["alpha"].shape == (len(band["frequency_hz"]), 5)
+    assert np.all(np.diff(band["alpha"], axis=1) >= 0)  # quantiles in order
+
+
+def test_compare_equals_compare(sedwave_command, field_data, tmp_path):
+    settings = ["--temperatures", "4", "--steps", "300", "--threads", "1"]
+    run_sedwave(sedwave_command, "compare", FIELD, "--models", "biot-stoll,edfm", *settings, "--no-plot",
+                "--out", tmp_path / "cli")
+    with pytest.warns(sedwave.NotConvergedWarning):
+        ranking = sedwave.compare(field_data, ["biot-stoll", "edfm"], temperatures=4, steps=300, threads=2,
+                                  out=tmp_path / "py")
+    assert without_timings(load_text(ranking.to_json())) == without_timings(load(tmp_path / "cli" / "compare.json"))
+    assert (tmp_path / "py" / "compare.json").read_text() == ranking.to_json()
+    assert ranking.best == "biot-stoll"
+    assert ranking.samples("edfm").shape[1] == len(ranking.sample_names("edfm"))
+
+
+def test_synthesize_equals_synthesize(sedwave_command, tmp_path):
+    path = tmp_path / "syn.csv"
+    run_sedwave(sedwave_command, "synthesize", "--model", "lattice", "--kappa", "2e7", "--d", "3e-4", "--gamma",
+                "0.02", "--from", "100", "--to", "1e5", "--points", "7", "--seed", "5", "--out", path)
+    data = sedwave.synthesize("lattice", {"kappa": 2e7, "d": 3e-4, "gamma": 0.02}, 100.0, 1e5, points=7, seed=5)
+    cli = sedwave.read_observations(path)
+    np.testing.assert_array_equal(data.frequency_hz, cli.frequency_hz)
+    np.testing.assert_array_equal(data.value, cli.value)
+    np.testing.assert_array_equal(data.sigma, cli.sigma)
+
+
+def test_setup_errors_name_the_argument(field_data):
+    with pytest.raises(sedwave.SetupError, match="nonsense"):
+        sedwave.fit(field_data, model="biot-stoll", values={"nonsense": 1.0})
+    with pytest.raises(ValueError, match=r"porosity \(value 7"):
+        sedwave.fit(field_data, model="biot-stoll", values={"porosity": 7.0})
+    with pytest.raises(ValueError, match=r"values\['nonsense'\]: none of the models"):
+        sedwave.compare(field_data, ["biot-stoll"], values={"nonsense": 1.0})
+    with pytest.raises(ValueError, match="kappa"):
+        sedwave.synthesize("lattice", {"d": 3e-4, "gamma": 0.02}, 100.0, 1e4)
+
+
+def load_text(text):
+    import json
+    return json.loads(text)
