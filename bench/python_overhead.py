@@ -70,7 +70,8 @@ def main():
     v_own = np.ascontiguousarray(own.defaults)
     plain = statistics.median(sedwave._sedwave._cpp_loop_seconds(own, f_own, v_own)
                               for _ in range(args.repeats)) / f_own.size
-    bare = median_seconds(lambda: [constant_q(v_own, x) for x in f_own], args.repeats) / f_own.size
+    v_tuple = tuple(float(x) for x in v_own)  # as the library passes them
+    bare = median_seconds(lambda: [constant_q(v_tuple, x) for x in f_own], args.repeats) / f_own.size
     with_d = median_seconds(lambda: own.evaluate(f_own, v_own, derivatives=True), args.repeats) / f_own.size
     rows.append(("Python model, per evaluation", f"{bare * 1e6:.2f} us (the function alone)",
                  f"{plain * 1e6:.2f} us", f"+{(plain - bare) * 1e6:.2f} us"))

@@ -12,4 +12,7 @@ r() { awk -v k="$1" '$1 == k { print $2 }' "$OUT/results.txt"; }
 check "biot-stoll ranked first" "'$(r best_model)' == 'biot-stoll'"
 check "the Python model ranked last by far" "$(r ln_Z_constant-q-py) < $(r ln_Z_edfm) - 100"
 check "compare.json written" "__import__('os').path.exists('compare/compare.json')"
+if "$PYTHON" -c "import matplotlib" 2>/dev/null; then
+  check "the figure drawn" "__import__('os').path.getsize('bands.png') > 10000"
+fi
 finish

@@ -88,11 +88,14 @@ def register_model(name, parameters, wave, derivatives=None, summary="", typical
 
     parameters: a list of dicts with name, unit (SI; "1" if dimensionless), default, range
     (lower, upper), and optionally meaning, log_scale, typical. Every value must be positive.
-    wave(values, frequency_hz) -> (alpha [Np/m], c [m/s]); values a numpy array in parameter order.
+    wave(values, frequency_hz) -> (alpha [Np/m], c [m/s]); values a tuple of floats in parameter
+    order [SI], frequency_hz a float [Hz].
     derivatives(values, frequency_hz) -> (d_alpha, d_c), each one number per parameter; without it
     the fit uses central finite differences (``derivatives_of(model)`` says which).
     The functions are called under the GIL, one evaluation at a time, from whichever thread the
-    library runs on; an exception they raise stops the study and is raised by it.
+    library runs on; an exception they raise stops the study and is raised by it. A comparison
+    that includes a Python model runs its jobs one after the other (threads=1): threads taking
+    turns at the GIL for every evaluation would be several times slower.
     Returns the Model."""
     return _sedwave._register_model(name, list(parameters), wave, derivatives, summary or
                                     f"{name} (defined in Python)", typical_free or "")
@@ -349,7 +352,8 @@ def compare(data, models, free=None, values=None, site=None, priors=None, temper
     the parameter (the command's --set, --prior); a name none of the models has is refused.
     site: a site file for every model. temperatures, steps, seed, target_uncertainty: the evidence
     runs' ladder, step cap, seed and target standard error of ln Z. threads: jobs side by side
-    (0: every usable core; the ranking is the same for any count).
+    (0: every usable core; 1 where a model is defined in Python; the ranking is the same for any
+    count).
     out: a folder to write compare.json and the bands into once the ranking is done (all or none;
     an interrupted call leaves it as it was).
     Returns a Ranking."""
@@ -366,6 +370,8 @@ def compare(data, models, free=None, values=None, site=None, priors=None, temper
     for label in free:
         if label not in labels:
             raise ValueError(f"free['{label}']: '{label}' is not one of models")
+    if any(_sedwave._is_python_model(m) for m in instances):
+        threads = 1
     handle = _sedwave._compare(data, models, free, values, None if site is None else os.fspath(site), priors,
                                temperatures=temperatures, steps=steps, seed=seed,
                                target_uncertainty=target_uncertainty,

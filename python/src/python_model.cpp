@@ -70,9 +70,16 @@ class PythonModel final : public sediment::SedimentModel {
   }
 
  private:
+  /// The values as a tuple of floats: a Python function unpacks and computes with those several
+  /// times faster than with a numpy array's elements.
+  static py::tuple tuple_of(std::span<const double> values) {
+    py::tuple t(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) t[i] = py::float_(values[i]);
+    return t;
+  }
+
   std::pair<double, double> call(std::span<const double> values, double frequency_hz) const {
-    const py::array_t<double> v(static_cast<py::ssize_t>(values.size()), values.data());
-    const py::object result = callbacks_->wave(v, frequency_hz);
+    const py::object result = callbacks_->wave(tuple_of(values), frequency_hz);
     const auto pair = result.cast<std::pair<double, double>>();
     if (!std::isfinite(pair.first) || !std::isfinite(pair.second)) {
       throw std::domain_error(name_ + ": no finite wave at " + std::to_string(frequency_hz) + " Hz");
@@ -83,8 +90,7 @@ class PythonModel final : public sediment::SedimentModel {
   void supply_derivatives(std::span<const double> values, double frequency_hz, sediment::Wave& w) const {
     const std::size_t n = values.size();
     if (supplies_derivatives()) {
-      const py::array_t<double> v(static_cast<py::ssize_t>(n), values.data());
-      const auto [da, dc] = callbacks_->derivatives(v, frequency_hz).cast<std::pair<std::vector<double>, std::vector<double>>>();
+      const auto [da, dc] = callbacks_->derivatives(tuple_of(values), frequency_hz).cast<std::pair<std::vector<double>, std::vector<double>>>();
       if (da.size() != n || dc.size() != n) {
         throw std::invalid_argument(name_ + ": derivatives must return two sequences of " + std::to_string(n) + " numbers");
       }
@@ -152,6 +158,9 @@ void bind_python_model(py::module_& m) {
         },
         py::arg("name"), py::arg("parameters"), py::arg("wave"), py::arg("derivatives"), py::arg("summary"),
         py::arg("typical_free"));
+  m.def("_is_python_model", [](const ModelHolder& model) {
+    return dynamic_cast<const PythonModel*>(model.get()) != nullptr;
+  });
   m.def("derivatives_of", [](const ModelHolder& model) -> std::string {
     if (const auto* own = dynamic_cast<const PythonModel*>(model.get())) {
       return own->supplies_derivatives() ? "supplied by its Python derivatives function"
