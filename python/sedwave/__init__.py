@@ -9,6 +9,7 @@ By task (docs/python.md):
   ``register_model(name, parameters, wave, derivatives=None)``
 - data: ``read_observations(path)``, ``read_digitized(path, ...)``,
   ``Observations(quantity, frequency_hz, value, sigma)``, ``Observations.write(path)``
+- tables: ``read_table(path)`` (a dispersion table's points as arrays, read only)
 - studies: ``fit(data, model=...)``, ``posterior(data, model=...)``, ``compare(data, models=[...])``,
   ``synthesize(model, values, lowest_hz, highest_hz)``
 
@@ -34,12 +35,13 @@ from ._sedwave import (
     model_names,
     read_digitized,
     read_observations,
+    read_table,
 )
 from . import _sedwave
 
 __all__ = [
     "InputError", "Model", "Observations", "SetupError", "model_names", "model_examples", "models",
-    "read_observations", "read_digitized", "register_model", "derivatives_of", "fit", "posterior",
+    "read_observations", "read_digitized", "read_table", "register_model", "derivatives_of", "fit", "posterior",
     "compare", "synthesize", "FitResult", "Ranking", "SedwaveWarning", "NotDeterminedWarning",
     "PriorControlledWarning", "FlagWarning", "NotConvergedWarning", "NEPER_TO_DB",
 ]

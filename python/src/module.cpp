@@ -9,5 +9,6 @@ PYBIND11_MODULE(_sedwave, m) {
   sedwave::python::bind_data(m);
   sedwave::python::bind_studies(m);
   sedwave::python::bind_python_model(m);
+  sedwave::python::bind_tables(m);
   m.attr("__version__") = sedwave::kVersion;
 }
