@@ -85,9 +85,11 @@ ObservationSet from_arrays(const py::handle& quantity, const py::handle& frequen
                             ": a frequency must be positive and finite [Hz]");
     }
     const double raw = v.data()[i];
-    const std::optional<double> raw_sigma = s ? std::optional<double>(s->data()[i]) : std::nullopt;
+    // A plain double and a flag, not an optional: GCC 12 takes the optional's value for uninitialised.
+    const bool has_sigma = s.has_value();
+    const double raw_sigma = has_sigma ? s->data()[i] : 0.0;
     if (!std::isfinite(raw) || !(raw > 0.0)) throw py::value_error("value" + at + ": must be positive and finite");
-    if (raw_sigma && (!std::isfinite(*raw_sigma) || !(*raw_sigma > 0.0))) {
+    if (has_sigma && (!std::isfinite(raw_sigma) || !(raw_sigma > 0.0))) {
       throw py::value_error("sigma" + at + ": must be positive and finite (give None for no sigma)");
     }
     try {
@@ -95,12 +97,12 @@ ObservationSet from_arrays(const py::handle& quantity, const py::handle& frequen
         o.quantity = Quantity::Attenuation;
         o.unit = units.empty() ? "Np/m" : units[i];
         o.value = inversion::attenuation_to_np_per_m(raw, o.unit, o.frequency_hz, sediment_speed);
-        if (raw_sigma) o.sigma = inversion::attenuation_to_np_per_m(*raw_sigma, o.unit, o.frequency_hz, sediment_speed);
+        if (has_sigma) o.sigma = inversion::attenuation_to_np_per_m(raw_sigma, o.unit, o.frequency_hz, sediment_speed);
       } else if (q == "sound_speed" || q == "sound_speed_ratio") {
         o.quantity = Quantity::SoundSpeed;
         o.unit = units.empty() ? (q == "sound_speed" ? "m/s" : "ratio") : units[i];
         o.value = inversion::sound_speed_to_m_per_s(raw, o.unit, water_speed);
-        if (raw_sigma) o.sigma = inversion::sound_speed_to_m_per_s(*raw_sigma, o.unit, water_speed);
+        if (has_sigma) o.sigma = inversion::sound_speed_to_m_per_s(raw_sigma, o.unit, water_speed);
       } else {
         throw std::invalid_argument("'" + q + "': expected attenuation, sound_speed or sound_speed_ratio");
       }
