@@ -1,5 +1,7 @@
 """Studies from Python equal the command's for the same inputs: fit, posterior, compare and
 synthesize run the same library calls, so their reports are identical but for wall-clock times."""
+import warnings
+
 import numpy as np
 import pytest
 
@@ -81,3 +83,27 @@ def test_setup_errors_name_the_argument(field_data):
 def load_text(text):
     import json
     return json.loads(text)
+
+
+def test_flags_arrive_as_warnings_and_fields(field_data, recwarn):
+    result = sedwave.fit(field_data, model="lattice", profile=False)
+    messages = [f["message"] for f in result.report["flags"]]
+    assert messages and result.flags == messages
+    warned = [str(w.message) for w in recwarn if w.category is sedwave.FlagWarning]
+    assert warned == [f"lattice: {m}" for m in messages]
+    determined = {n: p["identifiable"] for n, p in result.parameters.items() if p["free"]}
+    warned = [str(w.message).split()[1] for w in recwarn if w.category is sedwave.NotDeterminedWarning]
+    assert warned == [n for n, ok in determined.items() if not ok] == result.not_determined
+
+
+def test_prior_controlled_intervals_are_warned(field_data, recwarn):
+    result = sedwave.posterior(field_data, model="biot-stoll", site=SITE, steps=300, temperatures=0)
+    flagged = [n for n, q in result.posterior["parameters"].items() if q["prior_dominated"]]
+    assert flagged and result.prior_controlled == flagged
+    warned = [w for w in recwarn if w.category is sedwave.PriorControlledWarning]
+    assert len(warned) == len(flagged) and all("PRIOR-CONTROLLED" in str(w.message) for w in warned)
+    # As errors where the caller wants them so.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", sedwave.SedwaveWarning)
+        with pytest.raises(sedwave.SedwaveWarning):
+            sedwave.posterior(field_data, model="biot-stoll", site=SITE, steps=300, temperatures=0)
