@@ -17,6 +17,15 @@ def test_fit_equals_invert(sedwave_command, field_data, tmp_path):
     assert without_timings(load_text(result.to_json())) == without_timings(cli)
     assert result.chi2 == cli["chi2"]
     assert "delta_b" in result.not_determined
+    # Its files are the command's: the curves and the observations beside the fit, byte for byte.
+    result.write(tmp_path / "py")
+    for name in ("curves.csv", "observations.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / name).read_bytes(), name
+    curves = result.curves()
+    shown = np.genfromtxt(tmp_path / "curves.csv", delimiter=",", names=True, skip_header=1)
+    np.testing.assert_array_equal(curves["frequency_hz"], shown["frequency_hz"])
+    np.testing.assert_array_equal(curves["alpha"], shown["alpha_np_per_m"])
+    np.testing.assert_array_equal(curves["c"], shown["sound_speed_m_per_s"])
 
 
 def test_fit_with_settings_equals_invert_with_options(sedwave_command, field_data, tmp_path):
