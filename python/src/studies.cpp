@@ -98,6 +98,27 @@ inversion::ModelSetup setup_of(const py::handle& model, const py::handle& free, 
   return setup;
 }
 
+/// The library names the free list and the priors by the command's options (--fit, --prior); a
+/// Python caller gave them as the arguments free= and priors=.
+std::string in_python_words(const std::string& message) {
+  for (const auto& [option, argument] : {std::pair{"--fit ", "free="}, std::pair{"--prior ", "priors: "}}) {
+    if (message.starts_with(option)) return argument + message.substr(std::string(option).size());
+  }
+  return message;
+}
+
+/// inversion::make_candidate, its messages in the Python arguments' words.
+inversion::Candidate candidate_of(const inversion::ModelSetup& setup,
+                                  inversion::SetupUse use = inversion::SetupUse::Fit) {
+  try {
+    return inversion::make_candidate(setup, use);
+  } catch (const inversion::SetupError& e) {
+    throw inversion::SetupError(in_python_words(e.what()));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(in_python_words(e.what()));
+  }
+}
+
 inversion::FitOptions fit_options_of(const std::string& method, bool profile, double default_sigma,
                                      const std::string& global_algorithm, int max_evaluations,
                                      double determined_log_sigma) {
@@ -211,7 +232,7 @@ FitHandle run_fit(const ObservationSet& data, const py::handle& model, const py:
                   std::optional<inversion::PosteriorOptions> posterior) {
   if (data.observations.empty()) throw py::value_error("data: no observations");
   // Made before the handle: GCC 12 destroys the wrong members when an aggregate's initializer throws.
-  inversion::Candidate candidate = inversion::make_candidate(setup_of(model, free, values, bounds, site, priors, false));
+  inversion::Candidate candidate = candidate_of(setup_of(model, free, values, bounds, site, priors, false));
   FitHandle h{{}, data, std::move(candidate), {}};
   StudyGuard guard;
   options.progress = progress_function(progress, guard);
@@ -342,7 +363,7 @@ void bind_studies(py::module_& m) {
                                                                       : model_of(model)->name();
             const py::object own_free = free.contains(label) ? py::object(free[py::str(label)]) : py::none();
             candidates.push_back(
-                inversion::make_candidate(setup_of(model, own_free, values, py::none(), site, priors, true)));
+                candidate_of(setup_of(model, own_free, values, py::none(), site, priors, true)));
           }
           StudyGuard guard;
           for (inversion::Candidate& c : candidates) c.model = guarded(c.model, guard);
@@ -364,7 +385,7 @@ void bind_studies(py::module_& m) {
   m.def("_synthesize",
         [](const py::object& model, const py::object& values, const py::object& site, double lowest_hz,
            double highest_hz, int points, double alpha_noise, double speed_noise, unsigned seed) {
-          const inversion::Candidate candidate = inversion::make_candidate(
+          const inversion::Candidate candidate = candidate_of(
               setup_of(model, py::none(), values, py::none(), site, py::none(), false), inversion::SetupUse::Truth);
           const std::vector<std::string> missing = inversion::values_not_given(candidate);
           if (!missing.empty()) {

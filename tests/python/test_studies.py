@@ -83,6 +83,10 @@ def test_setup_errors_name_the_argument(field_data):
         sedwave.fit(field_data, model="biot-stoll", values={"nonsense": 1.0})
     with pytest.raises(ValueError, match=r"porosity \(value 7"):
         sedwave.fit(field_data, model="biot-stoll", values={"porosity": 7.0})
+    with pytest.raises(ValueError, match=r"^free='porosity,porosity' names 'porosity' twice"):
+        sedwave.fit(field_data, model="biot-stoll", free="porosity,porosity")
+    with pytest.raises(ValueError, match=r"^priors: porosity=weird:1,2: unknown kind 'weird'"):
+        sedwave.posterior(field_data, model="biot-stoll", priors={"porosity": "weird:1,2"})
     with pytest.raises(ValueError, match=r"values\['nonsense'\]: none of the models"):
         sedwave.compare(field_data, ["biot-stoll"], values={"nonsense": 1.0})
     with pytest.raises(ValueError, match="kappa"):
