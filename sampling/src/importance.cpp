@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sedwave::sampling {
 namespace {
@@ -106,8 +107,7 @@ void append(Batch& all, const Batch& more) {
 }
 
 /// One prior's estimate from a batch, weighted by L pi / q.
-ImportanceEstimate estimate(const Batch& b, std::size_t prior, const Eigen::VectorXd& centre,
-                            const Eigen::MatrixXd& covariance) {
+ImportanceEstimate estimate(const Batch& b, std::size_t prior) {
   const auto n = static_cast<Eigen::Index>(b.x.size());
   Eigen::VectorXd log_w(n);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -136,17 +136,25 @@ ImportanceEstimate estimate(const Batch& b, std::size_t prior, const Eigen::Vect
   e.effective_draws = w.sum() * w.sum() / w.square().sum();
   const Eigen::ArrayXd p = w / w.sum();
   e.log_weights = smoothed.log_weights.array() - peak - std::log(w.sum());
-  const auto dim = centre.size();
+  const auto dim = static_cast<Eigen::Index>(b.x.front().size());
   e.mean = Eigen::VectorXd::Zero(dim);
   for (Eigen::Index i = 0; i < n; ++i) e.mean += p(i) * b.x[static_cast<std::size_t>(i)];
   e.covariance = Eigen::MatrixXd::Zero(dim, dim);
-  const Eigen::LLT<Eigen::MatrixXd> metric(covariance);
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::VectorXd d = b.x[static_cast<std::size_t>(i)] - e.mean;
     e.covariance += p(i) * d * d.transpose();
-    const double far = metric.matrixL().solve(b.x[static_cast<std::size_t>(i)] - centre).norm();
-    if (far > kFarDistance) e.far_mass += p(i);
   }
+  // Shape: far mass and the kurtosis along each principal axis, in the posterior's own metric.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> axes(e.covariance);
+  const Eigen::VectorXd sd = axes.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  Eigen::VectorXd fourth = Eigen::VectorXd::Zero(dim);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::VectorXd z = axes.eigenvectors().transpose() * (b.x[static_cast<std::size_t>(i)] - e.mean);
+    z = z.cwiseQuotient(sd);
+    if (z.norm() > kFarDistance) e.far_mass += p(i);
+    fourth += p(i) * z.array().pow(4).matrix();
+  }
+  e.min_axis_kurtosis = fourth.minCoeff();
   return e;
 }
 
@@ -247,24 +255,31 @@ ImportanceRun importance_evidence(const LogDensity& log_likelihood, const std::v
   RandomStream random(options.seed);
   const int nu = options.degrees_of_freedom;
   std::vector<StudentT> components{StudentT(centre, options.pilot_scale * options.pilot_scale * covariance, nu)};
-  const Batch pilot = draw_batch(components, options.pilot_draws, log_likelihood, log_priors, random, options.threads);
-  // One adapted component per prior, at its posterior's weighted moments from the pilot (skipped
-  // where the pilot saw too little of that posterior to place it: the pilot's t then serves alone).
+  const StudentT first = components.front();
+  // Two rounds: a pilot from the current mixture, then one adapted component per prior at its
+  // posterior's weighted moments from every pilot so far (skipped where they saw too little of that
+  // posterior to place it: the first t then serves alone). Each pilot's weights use its own q.
+  Batch pilots;
   const auto dim = static_cast<double>(centre.size());
-  for (std::size_t p = 0; p < log_priors.size(); ++p) {
-    const ImportanceEstimate e = estimate(pilot, p, centre, covariance);
-    if (!(e.effective_draws >= 10.0 * (dim + 1.0))) continue;
-    const Eigen::LLT<Eigen::MatrixXd> llt(e.covariance);
-    if (llt.info() != Eigen::Success) continue;
-    components.emplace_back(e.mean, options.adapted_scale * options.adapted_scale * e.covariance, nu);
+  for (int round = 0; round < 2; ++round) {
+    append(pilots, draw_batch(components, options.pilot_draws, log_likelihood, log_priors, random, options.threads));
+    components.assign(1, first);
+    for (std::size_t p = 0; p < log_priors.size(); ++p) {
+      const ImportanceEstimate e = estimate(pilots, p);
+      if (!(e.effective_draws >= 10.0 * (dim + 1.0))) continue;
+      const Eigen::LLT<Eigen::MatrixXd> llt(e.covariance);
+      if (llt.info() != Eigen::Success) continue;
+      components.emplace_back(e.mean, options.adapted_scale * options.adapted_scale * e.covariance, nu);
+    }
   }
+  const Batch& pilot = pilots;
   Batch all = draw_batch(components, options.draws, log_likelihood, log_priors, random, options.threads);
   ImportanceRun run;
   const auto largest_error = [&] {
     run.priors.clear();
     double worst = 0.0;
     for (std::size_t p = 0; p < log_priors.size(); ++p) {
-      run.priors.push_back(estimate(all, p, centre, covariance));
+      run.priors.push_back(estimate(all, p));
       worst = std::max(worst, run.priors.back().uncertainty);
     }
     return worst;

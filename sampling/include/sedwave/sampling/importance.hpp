@@ -9,7 +9,8 @@
 // posterior); each prior's posterior moments from the pilot's weights then place one more t
 // component; the estimate uses only the draws from the final equal mixture of all of them (the
 // pilot's t included, so the mixture's tails stay at least as wide as the pilot's), each weighted by
-// L pi / q_mixture. Reproducible for any thread count: the draws come from one seeded stream before
+// L pi / q_mixture. The adaptation runs twice: the second pilot draws from the first mixture, and
+// the components are placed again from both pilots' weights (each pilot weighted by its own q). Reproducible for any thread count: the draws come from one seeded stream before
 // any likelihood is evaluated, and the sums run in the draws' order.
 #include <Eigen/Dense>
 #include <cstdint>
@@ -21,7 +22,7 @@
 namespace sedwave::sampling {
 
 struct ImportanceOptions {
-  int pilot_draws = 800;   ///< from the t around centre, to place the adapted components
+  int pilot_draws = 800;   ///< per adaptation round (two), to place the adapted components
   int draws = 2400;        ///< from the final mixture: the estimate
   int max_draws = 9600;    ///< more draws from the same mixture while an error exceeds the target
   double target_uncertainty = 0.025;  ///< the standard error of ln Z sought for every prior
@@ -43,10 +44,14 @@ struct ImportanceEstimate {
   double effective_draws = 0.0; ///< Kish's (sum w)^2 / sum w^2
   Eigen::VectorXd mean;         ///< the posterior's weighted mean
   Eigen::MatrixXd covariance;   ///< and covariance
-  /// Posterior mass (weighted) farther than kFarDistance from centre in the metric of `covariance`
-  /// given to importance_evidence: a Gaussian-like posterior has almost none (a 3-D Gaussian 0.1 %
-  /// beyond 4 sigma); a second mode or a tail the linearisation does not know of has more.
+  /// Posterior mass (weighted) farther than kFarDistance from the weighted mean in the metric of
+  /// the weighted covariance: a Gaussian-like posterior has almost none (a 3-D Gaussian 0.1 %
+  /// beyond 4 sd); a small second mode far out, or a long tail, has more.
   double far_mass = 0.0;
+  /// The smallest kurtosis E[z^4] / E[z^2]^2 of the posterior along the principal axes of its
+  /// weighted covariance: 3 for a Gaussian, 1.8 for a flat plateau, towards 1 for two separated
+  /// modes of similar weight.
+  double min_axis_kurtosis = 0.0;
   Eigen::VectorXd log_weights;  ///< per draw, Pareto-smoothed and normalised (log-sum-exp 0); -inf: zero
 };
 
