@@ -1,7 +1,7 @@
 #pragma once
 // The evidence Z = integral of L(x) pi(x) dx of a posterior that an optimiser has already located,
-// by importance sampling from heavy-tailed proposals around it, with Pareto-smoothed weights whose
-// shape estimate k-hat says whether the estimate can be trusted (Vehtari, Simpson, Gelman, Yao &
+// by importance sampling from heavy-tailed proposals around it; the Pareto shape k-hat of the
+// weights' tail says whether the estimate can be trusted (Vehtari, Simpson, Gelman, Yao &
 // Gabry 2024, JMLR 25(72), 1). Several priors over the same parameters (e.g. a prior and the same
 // prior widened) are integrated from the same likelihood evaluations.
 //
@@ -36,9 +36,9 @@ struct ImportanceOptions {
 /// One prior's evidence from the weighted draws.
 struct ImportanceEstimate {
   double log_evidence = 0.0;
-  /// Standard error of ln Z: the delta method on the mean of the smoothed weights,
-  /// sd(w) / (sqrt(N) mean(w)), honest while k-hat < 0.7 (the Pareto-smoothed mean has finite
-  /// variance there); the small bias of the logarithm of a noisy mean (-sd^2/2) is corrected.
+  /// Standard error of ln Z: the delta method on the mean of the weights, sd(w) / (sqrt(N) mean(w)),
+  /// trustworthy where the weights' variance is finite (k-hat < 0.5; up to 0.7 in practice, Vehtari
+  /// et al. section 3.2); the small bias of the logarithm of a noisy mean (-sd^2/2) is corrected.
   double uncertainty = 0.0;
   double pareto_k = 0.0;        ///< Pareto k-hat of the weights' upper tail: > 0.7 untrustworthy
   double effective_draws = 0.0; ///< Kish's (sum w)^2 / sum w^2
@@ -52,7 +52,7 @@ struct ImportanceEstimate {
   /// weighted covariance: 3 for a Gaussian, 1.8 for a flat plateau, towards 1 for two separated
   /// modes of similar weight.
   double min_axis_kurtosis = 0.0;
-  Eigen::VectorXd log_weights;  ///< per draw, Pareto-smoothed and normalised (log-sum-exp 0); -inf: zero
+  Eigen::VectorXd log_weights;  ///< per draw, normalised (log-sum-exp 0); -inf: zero
 };
 
 struct ImportanceRun {
