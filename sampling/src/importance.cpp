@@ -118,7 +118,7 @@ ImportanceEstimate estimate(const Batch& b, std::size_t prior) {
   }
   ImportanceEstimate e;
   // k-hat from the Pareto-smoothed tail judges the weights; the estimate itself uses the raw
-  // weights, which are unbiased (the smoothing lowered ln Z by about 0.005 on bounded weights).
+  // weights, whose mean is unbiased.
   e.pareto_k = pareto_smooth(log_w).k;
   const double peak = log_w.maxCoeff();
   if (!std::isfinite(peak)) {
