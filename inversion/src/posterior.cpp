@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "fit_problem.hpp"
@@ -666,12 +667,20 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
   std::vector<ModelEvidence> out(prior_sets.size());
   std::vector<sampling::LogDensity> log_priors;
   std::vector<std::size_t> sampled;  // the sets the proposal serves
-  const Eigen::MatrixXd precision = linearised_precision(s, theta, prior_sets);
+  // Without derivatives at the best fit there is no linearisation to build the proposal from.
+  Eigen::MatrixXd precision;
+  std::string no_jacobian;
+  try {
+    precision = linearised_precision(s, theta, prior_sets);
+  } catch (const std::runtime_error& e) {
+    no_jacobian = std::string("no linearisation at the best fit: ") + e.what();
+  }
   sampling::LogDensity log_likelihood;
   for (std::size_t p = 0; p < prior_sets.size(); ++p) {
     const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, prior_sets[p], fit_options);
     log_likelihood = density.log_likelihood;
-    out[p].fallback_reason = linearisation_refusal(s, best, precision, prior_sets[p]);
+    out[p].fallback_reason =
+        no_jacobian.empty() ? linearisation_refusal(s, best, precision, prior_sets[p]) : no_jacobian;
     out[p].method = "importance sampling";
     if (!out[p].fallback_reason.empty()) continue;
     log_priors.push_back(density.log_prior);
