@@ -179,7 +179,13 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
   return subset;
 }
 
+long& evaluations_on_this_thread() {
+  thread_local long count = 0;
+  return count;
+}
+
 bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian, std::string* why) {
+  ++evaluations_on_this_thread();
   const std::vector<double> values = values_of(theta);
   std::vector<sediment::Wave> waves;
   if (!waves_at(s, values, jacobian != nullptr, waves, why)) return false;

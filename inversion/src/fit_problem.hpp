@@ -60,6 +60,10 @@ struct Setup {
 /// The rows 0, stride, 2 stride, ... of s (frequencies re-indexed).
 [[nodiscard]] Setup every_kth_row(const Setup& s, std::size_t stride);
 
+/// The model's evaluations at a parameter point (residuals_at calls, a Jacobian's included) made so
+/// far on the calling thread: what a comparison counts for a fit.
+[[nodiscard]] long& evaluations_on_this_thread();
+
 /// The groups' whitened residuals at theta (residual_count of them, Setup::RowGroup), and (if
 /// `jacobian`) d residual / d theta for every parameter (residuals x parameters). False where the
 /// model cannot be evaluated (std::domain_error) or a residual is not defined; `why` (if given) then

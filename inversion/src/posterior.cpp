@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "fit_problem.hpp"
@@ -449,6 +450,30 @@ TemperedStart tempered_start(const Setup& s, const FitResult& best, const std::v
   return out;
 }
 
+/// The curvature of -ln prior(theta) at theta, as the linearisation sees it: 1/sd^2 for a log-normal
+/// prior, (value/sd)^2 for a normal one at its mean, 0 for the flat ones.
+double prior_curvature(const Prior& p, double theta) {
+  if (p.kind == PriorKind::LogNormal) return 1.0 / (p.b * p.b);
+  if (p.kind == PriorKind::Normal) return std::pow(std::exp(theta) / p.b, 2);
+  return 0.0;
+}
+
+/// The linearised posterior's precision in the free ln-parameters at theta: the data's J^T J plus
+/// each prior's curvature, the smallest over `prior_sets` (the widest posterior of them).
+Eigen::MatrixXd linearised_precision(const Setup& s, const Theta& theta, const std::vector<std::vector<Prior>>& prior_sets) {
+  const Eigen::MatrixXd jacobian = detail::whitened_jacobian(s, theta);
+  Eigen::MatrixXd precision = jacobian.transpose() * jacobian;
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    double curvature = std::numeric_limits<double>::infinity();
+    for (const std::vector<Prior>& priors : prior_sets) {
+      curvature = std::min(curvature, prior_curvature(priors[static_cast<std::size_t>(i)], theta[i]));
+    }
+    precision(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j)) += curvature;
+  }
+  return precision;
+}
+
 /// Whether a free parameter with a flat prior (uniform or log-uniform, the default) is left open by
 /// the data and the other priors together: its sd in ln, in the linearised posterior at the best
 /// fit, above determined_log_sigma (FitOptions: what the fit calls NOT DETERMINED). The linearised
@@ -458,16 +483,11 @@ TemperedStart tempered_start(const Setup& s, const FitResult& best, const std::v
 /// search bounds.
 bool open_to_the_bounds(const Setup& s, const Theta& theta, const std::vector<Prior>& priors,
                         double determined_log_sigma) {
-  const Eigen::MatrixXd jacobian = detail::whitened_jacobian(s, theta);
-  Eigen::MatrixXd precision = jacobian.transpose() * jacobian;
+  const Eigen::MatrixXd precision = linearised_precision(s, theta, {priors});
   std::vector<bool> flat(s.free.size());
   for (std::size_t j = 0; j < s.free.size(); ++j) {
-    const int i = s.free[j];
-    const Prior& p = priors[static_cast<std::size_t>(i)];
-    const auto jj = static_cast<Eigen::Index>(j);
+    const Prior& p = priors[static_cast<std::size_t>(s.free[j])];
     flat[j] = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
-    if (p.kind == PriorKind::LogNormal) precision(jj, jj) += 1.0 / (p.b * p.b);
-    if (p.kind == PriorKind::Normal) precision(jj, jj) += std::pow(std::exp(theta[i]) / p.b, 2);
   }
   // Variances from the eigen-decomposition, a direction that nothing sees (an eigenvalue at
   // rounding level of the largest) counting as unbounded.
@@ -522,9 +542,12 @@ sampling::PriorAndLikelihood evidence_integrand(const ObservationSet& data, cons
           [s, shared_priors](sampling::RandomStream& random) { return draw_free_from_priors(*s, *shared_priors, random); }};
 }
 
-ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
-                             const std::vector<Prior>& priors, const FitOptions& fit_options,
-                             const EvidenceOptions& options) {
+namespace {
+
+/// The evidence by parallel tempering and stepping stones (EvidenceOptions).
+ModelEvidence tempered_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+                                const std::vector<Prior>& priors, const FitOptions& fit_options,
+                                const EvidenceOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
   const Theta theta = best.fitted.log_values();
@@ -595,7 +618,177 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   e.evaluations = run.evaluations + kPilotDraws;
   e.samples = sampling::pooled_samples(run.levels[0].chains).array().exp().matrix();
   e.wall_seconds = seconds_since(started);
+  e.method = "parallel tempering";
   return e;
+}
+
+}  // namespace
+
+ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+                             const std::vector<Prior>& priors, const FitOptions& fit_options,
+                             const EvidenceOptions& options) {
+  if (options.method == EvidenceMethod::Tempering) return tempered_evidence(data, model, best, priors, fit_options, options);
+  const ModelEvidence fast = importance_sampled_evidence(data, model, best, {priors}, fit_options, options).front();
+  if (fast.fallback_reason.empty()) return fast;
+  ModelEvidence e = tempered_evidence(data, model, best, priors, fit_options, options);
+  e.fallback_reason = fast.fallback_reason;
+  e.evaluations += fast.evaluations;
+  e.wall_seconds += fast.wall_seconds;
+  return e;
+}
+
+namespace {
+
+/// What importance sampling's diagnostics allow (docs/sampling.md, "The evidence from the fit").
+/// A best fit with chi^2 above this the models do not describe the data at all (ln L <= -500;
+/// there the linearised posterior, which neglects the residuals times their curvature, is no guide).
+constexpr double kHopelessChi2 = 1000.0;
+/// A linearised posterior sd (in ln) above this share of a prior's range: a ridge or plateau that
+/// the prior, not the data, closes.
+constexpr double kRidgeShareOfRange = 0.25;
+constexpr double kMaxParetoK = 0.7;       ///< Vehtari et al. 2024: above it the estimate is unreliable
+constexpr double kMaxFarMass = 0.01;      ///< posterior mass beyond sampling::kFarDistance sd
+/// The smallest kurtosis along a principal axis accepted (a Gaussian 3, a flat plateau 1.8, two
+/// separated modes of similar weight towards 1).
+constexpr double kMinAxisKurtosis = 2.0;
+/// A posterior presses against a bound when more than kBoundMass of it lies within kBoundStrip of
+/// its sd from the bound (a Gaussian cut 3 sd out has 0.5 % there, one cut at 2 sd 4.4 %, a plateau
+/// that the bound cuts about 14 %).
+constexpr double kBoundStrip = 0.5;
+constexpr double kBoundMass = 0.02;
+constexpr double kMaxStatedError = 0.05;  ///< the largest standard error of ln Z accepted
+/// The resampled posterior draws' own stream.
+constexpr std::uint64_t kResampleStream = 0x9E3779B97F4A7C15ULL;
+
+/// Why the linearisation at the fit cannot centre the proposal for these priors ("" where it can).
+std::string linearisation_refusal(const Setup& s, const FitResult& best, const Eigen::MatrixXd& precision,
+                                  const std::vector<Prior>& priors) {
+  if (best.chi2 > kHopelessChi2) {
+    return formatted("the best fit's chi^2 is %.3g (above %.0f): the model does not describe the data", best.chi2,
+                     kHopelessChi2);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(precision);
+  if (!(eigen.eigenvalues().minCoeff() > 1e-14 * eigen.eigenvalues().cwiseAbs().maxCoeff())) {
+    return "the data and priors leave a direction unseen at the best fit (a ridge)";
+  }
+  const Eigen::VectorXd sd = precision.inverse().diagonal().cwiseSqrt();
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    const auto [lo, hi] = priors[static_cast<std::size_t>(i)].support();
+    if (!(sd(static_cast<Eigen::Index>(j)) <= kRidgeShareOfRange * std::log(hi / lo))) {
+      return "the linearised posterior's sd of ln " + s.parameters.spec[i].name +
+             formatted(" is %.2f, over a quarter of its prior's range %.2f (a ridge or plateau the prior closes)",
+                       sd(static_cast<Eigen::Index>(j)), std::log(hi / lo));
+    }
+  }
+  return "";
+}
+
+/// Why the weighted draws of one prior set cannot be trusted ("" where they can).
+std::string importance_refusal(const Setup& s, const FitResult& best, const sampling::ImportanceRun& run,
+                               const sampling::ImportanceEstimate& e, const std::vector<Prior>& priors) {
+  if (!(e.pareto_k <= kMaxParetoK)) return formatted("Pareto k-hat of the importance weights %.2f (above 0.7)", e.pareto_k);
+  if (e.far_mass > kMaxFarMass) {
+    return formatted("%.1f %% of the posterior lies beyond %.0f sd of its mean (a far tail or another mode)",
+                     100.0 * e.far_mass, sampling::kFarDistance);
+  }
+  if (e.min_axis_kurtosis < kMinAxisKurtosis) {
+    return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3): several "
+                     "modes or a plateau", e.min_axis_kurtosis);
+  }
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    const auto jj = static_cast<Eigen::Index>(j);
+    const auto [lo, hi] = priors[static_cast<std::size_t>(i)].support();
+    const double strip = kBoundStrip * std::sqrt(e.covariance(jj, jj));
+    double near_bound = 0.0;
+    for (Eigen::Index r = 0; r < run.draws.rows(); ++r) {
+      const double x = run.draws(r, jj);
+      if (std::isfinite(e.log_weights(r)) && (x < std::log(lo) + strip || x > std::log(hi) - strip)) {
+        near_bound += std::exp(e.log_weights(r));
+      }
+    }
+    if (best.parameters[static_cast<std::size_t>(i)].at_bound || near_bound > kBoundMass) {
+      return "the posterior of " + s.parameters.spec[i].name +
+             formatted(" presses against a bound of its prior (%.1f %% of it within %.1f sd of the bound", 100.0 * near_bound,
+                       kBoundStrip) +
+             (best.parameters[static_cast<std::size_t>(i)].at_bound ? "; the best fit is at a bound)" : ")");
+    }
+  }
+  if (!(e.uncertainty <= kMaxStatedError)) {
+    return formatted("the standard error of ln Z reached only %.3f (at most %.2f accepted)", e.uncertainty,
+                     kMaxStatedError);
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
+                                                       const FitResult& best,
+                                                       const std::vector<std::vector<Prior>>& prior_sets,
+                                                       const FitOptions& fit_options, const EvidenceOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  if (prior_sets.empty()) throw std::invalid_argument("importance_sampled_evidence: no priors");
+  const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
+  const Theta theta = best.fitted.log_values();
+  const auto k = static_cast<Eigen::Index>(s.free.size());
+  std::vector<ModelEvidence> out(prior_sets.size());
+  std::vector<sampling::LogDensity> log_priors;
+  std::vector<std::size_t> sampled;  // the sets the proposal serves
+  // Without derivatives at the best fit there is no linearisation to build the proposal from.
+  Eigen::MatrixXd precision;
+  std::string no_jacobian;
+  try {
+    precision = linearised_precision(s, theta, prior_sets);
+  } catch (const std::runtime_error& e) {
+    no_jacobian = std::string("no linearisation at the best fit: ") + e.what();
+  }
+  sampling::LogDensity log_likelihood;
+  for (std::size_t p = 0; p < prior_sets.size(); ++p) {
+    const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, prior_sets[p], fit_options);
+    log_likelihood = density.log_likelihood;
+    out[p].fallback_reason =
+        no_jacobian.empty() ? linearisation_refusal(s, best, precision, prior_sets[p]) : no_jacobian;
+    out[p].method = "importance sampling";
+    if (!out[p].fallback_reason.empty()) continue;
+    log_priors.push_back(density.log_prior);
+    sampled.push_back(p);
+  }
+  if (sampled.empty()) return out;
+  Eigen::VectorXd centre(k);
+  for (Eigen::Index j = 0; j < k; ++j) centre(j) = theta[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])];
+  sampling::ImportanceOptions importance = options.importance;
+  importance.seed = options.seed;
+  importance.threads = options.threads;
+  const sampling::ImportanceRun run =
+      sampling::importance_evidence(log_likelihood, log_priors, centre, precision.inverse(), importance);
+  const double n = static_cast<double>(s.observations.size());
+  for (std::size_t q = 0; q < sampled.size(); ++q) {
+    const sampling::ImportanceEstimate& w = run.priors[q];
+    ModelEvidence& e = out[sampled[q]];
+    e.log_evidence = w.log_evidence;
+    e.uncertainty = w.uncertainty;
+    e.pareto_k = w.pareto_k;
+    e.effective_draws = w.effective_draws;
+    e.evaluations = run.evaluations;
+    e.fallback_reason = importance_refusal(s, best, run, w, prior_sets[sampled[q]]);
+    e.converged = e.fallback_reason.empty();
+    e.advice = formatted("%.0f draws from a mixture of %.0f t distributions, Pareto k-hat %.2f, %.0f effective draws",
+                         static_cast<double>(run.draws.rows()), run.components, w.pareto_k, w.effective_draws);
+    double p_sum = 0.0;
+    for (Eigen::Index i = 0; i < run.draws.rows(); ++i) {
+      if (std::isfinite(w.log_weights(i))) p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -run.log_likelihood(i));
+    }
+    e.predictive_p = p_sum;
+    if (std::isfinite(w.log_weights.maxCoeff())) {
+      sampling::RandomStream random(options.seed ^ kResampleStream);
+      e.samples = sampling::resample(run.draws, w.log_weights, options.posterior_draws, random).array().exp().matrix();
+    }
+  }
+  const double seconds = seconds_since(started);
+  for (ModelEvidence& e : out) e.wall_seconds = seconds;
+  return out;
 }
 
 std::vector<Prior> widened(const std::vector<Prior>& priors, double factor) {

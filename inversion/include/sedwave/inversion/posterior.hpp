@@ -17,6 +17,7 @@
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/priors.hpp"
+#include "sedwave/sampling/importance.hpp"
 #include "sedwave/sampling/tempering.hpp"
 
 namespace sedwave::inversion {
@@ -97,13 +98,23 @@ struct PosteriorResult {
                                                const FitResult& best, const std::vector<Prior>& priors,
                                                const FitOptions& fit_options, const PosteriorOptions& options);
 
-/// How the evidence is computed: parallel tempering over a ladder of inverse temperatures from 1,
+/// How the evidence is computed. Automatic: importance sampling around the best fit
+/// (sampling/importance.hpp) where its own diagnostics say it applies, parallel tempering elsewhere
+/// (docs/sampling.md, "The evidence from the fit"); Tempering: parallel tempering always.
+enum class EvidenceMethod { Automatic, Tempering };
+
+/// The options of parallel tempering over a ladder of inverse temperatures from 1,
 /// evenly spaced in ln beta down to 1/max_temperature, and beta = 0 (the prior, sampled by
 /// independent draws) (sampling/tempering.hpp); then stepping stones. Hot temperatures start from
 /// prior draws, cold ones around the best fit. The run length adapts: every check_every steps the
 /// evidence's standard error and the beta = 1 ensemble are checked, and the run ends once the error
 /// is at most target_uncertainty and the posterior ensemble has converged, or at `steps`.
 struct EvidenceOptions {
+  EvidenceMethod method = EvidenceMethod::Automatic;
+  /// The importance sampler's draws and target (its seed and threads are set from those below).
+  sampling::ImportanceOptions importance = {};
+  /// Equally weighted posterior draws resampled from importance-sampled ones (for bands and plots).
+  int posterior_draws = 4000;
   int temperatures = 32;  ///< rungs from beta = 1 to 1/max_temperature, more where that is extended
   /// The ladder reaches at least this far; further where the prior's draws have ln L below the best
   /// fit's by more (beta_min (ln L_best - median ln L over the prior) <= 1 keeps the last stone's
@@ -124,6 +135,12 @@ struct EvidenceOptions {
 };
 
 struct ModelEvidence {
+  /// "importance sampling" or "parallel tempering": what gave log_evidence.
+  std::string method;
+  /// Why importance sampling did not serve (then parallel tempering did); empty where it did.
+  std::string fallback_reason;
+  double pareto_k = 0.0;         ///< of the importance weights (sampling::ImportanceEstimate), where they were drawn
+  double effective_draws = 0.0;  ///< Kish's effective number of the importance draws
   /// ln Z = ln of the integral of likelihood x prior over the free ln-parameters, with the
   /// likelihood exp(-chi^2/2): up to a constant that is the same for every model fitted to the same
   /// data (the Gaussian normalisation of the data's sigmas), so differences between models are exact.
@@ -145,18 +162,32 @@ struct ModelEvidence {
   /// the target; else the cap ended the run, and advice says how far it got.
   bool converged = false;
   std::string advice;
+  /// Likelihood evaluations: importance sampling's (shared by every prior set it integrated at
+  /// once) plus parallel tempering's where it ran.
   int evaluations = 0;
   double wall_seconds = 0.0;
-  /// The beta = 1 ensemble's pooled kept draws x free parameters, values [unit] (as
+  /// Equally weighted posterior draws: resampled from the importance draws, or the beta = 1
+  /// ensemble's pooled kept draws x free parameters, values [unit] (as
   /// PosteriorResult::samples): the posterior under these priors, e.g. for its predictive band.
   Eigen::MatrixXd samples;
 };
 
 /// The evidence of `model` for `data` under `priors` (all proper: every prior is normalised over
-/// the search bounds), started around the best fit.
+/// the search bounds), started around the best fit: by options.method.
 [[nodiscard]] ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
                                            const FitResult& best, const std::vector<Prior>& priors,
                                            const FitOptions& fit_options, const EvidenceOptions& options);
+
+/// The evidence under each of `prior_sets` (priors of the same parameters, e.g. priors and
+/// widened(priors)) by importance sampling from one set of likelihood evaluations, the proposal
+/// built from the best fit's linearised posterior. Each entry whose fallback_reason is not empty is
+/// one the importance sampler's diagnostics refused (a direction the linearisation leaves open, a
+/// fit far worse than the noise, Pareto k-hat > 0.7, posterior mass far from the linearisation, a
+/// posterior pressed against a bound, or an error above 0.05): model_evidence with
+/// EvidenceMethod::Tempering computes that one.
+[[nodiscard]] std::vector<ModelEvidence> importance_sampled_evidence(
+    const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+    const std::vector<std::vector<Prior>>& prior_sets, const FitOptions& fit_options, const EvidenceOptions& options);
 
 /// The evidence's integrand over the free ln-parameters x (in the order of best.fitted's free
 /// indices, other parameters at the best fit): ln prior(x) (normalised, Prior::log_density_theta),
