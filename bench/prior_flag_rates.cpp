@@ -3,7 +3,7 @@
 // straight and curved, from a band or one frequency: every free parameter should be flagged) and on
 // sets whose free parameters they determine (none should be), under the default priors and under
 // site priors; bench/prior_flag_study.hpp says how the sets are drawn. Prints the rates with their
-// binomial standard errors, each parameter's rate, the rates of the combinations c0 and tau (which
+// binomial standard errors, each parameter's rate, the rates of the derived quantities c0 and tau (which
 // the straight ridge sets determine), and the range of the prior shares.
 //
 // The fits compute their likelihood profiles first, as `sedwave invert --method posterior` does;

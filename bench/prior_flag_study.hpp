@@ -77,7 +77,7 @@ struct FlagSetResult {
   std::array<bool, 3> flagged{};        ///< kappa, d, gamma (d: false where it is fixed)
   std::array<double, 3> prior_share{};  ///< kappa, d, gamma (d: 0 where it is fixed)
   bool d_free = true;
-  bool c0_flagged = false, tau_flagged = false;  ///< the combinations the ridge sets do determine
+  bool c0_flagged = false, tau_flagged = false;  ///< the derived quantities the ridge sets do determine
   bool converged = false;
 };
 
@@ -183,7 +183,7 @@ inline FlagSetResult run_flag_set(FlagSet kind, unsigned seed, int index, int st
     r.flagged[i] = q.prior_dominated;
     r.prior_share[i] = q.prior_share;
   }
-  for (const inversion::PosteriorQuantity& q : posterior.combinations) {
+  for (const inversion::PosteriorQuantity& q : posterior.derived) {
     if (q.name == "c0") r.c0_flagged = q.prior_dominated;
     if (q.name == "tau") r.tau_flagged = q.prior_dominated;
   }

@@ -158,7 +158,7 @@ bool profile_into(const Setup& s, const Theta& theta, double chi2_min, const det
 /// The identifiability, intervals and goodness of fit at theta. Returns a point of lower chi^2 if
 /// a likelihood profile found one (the solvers stopped in a local minimum).
 std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitResult& result) {
-  const std::vector<detail::Combination> combinations = detail::combinations_for(s);
+  const std::vector<detail::DerivedFunction> derived_functions = detail::derived_functions_for(s);
   const Eigen::MatrixXd J = detail::whitened_jacobian(s, theta);
   const JacobianAnalysis analysis = analyze_jacobian(J, detail::kRankTolerance);
   result.covariance = detail::covariance(s, theta);
@@ -206,22 +206,22 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
     result.parameters.push_back(r);
   }
 
-  for (const detail::Combination& info : combinations) {
+  for (const detail::DerivedFunction& info : derived_functions) {
     const Differentiated log_q = info.log_value(s, theta);
     const Eigen::VectorXd free_gradient = detail::free_part(log_q.v, s.free);
     const Determination d = determine(free_gradient, analysis, result.covariance, options.determined_log_sigma);
     const double value = std::exp(log_q.a);
-    CombinationResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
+    DerivedResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
     if (free_gradient.isZero(0.0)) {
       // Made of fixed parameters only: known exactly, and checked for plausibility like a fitted value.
       c.determined = true;
       c.log_sigma = c.sigma = 0.0;
       c.profile_lower = c.profile_upper = value;
-    } else if (options.profile_likelihood && info.name == "f_star" && !result.combinations.empty() &&
-               result.combinations.back().name == "tau") {
+    } else if (options.profile_likelihood && info.name == "f_star" && !result.derived.empty() &&
+               result.derived.back().name == "tau") {
       // The grain contact's f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just
       // before, sediment::GrainContactDerived).
-      const CombinationResult& tau = result.combinations.back();
+      const DerivedResult& tau = result.derived.back();
       const double k = 1.0 / (2.0 * std::numbers::pi);
       if (tau.profile_upper) c.profile_lower = k / *tau.profile_upper;
       if (tau.profile_lower) c.profile_upper = k / *tau.profile_lower;
@@ -232,7 +232,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
                                        c.profile_upper, better);
       c.determined = d.determined && closed;
     }
-    result.combinations.push_back(c);
+    result.derived.push_back(c);
   }
 
   // Correlations of the free ln-parameters; undetermined ones have none worth quoting.
@@ -336,7 +336,7 @@ void flag_implausible(const sediment::SedimentModel& model, const FitOptions& op
     flag_range(p.name, p.value, credible_span(p.value, p.profile_lower, p.profile_upper, options.profile_likelihood),
                plausible_range(p.name), result);
   }
-  for (const CombinationResult& c : result.combinations) {
+  for (const DerivedResult& c : result.derived) {
     const std::optional<PlausibleRange> range = derived_range(model, c.name);
     flag_range(c.name, c.value, credible_span(c.value, c.profile_lower, c.profile_upper, options.profile_likelihood),
                range ? &*range : nullptr, result);

@@ -115,7 +115,7 @@ class ConstraintResidual final : public ceres::CostFunction {
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
     Theta theta(static_cast<std::size_t>(setup_->parameters.size()));
     for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = parameters[i][0];
-    const Differentiated q = constraint_.combination->log_value(*setup_, theta);
+    const Differentiated q = constraint_.derived->log_value(*setup_, theta);
     residual[0] = (q.a - constraint_.target) / constraint_.tolerance;
     if (jacobians) {
       for (Eigen::Index i = 0; i < q.v.size(); ++i) {

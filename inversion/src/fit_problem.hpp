@@ -82,7 +82,7 @@ struct Setup {
 
 /// A function of the parameters that the data may determine even when they do not (c0, tau ...):
 /// one of the model's derived quantities (sediment::DerivedQuantity).
-struct Combination {
+struct DerivedFunction {
   std::string name;
   std::string unit;
   std::string meaning;
@@ -93,16 +93,16 @@ struct Combination {
 /// The parameter values exp(theta) (SI).
 [[nodiscard]] std::vector<double> values_of(const Theta& theta);
 
-/// The model's own derived quantities as functions of theta (combinations.cpp).
-[[nodiscard]] std::vector<Combination> combinations_for(const Setup& s);
+/// The model's own derived quantities as functions of theta (derived.cpp).
+[[nodiscard]] std::vector<DerivedFunction> derived_functions_for(const Setup& s);
 /// Every derived quantity's value at theta, in the same order, without gradients (a posterior
-/// draw's); throws as Combination::log_value does where one is not a positive number.
+/// draw's); throws as DerivedFunction::log_value does where one is not a positive number.
 [[nodiscard]] std::vector<double> derived_at(const Setup& s, const Theta& theta);
 
-/// An extra residual that ties a combination to a target value (a likelihood profile of a
-/// combination holds it fixed this way).
+/// An extra residual that ties a derived quantity to a target value (a likelihood profile of a
+/// derived quantity holds it fixed this way).
 struct Constraint {
-  const Combination* combination = nullptr;
+  const DerivedFunction* derived = nullptr;
   double target = 0.0;      ///< in ln units
   double tolerance = 1e-5;  ///< the residual is (ln q - target) / tolerance
 };

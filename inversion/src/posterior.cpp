@@ -146,14 +146,14 @@ void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& contro
   q.prior_dominated = q.prior_share > detail::kPriorControlledShare;
 }
 
-/// The fit's profile interval of a parameter or combination named `name`; nothing where the fit
+/// The fit's profile interval of a parameter or derived quantity named `name`; nothing where the fit
 /// computed no profiles.
 std::optional<ProfileInterval> profile_of(const FitResult& best, const FitOptions& options, const std::string& name) {
   if (!options.profile_likelihood) return std::nullopt;
   for (const ParameterResult& p : best.parameters) {
     if (p.name == name) return ProfileInterval{p.profile_lower, p.profile_upper};
   }
-  for (const CombinationResult& c : best.combinations) {
+  for (const DerivedResult& c : best.derived) {
     if (c.name == name) return ProfileInterval{c.profile_lower, c.profile_upper};
   }
   return std::nullopt;
@@ -193,33 +193,33 @@ constexpr int kPriorWidthDraws = 4000;
 constexpr std::uint64_t kPriorWidthStream = 0x9E3779B97F4A7C15ULL;
 
 /// The priors' draws of every free parameter (in its prior's own coordinate) and of every
-/// combination (ln; draws where one is not a positive number are left out of its column).
+/// derived quantity (ln; draws where one is not a positive number are left out of its column).
 struct PriorQuantities {
   Eigen::MatrixXd parameters;
-  std::vector<Eigen::VectorXd> combinations;
+  std::vector<Eigen::VectorXd> derived;
 };
 
 PriorQuantities prior_quantities(const Setup& s, const std::vector<Prior>& priors, const Theta& theta,
-                                 std::size_t combinations, unsigned seed) {
+                                 std::size_t derived_count, unsigned seed) {
   sampling::RandomStream random(seed ^ kPriorWidthStream);
   const auto k = static_cast<Eigen::Index>(s.free.size());
   PriorQuantities out{Eigen::MatrixXd(kPriorWidthDraws, k), {}};
-  std::vector<std::vector<double>> columns(combinations);
+  std::vector<std::vector<double>> columns(derived_count);
   for (Eigen::Index r = 0; r < kPriorWidthDraws; ++r) {
     const Eigen::VectorXd x = draw_free_from_priors(s, priors, random);
     for (Eigen::Index j = 0; j < k; ++j) {
       out.parameters(r, j) = in_prior_coordinate(priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])], x(j));
     }
-    if (combinations == 0) continue;
+    if (derived_count == 0) continue;
     try {
       const std::vector<double> derived = detail::derived_at(s, with_free(s, theta, x));
-      for (std::size_t c = 0; c < combinations; ++c) columns[c].push_back(std::log(derived[c]));
+      for (std::size_t c = 0; c < derived_count; ++c) columns[c].push_back(std::log(derived[c]));
     } catch (const std::exception&) {
       // not a positive number at this corner of the priors: the draw is left out
     }
   }
   for (const std::vector<double>& column : columns) {
-    out.combinations.push_back(Eigen::Map<const Eigen::VectorXd>(column.data(), static_cast<Eigen::Index>(column.size())));
+    out.derived.push_back(Eigen::Map<const Eigen::VectorXd>(column.data(), static_cast<Eigen::Index>(column.size())));
   }
   return out;
 }
@@ -337,11 +337,11 @@ class DerivedChains {
 
 /// The derived quantities the stop test watches beside the parameters: those that move with a free
 /// parameter at the best fit (one that does not is a constant column, which has no R-hat).
-std::vector<std::size_t> varying_quantities(const detail::Setup& s, const std::vector<detail::Combination>& combinations,
+std::vector<std::size_t> varying_quantities(const detail::Setup& s, const std::vector<detail::DerivedFunction>& derived_functions,
                                             const Theta& theta) {
   std::vector<std::size_t> out;
-  for (std::size_t c = 0; c < combinations.size(); ++c) {
-    const Eigen::VectorXd gradient = combinations[c].log_value(s, theta).v;
+  for (std::size_t c = 0; c < derived_functions.size(); ++c) {
+    const Eigen::VectorXd gradient = derived_functions[c].log_value(s, theta).v;
     for (const int i : s.free) {
       if (gradient(i) != 0.0) {
         out.push_back(c);
@@ -834,14 +834,14 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   sampling::EnsembleOptions ensemble = ensemble_options(options);
   ensemble.burn_in = options.burn_in;
   ensemble.moves = sampling::differential_moves();
-  // The stop test and the verdict cover the derived quantities too (a combination along a ridge can
+  // The stop test and the verdict cover the derived quantities too (a derived quantity along a ridge can
   // mix more slowly than any parameter), each computed once per kept draw.
-  const std::vector<detail::Combination> combinations = detail::combinations_for(s);
-  const std::vector<std::size_t> watched = varying_quantities(s, combinations, theta);
+  const std::vector<detail::DerivedFunction> derived_functions = detail::derived_functions_for(s);
+  const std::vector<std::size_t> watched = varying_quantities(s, derived_functions, theta);
   std::vector<std::string> names;
   for (const int i : s.free) names.push_back(s.parameters.spec[i].name);
-  for (const detail::Combination& c : combinations) names.push_back(c.name);
-  DerivedChains derived(s, theta, combinations.size());
+  for (const detail::DerivedFunction& c : derived_functions) names.push_back(c.name);
+  DerivedChains derived(s, theta, derived_functions.size());
   ProgressReporter report(options.progress);
   // The stop test: the posterior's ensemble has converged, and for a tempered run every rung has
   // mixed over >= 50 of its slowest tau (rung_tau; 0 for one ensemble).
@@ -914,7 +914,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const Eigen::MatrixXd jacobian =
       detail::whitened_jacobian(s, with_free(s, theta, pooled.row(detail::central_draw(pooled)).transpose()));
   const detail::PriorControl control(pooled, jacobian.transpose() * jacobian);
-  const PriorQuantities prior_alone = prior_quantities(s, priors, theta, combinations.size(), options.seed);
+  const PriorQuantities prior_alone = prior_quantities(s, priors, theta, derived_functions.size(), options.seed);
   for (Eigen::Index j = 0; j < k; ++j) {
     const int i = s.free[static_cast<std::size_t>(j)];
     const ParameterSpec& spec = s.parameters.spec[i];
@@ -929,16 +929,16 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     result.parameters.push_back(q);
   }
 
-  // Combinations at every kept draw, walker by walker (their R-hat and ESS are columns k.. above).
-  if (!combinations.empty()) {
+  // Derived quantities at every kept draw, walker by walker (their R-hat and ESS are columns k.. above).
+  if (!derived_functions.empty()) {
     const Eigen::MatrixXd all = sampling::pooled_samples(derived_chains);
-    for (std::size_t c = 0; c < combinations.size(); ++c) {
+    for (std::size_t c = 0; c < derived_functions.size(); ++c) {
       const auto col = static_cast<Eigen::Index>(c);
-      result.combinations.push_back(summarize(combinations[c].name, combinations[c].unit, all.col(col),
+      result.derived.push_back(summarize(derived_functions[c].name, derived_functions[c].unit, all.col(col),
                                               diagnostics.rhat(k + col), diagnostics.ess(k + col)));
       const Eigen::VectorXd ln_values = all.col(col).array().log().matrix();
-      flag_prior_control(result.combinations.back(), control, ln_values, ln_values, prior_alone.combinations[c],
-                         profile_of(best, fit_options, combinations[c].name));
+      flag_prior_control(result.derived.back(), control, ln_values, ln_values, prior_alone.derived[c],
+                         profile_of(best, fit_options, derived_functions[c].name));
     }
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -970,7 +970,7 @@ nlohmann::json posterior_report(const PosteriorResult& p) {
                           {"prior_share", q.prior_share}};
   };
   for (const auto& q : p.parameters) j["parameters"][q.name] = quantity(q);
-  for (const auto& q : p.combinations) j["combinations"][q.name] = quantity(q);
+  for (const auto& q : p.derived) j["combinations"][q.name] = quantity(q);
   j["correlation_of_ln_parameters"] = nlohmann::json::array();
   for (Eigen::Index r = 0; r < p.correlation.rows(); ++r) {
     std::vector<double> row;

@@ -1,6 +1,6 @@
 #pragma once
 // Whether the prior, not the data, made a credible interval. A quantity's marginal alone cannot
-// tell: along a ridge (a combination such as kappa d gamma that the data do not see) each
+// tell: along a ridge (a derived quantity such as kappa d gamma that the data do not see) each
 // parameter's marginal is narrower than its prior and off its centre, because the ridge runs
 // diagonally through the prior's box, yet where the interval lies is decided by the prior alone.
 //
@@ -30,7 +30,7 @@ namespace sedwave::inversion::detail {
 /// The prior's share judged globally, by width: (w_posterior / w_prior)^2 of the central 95 %
 /// intervals of a quantity's posterior draws and of its draws under the prior alone, both in the
 /// prior's own coordinate (ln for a log-uniform or log-normal prior, the value for a uniform or
-/// normal one, ln for a combination), clamped to [0, 1]. For a Gaussian prior and likelihood it is
+/// normal one, ln for a derived quantity), clamped to [0, 1]. For a Gaussian prior and likelihood it is
 /// exactly the share above (the posterior variance over the prior's). It sees what the data's
 /// information at one draw cannot: on a curved ridge the principal directions of the draws mix the
 /// ridge's bends, each looks narrowed by the data, and yet the marginal spans most of its prior.

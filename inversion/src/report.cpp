@@ -40,7 +40,7 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                                {"at_bound", p.at_bound},
                                {"profile_interval_68", {optional_or_null(p.profile_lower), optional_or_null(p.profile_upper)}}};
   }
-  for (const CombinationResult& c : r.combinations) {
+  for (const DerivedResult& c : r.derived) {
     j["combinations"][c.name] = {{"value", c.value},       {"unit", c.unit},
                                  {"meaning", c.meaning},   {"determined", c.determined},
                                  {"sigma", c.determined ? number_or_null(c.sigma) : nlohmann::json()},

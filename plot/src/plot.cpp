@@ -115,7 +115,7 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
-/// Parameter and combination names as gnuplot enhanced text.
+/// Parameter and derived quantity names as gnuplot enhanced text.
 std::string symbol(const std::string& name) {
   if (name == "kappa") return "κ";
   if (name == "gamma") return "γ";
@@ -149,10 +149,10 @@ std::string parameter_line(const FitResult& r) {
   return line;
 }
 
-/// The combinations the data determine, and the goodness of fit, one line.
+/// The derived quantities the data determine, and the goodness of fit, one line.
 std::string determined_line(const FitResult& r) {
   std::string line;
-  for (const CombinationResult& c : r.combinations) {
+  for (const DerivedResult& c : r.derived) {
     if (c.determined) line += (line.empty() ? "" : ",   ") + value_text(c.name, c.unit, c.value, c.sigma, true, true);
   }
   if (!line.empty()) line += ";   ";

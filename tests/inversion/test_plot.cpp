@@ -57,7 +57,7 @@ FitResult small_fit() {
   r.model = "lattice";
   r.parameters = {{"kappa", "N/m", 1e6, true, false, true, 0.1, 1e5, std::nullopt, std::nullopt},
                   {"d", "m", 3e-4, false, false, true, 0.0, 0.0, std::nullopt, std::nullopt}};
-  r.combinations = {{"c0", "m/s", "", 1600.0, true, 0.01, 16.0, {}, {}}};
+  r.derived = {{"c0", "m/s", "", 1600.0, true, 0.01, 16.0, {}, {}}};
   r.residuals = {point(Quantity::Attenuation, 100.0, 1e-3, 1e-4, 1.1e-3, 0.5),
                  point(Quantity::Attenuation, 300.0, 1e-2, 1e-3, 0.9e-2, -0.4),
                  point(Quantity::Attenuation, 1000.0, 1e-1, 1e-2, 1.6e-1, 5.0),

@@ -48,7 +48,7 @@ TEST(PriorControl, SharesMatchTheGaussianClosedForm) {
     const double expected = a.dot(sigma * prior_information * sigma * a) / a.dot(sigma * a);
     EXPECT_NEAR(control.prior_share(draws * a), expected, 0.02) << "quantity " << q;
   }
-  // The premise: each parameter lies mostly along the unseen ridge, the seen combination does not.
+  // The premise: each parameter lies mostly along the unseen ridge, the seen derived quantity does not.
   EXPECT_GT(control.prior_share(draws.col(0)), 0.9);
   EXPECT_LT(control.prior_share(draws * quantities.row(3).transpose()), 0.1);
 }

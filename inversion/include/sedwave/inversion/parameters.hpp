@@ -62,7 +62,7 @@ struct FitParameters {
   void require_parameters_of(const sediment::SedimentModel& model) const;
 };
 
-/// The entry named `name` of a list of named results (FitResult::parameters, ::combinations,
+/// The entry named `name` of a list of named results (FitResult::parameters, ::derived quantities,
 /// PosteriorResult::parameters ...); throws std::invalid_argument if there is none.
 template <typename Named>
 [[nodiscard]] const Named& by_name(const std::vector<Named>& list, const std::string& name) {

@@ -4,7 +4,7 @@
 // from walkers started around the best fit. The likelihood is the fit's: exp(-chi^2/2) with the
 // same whitened residuals (residuals.hpp), so a posterior and a fit answer the same question.
 //
-// Reported per free parameter and per combination (c0, tau, f*, gamma_hat, kappa/kappa_Hertz where
+// Reported per free parameter and per derived quantity (c0, tau, f*, gamma_hat, kappa/kappa_Hertz where
 // they mean something): the posterior median, the 68 % and 95 % central credible intervals, and the
 // sampler's split-R-hat and effective sample size; plus the acceptance, a convergence verdict with
 // advice, and whether the prior rather than the data made each interval.
@@ -76,7 +76,7 @@ struct PosteriorQuantity {
 
 struct PosteriorResult {
   std::vector<PosteriorQuantity> parameters;    ///< the free ones
-  std::vector<PosteriorQuantity> combinations;
+  std::vector<PosteriorQuantity> derived;       ///< the model's derived quantities
   std::vector<std::string> priors;              ///< one line per free parameter (Prior::describe)
   Eigen::MatrixXd samples;                      ///< pooled kept draws x free parameters, values [unit]
   std::vector<std::string> sample_names;
