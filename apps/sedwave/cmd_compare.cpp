@@ -106,7 +106,9 @@ inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
   inversion::ModelSetup setup = setup_of(o.shared);
   setup.model = spec;
   for (const std::string& f : o.fits) {
-    if (name_of(f) == spec) setup.free = f.substr(f.find('=') + 1);
+    if (name_of(f) != spec) continue;
+    setup.free = f.substr(f.find('=') + 1);
+    setup.free_origin = "--fit '" + f + "' (the parameters of " + spec + ")";
   }
   setup.priors = o.priors;
   setup.shared = true;

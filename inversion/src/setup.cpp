@@ -102,7 +102,8 @@ class Assembly {
     refuse_repeated(bounds_, "bound");
     c_.parameters = FitParameters(c_.model->parameters());
     if (use_ == SetupUse::Fit) {
-      c_.parameters.set_free_from_list(!s_.free.empty() ? s_.free : sediment::typical_free_parameters(*c_.model));
+      c_.parameters.set_free_from_list(!s_.free.empty() ? s_.free : sediment::typical_free_parameters(*c_.model),
+                                       s_.free.empty() ? "" : s_.free_origin);
     }
     for (const GivenBounds& b : bounds_) {
       ParameterSpec& spec = named(b.parameter, b.lookup.empty() ? b.origin : b.lookup);

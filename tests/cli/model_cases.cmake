@@ -86,6 +86,8 @@ sedwave_cli_case(compare.unknown_model 1 "unknown model 'bort'.*accepted: contin
   compare ${OBS} --models edfm,bort ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 sedwave_cli_case(compare.prior_no_model_has 2 "--prior 'kappa=log-normal:1e6,1': none of the models has a parameter 'kappa'"
   compare ${OBS} --models edfm,grain-shearing --prior kappa=log-normal:1e6,1 ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
+sedwave_cli_case(compare.fit_names_parameter_of_another_model 1 "--fit 'lattice=porosity' \\(the parameters of lattice\\): unknown parameter 'porosity'.*accepted: kappa, d, gamma, rho_s"
+  compare ${OBS} --models lattice,edfm --fit lattice=porosity ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 sedwave_cli_case(compare.fit_for_model_not_compared 2 "--fit 'lattice=kappa,d': 'lattice' is not one of --models"
   compare ${OBS} --models edfm,grain-shearing --fit lattice=kappa,d ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 
