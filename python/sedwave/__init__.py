@@ -10,6 +10,7 @@ By task (docs/python.md):
 - data: ``read_observations(path)``, ``read_digitized(path, ...)``,
   ``Observations(quantity, frequency_hz, value, sigma)``, ``Observations.write(path)``
 - tables: ``read_table(path)`` (a dispersion table's points as arrays, read only)
+- run files: ``read_run(path)`` (any HDF5 output of a run -- forward, interface, checkpoints -- as arrays, read only)
 - studies: ``fit(data, model=...)``, ``posterior(data, model=...)``, ``compare(data, models=[...])``,
   ``synthesize(model, values, lowest_hz, highest_hz)``
 
@@ -36,12 +37,13 @@ from ._sedwave import (
     read_digitized,
     read_observations,
     read_table,
+    read_run,
 )
 from . import _sedwave
 
 __all__ = [
     "InputError", "Model", "Observations", "SetupError", "model_names", "model_examples", "models",
-    "read_observations", "read_digitized", "read_table", "register_model", "derivatives_of", "fit", "posterior",
+    "read_observations", "read_digitized", "read_table", "read_run", "register_model", "derivatives_of", "fit", "posterior",
     "compare", "synthesize", "FitResult", "Ranking", "SedwaveWarning", "NotDeterminedWarning",
     "PriorControlledWarning", "FlagWarning", "NotConvergedWarning", "NEPER_TO_DB",
 ]

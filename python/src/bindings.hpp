@@ -26,6 +26,7 @@ void bind_data(py::module_& m);
 void bind_studies(py::module_& m);
 void bind_python_model(py::module_& m);
 void bind_tables(py::module_& m);
+void bind_run_files(py::module_& m);
 
 /// A numpy array of doubles, converted (and copied) only where it is not one already.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;

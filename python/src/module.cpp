@@ -10,5 +10,6 @@ PYBIND11_MODULE(_sedwave, m) {
   sedwave::python::bind_studies(m);
   sedwave::python::bind_python_model(m);
   sedwave::python::bind_tables(m);
+  sedwave::python::bind_run_files(m);
   m.attr("__version__") = sedwave::kVersion;
 }
