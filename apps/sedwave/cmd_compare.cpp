@@ -48,17 +48,12 @@ std::vector<std::string> split(const std::string& text, char by) {
 
 std::string name_of(const std::string& item) { return item.substr(0, item.find('=')); }
 
-bool has_parameter(const sediment::SedimentModel& model, const std::string& name) {
-  const auto& ps = model.parameters();
-  return std::any_of(ps.begin(), ps.end(), [&](const sediment::Parameter& p) { return p.name == name; });
-}
-
 /// Every name a shared option uses must belong to at least one of the models (a typo is refused).
 void require_known(const std::vector<std::string>& items, const char* option,
                    const std::vector<std::shared_ptr<const sediment::SedimentModel>>& models) {
   for (const std::string& item : items) {
     const std::string name = name_of(item);
-    const bool known = std::any_of(models.begin(), models.end(), [&](const auto& m) { return has_parameter(*m, name); });
+    const bool known = std::any_of(models.begin(), models.end(), [&](const auto& m) { return m->has_parameter(name); });
     if (!known) throw UsageError(std::string(option) + " '" + item + "': none of the models has a parameter '" + name + "'");
   }
 }

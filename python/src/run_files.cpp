@@ -88,9 +88,7 @@ void bind_run_files(py::module_& m) {
         case H5T_INTEGER: datasets[py::str(name)] = numbers<std::int64_t>(shape_of(space), read); break;
         case H5T_STRING:
           if (H5Sget_simple_extent_npoints(space) == 1) {
-            const std::string parent = name.substr(0, name.rfind('/'));
-            io::Handle group(H5Oopen(file, parent.empty() ? "/" : parent.c_str(), H5P_DEFAULT), H5Oclose, "open " + parent);
-            datasets[py::str(name)] = py::str(io::read_string_dataset(group, name.substr(name.rfind('/') + 1)));
+            datasets[py::str(name)] = py::str(io::read_string_dataset(file, name));
             break;
           }
           [[fallthrough]];
