@@ -1,7 +1,7 @@
 #pragma once
 // Coverage of the 68 % profile-likelihood intervals that `sedwave invert` reports: synthetic data
 // sets drawn from known parameters (lattice chain model) are fitted back, and each interval of a
-// parameter or combination is checked for the truth. A calibrated interval contains it in 68 % of
+// parameter or derived quantity is checked for the truth. A calibrated interval contains it in 68 % of
 // the data sets. Shared by bench/profile_coverage.cpp (the full study) and a small ctest version.
 //
 // Draws, each log-uniform: gamma_hat in [0.01, 300], d in [0.05, 2] mm, attenuation noise in
@@ -117,13 +117,13 @@ inline DataSetResult run_data_set(unsigned seed, int index) {
     for (const auto& p : fit.parameters) {
       if (p.name == name) r.checks[q] = check(r.truth.values[q], p.profile_lower, p.profile_upper, p.determined);
     }
-    for (const auto& c : fit.combinations) {
+    for (const auto& c : fit.derived) {
       if (c.name == name) r.checks[q] = check(r.truth.values[q], c.profile_lower, c.profile_upper, c.determined);
     }
     for (const auto& p : at_truth.parameters) {
       if (p.name == name) r.checks[q].design_determined = p.determined;
     }
-    for (const auto& c : at_truth.combinations) {
+    for (const auto& c : at_truth.derived) {
       if (c.name == name) r.checks[q].design_determined = c.determined;
     }
   }

@@ -20,6 +20,7 @@
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/synthetic.hpp"
+#include "sedwave/sampling/summary.hpp"
 
 namespace sedwave::bench {
 
@@ -40,9 +41,16 @@ struct CalibrationResult {
   std::array<bool, 3> in68{}, in95{};
   std::array<double, 3> rank_fraction{};
   bool converged = false;
+  bool importance = false;  ///< the evidence's sampler: importance sampling served
 };
 
-inline CalibrationResult run_calibration_set(unsigned seed, int index, int steps) {
+/// The posterior's draws and intervals from `sedwave invert --method posterior`'s sampler, or from
+/// the evidence's own (importance sampling around the fit where it applies, parallel tempering
+/// elsewhere: what `sedwave compare` draws its bands and corner plot from).
+enum class CalibrationSampler { Posterior, Evidence };
+
+inline CalibrationResult run_calibration_set(unsigned seed, int index, int steps,
+                                             CalibrationSampler sampler = CalibrationSampler::Posterior) {
   std::mt19937_64 rng(seed * 7777ull + static_cast<unsigned>(index));
   std::normal_distribution<double> normal(0.0, 1.0);
   const forward::LatticeModel lattice;
@@ -64,16 +72,27 @@ inline CalibrationResult run_calibration_set(unsigned seed, int index, int steps
   const inversion::FitOptions fit_options{.method = inversion::FitMethod::Ceres, .profile_likelihood = false};
   const inversion::FitResult best = inversion::fit(data, *frame, start, fit_options);
   const std::vector<inversion::Prior> priors = inversion::make_priors(best.fitted, prior_items);
-  const inversion::PosteriorResult posterior = inversion::sample_posterior(
-      data, *frame, best, priors, fit_options, {.steps = steps, .seed = seed + static_cast<unsigned>(index)});
   CalibrationResult r;
-  r.converged = posterior.converged;
+  Eigen::MatrixXd samples;
+  if (sampler == CalibrationSampler::Evidence) {
+    inversion::EvidenceOptions options;
+    options.seed = seed + static_cast<unsigned>(index);
+    const inversion::ModelEvidence e = inversion::model_evidence(data, *frame, best, priors, fit_options, options);
+    r.converged = e.converged;
+    r.importance = e.method == "importance sampling";
+    samples = e.samples;
+  } else {
+    const inversion::PosteriorResult posterior = inversion::sample_posterior(
+        data, *frame, best, priors, fit_options, {.steps = steps, .seed = seed + static_cast<unsigned>(index)});
+    r.converged = posterior.converged;
+    samples = posterior.samples;
+  }
   for (std::size_t i = 0; i < kCalibrationPriors.size(); ++i) {
-    const inversion::PosteriorQuantity& q = posterior.parameters[i];
+    const auto column = samples.col(static_cast<Eigen::Index>(i));
+    const sampling::ParameterSummary q = sampling::summarize(Eigen::MatrixXd(column))[0];
     const double t = truth.spec[i].value;
-    r.in68[i] = t >= q.lower_68 && t <= q.upper_68;
-    r.in95[i] = t >= q.lower_95 && t <= q.upper_95;
-    const auto column = posterior.samples.col(static_cast<Eigen::Index>(i));
+    r.in68[i] = t >= q.central68.lower && t <= q.central68.upper;
+    r.in95[i] = t >= q.central95.lower && t <= q.central95.upper;
     r.rank_fraction[i] = static_cast<double>((column.array() < t).count()) / static_cast<double>(column.size());
   }
   return r;

@@ -11,10 +11,11 @@ JOBS="${JOBS:-$(nproc 2>/dev/null || echo 2)}"
 SEDWAVE_GENERATOR="${SEDWAVE_GENERATOR:-Ninja}"
 
 # Everything sedwave needs, all Debian packages. gnuplot draws the fit plot (optional at run time);
-# python3 runs the docs check (tests/docs).
+# python3 runs the docs check (tests/docs); pybind11, Python's headers and numpy build the Python
+# module (python/), pytest runs its tests.
 SEDWAVE_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev
   libopenmpi-dev openmpi-bin libhdf5-dev libgtest-dev libbenchmark-dev libcli11-dev libtoml11-dev
-  nlohmann-json3-dev gnuplot-nox python3 ninja-build)
+  nlohmann-json3-dev gnuplot-nox python3 ninja-build pybind11-dev python3-dev python3-numpy python3-pytest)
 
 # Installs SEDWAVE_PACKAGES and any packages named as arguments.
 sedwave_install_packages() {
@@ -58,4 +59,18 @@ sedwave_build() {
   [ -f "$BUILD_DIR/CMakeCache.txt" ] && generator=()
   cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$type" "$(sedwave_compiler_launcher)" "$@" >/dev/null
   cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+# Installs the Python module into Debian's folder for locally installed packages
+# (/usr/local/lib/python3.11/dist-packages), which /usr/bin/python3 searches from any folder
+# (docs/python.md). As root only; a build without the module (SEDWAVE_PYTHON=OFF) installs nothing.
+sedwave_install_python() {
+  grep -q '^SEDWAVE_PYTHON:BOOL=ON' "$BUILD_DIR/CMakeCache.txt" 2>/dev/null || return 0
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "sedwave: not root: the Python module stays in $BUILD_DIR/python (PYTHONPATH; docs/python.md)" >&2
+    return 0
+  fi
+  cmake --build "$BUILD_DIR" -j "$JOBS" --target sedwave_python
+  cmake --install "$BUILD_DIR" --component python >/dev/null
+  echo "sedwave: Python module installed: /usr/bin/python3 -c 'import sedwave' works in any folder" >&2
 }

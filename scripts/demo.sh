@@ -7,6 +7,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 sedwave_install_packages
 cmake -S "$SEDWAVE_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$BUILD_DIR" -j "$JOBS" --target sedwave
+sedwave_install_python
 OUT="${OUT:-$SEDWAVE_ROOT/out/demo}"
 status=0
 "$BUILD_DIR/bin/sedwave" invert "$SEDWAVE_ROOT/data/field/zhou2009_regression.csv" \

@@ -4,8 +4,8 @@
 # every command-line case; the last lines give both verdicts.
 # SEDWAVE_SANITIZE_TESTS=0 skips the sanitizer pass (a second build, with Clang, of those targets).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-# Clang, its sanitizer runtimes and OpenMP build the sanitizer pass.
-sedwave_install_packages clang libclang-rt-dev libomp-dev
+# Clang, its sanitizer runtimes and OpenMP build the sanitizer pass; matplotlib draws example 14's figure.
+sedwave_install_packages clang libclang-rt-dev libomp-dev python3-matplotlib
 # Open MPI refuses to run as root and to oversubscribe 2 cores unless told it may.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 # Tests run several programs per core. An OpenMP thread waiting at a barrier then sleeps instead of
@@ -100,6 +100,7 @@ if [ "$SANITIZE" = 1 ]; then
 fi
 release_status=0
 sedwave_build Release -DSEDWAVE_WERROR=ON "-DSEDWAVE_SANITIZED_ONLY_TESTS=$SANITIZED_ONLY" || release_status=$?
+[ "$release_status" = 0 ] && { sedwave_install_python || release_status=$?; }
 ctest_status=0
 if [ "$release_status" = 0 ]; then
   (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "${CTEST_SKIP[@]}" "$@") | tee "$BUILD_DIR/ctest.log" ||

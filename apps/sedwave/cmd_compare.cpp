@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -46,17 +48,12 @@ std::vector<std::string> split(const std::string& text, char by) {
 
 std::string name_of(const std::string& item) { return item.substr(0, item.find('=')); }
 
-bool has_parameter(const sediment::SedimentModel& model, const std::string& name) {
-  const auto& ps = model.parameters();
-  return std::any_of(ps.begin(), ps.end(), [&](const sediment::Parameter& p) { return p.name == name; });
-}
-
 /// Every name a shared option uses must belong to at least one of the models (a typo is refused).
 void require_known(const std::vector<std::string>& items, const char* option,
                    const std::vector<std::shared_ptr<const sediment::SedimentModel>>& models) {
   for (const std::string& item : items) {
     const std::string name = name_of(item);
-    const bool known = std::any_of(models.begin(), models.end(), [&](const auto& m) { return has_parameter(*m, name); });
+    const bool known = std::any_of(models.begin(), models.end(), [&](const auto& m) { return m->has_parameter(name); });
     if (!known) throw UsageError(std::string(option) + " '" + item + "': none of the models has a parameter '" + name + "'");
   }
 }
@@ -104,11 +101,18 @@ inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
   inversion::ModelSetup setup = setup_of(o.shared);
   setup.model = spec;
   for (const std::string& f : o.fits) {
-    if (name_of(f) == spec) setup.free = f.substr(f.find('=') + 1);
+    if (name_of(f) != spec) continue;
+    setup.free = f.substr(f.find('=') + 1);
+    setup.free_origin = "--fit '" + f + "' (the parameters of " + spec + ")";
   }
   setup.priors = o.priors;
   setup.shared = true;
   return candidate_of(setup);
+}
+
+/// "IS" or "PT": what gave an evidence.
+std::string method_code(const inversion::ModelEvidence& e) {
+  return e.method == "importance sampling" ? "IS" : "PT";
 }
 
 void print_table(const inversion::Ranking& ranking) {
@@ -116,17 +120,28 @@ void print_table(const inversion::Ranking& ranking) {
   const std::vector<int>& order = ranking.order;
   const std::vector<int>& wide = ranking.order_widened;
   const double best = ranking.best().evidence.log_evidence;
-  std::printf("\n%-4s %-20s %3s %9s %7s %9s %9s %17s %8s %8s %10s %5s\n", "rank", "model", "k", "chi2", "chi2/nu",
-              "AIC", "BIC", "ln Z", "dln Z", "p(pred)", "ln Z x10", "rank");
+  std::printf("\n%-4s %-20s %3s %9s %7s %9s %9s %17s %8s %8s %10s %5s %7s %8s\n", "rank", "model", "k", "chi2",
+              "chi2/nu", "AIC", "BIC", "ln Z", "dln Z", "p(pred)", "ln Z x10", "rank", "method", "evals");
   for (std::size_t r = 0; r < order.size(); ++r) {
     const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
     const auto wide_rank = std::find(wide.begin(), wide.end(), order[r]) - wide.begin() + 1;
-    std::printf("%-4zu %-20s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld%s\n", r + 1,
-                row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
+    const std::string method = method_code(row.evidence) + "/" + method_code(row.widened);
+    std::printf("%-4zu %-20s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld %7s %8ld%s\n",
+                r + 1, row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
                 row.fit.dof > 0 ? row.fit.chi2 / row.fit.dof : NAN, row.fit.aic, row.fit.bic,
                 row.evidence.log_evidence, row.evidence.uncertainty, row.evidence.log_evidence - best,
-                row.evidence.predictive_p, row.widened.log_evidence, static_cast<long>(wide_rank),
-                row.evidence.converged ? "" : "  (NOT CONVERGED)");
+                row.evidence.predictive_p, row.widened.log_evidence, static_cast<long>(wide_rank), method.c_str(),
+                row.evaluations, row.evidence.converged ? "" : "  (NOT CONVERGED)");
+  }
+  std::printf("method (ln Z / ln Z x10): IS importance sampling around the fit, PT parallel tempering; evals: the "
+              "model's evaluations in all (fit, evidence, band)\n");
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
+    for (const auto& [column, e] : {std::pair{"ln Z", &row.evidence}, std::pair{"ln Z x10", &row.widened}}) {
+      if (!e->fallback_reason.empty()) {
+        std::printf("%s, %s by parallel tempering: %s\n", row.model.c_str(), column, e->fallback_reason.c_str());
+      }
+    }
   }
   if (rows.size() > 1) {
     const inversion::ComparedModel& first = rows[static_cast<std::size_t>(order[0])];
@@ -173,6 +188,12 @@ Command add_compare_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
       ->check(finite_in(100.0, 10000.0));
+  cmd->add_option("--evidence", o->evidence.method,
+                  "auto: importance sampling around each fit where its diagnostics allow, parallel tempering "
+                  "elsewhere; tempering: parallel tempering always")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, inversion::EvidenceMethod>{
+          {"auto", inversion::EvidenceMethod::Automatic}, {"tempering", inversion::EvidenceMethod::Tempering}}))
+      ->default_str("auto");
   cmd->add_option("--temperatures", o->evidence.temperatures, "tempering ladder length")->capture_default_str()
       ->check(CLI::Range(4, 64));
   cmd->add_option("--steps", o->evidence.steps,

@@ -76,7 +76,7 @@ std::array<bool, 3> parse_boundary(std::string text) {
 }
 
 /// Accepts the numbers within `bounds` (CLI11's Range includes both ends).
-CLI::Validator within(const dem::KeyBounds& bounds) {
+CLI::Validator within(const io::Range& bounds) {
   const std::string range = bounds.describe();
   return CLI::Validator(
       [bounds, range](const std::string& text) -> std::string {
@@ -367,14 +367,14 @@ void add_contact_options(CLI::App& cmd, DemOptions& o) {
 void add_fluid_options(CLI::App& cmd, DemOptions& o) {
   DemOptions::Fluid& f = o.fluid;
   cmd.add_option("--fluid-viscosity", f.viscosity, "pore fluid viscosity mu [mass/(length time)]; gives the run a fluid")
-      ->check(within(dem::KeyBounds::positive()));
+      ->check(within(io::Range::positive()));
   cmd.add_option("--fluid-roughness", f.roughness,
                  "smallest lubrication gap h_r [length]: the squeeze-film force at smaller gaps and overlaps is that at h_r")
-      ->check(within(dem::KeyBounds::positive()));
+      ->check(within(io::Range::positive()));
   cmd.add_option("--fluid-cutoff", f.cutoff, "no lubrication at gaps beyond h_c [length] (> --fluid-roughness)")
-      ->check(within(dem::KeyBounds::positive()));
+      ->check(within(io::Range::positive()));
   cmd.add_option("--fluid-density", f.density, "fluid density [mass/length^3] for buoyancy under --gravity (default 0)")
-      ->check(within(dem::KeyBounds::non_negative()));
+      ->check(within(io::Range::non_negative()));
   cmd.add_option("--fluid-drag", f.drag, "drag on each grain: richardson_zaki (default), stokes or none")
       ->check(CLI::IsMember(dem::drag_law_names()));
   cmd.add_option("--fluid-porosity", f.porosity, "porosity of the Richardson-Zaki drag correction (default 0.4)")

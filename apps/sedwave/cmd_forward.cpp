@@ -4,6 +4,7 @@
 // packings).
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -174,6 +175,22 @@ int run_forward(const ForwardOptions& o, const MpiSession& mpi) {
       throw std::invalid_argument(o.scene + ": --omega-hat sets a sinusoid's frequency; this scene drives a pulse "
                                   "(set [drive] omega_hat_min/omega_hat_max instead)");
     }
+  });
+  // One run at a time per --out, after every check (a refused run waits for nothing): a second run
+  // waits, as invert's and compare's do, instead of both reporting the file written. Rank 0 holds
+  // the lock; the other ranks sleep meanwhile rather than spin in a collective.
+  std::optional<io::OutputFileLock> lock;
+  std::exception_ptr locking;
+  if (mpi.rank() == 0) {
+    try {
+      lock.emplace(o.out, "--out");
+    } catch (...) {
+      locking = std::current_exception();
+    }
+  }
+  forward::parallel::barrier_sleeping(MPI_COMM_WORLD);
+  mpi.alike([&] {
+    if (locking) std::rethrow_exception(locking);
   });
   if (o.omega_hat) scene.drive.omega_hat = *o.omega_hat;
   if (o.gamma_hat) scene.drive.gamma_hat = *o.gamma_hat;

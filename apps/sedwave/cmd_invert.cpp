@@ -116,8 +116,8 @@ void print_summary(const inversion::FitResult& r, const plot::PlotOutcome& plot,
     print_quantity(p.name, p.unit, p.value, p.sigma, p.free, p.determined, p.at_bound, p.profile_lower,
                    p.profile_upper, profiled && p.free);
   }
-  if (!r.combinations.empty()) std::printf("\ncombinations the data may determine:\n");
-  for (const auto& c : r.combinations) {
+  if (!r.derived.empty()) std::printf("\ncombinations the data may determine:\n");
+  for (const auto& c : r.derived) {
     print_quantity(c.name, c.unit, c.value, c.sigma, true, c.determined, false, c.profile_lower, c.profile_upper,
                    profiled);
   }
@@ -178,7 +178,7 @@ void print_posterior(const inversion::PosteriorResult& p, const std::string& out
                 q.effective_samples, prior_note(q).c_str());
   };
   for (const auto& q : p.parameters) row(q);
-  for (const auto& q : p.combinations) row(q);
+  for (const auto& q : p.derived) row(q);
   if (p.converged) {
     std::printf("  converged (kept steps >= 50 autocorrelation times, effective sample sizes >= 400, walkers agree%s)\n",
                 p.temperatures > 0 ? "; every rung mixed" : "");

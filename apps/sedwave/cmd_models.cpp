@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "sedwave/sediment/catalog.hpp"
 
 namespace sedwave::app {
@@ -15,8 +16,12 @@ Command add_models_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "models", "List the sediment models (--model of invert and synthesize) with their parameters: SI unit, "
                 "default, physical range; derived quantities with their plausible ranges (docs/models/)");
-  cmd->add_option("model", *name, "one model's specification (e.g. biot-stoll); all when omitted");
-  return {cmd, [name]() {
+  const CLI::Option* given = cmd->add_option("model", *name, "one model's specification (e.g. biot-stoll); all when omitted");
+  return {cmd, [name, given]() {
+    // An empty name given is a mistake (an unset shell variable, say), not a request for every model.
+    if (given->count() > 0 && name->empty()) {
+      throw UsageError("models '': an empty model name (omit it to list every model)");
+    }
     std::printf("# models: %s\n", name->empty() ? "all (a table stands for every table; saturated-X for any frame X)"
                                                 : name->c_str());
     const auto models = name->empty() ? sediment::model_examples()

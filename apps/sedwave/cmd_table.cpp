@@ -52,6 +52,7 @@ void check_table_paths(const TableOptions& o, const table::TableGridFile& grid, 
     }
   }
   check_outputs(outputs, inputs, "table");
+  table::require_table_or_nothing(o.out);  // a file of another kind is refused now, not after the packing
 }
 
 /// The options a run of this scene can honour; throws std::invalid_argument for the others.

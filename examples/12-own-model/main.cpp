@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     for (const auto& p : m.fit.parameters) {
       if (p.free) std::printf("  %-12s %.5g %s\n", p.name.c_str(), p.value, p.unit.c_str());
     }
-    for (const auto& c : m.fit.combinations) std::printf("  %-12s %.5g %s (derived)\n", c.name.c_str(), c.value, c.unit.c_str());
+    for (const auto& c : m.fit.derived) std::printf("  %-12s %.5g %s (derived)\n", c.name.c_str(), c.value, c.unit.c_str());
   }
   const inversion::ComparedModel& own = ranking.models[0];
   const inversion::ComparedModel& biot = ranking.models[1];
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   check("constant-q Q", inversion::by_name(own.fit.parameters, "Q").value, 102.35, 0.1);
   check("constant-q chi2", own.fit.chi2, 4121.0, 2.0);
   check("biot-stoll chi2", biot.fit.chi2, 43.82, 0.05);
-  check("biot-stoll wood_speed [m/s]", inversion::by_name(biot.fit.combinations, "wood_speed").value, 1577.8, 0.5);
+  check("biot-stoll wood_speed [m/s]", inversion::by_name(biot.fit.derived, "wood_speed").value, 1577.8, 0.5);
   // Monte Carlo evidences with a fixed seed: this build repeats them exactly, another compiler or
   // library draws other samples. The difference of two runs has sqrt(2) standard errors, so 4 of
   // those: a correct run fails about once in 10^4.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "fit_problem.hpp"
 #include "job_queue.hpp"
 #include "sedwave/inversion/report.hpp"
 #include "sedwave/sediment/catalog.hpp"
@@ -29,7 +30,9 @@ void fit_candidate(const Candidate& candidate, ComparedModel& compared, const Ob
   report(options, candidate.label + ": fit ...");
   compared.label = candidate.label;
   compared.model = candidate.model->name();
+  const long before = detail::evaluations_on_this_thread();
   compared.fit = fit(data, *candidate.model, candidate.parameters, kFitOptions);
+  compared.fit_evaluations = detail::evaluations_on_this_thread() - before;
   for (int i : compared.fit.fitted.free_indices()) {
     const ParameterSpec& parameter = compared.fit.fitted.spec[static_cast<std::size_t>(i)];
     compared.free += (compared.free.empty() ? "" : ",") + parameter.name;
@@ -48,6 +51,28 @@ ModelEvidence evidence_of(const Candidate& candidate, const ComparedModel& compa
     evidence.progress = [&options, label](const std::string& line) { options.progress(label + ": " + line); };
   }
   return model_evidence(data, *candidate.model, compared.fit, priors, kFitOptions, evidence);
+}
+
+/// Whether a column still needs parallel tempering: it was not computed by importance sampling, or
+/// importance sampling's diagnostics refused it.
+bool needs_tempering(const ModelEvidence& e, const EvidenceOptions& options) {
+  return options.method == EvidenceMethod::Tempering || !e.fallback_reason.empty();
+}
+
+/// Tempering's result for a column that importance sampling refused, saying why.
+ModelEvidence fall_back(const ModelEvidence& refused, ModelEvidence tempered) {
+  tempered.fallback_reason = refused.fallback_reason;
+  return tempered;
+}
+
+/// Every evaluation made for a model: the fit's, importance sampling's once (both columns share
+/// them), tempering's per column, the band's draws.
+long model_evaluations(const ComparedModel& m, long importance) {
+  long total = m.fit_evaluations + importance + m.band.draws;
+  for (const ModelEvidence* e : {&m.evidence, &m.widened}) {
+    if (e->method != "importance sampling") total += e->evaluations;
+  }
+  return total;
 }
 
 std::vector<int> order_by_evidence(const std::vector<ComparedModel>& models, bool widened) {
@@ -99,27 +124,51 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
   ranking.models.resize(candidates.size());
   EvidenceOptions evidence = options.evidence;
   evidence.threads = std::max(1, options.threads / (2 * static_cast<int>(candidates.size())));
-  // Per model: its fit, then its two evidence runs side by side, then the band from the first.
+  // Per model: its fit, then both evidences by importance sampling where it applies, then parallel
+  // tempering for each it does not serve (the two side by side), then the band from the first.
   JobQueue queue;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const Candidate& candidate = candidates[i];
     ComparedModel& compared = ranking.models[i];
     queue.add([&candidate, &compared, &data, &options, evidence](JobQueue& next) {
       fit_candidate(candidate, compared, data, options);
-      next.add([&candidate, &compared, &data, &options, evidence](JobQueue&) {
-        compared.widened = evidence_of(candidate, compared, data, widened(candidate.priors, kPriorWidening), evidence,
-                                       options, widened_stage());
-      });
       next.add([&candidate, &compared, &data, &options, evidence](JobQueue& after) {
-        compared.evidence = evidence_of(candidate, compared, data, candidate.priors, evidence, options, "evidence");
-        after.add([&candidate, &compared, &data](JobQueue&) {
+        const std::vector<Prior> wide = widened(candidate.priors, kPriorWidening);
+        if (evidence.method == EvidenceMethod::Automatic) {
+          report(options, candidate.label + ": evidence by importance sampling ...");
+          const std::vector<ModelEvidence> fast =
+              importance_sampled_evidence(data, *candidate.model, compared.fit, {candidate.priors, wide}, kFitOptions,
+                                          evidence);
+          compared.evidence = fast[0];
+          compared.widened = fast[1];
+          compared.evaluations = std::max(fast[0].evaluations, fast[1].evaluations);
+        }
+        EvidenceOptions tempering = evidence;
+        tempering.method = EvidenceMethod::Tempering;
+        const auto band = [&candidate, &compared, &data](JobQueue&) {
           compared.band = predictive_band(compared.model, *candidate.model, compared.fit, compared.evidence.samples,
                                           curve_frequencies(data));
-        });
+        };
+        if (needs_tempering(compared.widened, evidence)) {
+          after.add([&candidate, &compared, &data, &options, tempering, wide](JobQueue&) {
+            compared.widened = fall_back(compared.widened, evidence_of(candidate, compared, data, wide, tempering,
+                                                                       options, widened_stage()));
+          });
+        }
+        if (needs_tempering(compared.evidence, evidence)) {
+          after.add([&candidate, &compared, &data, &options, tempering, band](JobQueue& then) {
+            compared.evidence = fall_back(compared.evidence, evidence_of(candidate, compared, data, candidate.priors,
+                                                                         tempering, options, "evidence"));
+            then.add(band);
+          });
+        } else {
+          after.add(band);
+        }
       });
     });
   }
   queue.run(options.threads);
+  for (ComparedModel& m : ranking.models) m.evaluations = model_evaluations(m, m.evaluations);
   ranking.order = order_by_evidence(ranking.models, false);
   ranking.order_widened = order_by_evidence(ranking.models, true);
   return ranking;
@@ -127,7 +176,9 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
 
 nlohmann::json ranking_report(const Ranking& ranking) {
   const auto ev = [](const ModelEvidence& e) {
-    return nlohmann::json{{"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
+    return nlohmann::json{{"method", e.method}, {"fallback_reason", e.fallback_reason},
+                          {"pareto_k", e.pareto_k}, {"effective_draws", e.effective_draws},
+                          {"log_evidence", e.log_evidence}, {"uncertainty", e.uncertainty},
                           {"predictive_p", e.predictive_p}, {"converged", e.converged},
                           {"advice", e.advice}, {"evaluations", e.evaluations}, {"wall_seconds", e.wall_seconds},
                           {"steps", e.steps}, {"temperatures", e.temperatures},
@@ -138,7 +189,9 @@ nlohmann::json ranking_report(const Ranking& ranking) {
   nlohmann::json j = nlohmann::json::array();
   for (const ComparedModel& m : ranking.models) {
     j.push_back({{"model", m.model}, {"free", m.free}, {"chi2", m.fit.chi2}, {"dof", m.fit.dof},
-                 {"aic", m.fit.aic}, {"bic", m.fit.bic}, {"priors", m.priors}, {"evidence", ev(m.evidence)},
+                 {"aic", m.fit.aic}, {"bic", m.fit.bic}, {"priors", m.priors},
+                 {"evaluations", m.evaluations}, {"fit_evaluations", m.fit_evaluations},
+                 {"band_draws", m.band.draws}, {"evidence", ev(m.evidence)},
                  {"evidence_priors_widened_x10", ev(m.widened)}});
   }
   return j;

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
 #include <numbers>
 #include <stdexcept>
 
@@ -30,6 +31,38 @@ using detail::solve_local;
 void report_progress(const FitOptions& options, const std::string& stage) {
   if (options.progress) options.progress(stage);
 }
+
+/// Says before each likelihood profile how long it will take, from the profiles before it: where
+/// every row has its own frequency nothing groups (fit_problem.hpp, Setup::RowGroup), the model runs
+/// once per row at every evaluation, and a profile of 10^5 such rows takes tens of seconds.
+class ProfileClock {
+ public:
+  explicit ProfileClock(const FitOptions& options) : options_(options) {}
+  void start(const std::string& name) {
+    const auto now = std::chrono::steady_clock::now();
+    if (running_) {
+      total_ += std::chrono::duration<double>(now - started_).count();
+      ++done_;
+    }
+    std::string stage = "likelihood profile of " + name;
+    if (done_ > 0 && total_ / done_ >= kWorthSaying) {
+      char estimate[64];
+      std::snprintf(estimate, sizeof estimate, " (about %.0f s, as each profile so far)", total_ / done_);
+      stage += estimate;
+    }
+    report_progress(options_, stage);
+    started_ = now;
+    running_ = true;
+  }
+
+ private:
+  static constexpr double kWorthSaying = 1.0;  ///< seconds: shorter profiles are not worth a remark
+  const FitOptions& options_;
+  std::chrono::steady_clock::time_point started_;
+  bool running_ = false;
+  int done_ = 0;
+  double total_ = 0.0;
+};
 
 struct GlobalFit {
   Theta theta;
@@ -125,7 +158,7 @@ bool profile_into(const Setup& s, const Theta& theta, double chi2_min, const det
 /// The identifiability, intervals and goodness of fit at theta. Returns a point of lower chi^2 if
 /// a likelihood profile found one (the solvers stopped in a local minimum).
 std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOptions& options, FitResult& result) {
-  const std::vector<detail::Combination> combinations = detail::combinations_for(s);
+  const std::vector<detail::DerivedFunction> derived_functions = detail::derived_functions_for(s);
   const Eigen::MatrixXd J = detail::whitened_jacobian(s, theta);
   const JacobianAnalysis analysis = analyze_jacobian(J, detail::kRankTolerance);
   result.covariance = detail::covariance(s, theta);
@@ -134,6 +167,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
   const double chi2_min = chi2_at(s, theta);
   std::optional<detail::Profile> better;
 
+  ProfileClock clock(options);
   for (int i : s.free) result.free_names.push_back(s.parameters.spec[i].name);
   const auto p = static_cast<Eigen::Index>(s.free.size());
   for (Eigen::Index k = 0; k < p; ++k) {
@@ -161,7 +195,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
       r.at_bound = theta[i] <= detail::log_lower(s, i) + kAtBoundLog || theta[i] >= detail::log_upper(s, i) - kAtBoundLog;
       r.log_sigma = d.log_sigma;
       r.sigma = r.value * d.log_sigma;
-      if (options.profile_likelihood) report_progress(options, "likelihood profile of " + r.name);
+      if (options.profile_likelihood) clock.start(r.name);
       const bool closed = !options.profile_likelihood ||
                           profile_into(s, theta, chi2_min, {i, nullptr}, d.log_sigma, options, r.profile_lower,
                                        r.profile_upper, better);
@@ -172,33 +206,33 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
     result.parameters.push_back(r);
   }
 
-  for (const detail::Combination& info : combinations) {
+  for (const detail::DerivedFunction& info : derived_functions) {
     const Differentiated log_q = info.log_value(s, theta);
     const Eigen::VectorXd free_gradient = detail::free_part(log_q.v, s.free);
     const Determination d = determine(free_gradient, analysis, result.covariance, options.determined_log_sigma);
     const double value = std::exp(log_q.a);
-    CombinationResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
+    DerivedResult c{info.name, info.unit, info.meaning, value, d.determined, d.log_sigma, value * d.log_sigma, {}, {}};
     if (free_gradient.isZero(0.0)) {
       // Made of fixed parameters only: known exactly, and checked for plausibility like a fitted value.
       c.determined = true;
       c.log_sigma = c.sigma = 0.0;
       c.profile_lower = c.profile_upper = value;
-    } else if (options.profile_likelihood && info.name == "f_star" && !result.combinations.empty() &&
-               result.combinations.back().name == "tau") {
+    } else if (options.profile_likelihood && info.name == "f_star" && !result.derived.empty() &&
+               result.derived.back().name == "tau") {
       // The grain contact's f* = 1/(2 pi tau): its interval is tau's, inverted (tau is profiled just
       // before, sediment::GrainContactDerived).
-      const CombinationResult& tau = result.combinations.back();
+      const DerivedResult& tau = result.derived.back();
       const double k = 1.0 / (2.0 * std::numbers::pi);
       if (tau.profile_upper) c.profile_lower = k / *tau.profile_upper;
       if (tau.profile_lower) c.profile_upper = k / *tau.profile_lower;
       c.determined = tau.determined;
     } else if (options.profile_likelihood && d.null_component < 1.0 - 1e-9) {
-      report_progress(options, "likelihood profile of " + info.name);
+      clock.start(info.name);
       const bool closed = profile_into(s, theta, chi2_min, {-1, &info}, d.log_sigma, options, c.profile_lower,
                                        c.profile_upper, better);
       c.determined = d.determined && closed;
     }
-    result.combinations.push_back(c);
+    result.derived.push_back(c);
   }
 
   // Correlations of the free ln-parameters; undetermined ones have none worth quoting.
@@ -213,7 +247,7 @@ std::optional<Theta> analyze(const Setup& s, const Theta& theta, const FitOption
   // Goodness of fit and per-point residuals.
   std::vector<double> normalized(s.observations.size());
   std::string why = "a residual is not defined at the solution (a non-positive model attenuation)";
-  if (!detail::residuals_at(s, theta, normalized.data(), nullptr, &why)) throw std::runtime_error(why);
+  if (!detail::row_residuals_at(s, theta, normalized.data(), &why)) throw std::runtime_error(why);
   const std::vector<double> model = detail::predictions_at(s, theta);
   result.chi2 = 0.0;
   for (size_t r = 0; r < s.observations.size(); ++r) {
@@ -302,7 +336,7 @@ void flag_implausible(const sediment::SedimentModel& model, const FitOptions& op
     flag_range(p.name, p.value, credible_span(p.value, p.profile_lower, p.profile_upper, options.profile_likelihood),
                plausible_range(p.name), result);
   }
-  for (const CombinationResult& c : result.combinations) {
+  for (const DerivedResult& c : result.derived) {
     const std::optional<PlausibleRange> range = derived_range(model, c.name);
     flag_range(c.name, c.value, credible_span(c.value, c.profile_lower, c.profile_upper, options.profile_likelihood),
                range ? &*range : nullptr, result);

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "sedwave/sediment/seabed_reflection.hpp"
 
@@ -32,7 +33,8 @@ void check_sigma(const Observation& o, double sigma, bool defaulted) {
 }
 
 /// Attenuation and speed are usually measured at the same frequencies: the model runs once for each.
-void index_frequencies(Setup& s) {
+/// Rows that repeat a quantity, a frequency and a sigma form one group (Setup::RowGroup).
+void index_rows(Setup& s) {
   std::map<double, std::size_t> index;
   s.frequencies.clear();
   s.frequency_of.clear();
@@ -40,6 +42,38 @@ void index_frequencies(Setup& s) {
     const auto [at, inserted] = index.emplace(o.frequency_hz, s.frequencies.size());
     if (inserted) s.frequencies.push_back(o.frequency_hz);
     s.frequency_of.push_back(at->second);
+  }
+  using Key = std::tuple<Quantity, std::size_t, double, double>;
+  std::map<Key, std::size_t> group_of;
+  std::vector<std::vector<double>> members;
+  s.groups.clear();
+  s.reflection_groups.clear();
+  s.shear_rows = false;
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    const Observation& o = s.observations[r];
+    const double sigma = compared_sigma(o, s.sigmas[r]);
+    const double angle = is_reflection(o.quantity) ? o.grazing_angle : 0.0;
+    const auto [at, inserted] = group_of.emplace(Key{o.quantity, s.frequency_of[r], angle, sigma}, s.groups.size());
+    if (inserted) {
+      if (is_reflection(o.quantity)) s.reflection_groups.push_back(s.groups.size());
+      s.groups.push_back({o.quantity, s.frequency_of[r], angle, 0.0, sigma, 0.0, 0.0});
+      members.emplace_back();
+    }
+    members[at->second].push_back(compared_value(o));
+    s.shear_rows = s.shear_rows || is_shear(o.quantity);
+  }
+  s.residual_count = 0;
+  for (std::size_t g = 0; g < s.groups.size(); ++g) {
+    Setup::RowGroup& group = s.groups[g];
+    const std::vector<double>& values = members[g];
+    group.count = static_cast<double>(values.size());
+    double sum = 0.0;
+    for (const double v : values) sum += v;
+    group.observed = values.size() == 1 ? values.front() : sum / group.count;
+    double squares = 0.0;
+    for (const double v : values) squares += (v - group.observed) * (v - group.observed);
+    group.scatter = std::sqrt(squares);
+    s.residual_count += group.scatter > 0.0 ? 2 : 1;
   }
 }
 
@@ -67,7 +101,7 @@ bool waves_at(const Setup& s, const std::vector<double>& values, bool derivative
 class ObservationResiduals final : public ceres::CostFunction {
  public:
   explicit ObservationResiduals(const Setup& s) : setup_(&s) {
-    set_num_residuals(static_cast<int>(s.observations.size()));
+    set_num_residuals(static_cast<int>(s.residual_count));
     for (int i = 0; i < s.parameters.size(); ++i) mutable_parameter_block_sizes()->push_back(1);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
@@ -96,7 +130,7 @@ class ConstraintResidual final : public ceres::CostFunction {
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
     Theta theta(static_cast<std::size_t>(setup_->parameters.size()));
     for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = parameters[i][0];
-    const Differentiated q = constraint_.combination->log_value(*setup_, theta);
+    const Differentiated q = constraint_.derived->log_value(*setup_, theta);
     residual[0] = (q.a - constraint_.target) / constraint_.tolerance;
     if (jacobians) {
       for (Eigen::Index i = 0; i < q.v.size(); ++i) {
@@ -125,11 +159,30 @@ double water_density_of(const ObservationSet& data) {
   return rho;
 }
 
-/// The bottom loss [dB] or |R| of every reflection row for parameter values: water over a half-space
-/// of the model (elastic where the model has a shear wave). False where the model has no answer there.
-bool bottom_losses_at(const Setup& s, const std::vector<double>& values, std::vector<double>& loss,
-                      std::string* why = nullptr) {
-  loss.clear();
+/// Where the fit compares the reflection coefficient: the reflection groups (quantity, frequency,
+/// grazing angle), in order.
+std::vector<Setup::RowGroup> reflection_points_of_groups(const Setup& s) {
+  std::vector<Setup::RowGroup> points;
+  for (std::size_t g : s.reflection_groups) points.push_back(s.groups[g]);
+  return points;
+}
+
+/// The same for every reflection row, in order (a fit's per-row residuals and predictions).
+std::vector<Setup::RowGroup> reflection_points_of_rows(const Setup& s) {
+  std::vector<Setup::RowGroup> points;
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    const Observation& o = s.observations[r];
+    if (is_reflection(o.quantity)) points.push_back({o.quantity, s.frequency_of[r], o.grazing_angle});
+  }
+  return points;
+}
+
+/// The bottom loss [dB] or |R| at each point for parameter values: water over a half-space of the
+/// model (elastic where the model has a shear wave). False where the model has no answer there.
+bool reflection_values_at(const Setup& s, const std::vector<double>& values, const std::vector<Setup::RowGroup>& points,
+                          std::vector<double>& out, std::string* why = nullptr) {
+  out.clear();
+  if (points.empty()) return true;
   // The medium of each frequency once; the model is held by the setup (a non-owning pointer).
   std::vector<std::optional<sediment::AcousticMedium>> media(s.frequencies.size());
   const sediment::SeabedPart part{std::shared_ptr<const sediment::SedimentModel>(
@@ -137,13 +190,12 @@ bool bottom_losses_at(const Setup& s, const std::vector<double>& values, std::ve
                                   values, 0.0};
   const sediment::AcousticMedium water{s.water_speed, 0.0, 0.0, 0.0, s.water_density};
   try {
-    for (std::size_t r : s.reflection_rows) {
-      const std::size_t k = s.frequency_of[r];
-      if (!media[k]) media[k] = sediment::medium_of(part, s.frequencies[k], false, "half-space");
-      const sediment::LayeredHalfspace seabed{water, {}, *media[k]};
-      const Observation& o = s.observations[r];
-      const std::complex<double> reflection = sediment::reflection_coefficient(seabed, o.grazing_angle, o.frequency_hz);
-      loss.push_back(o.quantity == Quantity::BottomLoss ? sediment::bottom_loss_db(reflection) : std::abs(reflection));
+    for (const Setup::RowGroup& p : points) {
+      const double f = s.frequencies[p.frequency];
+      if (!media[p.frequency]) media[p.frequency] = sediment::medium_of(part, f, false, "half-space");
+      const sediment::LayeredHalfspace seabed{water, {}, *media[p.frequency]};
+      const std::complex<double> reflection = sediment::reflection_coefficient(seabed, p.grazing_angle, f);
+      out.push_back(p.quantity == Quantity::BottomLoss ? sediment::bottom_loss_db(reflection) : std::abs(reflection));
     }
   } catch (const std::domain_error& e) {
     if (why) *why = e.what();
@@ -152,35 +204,29 @@ bool bottom_losses_at(const Setup& s, const std::vector<double>& values, std::ve
     if (why) *why = e.what();
     return false;
   }
-  return std::ranges::all_of(loss, [](double x) { return std::isfinite(x); });
+  return std::ranges::all_of(out, [](double x) { return std::isfinite(x); });
 }
 
-/// Whitened bottom-loss residuals (model - observed) / sigma [dB/dB] into `residuals` and, with a
-/// Jacobian, their central differences over every free theta (zero for fixed parameters).
-bool bottom_loss_residuals(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian,
-                           std::string* why) {
-  std::vector<double> loss;
-  if (!bottom_losses_at(s, values_of(theta), loss, why)) return false;
-  for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) {
-    const std::size_t r = s.reflection_rows[k];
-    residuals[r] = (loss[k] - s.observations[r].value) / s.sigmas[r];
-  }
-  if (!jacobian) return true;
-  for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) jacobian->row(static_cast<Eigen::Index>(s.reflection_rows[k])).setZero();
+/// d value / d theta of every reflection group (groups x parameters) by central differences over
+/// the free parameters (zero for fixed ones): the reflection code is not differentiated.
+bool reflection_derivatives_at(const Setup& s, const Theta& theta, Eigen::MatrixXd& d, std::string* why) {
+  const std::vector<Setup::RowGroup> points = reflection_points_of_groups(s);
+  d.setZero(static_cast<Eigen::Index>(points.size()), static_cast<Eigen::Index>(theta.size()));
+  if (points.empty()) return true;
   for (int i : s.free) {
     Theta up = theta;
     Theta down = theta;
     up[static_cast<std::size_t>(i)] += kBottomLossStep;
     down[static_cast<std::size_t>(i)] -= kBottomLossStep;
-    std::vector<double> loss_up;
-    std::vector<double> loss_down;
-    if (!bottom_losses_at(s, values_of(up), loss_up) || !bottom_losses_at(s, values_of(down), loss_down)) {
-      if (why) *why = "the bottom loss cannot be differentiated here (the model has no answer a step away)";
+    std::vector<double> value_up;
+    std::vector<double> value_down;
+    if (!reflection_values_at(s, values_of(up), points, value_up) ||
+        !reflection_values_at(s, values_of(down), points, value_down)) {
+      if (why) *why = "the reflection coefficient cannot be differentiated here (the model has no answer a step away)";
       return false;
     }
-    for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) {
-      const std::size_t r = s.reflection_rows[k];
-      (*jacobian)(static_cast<Eigen::Index>(r), i) = (loss_up[k] - loss_down[k]) / (2.0 * kBottomLossStep * s.sigmas[r]);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      d(static_cast<Eigen::Index>(k), i) = (value_up[k] - value_down[k]) / (2.0 * kBottomLossStep);
     }
   }
   return true;
@@ -217,18 +263,17 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
     s.sigmas.push_back(sigma);
     s.defaulted.push_back(missing);
   }
-  index_frequencies(s);
+  index_rows(s);
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
     const Observation& o = s.observations[r];
-    if (is_reflection(o.quantity)) s.reflection_rows.push_back(r);
     if (is_shear(o.quantity) && !model.has_shear()) {
       throw std::invalid_argument(o.file + ":" + std::to_string(o.line) + ": a shear-wave observation, and model '" +
                                   model.name() + "' has no shear wave (sedwave models lists those that do)");
     }
-    s.shear_rows = s.shear_rows || is_shear(o.quantity);
   }
-  if (!s.reflection_rows.empty()) {
-    const Observation& first = s.observations[s.reflection_rows.front()];
+  const auto reflection_row = std::ranges::find_if(s.observations, [](const Observation& o) { return is_reflection(o.quantity); });
+  if (reflection_row != s.observations.end()) {
+    const Observation& first = *reflection_row;
     if (!data.water_sound_speed) {
       throw std::invalid_argument(first.file + ":" + std::to_string(first.line) +
                                   ": reflection data need the water sound speed ('# water_sound_speed_m_per_s: ...')");
@@ -254,31 +299,78 @@ Setup every_kth_row(const Setup& s, std::size_t stride) {
     subset.sigmas.push_back(s.sigmas[i]);
     subset.defaulted.push_back(s.defaulted[i]);
   }
-  index_frequencies(subset);
-  subset.reflection_rows.clear();
-  for (std::size_t r = 0; r < subset.observations.size(); ++r) {
-    if (is_reflection(subset.observations[r].quantity)) subset.reflection_rows.push_back(r);
-  }
+  index_rows(subset);
   return subset;
 }
 
+long& evaluations_on_this_thread() {
+  thread_local long count = 0;
+  return count;
+}
+
 bool residuals_at(const Setup& s, const Theta& theta, double* residuals, Eigen::MatrixXd* jacobian, std::string* why) {
+  ++evaluations_on_this_thread();
   const std::vector<double> values = values_of(theta);
   std::vector<sediment::Wave> waves;
   std::vector<sediment::Wave> shear;
   if (!waves_at(s, values, jacobian != nullptr, waves, why, &shear)) return false;
   const auto n = static_cast<Eigen::Index>(values.size());
-  if (jacobian) jacobian->resize(static_cast<Eigen::Index>(s.observations.size()), n);
+  if (jacobian) jacobian->setZero(static_cast<Eigen::Index>(s.residual_count), n);
   Eigen::VectorXd row(n);
+  // The reflection groups' values (and their central differences) at once: they share media.
+  std::vector<double> reflected;
+  Eigen::MatrixXd d_reflected;
+  if (!reflection_values_at(s, values, reflection_points_of_groups(s), reflected, why)) return false;
+  if (jacobian && !reflection_derivatives_at(s, theta, d_reflected, why)) return false;
+  Eigen::Index k = 0;
+  std::size_t next_reflection = 0;
+  for (const Setup::RowGroup& g : s.groups) {
+    double total = g.data_sigma;
+    if (is_reflection(g.quantity)) {
+      residuals[k] = (reflected[next_reflection] - g.observed) / total;
+      if (jacobian) row = d_reflected.row(static_cast<Eigen::Index>(next_reflection)).transpose() / total;
+      ++next_reflection;
+    } else {
+      const sediment::Wave& w = (is_shear(g.quantity) ? shear : waves)[g.frequency];
+      if (!whitened_residual(g.quantity, g.observed, g.data_sigma, w, values, residuals[k], jacobian ? row.data() : nullptr,
+                             &total)) {
+        return false;
+      }
+    }
+    const double weight = g.count == 1.0 ? 1.0 : std::sqrt(g.count);
+    residuals[k] *= weight;
+    if (jacobian) jacobian->row(k) = weight * row;
+    ++k;
+    if (g.scatter > 0.0) {
+      // The rows' scatter about their mean: what no parameter can change (the model's own sigma, which
+      // may, is not differentiated, as in every residual).
+      residuals[k++] = g.scatter / total;
+    }
+  }
+  return true;
+}
+
+bool row_residuals_at(const Setup& s, const Theta& theta, double* residuals, std::string* why) {
+  const std::vector<double> values = values_of(theta);
+  std::vector<sediment::Wave> waves;
+  std::vector<sediment::Wave> shear;
+  if (!waves_at(s, values, false, waves, why, &shear)) return false;
+  const std::vector<Setup::RowGroup> points = reflection_points_of_rows(s);
+  std::vector<double> reflected;
+  if (!reflection_values_at(s, values, points, reflected, why)) return false;
+  std::size_t next_reflection = 0;
   for (std::size_t r = 0; r < s.observations.size(); ++r) {
-    if (is_reflection(s.observations[r].quantity)) continue;  // below, all rows at once
-    const sediment::Wave& w = (is_shear(s.observations[r].quantity) ? shear : waves)[s.frequency_of[r]];
-    if (!whitened_residual(s.observations[r], s.sigmas[r], w, values, residuals[r], jacobian ? row.data() : nullptr)) {
+    const Observation& o = s.observations[r];
+    if (is_reflection(o.quantity)) {
+      residuals[r] = (reflected[next_reflection++] - o.value) / s.sigmas[r];
+      continue;
+    }
+    if (!whitened_residual(o, s.sigmas[r], (is_shear(o.quantity) ? shear : waves)[s.frequency_of[r]], values,
+                           residuals[r], nullptr)) {
       return false;
     }
-    if (jacobian) jacobian->row(static_cast<Eigen::Index>(r)) = row;
   }
-  return s.reflection_rows.empty() || bottom_loss_residuals(s, theta, residuals, jacobian, why);
+  return true;
 }
 
 std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
@@ -291,14 +383,19 @@ std::vector<double> predictions_at(const Setup& s, const Theta& theta) {
     const Observation& o = s.observations[r];
     out.push_back(predicted_value(o, (is_shear(o.quantity) ? shear : waves)[s.frequency_of[r]]));
   }
-  std::vector<double> loss;
-  if (!bottom_losses_at(s, values_of(theta), loss, &why)) throw std::runtime_error(why);
-  for (std::size_t k = 0; k < s.reflection_rows.size(); ++k) out[s.reflection_rows[k]] = loss[k];
+  std::vector<double> reflected;
+  if (!reflection_values_at(s, values_of(theta), reflection_points_of_rows(s), reflected, &why)) {
+    throw std::runtime_error(why);
+  }
+  std::size_t next_reflection = 0;
+  for (std::size_t r = 0; r < s.observations.size(); ++r) {
+    if (is_reflection(s.observations[r].quantity)) out[r] = reflected[next_reflection++];
+  }
   return out;
 }
 
 double chi2_at(const Setup& s, const Theta& theta) {
-  std::vector<double> r(s.observations.size());
+  std::vector<double> r(s.residual_count);
   if (!residuals_at(s, theta, r.data(), nullptr)) return std::numeric_limits<double>::infinity();
   double chi2 = 0.0;
   for (double x : r) chi2 += x * x;
@@ -342,7 +439,7 @@ LocalFit solve_local(const Setup& s, Theta theta, int max_iterations, int held, 
 }
 
 Eigen::MatrixXd whitened_jacobian(const Setup& s, const Theta& theta) {
-  std::vector<double> r(s.observations.size());
+  std::vector<double> r(s.residual_count);
   Eigen::MatrixXd all;
   std::string why = "a residual is not defined at the solution (a non-positive model attenuation)";
   if (!residuals_at(s, theta, r.data(), &all, &why)) throw std::runtime_error(why);

@@ -678,4 +678,15 @@ double sound_speed_to_m_per_s(double value, const std::string& unit,
   throw std::invalid_argument("unknown sound-speed unit '" + unit + "' (accepted: m/s, km/s, ratio)");
 }
 
+const char* quantity_name(Quantity q) {
+  // The first name of each quantity in the table: sound_speed before sound_speed_ratio.
+  return std::ranges::find(kQuantities, q, &QuantitySpec::quantity)->name.data();
+}
+
+const char* quantity_unit(Quantity q) {
+  if (q == Quantity::BottomLoss) return "dB";
+  if (q == Quantity::ReflectionMagnitude) return "1";
+  return is_attenuation(q) ? "Np/m" : "m/s";
+}
+
 }  // namespace sedwave::inversion

@@ -55,7 +55,8 @@ void FitParameters::set_damping_form(DampingForm form) {
   }
 }
 
-void FitParameters::set_free_from_list(const std::string& list) {
+void FitParameters::set_free_from_list(const std::string& list, const std::string& origin) {
+  const std::string given = origin.empty() ? "--fit '" + list + "'" : origin;
   for (ParameterSpec& s : spec) s.free = false;
   std::stringstream stream(list);
   std::string name;
@@ -65,7 +66,7 @@ void FitParameters::set_free_from_list(const std::string& list) {
     if (damping_index() >= 0 && is_damping_name(name)) {
       const std::string form_name = name == "gamma" ? "gamma" : "en";
       if (!damping_named.empty() && damping_named != form_name) {
-        throw std::invalid_argument("--fit '" + list + "' names both gamma and en: the damping is one parameter, "
+        throw std::invalid_argument(given + " names both gamma and en: the damping is one parameter, "
                                     "given either as the dashpot gamma or as the restitution e_n; choose one");
       }
       damping_named = form_name;
@@ -76,10 +77,10 @@ void FitParameters::set_free_from_list(const std::string& list) {
       try {
         index = index_of(name);
       } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument("--fit '" + list + "': " + e.what());
+        throw std::invalid_argument(given + ": " + e.what());
       }
     }
-    if (spec[index].free) throw std::invalid_argument("--fit '" + list + "' names '" + name + "' twice");
+    if (spec[index].free) throw std::invalid_argument(given + " names '" + name + "' twice");
     spec[index].free = true;
   }
   if (free_indices().empty()) throw std::invalid_argument("no parameter to fit in '" + list + "'");

@@ -8,7 +8,9 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "fit_problem.hpp"
@@ -123,11 +125,38 @@ PosteriorQuantity summarize(const std::string& name, const std::string& unit, co
           false, 0.0};
 }
 
-/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow
-/// (prior_control.hpp).
-void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& control, const Eigen::VectorXd& ln_values) {
-  q.prior_share = control.prior_share(ln_values);
+/// A 68 % profile-likelihood interval (FitResult): a missing end is open.
+struct ProfileInterval {
+  std::optional<double> lower, upper;
+};
+
+/// Marks a quantity whose posterior variance lies mostly along directions the data did not narrow,
+/// or whose marginal spans most of its prior's, or whose credible interval the prior narrowed from
+/// what the data alone allow (prior_control.hpp): `ln_values` its posterior draws in ln, `own` and
+/// `prior_own` its posterior draws and its prior's in the prior's own coordinate, `profile` (where
+/// the fit computed likelihood profiles) its profile interval.
+void flag_prior_control(PosteriorQuantity& q, const detail::PriorControl& control, const Eigen::VectorXd& ln_values,
+                        const Eigen::VectorXd& own, const Eigen::VectorXd& prior_own,
+                        const std::optional<ProfileInterval>& profile) {
+  q.prior_share = std::max(control.prior_share(ln_values), detail::prior_width_share(own, prior_own));
+  if (profile) {
+    q.prior_share = std::max(q.prior_share, detail::prior_share_against_profile(q.lower_68, q.upper_68,
+                                                                                profile->lower, profile->upper));
+  }
   q.prior_dominated = q.prior_share > detail::kPriorControlledShare;
+}
+
+/// The fit's profile interval of a parameter or derived quantity named `name`; nothing where the fit
+/// computed no profiles.
+std::optional<ProfileInterval> profile_of(const FitResult& best, const FitOptions& options, const std::string& name) {
+  if (!options.profile_likelihood) return std::nullopt;
+  for (const ParameterResult& p : best.parameters) {
+    if (p.name == name) return ProfileInterval{p.profile_lower, p.profile_upper};
+  }
+  for (const DerivedResult& c : best.derived) {
+    if (c.name == name) return ProfileInterval{c.profile_lower, c.profile_upper};
+  }
+  return std::nullopt;
 }
 
 /// The free ln-parameters of x placed into theta.
@@ -152,6 +181,47 @@ Eigen::VectorXd draw_free_from_priors(const Setup& s, const std::vector<Prior>& 
     x(j) = priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])].draw_theta(random);
   }
   return x;
+}
+
+/// A value in its prior's own coordinate: ln for a log-uniform or log-normal prior, else the value.
+double in_prior_coordinate(const Prior& prior, double ln_value) {
+  return prior.kind == PriorKind::LogUniform || prior.kind == PriorKind::LogNormal ? ln_value : std::exp(ln_value);
+}
+
+/// Draws from the priors alone, for the width each quantity has without the data.
+constexpr int kPriorWidthDraws = 4000;
+constexpr std::uint64_t kPriorWidthStream = 0x9E3779B97F4A7C15ULL;
+
+/// The priors' draws of every free parameter (in its prior's own coordinate) and of every
+/// derived quantity (ln; draws where one is not a positive number are left out of its column).
+struct PriorQuantities {
+  Eigen::MatrixXd parameters;
+  std::vector<Eigen::VectorXd> derived;
+};
+
+PriorQuantities prior_quantities(const Setup& s, const std::vector<Prior>& priors, const Theta& theta,
+                                 std::size_t derived_count, unsigned seed) {
+  sampling::RandomStream random(seed ^ kPriorWidthStream);
+  const auto k = static_cast<Eigen::Index>(s.free.size());
+  PriorQuantities out{Eigen::MatrixXd(kPriorWidthDraws, k), {}};
+  std::vector<std::vector<double>> columns(derived_count);
+  for (Eigen::Index r = 0; r < kPriorWidthDraws; ++r) {
+    const Eigen::VectorXd x = draw_free_from_priors(s, priors, random);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      out.parameters(r, j) = in_prior_coordinate(priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])], x(j));
+    }
+    if (derived_count == 0) continue;
+    try {
+      const std::vector<double> derived = detail::derived_at(s, with_free(s, theta, x));
+      for (std::size_t c = 0; c < derived_count; ++c) columns[c].push_back(std::log(derived[c]));
+    } catch (const std::exception&) {
+      // not a positive number at this corner of the priors: the draw is left out
+    }
+  }
+  for (const std::vector<double>& column : columns) {
+    out.derived.push_back(Eigen::Map<const Eigen::VectorXd>(column.data(), static_cast<Eigen::Index>(column.size())));
+  }
+  return out;
 }
 
 /// What sample_posterior ran, as its outputs name it.
@@ -267,11 +337,11 @@ class DerivedChains {
 
 /// The derived quantities the stop test watches beside the parameters: those that move with a free
 /// parameter at the best fit (one that does not is a constant column, which has no R-hat).
-std::vector<std::size_t> varying_quantities(const detail::Setup& s, const std::vector<detail::Combination>& combinations,
+std::vector<std::size_t> varying_quantities(const detail::Setup& s, const std::vector<detail::DerivedFunction>& derived_functions,
                                             const Theta& theta) {
   std::vector<std::size_t> out;
-  for (std::size_t c = 0; c < combinations.size(); ++c) {
-    const Eigen::VectorXd gradient = combinations[c].log_value(s, theta).v;
+  for (std::size_t c = 0; c < derived_functions.size(); ++c) {
+    const Eigen::VectorXd gradient = derived_functions[c].log_value(s, theta).v;
     for (const int i : s.free) {
       if (gradient(i) != 0.0) {
         out.push_back(c);
@@ -380,6 +450,30 @@ TemperedStart tempered_start(const Setup& s, const FitResult& best, const std::v
   return out;
 }
 
+/// The curvature of -ln prior(theta) at theta, as the linearisation sees it: 1/sd^2 for a log-normal
+/// prior, (value/sd)^2 for a normal one at its mean, 0 for the flat ones.
+double prior_curvature(const Prior& p, double theta) {
+  if (p.kind == PriorKind::LogNormal) return 1.0 / (p.b * p.b);
+  if (p.kind == PriorKind::Normal) return std::pow(std::exp(theta) / p.b, 2);
+  return 0.0;
+}
+
+/// The linearised posterior's precision in the free ln-parameters at theta: the data's J^T J plus
+/// each prior's curvature, the smallest over `prior_sets` (the widest posterior of them).
+Eigen::MatrixXd linearised_precision(const Setup& s, const Theta& theta, const std::vector<std::vector<Prior>>& prior_sets) {
+  const Eigen::MatrixXd jacobian = detail::whitened_jacobian(s, theta);
+  Eigen::MatrixXd precision = jacobian.transpose() * jacobian;
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    double curvature = std::numeric_limits<double>::infinity();
+    for (const std::vector<Prior>& priors : prior_sets) {
+      curvature = std::min(curvature, prior_curvature(priors[static_cast<std::size_t>(i)], theta[i]));
+    }
+    precision(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j)) += curvature;
+  }
+  return precision;
+}
+
 /// Whether a free parameter with a flat prior (uniform or log-uniform, the default) is left open by
 /// the data and the other priors together: its sd in ln, in the linearised posterior at the best
 /// fit, above determined_log_sigma (FitOptions: what the fit calls NOT DETERMINED). The linearised
@@ -389,16 +483,11 @@ TemperedStart tempered_start(const Setup& s, const FitResult& best, const std::v
 /// search bounds.
 bool open_to_the_bounds(const Setup& s, const Theta& theta, const std::vector<Prior>& priors,
                         double determined_log_sigma) {
-  const Eigen::MatrixXd jacobian = detail::whitened_jacobian(s, theta);
-  Eigen::MatrixXd precision = jacobian.transpose() * jacobian;
+  const Eigen::MatrixXd precision = linearised_precision(s, theta, {priors});
   std::vector<bool> flat(s.free.size());
   for (std::size_t j = 0; j < s.free.size(); ++j) {
-    const int i = s.free[j];
-    const Prior& p = priors[static_cast<std::size_t>(i)];
-    const auto jj = static_cast<Eigen::Index>(j);
+    const Prior& p = priors[static_cast<std::size_t>(s.free[j])];
     flat[j] = p.kind == PriorKind::Uniform || p.kind == PriorKind::LogUniform;
-    if (p.kind == PriorKind::LogNormal) precision(jj, jj) += 1.0 / (p.b * p.b);
-    if (p.kind == PriorKind::Normal) precision(jj, jj) += std::pow(std::exp(theta[i]) / p.b, 2);
   }
   // Variances from the eigen-decomposition, a direction that nothing sees (an eigenvalue at
   // rounding level of the largest) counting as unbounded.
@@ -453,9 +542,12 @@ sampling::PriorAndLikelihood evidence_integrand(const ObservationSet& data, cons
           [s, shared_priors](sampling::RandomStream& random) { return draw_free_from_priors(*s, *shared_priors, random); }};
 }
 
-ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
-                             const std::vector<Prior>& priors, const FitOptions& fit_options,
-                             const EvidenceOptions& options) {
+namespace {
+
+/// The evidence by parallel tempering and stepping stones (EvidenceOptions).
+ModelEvidence tempered_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+                                const std::vector<Prior>& priors, const FitOptions& fit_options,
+                                const EvidenceOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
   const Theta theta = best.fitted.log_values();
@@ -526,7 +618,177 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
   e.evaluations = run.evaluations + kPilotDraws;
   e.samples = sampling::pooled_samples(run.levels[0].chains).array().exp().matrix();
   e.wall_seconds = seconds_since(started);
+  e.method = "parallel tempering";
   return e;
+}
+
+}  // namespace
+
+ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+                             const std::vector<Prior>& priors, const FitOptions& fit_options,
+                             const EvidenceOptions& options) {
+  if (options.method == EvidenceMethod::Tempering) return tempered_evidence(data, model, best, priors, fit_options, options);
+  const ModelEvidence fast = importance_sampled_evidence(data, model, best, {priors}, fit_options, options).front();
+  if (fast.fallback_reason.empty()) return fast;
+  ModelEvidence e = tempered_evidence(data, model, best, priors, fit_options, options);
+  e.fallback_reason = fast.fallback_reason;
+  e.evaluations += fast.evaluations;
+  e.wall_seconds += fast.wall_seconds;
+  return e;
+}
+
+namespace {
+
+/// What importance sampling's diagnostics allow (docs/sampling.md, "The evidence from the fit").
+/// A best fit with chi^2 above this the models do not describe the data at all (ln L <= -500;
+/// there the linearised posterior, which neglects the residuals times their curvature, is no guide).
+constexpr double kHopelessChi2 = 1000.0;
+/// A linearised posterior sd (in ln) above this share of a prior's range: a ridge or plateau that
+/// the prior, not the data, closes.
+constexpr double kRidgeShareOfRange = 0.25;
+constexpr double kMaxParetoK = 0.7;       ///< Vehtari et al. 2024: above it the estimate is unreliable
+constexpr double kMaxFarMass = 0.01;      ///< posterior mass beyond sampling::kFarDistance sd
+/// The smallest kurtosis along a principal axis accepted (a Gaussian 3, a flat plateau 1.8, two
+/// separated modes of similar weight towards 1).
+constexpr double kMinAxisKurtosis = 2.0;
+/// A posterior presses against a bound when more than kBoundMass of it lies within kBoundStrip of
+/// its sd from the bound (a Gaussian cut 3 sd out has 0.5 % there, one cut at 2 sd 4.4 %, a plateau
+/// that the bound cuts about 14 %).
+constexpr double kBoundStrip = 0.5;
+constexpr double kBoundMass = 0.02;
+constexpr double kMaxStatedError = 0.05;  ///< the largest standard error of ln Z accepted
+/// The resampled posterior draws' own stream.
+constexpr std::uint64_t kResampleStream = 0x9E3779B97F4A7C15ULL;
+
+/// Why the linearisation at the fit cannot centre the proposal for these priors ("" where it can).
+std::string linearisation_refusal(const Setup& s, const FitResult& best, const Eigen::MatrixXd& precision,
+                                  const std::vector<Prior>& priors) {
+  if (best.chi2 > kHopelessChi2) {
+    return formatted("the best fit's chi^2 is %.3g (above %.0f): the model does not describe the data", best.chi2,
+                     kHopelessChi2);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(precision);
+  if (!(eigen.eigenvalues().minCoeff() > 1e-14 * eigen.eigenvalues().cwiseAbs().maxCoeff())) {
+    return "the data and priors leave a direction unseen at the best fit (a ridge)";
+  }
+  const Eigen::VectorXd sd = precision.inverse().diagonal().cwiseSqrt();
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    const auto [lo, hi] = priors[static_cast<std::size_t>(i)].support();
+    if (!(sd(static_cast<Eigen::Index>(j)) <= kRidgeShareOfRange * std::log(hi / lo))) {
+      return "the linearised posterior's sd of ln " + s.parameters.spec[i].name +
+             formatted(" is %.2f, over a quarter of its prior's range %.2f (a ridge or plateau the prior closes)",
+                       sd(static_cast<Eigen::Index>(j)), std::log(hi / lo));
+    }
+  }
+  return "";
+}
+
+/// Why the weighted draws of one prior set cannot be trusted ("" where they can).
+std::string importance_refusal(const Setup& s, const FitResult& best, const sampling::ImportanceRun& run,
+                               const sampling::ImportanceEstimate& e, const std::vector<Prior>& priors) {
+  if (!(e.pareto_k <= kMaxParetoK)) return formatted("Pareto k-hat of the importance weights %.2f (above 0.7)", e.pareto_k);
+  if (e.far_mass > kMaxFarMass) {
+    return formatted("%.1f %% of the posterior lies beyond %.0f sd of its mean (a far tail or another mode)",
+                     100.0 * e.far_mass, sampling::kFarDistance);
+  }
+  if (e.min_axis_kurtosis < kMinAxisKurtosis) {
+    return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3): several "
+                     "modes or a plateau", e.min_axis_kurtosis);
+  }
+  for (std::size_t j = 0; j < s.free.size(); ++j) {
+    const int i = s.free[j];
+    const auto jj = static_cast<Eigen::Index>(j);
+    const auto [lo, hi] = priors[static_cast<std::size_t>(i)].support();
+    const double strip = kBoundStrip * std::sqrt(e.covariance(jj, jj));
+    double near_bound = 0.0;
+    for (Eigen::Index r = 0; r < run.draws.rows(); ++r) {
+      const double x = run.draws(r, jj);
+      if (std::isfinite(e.log_weights(r)) && (x < std::log(lo) + strip || x > std::log(hi) - strip)) {
+        near_bound += std::exp(e.log_weights(r));
+      }
+    }
+    if (best.parameters[static_cast<std::size_t>(i)].at_bound || near_bound > kBoundMass) {
+      return "the posterior of " + s.parameters.spec[i].name +
+             formatted(" presses against a bound of its prior (%.1f %% of it within %.1f sd of the bound", 100.0 * near_bound,
+                       kBoundStrip) +
+             (best.parameters[static_cast<std::size_t>(i)].at_bound ? "; the best fit is at a bound)" : ")");
+    }
+  }
+  if (!(e.uncertainty <= kMaxStatedError)) {
+    return formatted("the standard error of ln Z reached only %.3f (at most %.2f accepted)", e.uncertainty,
+                     kMaxStatedError);
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
+                                                       const FitResult& best,
+                                                       const std::vector<std::vector<Prior>>& prior_sets,
+                                                       const FitOptions& fit_options, const EvidenceOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  if (prior_sets.empty()) throw std::invalid_argument("importance_sampled_evidence: no priors");
+  const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
+  const Theta theta = best.fitted.log_values();
+  const auto k = static_cast<Eigen::Index>(s.free.size());
+  std::vector<ModelEvidence> out(prior_sets.size());
+  std::vector<sampling::LogDensity> log_priors;
+  std::vector<std::size_t> sampled;  // the sets the proposal serves
+  // Without derivatives at the best fit there is no linearisation to build the proposal from.
+  Eigen::MatrixXd precision;
+  std::string no_jacobian;
+  try {
+    precision = linearised_precision(s, theta, prior_sets);
+  } catch (const std::runtime_error& e) {
+    no_jacobian = std::string("no linearisation at the best fit: ") + e.what();
+  }
+  sampling::LogDensity log_likelihood;
+  for (std::size_t p = 0; p < prior_sets.size(); ++p) {
+    const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, prior_sets[p], fit_options);
+    log_likelihood = density.log_likelihood;
+    out[p].fallback_reason =
+        no_jacobian.empty() ? linearisation_refusal(s, best, precision, prior_sets[p]) : no_jacobian;
+    out[p].method = "importance sampling";
+    if (!out[p].fallback_reason.empty()) continue;
+    log_priors.push_back(density.log_prior);
+    sampled.push_back(p);
+  }
+  if (sampled.empty()) return out;
+  Eigen::VectorXd centre(k);
+  for (Eigen::Index j = 0; j < k; ++j) centre(j) = theta[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])];
+  sampling::ImportanceOptions importance = options.importance;
+  importance.seed = options.seed;
+  importance.threads = options.threads;
+  const sampling::ImportanceRun run =
+      sampling::importance_evidence(log_likelihood, log_priors, centre, precision.inverse(), importance);
+  const double n = static_cast<double>(s.observations.size());
+  for (std::size_t q = 0; q < sampled.size(); ++q) {
+    const sampling::ImportanceEstimate& w = run.priors[q];
+    ModelEvidence& e = out[sampled[q]];
+    e.log_evidence = w.log_evidence;
+    e.uncertainty = w.uncertainty;
+    e.pareto_k = w.pareto_k;
+    e.effective_draws = w.effective_draws;
+    e.evaluations = run.evaluations;
+    e.fallback_reason = importance_refusal(s, best, run, w, prior_sets[sampled[q]]);
+    e.converged = e.fallback_reason.empty();
+    e.advice = formatted("%.0f draws from a mixture of %.0f t distributions, Pareto k-hat %.2f, %.0f effective draws",
+                         static_cast<double>(run.draws.rows()), run.components, w.pareto_k, w.effective_draws);
+    double p_sum = 0.0;
+    for (Eigen::Index i = 0; i < run.draws.rows(); ++i) {
+      if (std::isfinite(w.log_weights(i))) p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -run.log_likelihood(i));
+    }
+    e.predictive_p = p_sum;
+    if (std::isfinite(w.log_weights.maxCoeff())) {
+      sampling::RandomStream random(options.seed ^ kResampleStream);
+      e.samples = sampling::resample(run.draws, w.log_weights, options.posterior_draws, random).array().exp().matrix();
+    }
+  }
+  const double seconds = seconds_since(started);
+  for (ModelEvidence& e : out) e.wall_seconds = seconds;
+  return out;
 }
 
 std::vector<Prior> widened(const std::vector<Prior>& priors, double factor) {
@@ -572,14 +834,14 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   sampling::EnsembleOptions ensemble = ensemble_options(options);
   ensemble.burn_in = options.burn_in;
   ensemble.moves = sampling::differential_moves();
-  // The stop test and the verdict cover the derived quantities too (a combination along a ridge can
+  // The stop test and the verdict cover the derived quantities too (a derived quantity along a ridge can
   // mix more slowly than any parameter), each computed once per kept draw.
-  const std::vector<detail::Combination> combinations = detail::combinations_for(s);
-  const std::vector<std::size_t> watched = varying_quantities(s, combinations, theta);
+  const std::vector<detail::DerivedFunction> derived_functions = detail::derived_functions_for(s);
+  const std::vector<std::size_t> watched = varying_quantities(s, derived_functions, theta);
   std::vector<std::string> names;
   for (const int i : s.free) names.push_back(s.parameters.spec[i].name);
-  for (const detail::Combination& c : combinations) names.push_back(c.name);
-  DerivedChains derived(s, theta, combinations.size());
+  for (const detail::DerivedFunction& c : derived_functions) names.push_back(c.name);
+  DerivedChains derived(s, theta, derived_functions.size());
   ProgressReporter report(options.progress);
   // The stop test: the posterior's ensemble has converged, and for a tempered run every rung has
   // mixed over >= 50 of its slowest tau (rung_tau; 0 for one ensemble).
@@ -652,6 +914,7 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
   const Eigen::MatrixXd jacobian =
       detail::whitened_jacobian(s, with_free(s, theta, pooled.row(detail::central_draw(pooled)).transpose()));
   const detail::PriorControl control(pooled, jacobian.transpose() * jacobian);
+  const PriorQuantities prior_alone = prior_quantities(s, priors, theta, derived_functions.size(), options.seed);
   for (Eigen::Index j = 0; j < k; ++j) {
     const int i = s.free[static_cast<std::size_t>(j)];
     const ParameterSpec& spec = s.parameters.spec[i];
@@ -660,18 +923,22 @@ PosteriorResult sample_posterior(const ObservationSet& data, const sediment::Sed
     result.sample_units.push_back(spec.unit);
     result.priors.push_back(spec.name + ": " + prior.describe(spec.unit));
     PosteriorQuantity q = summarize(spec.name, spec.unit, result.samples.col(j), diagnostics.rhat(j), diagnostics.ess(j));
-    flag_prior_control(q, control, pooled.col(j));
+    const Eigen::VectorXd own = pooled.col(j).unaryExpr([&](double x) { return in_prior_coordinate(prior, x); });
+    flag_prior_control(q, control, pooled.col(j), own, prior_alone.parameters.col(j),
+                       profile_of(best, fit_options, spec.name));
     result.parameters.push_back(q);
   }
 
-  // Combinations at every kept draw, walker by walker (their R-hat and ESS are columns k.. above).
-  if (!combinations.empty()) {
+  // Derived quantities at every kept draw, walker by walker (their R-hat and ESS are columns k.. above).
+  if (!derived_functions.empty()) {
     const Eigen::MatrixXd all = sampling::pooled_samples(derived_chains);
-    for (std::size_t c = 0; c < combinations.size(); ++c) {
+    for (std::size_t c = 0; c < derived_functions.size(); ++c) {
       const auto col = static_cast<Eigen::Index>(c);
-      result.combinations.push_back(summarize(combinations[c].name, combinations[c].unit, all.col(col),
+      result.derived.push_back(summarize(derived_functions[c].name, derived_functions[c].unit, all.col(col),
                                               diagnostics.rhat(k + col), diagnostics.ess(k + col)));
-      flag_prior_control(result.combinations.back(), control, all.col(col).array().log().matrix());
+      const Eigen::VectorXd ln_values = all.col(col).array().log().matrix();
+      flag_prior_control(result.derived.back(), control, ln_values, ln_values, prior_alone.derived[c],
+                         profile_of(best, fit_options, derived_functions[c].name));
     }
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -703,7 +970,7 @@ nlohmann::json posterior_report(const PosteriorResult& p) {
                           {"prior_share", q.prior_share}};
   };
   for (const auto& q : p.parameters) j["parameters"][q.name] = quantity(q);
-  for (const auto& q : p.combinations) j["combinations"][q.name] = quantity(q);
+  for (const auto& q : p.derived) j["combinations"][q.name] = quantity(q);
   j["correlation_of_ln_parameters"] = nlohmann::json::array();
   for (Eigen::Index r = 0; r < p.correlation.rows(); ++r) {
     std::vector<double> row;

@@ -15,6 +15,39 @@ Eigen::Index central_draw(const Eigen::MatrixXd& ln_samples) {
   return best;
 }
 
+namespace {
+
+/// The width of the central 95 % interval of `values` (sorted in place).
+double central_95_width(Eigen::VectorXd values) {
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double p) {
+    const double position = p * static_cast<double>(values.size() - 1);
+    const auto below = static_cast<Eigen::Index>(std::floor(position));
+    const Eigen::Index above = std::min<Eigen::Index>(below + 1, values.size() - 1);
+    return values(below) + (position - static_cast<double>(below)) * (values(above) - values(below));
+  };
+  return at(0.975) - at(0.025);
+}
+
+}  // namespace
+
+double prior_width_share(const Eigen::VectorXd& posterior, const Eigen::VectorXd& prior) {
+  if (posterior.size() < 2 || prior.size() < 2) return 0.0;
+  const double prior_width = central_95_width(prior);
+  if (!(prior_width > 0.0) || !std::isfinite(prior_width)) return 0.0;
+  const double ratio = central_95_width(posterior) / prior_width;
+  return std::clamp(ratio * ratio, 0.0, 1.0);
+}
+
+double prior_share_against_profile(double credible_lower, double credible_upper, std::optional<double> profile_lower,
+                                   std::optional<double> profile_upper) {
+  if (!profile_lower || !profile_upper) return 1.0;
+  if (!(*profile_upper > *profile_lower && *profile_lower > 0.0)) return 0.0;
+  if (!(credible_upper > credible_lower && credible_lower > 0.0)) return 0.0;
+  const double ratio = std::log(credible_upper / credible_lower) / std::log(*profile_upper / *profile_lower);
+  return std::clamp(1.0 - ratio * ratio, 0.0, 1.0);
+}
+
 PriorControl::PriorControl(const Eigen::MatrixXd& ln_samples, const Eigen::MatrixXd& data_information) {
   const Eigen::MatrixXd centred = ln_samples.rowwise() - ln_samples.colwise().mean();
   const auto draws = static_cast<double>(std::max<Eigen::Index>(ln_samples.rows() - 1, 1));

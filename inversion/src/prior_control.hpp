@@ -1,6 +1,6 @@
 #pragma once
 // Whether the prior, not the data, made a credible interval. A quantity's marginal alone cannot
-// tell: along a ridge (a combination such as kappa d gamma that the data do not see) each
+// tell: along a ridge (a derived quantity such as kappa d gamma that the data do not see) each
 // parameter's marginal is narrower than its prior and off its centre, because the ridge runs
 // diagonally through the prior's box, yet where the interval lies is decided by the prior alone.
 //
@@ -17,6 +17,7 @@
 // data add nothing there, F ~ 0), for a well-determined quantity under a broad prior ~0, and for a
 // Gaussian prior as informative as the data exactly one half.
 #include <Eigen/Dense>
+#include <optional>
 
 namespace sedwave::inversion::detail {
 
@@ -25,6 +26,27 @@ namespace sedwave::inversion::detail {
 /// at one end and the prior's bound at the other, the best fit may sit at the closed end, where the
 /// data see the ridge's direction, while most of the posterior lies where they do not.
 [[nodiscard]] Eigen::Index central_draw(const Eigen::MatrixXd& ln_samples);
+
+/// The prior's share judged globally, by width: (w_posterior / w_prior)^2 of the central 95 %
+/// intervals of a quantity's posterior draws and of its draws under the prior alone, both in the
+/// prior's own coordinate (ln for a log-uniform or log-normal prior, the value for a uniform or
+/// normal one, ln for a derived quantity), clamped to [0, 1]. For a Gaussian prior and likelihood it is
+/// exactly the share above (the posterior variance over the prior's). It sees what the data's
+/// information at one draw cannot: on a curved ridge the principal directions of the draws mix the
+/// ridge's bends, each looks narrowed by the data, and yet the marginal spans most of its prior.
+/// 0 where the prior's draws do not vary.
+[[nodiscard]] double prior_width_share(const Eigen::VectorXd& posterior, const Eigen::VectorXd& prior);
+
+/// The prior's share judged against what the data alone allow: 1 - (w_credible / w_profile)^2 of
+/// the 68 % credible interval [credible_lower, credible_upper] and the 68 % profile-likelihood
+/// interval (profile.hpp; a missing end: open, chi^2 within 1 of its minimum up to the bound), both
+/// in ln of the positive quantity, clamped to [0, 1]. For a Gaussian prior and likelihood it is
+/// exactly P / (F + P), the share above; where the profile is open on a side the data do not bound
+/// the quantity there and the credible interval's end is the prior's: 1. 0 for a quantity the fit
+/// knows exactly (a profile of zero width).
+[[nodiscard]] double prior_share_against_profile(double credible_lower, double credible_upper,
+                                                 std::optional<double> profile_lower,
+                                                 std::optional<double> profile_upper);
 
 /// A quantity whose prior share exceeds this is prior-controlled.
 inline constexpr double kPriorControlledShare = 0.5;

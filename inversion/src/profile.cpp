@@ -64,7 +64,7 @@ double conditional_minimum(const Setup& s, Theta& theta, const ProfiledQuantity&
       start[q.parameter] = t;
       f = solve_local(s, start, max_iterations, q.parameter);
     } else {
-      const Constraint constraint{q.combination, t};
+      const Constraint constraint{q.derived, t};
       f = solve_local(s, start, max_iterations, -1, &constraint);
     }
     if (f.chi2 < best.chi2) best = f;
@@ -87,7 +87,7 @@ bool passes_two_sigma(double t, Theta theta, double limit, int side, DeltaChi2& 
 }  // namespace
 
 Differentiated log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q) {
-  if (q.combination) return q.combination->log_value(s, theta);
+  if (q.derived) return q.derived->log_value(s, theta);
   Differentiated own{theta[q.parameter], Eigen::VectorXd::Zero(static_cast<Eigen::Index>(theta.size()))};
   own.v(q.parameter) = 1.0;
   return own;

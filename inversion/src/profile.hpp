@@ -1,6 +1,6 @@
 #pragma once
 // Likelihood profiles (private to the inversion library). The 68 % profile interval of a quantity q
-// (a free parameter, or a combination such as c0 or tau) is the set of values t for which chi^2,
+// (a free parameter, or a derived quantity such as c0 or tau) is the set of values t for which chi^2,
 // minimised over everything else with q held at t, lies within 1 of the overall minimum (Wilks:
 // Delta chi^2 = 1 covers the truth 68 % of the time for one quantity). Unlike the linearised sigma
 // it stays honest when the model is strongly nonlinear in q, or when the data leave a direction of
@@ -18,10 +18,10 @@
 
 namespace sedwave::inversion::detail {
 
-/// What is profiled: a free parameter (held exactly) or a combination (held by a constraint).
+/// What is profiled: a free parameter (held exactly) or a derived quantity (held by a constraint).
 struct ProfiledQuantity {
-  int parameter = -1;                      ///< index into theta, or -1 for a combination
-  const Combination* combination = nullptr;
+  int parameter = -1;                      ///< index into theta, or -1 for a derived quantity
+  const DerivedFunction* derived = nullptr;
 };
 
 struct Profile {
@@ -35,7 +35,7 @@ struct Profile {
 [[nodiscard]] Profile profile(const Setup& s, const Theta& best, double chi2_min, const ProfiledQuantity& q,
                               double linear_sigma, int max_iterations);
 
-/// ln q at theta (a parameter's own value, or the combination's).
+/// ln q at theta (a parameter's own value, or the derived quantity's).
 [[nodiscard]] Differentiated log_quantity(const Setup& s, const Theta& theta, const ProfiledQuantity& q);
 
 }  // namespace sedwave::inversion::detail

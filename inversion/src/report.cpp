@@ -1,5 +1,6 @@
 #include "sedwave/inversion/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <fstream>
@@ -19,18 +20,6 @@ nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::js
 /// A missing end of a profile interval (open: it reaches the search bound) becomes null.
 nlohmann::json optional_or_null(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(); }
 
-const char* quantity_name(Quantity q) {
-  if (q == Quantity::BottomLoss) return "bottom_loss";
-  if (q == Quantity::ReflectionMagnitude) return "reflection_magnitude";
-  if (q == Quantity::ShearSpeed) return "shear_speed";
-  if (q == Quantity::ShearAttenuation) return "shear_attenuation";
-  return q == Quantity::Attenuation ? "attenuation" : "sound_speed";
-}
-const char* quantity_unit(Quantity q) {
-  if (q == Quantity::BottomLoss) return "dB";
-  if (q == Quantity::ReflectionMagnitude) return "1";
-  return is_attenuation(q) ? "Np/m" : "m/s";
-}
 /// The code of a quantity in the observations table.
 int quantity_code(Quantity q) {
   if (q == Quantity::BottomLoss) return 2;
@@ -58,7 +47,7 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                                {"at_bound", p.at_bound},
                                {"profile_interval_68", {optional_or_null(p.profile_lower), optional_or_null(p.profile_upper)}}};
   }
-  for (const CombinationResult& c : r.combinations) {
+  for (const DerivedResult& c : r.derived) {
     j["combinations"][c.name] = {{"value", c.value},       {"unit", c.unit},
                                  {"meaning", c.meaning},   {"determined", c.determined},
                                  {"sigma", c.determined ? number_or_null(c.sigma) : nlohmann::json()},
@@ -140,14 +129,20 @@ std::vector<double> curve_frequencies(const ObservationSet& data, int count) {
 void write_curves_csv(const std::filesystem::path& file, const std::vector<CurvePoint>& curves,
                       std::optional<double> water_sound_speed) {
   io::write_text_atomically(file, [&](std::ostream& out) {
+  // The dimensionless columns only for a model with a dry grain-contact frame: for any other they
+  // would be NaN throughout.
+  const bool dimensionless =
+      std::any_of(curves.begin(), curves.end(), [](const CurvePoint& c) { return !std::isnan(c.omega_hat); });
   out << "# sedwave model curves; sigma columns are 1-sigma bands from the fit covariance\n";
-  out << "frequency_hz,omega_hat,gamma_hat,alpha_hat,c_hat,alpha_np_per_m,alpha_np_per_m_sigma,"
-         "alpha_db_per_m,alpha_db_per_m_sigma,sound_speed_m_per_s,sound_speed_m_per_s_sigma";
+  out << "frequency_hz," << (dimensionless ? "omega_hat,gamma_hat,alpha_hat,c_hat," : "")
+      << "alpha_np_per_m,alpha_np_per_m_sigma,alpha_db_per_m,alpha_db_per_m_sigma,sound_speed_m_per_s,"
+         "sound_speed_m_per_s_sigma";
   if (water_sound_speed) out << ",sound_speed_ratio,sound_speed_ratio_sigma";
   out << "\n";
   for (const CurvePoint& c : curves) {
-    out << c.frequency_hz << ',' << c.omega_hat << ',' << c.gamma_hat << ',' << c.alpha_hat << ',' << c.c_hat << ','
-        << c.alpha << ',' << c.alpha_sigma << ',' << c.alpha * kDecibelPerNeper << ','
+    out << c.frequency_hz << ',';
+    if (dimensionless) out << c.omega_hat << ',' << c.gamma_hat << ',' << c.alpha_hat << ',' << c.c_hat << ',';
+    out << c.alpha << ',' << c.alpha_sigma << ',' << c.alpha * kDecibelPerNeper << ','
         << c.alpha_sigma * kDecibelPerNeper << ',' << c.speed << ',' << c.speed_sigma;
     if (water_sound_speed) out << ',' << c.speed / *water_sound_speed << ',' << c.speed_sigma / *water_sound_speed;
     out << "\n";

@@ -44,13 +44,6 @@ bool names_in_list(const std::string& list, std::initializer_list<const char*> n
   return false;
 }
 
-bool has_parameter(const sediment::SedimentModel& model, const std::string& name) {
-  for (const sediment::Parameter& p : model.parameters()) {
-    if (p.name == name) return true;
-  }
-  return false;
-}
-
 /// The damping is one parameter, given as gamma or as e_n: settings naming both forms conflict.
 bool uses_restitution(const ModelSetup& s) {
   const bool gamma_named = s.names("gamma");
@@ -102,7 +95,8 @@ class Assembly {
     refuse_repeated(bounds_, "bound");
     c_.parameters = FitParameters(c_.model->parameters());
     if (use_ == SetupUse::Fit) {
-      c_.parameters.set_free_from_list(!s_.free.empty() ? s_.free : sediment::typical_free_parameters(*c_.model));
+      c_.parameters.set_free_from_list(!s_.free.empty() ? s_.free : sediment::typical_free_parameters(*c_.model),
+                                       s_.free.empty() ? "" : s_.free_origin);
     }
     for (const GivenBounds& b : bounds_) {
       ParameterSpec& spec = named(b.parameter, b.lookup.empty() ? b.origin : b.lookup);
@@ -128,7 +122,7 @@ class Assembly {
 
   /// The values and bounds this model takes: with shared settings, those naming a parameter it has.
   void select() {
-    const auto kept = [&](const std::string& name) { return !s_.shared || has_parameter(*c_.model, name); };
+    const auto kept = [&](const std::string& name) { return !s_.shared || c_.model->has_parameter(name); };
     for (const GivenValue& v : s_.values) {
       if (kept(v.parameter)) values_.push_back(v);
     }
@@ -180,7 +174,7 @@ class Assembly {
     std::vector<std::string> kept;
     for (const std::string& item : s_.priors) {
       const std::string name = item.substr(0, item.find('='));
-      if (!has_parameter(*c_.model, name)) continue;
+      if (!c_.model->has_parameter(name)) continue;
       if (c_.parameters.spec[static_cast<std::size_t>(c_.parameters.index_of(name))].free) kept.push_back(item);
     }
     return kept;
@@ -232,8 +226,8 @@ Candidate make_candidate(const ModelSetup& setup, SetupUse use) {
   // another model's parameters must not choose this one's form.
   const auto probe = make_model(setup);
   ModelSetup own = setup;
-  std::erase_if(own.values, [&](const GivenValue& v) { return !has_parameter(*probe, v.parameter); });
-  std::erase_if(own.bounds, [&](const GivenBounds& b) { return !has_parameter(*probe, b.parameter); });
+  std::erase_if(own.values, [&](const GivenValue& v) { return !probe->has_parameter(v.parameter); });
+  std::erase_if(own.bounds, [&](const GivenBounds& b) { return !probe->has_parameter(b.parameter); });
   own.instance = make_model(own);
   Candidate candidate = Assembly(own, use).run();
   candidate.label = setup.model;

@@ -226,22 +226,37 @@ void DeferredCommits::commit_all() {
 
 namespace {
 
-FileLock output_lock(const fs::path& directory, const std::string& option) {
-  std::error_code ec;
-  fs::create_directories(directory, ec);
+/// The lock on `lock_file`, said on stderr while waiting for it; `output` (what `option` names) in messages.
+FileLock output_lock(const fs::path& lock_file, const fs::path& output, const std::string& option) {
   try {
-    return FileLock(directory / ".sedwave.lock", [&] {
+    return FileLock(lock_file, [&] {
       std::fprintf(stderr, "sedwave: %s %s: another sedwave run is writing there; waiting for it to finish\n",
-                   option.c_str(), directory.c_str());
+                   option.c_str(), output.c_str());
     });
   } catch (const std::runtime_error& e) {
-    throw std::runtime_error(option + " " + directory.string() + ": " + e.what());
+    throw std::runtime_error(option + " " + output.string() + ": " + e.what());
   }
+}
+
+FileLock directory_lock(const fs::path& directory, const std::string& option) {
+  std::error_code ec;
+  fs::create_directories(directory, ec);
+  return output_lock(directory / ".sedwave.lock", directory, option);
+}
+
+fs::path lock_beside(const fs::path& file) {
+  std::string name = ".";  // appended, not concatenated: GCC 12 warns falsely (-Wrestrict) on "." + std::string
+  name.append(file.filename().string()).append(".lock");
+  fs::path lock = file;
+  return lock.replace_filename(name);
 }
 
 }  // namespace
 
-OutputLock::OutputLock(const fs::path& directory, const std::string& option) : lock_(output_lock(directory, option)) {}
+OutputLock::OutputLock(const fs::path& directory, const std::string& option) : lock_(directory_lock(directory, option)) {}
+
+OutputFileLock::OutputFileLock(const fs::path& file, const std::string& option)
+    : lock_(output_lock(lock_beside(file), file, option)) {}
 
 ResolvedOutput resolve_output(const fs::path& target) {
   bool descriptor = false;

@@ -21,9 +21,34 @@ using namespace inversion;
 namespace {
 
 // Columns of the files the script reads (report.cpp writes them).
-//   curves.csv: 1 f, 8/9 alpha dB/m and sigma, 10/11 speed m/s and sigma, 12/13 ratio and sigma.
+//   curves.csv: found by name in its header (CurveColumns): which columns it has depends on the model.
 //   observations.csv: 1 quantity, 2 f, 5/6 display value and sigma, 9 normalised residual.
 constexpr int kCurvesHeaderLines = 2;
+
+/// Where curves.csv holds what the fit plot draws (1-based, as gnuplot counts); each value column is
+/// followed by its sigma.
+struct CurveColumns {
+  int attenuation_db = 0, speed = 0, ratio = 0;  ///< ratio: 0 where the file has none
+};
+
+/// The columns of DIR/curves.csv, from its header line. Throws std::runtime_error naming the file
+/// where it cannot be read or lacks a column the plot needs.
+CurveColumns curve_columns(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  for (int k = 0; k < kCurvesHeaderLines && std::getline(in, line); ++k) {
+  }
+  std::vector<std::string> names;
+  std::stringstream fields(line);
+  for (std::string field; std::getline(fields, field, ',');) names.push_back(field);
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    return at == names.end() ? 0 : static_cast<int>(at - names.begin()) + 1;
+  };
+  const CurveColumns c{column("alpha_db_per_m"), column("sound_speed_m_per_s"), column("sound_speed_ratio")};
+  if (c.attenuation_db == 0 || c.speed == 0) throw std::runtime_error(file.string() + " has no curve columns");
+  return c;
+}
 constexpr int kObservationsHeaderLines = 4;
 constexpr int kObservedFrequency = 2, kObservedValue = 5, kObservedSigma = 6, kObservedResidual = 9;
 
@@ -92,7 +117,7 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
-/// Parameter and combination names as gnuplot enhanced text.
+/// Parameter and derived quantity names as gnuplot enhanced text.
 std::string symbol(const std::string& name) {
   if (name == "kappa") return "κ";
   if (name == "gamma") return "γ";
@@ -126,10 +151,10 @@ std::string parameter_line(const FitResult& r) {
   return line;
 }
 
-/// The combinations the data determine, and the goodness of fit, one line.
+/// The derived quantities the data determine, and the goodness of fit, one line.
 std::string determined_line(const FitResult& r) {
   std::string line;
-  for (const CombinationResult& c : r.combinations) {
+  for (const DerivedResult& c : r.derived) {
     if (c.determined) line += (line.empty() ? "" : ",   ") + value_text(c.name, c.unit, c.value, c.sigma, true, true);
   }
   if (!line.empty()) line += ";   ";
@@ -215,9 +240,10 @@ void value_axis(std::ostringstream& g, const QuantityPanel& panel, bool ratio_ax
 
 /// Data, model curve and its band for one quantity. Drawing order is back to front: band, curve,
 /// error bars, then the misfits on top, so nothing hides the error bars.
-void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, PanelBox box) {
+void main_panel(std::ostringstream& g, const QuantityPanel& panel, bool ratio_axis, const CurveColumns& columns,
+                PanelBox box) {
   const bool attenuation = panel.quantity == Quantity::Attenuation;
-  const int value = attenuation ? 8 : ratio_axis ? 12 : 10;
+  const int value = attenuation ? columns.attenuation_db : ratio_axis && columns.ratio ? columns.ratio : columns.speed;
   value_axis(g, panel, ratio_axis, box);
   g << "plot 'curves.csv' skip " << kCurvesHeaderLines << " using 1:" << band_edges(value, attenuation)
     << " with filledcurves fc rgb '" << kBandColour << "' title 'model ±1σ (covariance)', \\\n"
@@ -303,7 +329,7 @@ void frequency_multiplot(std::ostringstream& g, const std::string& title, const 
 
 /// Title and fit summary on top, then for each quantity a data panel above its residual panel,
 /// all on one frequency axis.
-std::string plot_body(const std::string& title, bool ratio_axis, const FitResult& result) {
+std::string plot_body(const std::string& title, bool ratio_axis, const CurveColumns& columns, const FitResult& result) {
   const std::vector<QuantityPanel> panels = panels_with_data(result);
   std::ostringstream g;
   frequency_multiplot(g, title, panels);
@@ -311,7 +337,7 @@ std::string plot_body(const std::string& title, bool ratio_axis, const FitResult
     << "set label 2 " << gnuplot_string(determined_line(result)) << " at screen 0.5, screen 0.92 center\n";
   const std::vector<PanelPair> boxes = layout(panels.size(), 0.9);
   for (size_t i = 0; i < panels.size(); ++i) {
-    main_panel(g, panels[i], ratio_axis, boxes[i].values);
+    main_panel(g, panels[i], ratio_axis, columns, boxes[i].values);
     if (i == 0) g << "unset label 1\nunset label 2\n";
     residual_panel(g, panels[i], boxes[i].residuals);
   }
@@ -676,7 +702,13 @@ std::string corner_body(const CornerFiles& files, const std::string& density_fil
 
 PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& title, bool ratio_axis,
                           const FitResult& result) {
-  return run_gnuplot(dir, "fit", "1150,1250", plot_body(title, ratio_axis, result));
+  CurveColumns columns;
+  try {
+    columns = curve_columns(dir / "curves.csv");
+  } catch (const std::exception& e) {
+    return {false, std::string("plot skipped: ") + e.what()};
+  }
+  return run_gnuplot(dir, "fit", "1150,1250", plot_body(title, ratio_axis, columns, result));
 }
 
 PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector<std::string>& names,

@@ -1,5 +1,7 @@
 #include "sedwave/sediment/sediment_model.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -25,6 +27,11 @@ Wave SedimentModel::evaluate_shear(std::span<const double>, double, bool) const 
 
 std::optional<DimensionlessWave> SedimentModel::dimensionless_wave(std::span<const double>, double) const {
   return std::nullopt;
+}
+
+bool SedimentModel::has_parameter(const std::string& name) const {
+  const std::vector<Parameter>& ps = parameters();
+  return std::any_of(ps.begin(), ps.end(), [&](const Parameter& p) { return p.name == name; });
 }
 
 int SedimentModel::index_of(const std::string& name) const {

@@ -52,6 +52,8 @@ add_test(NAME cli.outputs.devices_fifos_links
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/outputs_land_safely.sh $<TARGET_FILE:sedwave> ${CLI_DATA}/scene)
 add_test(NAME cli.outputs.failed_run_and_lock
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/outputs_failed_run.sh $<TARGET_FILE:sedwave> ${OBS})
+add_test(NAME cli.outputs.forward_one_writer
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/forward_one_writer.sh $<TARGET_FILE:sedwave> ${CLI_DATA}/scene/tiny.toml)
 
 # ---- Results that cannot be right are flagged -----------------------------------------------------
 sedwave_cli_case(conflict.synthesize_flags_impossible_speed 3 "! [0-9]+ of [0-9]+ sound speeds lie outside \\[100, 20000\\] m/s .*faster than any mineral"

@@ -80,3 +80,9 @@ sedwave_cli_case(invert.bottom_loss_unseen_parameter 0 "^  eta +\\[Pa s\\] NOT D
   invert ${INV}/bottom_loss_edfm.csv --model edfm --fit porosity,permeability,eta ${FAST})
 sedwave_cli_case(invert.bottom_loss_without_angle 1 "bottom_loss_no_angle\\.csv:4:7: field 'grazing_angle_deg': a reflection row needs its grazing angle"
   invert ${INV}/bottom_loss_no_angle.csv --model edfm ${FAST})
+
+# One measurement repeated: the posterior flags every quantity the data cannot place, however its
+# ridge curves through the priors' box.
+add_test(NAME cli.invert.prior_flag_one_frequency
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/prior_flag_one_frequency.sh $<TARGET_FILE:sedwave>
+          ${CMAKE_CURRENT_SOURCE_DIR}/data/invert/one_attenuation_ten_times.csv)

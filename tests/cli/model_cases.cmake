@@ -9,6 +9,9 @@ sedwave_cli_case(models.lists_the_saturated_frame 0 "^saturated-lattice: granula
 sedwave_cli_case(models.lists_vgs_parameters 0 "^  tau_p +s +0.00012 +\\[1e-09, 1e\\+03\\]" models)
 sedwave_cli_case(models.lists_derived_quantities 0 "^  biot_frequency +Hz +\\[0.1, 2e\\+11\\] +Biot.s characteristic frequency" models biot-stoll)
 sedwave_cli_case(models.one_model 0 "^  permeability +m\\^2 +4e-11 +\\[1e-20, 1e-05\\]" models edfm)
+# An empty name given (an unset shell variable) is refused as `compare --models ''` is, not read as "all".
+add_test(NAME cli.models.empty_name COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "models '': an empty model name"
+  -- sh -c "exec \"$0\" models ''" $<TARGET_FILE:sedwave>)
 sedwave_cli_case(models.unknown 1 "unknown model 'bort'.*accepted: continuum, lattice.*vgs-lambda" models bort)
 sedwave_cli_case(invert.model_typical_fit 0 "^  porosity +\\[1 +\\] 0\\.44[0-9]* \\+- " invert ${OBS} --model biot-stoll ${FAST})
 sedwave_cli_case(invert.model_unknown_parameter 1 "--fit 'kappa': unknown parameter 'kappa'.*accepted: porosity"
@@ -83,6 +86,8 @@ sedwave_cli_case(compare.unknown_model 1 "unknown model 'bort'.*accepted: contin
   compare ${OBS} --models edfm,bort ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 sedwave_cli_case(compare.prior_no_model_has 2 "--prior 'kappa=log-normal:1e6,1': none of the models has a parameter 'kappa'"
   compare ${OBS} --models edfm,grain-shearing --prior kappa=log-normal:1e6,1 ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
+sedwave_cli_case(compare.fit_names_parameter_of_another_model 1 "--fit 'lattice=porosity' \\(the parameters of lattice\\): unknown parameter 'porosity'.*accepted: kappa, d, gamma, rho_s"
+  compare ${OBS} --models lattice,edfm --fit lattice=porosity ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 sedwave_cli_case(compare.fit_for_model_not_compared 2 "--fit 'lattice=kappa,d': 'lattice' is not one of --models"
   compare ${OBS} --models edfm,grain-shearing --fit lattice=kappa,d ${COMPARE_FAST} --out ${CLI_OUT}/compare_never)
 

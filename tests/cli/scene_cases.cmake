@@ -139,6 +139,12 @@ sedwave_cli_case(scene.table.resume_with_other_packing 1 [=[packing: hash [0-9a-
   ${RESUME_RUN} --packing ${SHIPPED_TABLES}/linear_w3.packing.member1.h5)
 set_tests_properties(cli.scene.table.resume_with_other_packing PROPERTIES FIXTURES_REQUIRED scene_table)
 
+# A --out that names a file of another kind is refused before any work and left as it was (only a
+# damaged table is set aside and rebuilt).
+scene_case_dir(dir table_out_not_a_table table_resume_grid.toml linear_one.toml not_a_table.h5)
+sedwave_cli_case(scene.table.out_not_a_table 1 [=[cannot write table not_a_table\.h5: the file exists and is not a sedwave dispersion table \(it is not an HDF5 file\)]=]
+  IN ${dir} table table_resume_grid.toml --out not_a_table.h5 --engine long_wavelength --quiet)
+
 # ---- Outputs never replace inputs, and are checked writable before the work ------------------------
 scene_case_dir(dir out_is_scene tiny.toml)
 sedwave_cli_case(scene.output.forward_out_is_scene 2 [=[--out: output tiny\.toml would overwrite the input tiny\.toml]=]

@@ -121,6 +121,44 @@ TEST(BottomLossFit, JointFitWithAttenuation) {
   EXPECT_EQ(attenuation_rows, 2);
 }
 
+/// Rows repeated at one angle, frequency and sigma are fitted as their mean plus their scatter: two
+/// rows 0.1 dB either side of the truth leave the truth as the best fit, with chi^2 = rows x (0.1 /
+/// 0.2)^2 over the rows' own residuals.
+TEST(BottomLossFit, RepeatedRowsFitAsTheirMeanWithTheirScatter) {
+  const Candidate truth = edfm(0.42, 3e-11);
+  std::istringstream single(synthetic_file(truth, false));
+  std::ostringstream repeated;
+  repeated.precision(12);
+  int rows = 0;
+  for (std::string line; std::getline(single, line);) {
+    if (!line.starts_with("bottom_loss,")) {
+      repeated << line << '\n';
+      continue;
+    }
+    // quantity,frequency,unit,value,... : the value is the fourth field.
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+    for (double shift : {-0.1, 0.1}) {
+      fields[3] = std::to_string(std::stod(fields[3]) + shift);
+      std::string row;
+      for (std::size_t i = 0; i < fields.size(); ++i) row += (i ? "," : "") + fields[i];
+      repeated << row << '\n';
+      fields[3] = std::to_string(std::stod(fields[3]) - shift);
+      ++rows;
+    }
+  }
+  const ObservationSet data = read_observation_csv(write_file("repeated.csv", repeated.str()));
+  ASSERT_EQ(rows, 60);
+  const Candidate start = edfm(0.35, 1e-10);
+  const FitResult r = fit(data, *start.model, start.parameters, quick());
+  ASSERT_TRUE(r.converged) << r.solver_message;
+  EXPECT_EQ(r.residuals.size(), 60U);
+  EXPECT_NEAR(r.chi2, 60 * 0.25, 1e-3);
+  EXPECT_NEAR(parameter(r, "porosity").value, 0.42, 1e-3 * 0.42);
+  EXPECT_NEAR(parameter(r, "permeability").value, 3e-11, 1e-3 * 3e-11);
+}
+
 TEST(BottomLossFit, ReflectionMagnitudeRoundTrip) {
   const Candidate truth = edfm(0.5, 2e-11);
   const sediment::SeabedPart part{truth.model, truth.parameters.values(), 0.0};

@@ -4,6 +4,7 @@
 // priors reach the candidates that have the parameter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -75,6 +76,44 @@ TEST(CompareModels, RefusesNoModelsAndPriorsThatDoNotMatch) {
   Candidate broken = make_candidate("edfm");
   broken.priors.pop_back();
   EXPECT_THROW((void)compare_models(edfm_data(), {broken}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sedwave::inversion
+
+namespace sedwave::inversion {
+namespace {
+
+const FitOptions kGlobal{.method = FitMethod::Global, .profile_likelihood = false};
+
+// Importance sampling around the fit serves a posterior that is one peak, and refuses a ridge that
+// only the priors' bounds close: the lattice chain's kappa and d from sound speeds far below its
+// dispersion, which see c0 = d sqrt(kappa / m) alone. Both columns come from the same evaluations.
+TEST(ImportanceEvidence, ServesAPeakAndRefusesARidge) {
+  const auto chain = sediment::make_sediment_model("lattice");
+  const FitParameters truth(chain->parameters());
+  for (const bool ridge : {false, true}) {
+    ObservationSet data = synthetic_observations(*chain, truth, ridge ? SyntheticDesign{100.0, 300.0, 20, 0.05, 0.01, 101}
+                                                                      : SyntheticDesign{100.0, 1e5, 20, 0.05, 0.01, 1});
+    if (ridge) std::erase_if(data.observations, [](const Observation& o) { return o.quantity != Quantity::SoundSpeed; });
+    FitParameters start = truth;
+    start.set_free_from_list("kappa,d");
+    const FitResult best = fit(data, *chain, start, kGlobal);
+    const std::vector<Prior> priors = make_priors(best.fitted, {});
+    const std::vector<ModelEvidence> e =
+        importance_sampled_evidence(data, *chain, best, {priors, widened(priors, 10.0)}, kGlobal, {});
+    ASSERT_EQ(e.size(), 2u);
+    for (const ModelEvidence& column : e) {
+      EXPECT_EQ(column.fallback_reason.empty(), !ridge) << column.fallback_reason;
+      EXPECT_EQ(column.evaluations, e[0].evaluations);
+      if (!ridge) {
+        EXPECT_LE(column.uncertainty, 0.05);
+      }
+    }
+    if (!ridge) {
+      EXPECT_LE(e[0].evaluations, 10000);
+    }
+  }
 }
 
 }  // namespace

@@ -40,15 +40,15 @@ ObservationSet synthetic_data(const forward::DispersionModel& model, const FitPa
   return synthetic_observations(model, p, SyntheticDesign{.seed = seed});
 }
 
-const CombinationResult& combination(const FitResult& r, const std::string& name) {
-  for (const CombinationResult& c : r.combinations) {
+const DerivedResult& derived(const FitResult& r, const std::string& name) {
+  for (const DerivedResult& c : r.derived) {
     if (c.name == name) return c;
   }
   throw std::runtime_error("no combination " + name);
 }
 
 void expect_within_3_sigma(const FitResult& r, const std::string& name, double truth) {
-  const CombinationResult& c = combination(r, name);
+  const DerivedResult& c = derived(r, name);
   ASSERT_TRUE(c.determined) << name;
   EXPECT_LT(std::abs(std::log(c.value / truth)), 3.0 * c.log_sigma)
       << name << " = " << c.value << " +- " << c.sigma << ", truth " << truth;
@@ -96,7 +96,7 @@ TEST(SyntheticInversion, KappaOverHertzIsTheSitePriorsHertzRelation) {
   const double e_star = young / (2.0 * (1.0 - poisson * poisson));
   const double force = std::numbers::pi * d * d * 1.0e4 / (9.0 * (1.0 - 0.38));
   const double hertz = std::cbrt(6.0 * e_star * e_star * (d / 4.0) * force);
-  EXPECT_NEAR(combination(r, "kappa_over_hertz").value / (by_name(r.parameters, "kappa").value / hertz), 1.0, 1e-9);
+  EXPECT_NEAR(derived(r, "kappa_over_hertz").value / (by_name(r.parameters, "kappa").value / hertz), 1.0, 1e-9);
 }
 
 TEST(SyntheticInversion, LatticeDeterminesDiameterWhenKdReachesOne) {
@@ -127,10 +127,10 @@ TEST(SyntheticInversion, ContinuumFlagsDiameterAsNotDetermined) {
   EXPECT_FALSE(by_name(r.parameters, "d").determined);
   EXPECT_FALSE(by_name(r.parameters, "kappa").determined);
   EXPECT_FALSE(by_name(r.parameters, "gamma").determined);
-  EXPECT_TRUE(combination(r, "c0").determined);
-  EXPECT_TRUE(combination(r, "tau").determined);
-  EXPECT_TRUE(combination(r, "f_star").determined);
-  EXPECT_FALSE(combination(r, "gamma_hat").determined);
+  EXPECT_TRUE(derived(r, "c0").determined);
+  EXPECT_TRUE(derived(r, "tau").determined);
+  EXPECT_TRUE(derived(r, "f_star").determined);
+  EXPECT_FALSE(derived(r, "gamma_hat").determined);
   ASSERT_EQ(r.weak_directions.size(), 1u);
   EXPECT_TRUE(r.weak_directions[0].unseen);
   EXPECT_EQ(r.weak_directions[0].direction, "kappa^1 * d^1 * gamma^1");

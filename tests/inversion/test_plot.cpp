@@ -57,7 +57,7 @@ FitResult small_fit() {
   r.model = "lattice";
   r.parameters = {{"kappa", "N/m", 1e6, true, false, true, 0.1, 1e5, std::nullopt, std::nullopt},
                   {"d", "m", 3e-4, false, false, true, 0.0, 0.0, std::nullopt, std::nullopt}};
-  r.combinations = {{"c0", "m/s", "", 1600.0, true, 0.01, 16.0, {}, {}}};
+  r.derived = {{"c0", "m/s", "", 1600.0, true, 0.01, 16.0, {}, {}}};
   r.residuals = {point(Quantity::Attenuation, 100.0, 1e-3, 1e-4, 1.1e-3, 0.5),
                  point(Quantity::Attenuation, 300.0, 1e-2, 1e-3, 0.9e-2, -0.4),
                  point(Quantity::Attenuation, 1000.0, 1e-1, 1e-2, 1.6e-1, 5.0),
@@ -128,6 +128,33 @@ TEST_F(FitPlotTest, ScriptDrawsResidualPanelsMarksMissesAndStatesTheFit) {
   } else {
     EXPECT_NE(outcome.message.find("gnuplot not found"), std::string::npos) << outcome.message;
   }
+}
+
+// A model without a dry grain-contact frame (Biot-Stoll, EDFM, ...) has no dimensionless curve: its
+// curves.csv leaves those columns out instead of filling them with NaN, and the plot finds its
+// columns by name.
+TEST_F(FitPlotTest, CurvesOfAModelWithoutAFrameHaveNoDimensionlessColumns) {
+  const FitResult fit = small_fit();
+  write_observations_table(dir_ / "observations.csv", ObservationSet{}, fit);
+  const double none = kNotApplicable;
+  write_curves_csv(dir_ / "curves.csv",
+                   {{50.0, none, none, none, none, 1e-4, 1e-5, 1600.0, 5.0},
+                    {2000.0, none, none, none, none, 0.3, 0.03, 1610.0, 5.0}},
+                   std::nullopt);
+  const std::string curves = read_text(dir_ / "curves.csv");
+  EXPECT_NE(curves.find("\nfrequency_hz,alpha_np_per_m,alpha_np_per_m_sigma,alpha_db_per_m,"), std::string::npos)
+      << curves;
+  EXPECT_EQ(curves.find("nan"), std::string::npos) << curves;
+  (void)draw_fit_plot(dir_, "test fit", false, fit);
+  const std::string script = read_text(dir_ / "fit.gp");
+  EXPECT_NE(script.find("using 1:4 with lines"), std::string::npos) << "attenuation in dB/m is column 4";
+  EXPECT_NE(script.find("using 1:6 with lines"), std::string::npos) << "sound speed is column 6";
+
+  write_curves_csv(dir_ / "curves.csv", {{50.0, 0.01, 1.0, 1e-3, 1.0, 1e-4, 1e-5, 1600.0, 5.0}}, std::nullopt);
+  EXPECT_NE(read_text(dir_ / "curves.csv").find("\nfrequency_hz,omega_hat,gamma_hat,alpha_hat,c_hat,alpha_np_per_m,"),
+            std::string::npos);
+  (void)draw_fit_plot(dir_, "test fit", false, fit);
+  EXPECT_NE(read_text(dir_ / "fit.gp").find("using 1:8 with lines"), std::string::npos) << "with the frame's columns";
 }
 
 // The corner plot of k parameters: k histograms on the diagonal, k(k-1)/2 pair panels below with

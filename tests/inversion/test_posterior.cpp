@@ -71,7 +71,7 @@ TEST(Posterior, JudgesTheDerivedQuantitiesThatMoveAndNotTheConstantOnes) {
                                                fit_options, {.seed = 1, .temperatures = 0});
     ASSERT_TRUE(p.converged) << p.advice;
     int moving = 0;
-    for (const PosteriorQuantity& q : p.combinations) {
+    for (const PosteriorQuantity& q : p.derived) {
       SCOPED_TRACE(q.name);
       if (q.lower_95 == q.upper_95) {
         EXPECT_EQ(std::string(name), "saturated-lattice");  // only its Wood speed is fixed
@@ -122,7 +122,7 @@ TEST(Posterior, AnUnseenParameterFollowsItsPriorAndIsSaidToBePriorDominated) {
   EXPECT_NEAR(std::log(d.median / 3e-4), 0.0, 0.15);
   EXPECT_NEAR(0.5 * std::log(d.upper_68 / d.lower_68), 0.5, 0.1);
   // c0 and tau stay determined: their posteriors are narrow whatever d does.
-  for (const PosteriorQuantity& c : p.combinations) {
+  for (const PosteriorQuantity& c : p.derived) {
     if (c.name == "c0" || c.name == "tau") {
       EXPECT_LT(std::log(c.upper_68 / c.lower_68), 0.2) << c.name;
     }

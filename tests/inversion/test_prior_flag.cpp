@@ -4,6 +4,7 @@
 // full study is bench/prior_flag_rates.cpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "prior_control.hpp"
@@ -47,7 +48,7 @@ TEST(PriorControl, SharesMatchTheGaussianClosedForm) {
     const double expected = a.dot(sigma * prior_information * sigma * a) / a.dot(sigma * a);
     EXPECT_NEAR(control.prior_share(draws * a), expected, 0.02) << "quantity " << q;
   }
-  // The premise: each parameter lies mostly along the unseen ridge, the seen combination does not.
+  // The premise: each parameter lies mostly along the unseen ridge, the seen derived quantity does not.
   EXPECT_GT(control.prior_share(draws.col(0)), 0.9);
   EXPECT_LT(control.prior_share(draws * quantities.row(3).transpose()), 0.1);
 }
@@ -60,6 +61,29 @@ TEST(PriorControl, AFlatPriorHasNoShare) {
   const PriorControl control(draws, information);
   EXPECT_LT(control.prior_share(draws.col(0)), 0.03);
   EXPECT_LT(control.prior_share(draws.col(1)), 0.03);
+}
+
+// One quantity, Gaussian prior sd 1 and likelihood sd 1/2: the posterior variance is 1/(1 + 4) = 0.2,
+// the prior's share of its precision 1/5. Its width against the prior's, squared, is that share; a
+// marginal as wide as its prior has share 1.
+TEST(PriorControl, WidthShareMatchesTheGaussianClosedForm) {
+  const Eigen::MatrixXd prior = gaussian_draws(Eigen::MatrixXd::Identity(1, 1), 40000, 7);
+  const Eigen::MatrixXd posterior = gaussian_draws(Eigen::MatrixXd::Constant(1, 1, 0.2), 40000, 8);
+  EXPECT_NEAR(prior_width_share(posterior.col(0), prior.col(0)), 0.2, 0.01);
+  EXPECT_NEAR(prior_width_share(prior.col(0), gaussian_draws(Eigen::MatrixXd::Identity(1, 1), 40000, 9).col(0)), 1.0,
+              0.03);
+  EXPECT_EQ(prior_width_share(posterior.col(0), Eigen::VectorXd::Zero(100)), 0.0) << "a prior without spread";
+}
+
+// The same against the likelihood alone: a profile interval of half-width 1/2 (the likelihood's sd)
+// and a credible one of half-width sqrt(0.2) give 1 - 0.2 / 0.25 = 1/5; an open profile gives 1.
+TEST(PriorControl, ProfileShareMatchesTheGaussianClosedForm) {
+  const double c = std::exp(std::sqrt(0.2)), p = std::exp(0.5);
+  EXPECT_NEAR(prior_share_against_profile(1.0 / c, c, 1.0 / p, p), 0.2, 1e-12);
+  EXPECT_EQ(prior_share_against_profile(1.0 / c, c, std::nullopt, p), 1.0) << "open below";
+  EXPECT_EQ(prior_share_against_profile(1.0 / c, c, 1.0 / p, std::nullopt), 1.0) << "open above";
+  EXPECT_EQ(prior_share_against_profile(1.0 / p, p, 1.0 / c, c), 0.0) << "a credible interval wider than the profile";
+  EXPECT_EQ(prior_share_against_profile(2.0, 2.0, 2.0, 2.0), 0.0) << "a quantity known exactly";
 }
 
 }  // namespace
@@ -77,8 +101,10 @@ TEST(PriorFlag, FlagsRidgesAndSparesWellDeterminedSets) {
   constexpr int kSteps = 1500;
   int ridge = 0, determined = 0;
   for (int i = 0; i < kSets; ++i) {
-    ridge += set_flagged(FlagSet::Ridge, run_flag_set(FlagSet::Ridge, kSeed, i, kSteps));
-    determined += set_flagged(FlagSet::WellDetermined, run_flag_set(FlagSet::WellDetermined, kSeed, i, kSteps));
+    // Without the fits' profiles: the posterior's own tests, and a quicker test.
+    ridge += set_flagged(FlagSet::Ridge, run_flag_set(FlagSet::Ridge, kSeed, i, kSteps, FlagPriors::Default, false));
+    determined += set_flagged(FlagSet::WellDetermined,
+                              run_flag_set(FlagSet::WellDetermined, kSeed, i, kSteps, FlagPriors::Default, false));
   }
   EXPECT_GE(ridge, kSets - 1);
   EXPECT_LE(determined, 1);

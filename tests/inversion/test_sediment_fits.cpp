@@ -131,7 +131,7 @@ TEST(OwnModel, RegisteredFitsAndIsJudgedByItsOwnDerivedQuantities) {
   start.spec[start.index_of("c")].value = 1500.0;
   start.spec[start.index_of("a0")].value = 0.05;
   const FitResult r = fit(data, *model, start, {.method = FitMethod::Ceres});
-  const CombinationResult& loss = by_name(r.combinations, "loss_per_wavelength");
+  const DerivedResult& loss = by_name(r.derived, "loss_per_wavelength");
   ASSERT_TRUE(loss.determined);
   EXPECT_LT(std::abs(std::log(loss.value / 0.16)), 3.0 * loss.log_sigma) << loss.value << " +- " << loss.sigma;
   const bool flagged = std::any_of(r.flags.begin(), r.flags.end(), [](const PlausibilityFlag& f) {

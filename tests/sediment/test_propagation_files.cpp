@@ -20,7 +20,6 @@
 namespace sedwave::sediment {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 TEST(ToolboxEnvironment, TheToolboxsPekerisExampleParses) {
   std::ifstream in(std::string(SEDWAVE_SOURCE_DIR) + "/tests/sediment/data/pekeris.env");
@@ -48,7 +47,7 @@ double toolbox_nepers(double value, char unit, double c, double f) {
     case 'M': return value / 8.6858896;
     case 'F': return value * f / 8685.8896;
     case 'W': return value * f / (8.6858896 * c);
-    case 'Q': return 2.0 * kPi * f / (2.0 * c * value);
+    case 'Q': return 2.0 * std::numbers::pi * f / (2.0 * c * value);
     default: return -1.0;
   }
 }
@@ -101,7 +100,7 @@ TEST(ToolboxEnvironment, MalformedFilesAreRefusedWithTheirLine) {
 ///   kzP = sqrt(kx^2 - (omega/c_P)^2) (its branch: not on the negative imaginary axis),
 ///   Refl = -(rho_w kzP - i kz rho_b) / (rho_w kzP + i kz rho_b).
 std::complex<double> bellhop_halfspace(double c_b, double rho_b, double theta, double f) {
-  const double omega = 2.0 * kPi * f;
+  const double omega = 2.0 * std::numbers::pi * f;
   const double kx = omega * std::cos(theta) / 1500.0, kz = omega * std::sin(theta) / 1500.0;
   std::complex<double> kzp = std::sqrt(std::complex<double>(kx * kx - (omega / c_b) * (omega / c_b), 0.0));
   if (kzp.real() == 0.0 && kzp.imag() < 0.0) kzp = -kzp;
@@ -115,16 +114,16 @@ TEST(ReflectionTable, HasBellhopsPhaseBeyondTheCriticalAngle) {
   std::vector<double> degrees, radians;
   for (double d = 1.0; d <= 90.0; d += 1.0) {
     degrees.push_back(d);
-    radians.push_back(d * kPi / 180.0);
+    radians.push_back(d * std::numbers::pi / 180.0);
   }
   const std::vector<ReflectionTableRow> rows =
       toolbox_reflection_table(degrees, reflection_coefficients(seabed, radians, 1e3));
-  const double critical_deg = std::acos(1500.0 / 1700.0) * 180.0 / kPi;
+  const double critical_deg = std::acos(1500.0 / 1700.0) * 180.0 / std::numbers::pi;
   int total_reflection_rows = 0;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const std::complex<double> bellhop = bellhop_halfspace(1700.0, 1900.0, radians[k], 1e3);
     EXPECT_NEAR(rows[k].magnitude, std::abs(bellhop), 1e-13) << degrees[k];
-    const double wrapped = std::remainder(rows[k].phase_deg - std::arg(bellhop) * 180.0 / kPi, 360.0);
+    const double wrapped = std::remainder(rows[k].phase_deg - std::arg(bellhop) * 180.0 / std::numbers::pi, 360.0);
     EXPECT_NEAR(wrapped, 0.0, 1e-10) << degrees[k];
     if (degrees[k] < critical_deg) {
       ++total_reflection_rows;

@@ -18,8 +18,7 @@ namespace sedwave::sediment {
 namespace {
 
 using Std = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
-constexpr double kDegree = kPi / 180.0;
+constexpr double kDegree = std::numbers::pi / 180.0;
 
 const AcousticMedium kWater{1500.0, 0.0, 0.0, 0.0, 1000.0};
 
@@ -96,7 +95,7 @@ TEST(Halfspace, ReflectionTendsToMinusOneAtGrazingIncidence) {
 /// angles from the normal: R = (Z_p cos^2 2t_s + Z_s sin^2 2t_s - Z_w) / (same + Z_w),
 /// Z = rho c / cos t, sin t = c p; complex speeds for loss, cos t = c q on the decaying branch.
 Std fluid_solid(const AcousticMedium& b, double theta, double f) {
-  const double omega = 2.0 * kPi * f;
+  const double omega = 2.0 * std::numbers::pi * f;
   const double p = std::cos(theta) / kWater.compressional_speed;
   const auto complex_speed = [&](double c, double alpha) { return 1.0 / Std(1.0 / c, alpha / omega); };
   const Std cp = complex_speed(b.compressional_speed, b.compressional_attenuation);
@@ -169,10 +168,10 @@ TEST(Layers, QuarterWaveMatchingLayerReflectsNothing) {
   const double c_layer = 1650.0, f = 5e3;
   const AcousticMedium layer{c_layer, 0.0, 0.0, 0.0, std::sqrt(z_water * z_bottom) / c_layer};
   const double quarter = c_layer / (4.0 * f);
-  EXPECT_LT(std::abs(reflection_coefficient(over(bottom, {{layer, quarter}}), kPi / 2.0, f)), 1e-14);
+  EXPECT_LT(std::abs(reflection_coefficient(over(bottom, {{layer, quarter}}), std::numbers::pi / 2.0, f)), 1e-14);
   // Half a wavelength is transparent instead: R is the bare bottom's.
-  EXPECT_NEAR(std::abs(reflection_coefficient(over(bottom, {{layer, 2.0 * quarter}}), kPi / 2.0, f)),
-              std::abs(reflection_coefficient(over(bottom), kPi / 2.0, f)), 1e-14);
+  EXPECT_NEAR(std::abs(reflection_coefficient(over(bottom, {{layer, 2.0 * quarter}}), std::numbers::pi / 2.0, f)),
+              std::abs(reflection_coefficient(over(bottom), std::numbers::pi / 2.0, f)), 1e-14);
 }
 
 TEST(Layers, LosslessStackBeyondEveryCriticalAngleReflectsTotally) {
@@ -223,7 +222,7 @@ TEST(BandAverage, OfAFrequencyIndependentBottomIsItsPower) {
   // sum (a^2 + b^2 - 2 a^2 b^2) / (1 - a^2 b^2) of the interfaces' coefficients a and b.
   const AcousticMedium layer{1600.0, 0.0, 0.0, 0.0, 1500.0};
   const auto layered = [&](double) { return over(sand, {{layer, 50.0}}); };
-  const std::vector<double> normal{kPi / 2.0};
+  const std::vector<double> normal{std::numbers::pi / 2.0};
   const double a = (1600.0 * 1500.0 - 1500.0 * 1000.0) / (1600.0 * 1500.0 + 1500.0 * 1000.0);
   const double b = (1700.0 * 1900.0 - 1600.0 * 1500.0) / (1700.0 * 1900.0 + 1600.0 * 1500.0);
   const double incoherent = (a * a + b * b - 2.0 * a * a * b * b) / (1.0 - a * a * b * b);

@@ -23,7 +23,6 @@ namespace sedwave::sediment {
 namespace {
 
 using Std = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
 
 double bulk_density_of(const std::vector<double>& v) {  // GS order: porosity, rho_s, rho_w
   return v[0] * v[2] + (1.0 - v[0]) * v[1];
@@ -37,9 +36,9 @@ TEST(GrainShearingShear, MatchesBuckinghamsClosedForms) {
   for (const double f : {10.0, 1e3, 1e5, 1e6}) {
     const double omega = testing::kTwoPi * f;
     const Wave w = gs.evaluate_shear(v, f, false);
-    const double speed = reference_speed * std::pow(omega, n / 2.0) / std::cos(n * kPi / 4.0);
+    const double speed = reference_speed * std::pow(omega, n / 2.0) / std::cos(n * std::numbers::pi / 4.0);
     EXPECT_NEAR(w.speed / speed, 1.0, 1e-13) << f;
-    EXPECT_NEAR(w.attenuation / (omega * std::tan(n * kPi / 4.0) / speed), 1.0, 1e-12) << f;
+    EXPECT_NEAR(w.attenuation / (omega * std::tan(n * std::numbers::pi / 4.0) / speed), 1.0, 1e-12) << f;
   }
 }
 
@@ -51,7 +50,7 @@ TEST(GrainShearingShear, TendsToALosslessElasticFrameAsTheIndexVanishes) {
   const Wave w = gs.evaluate_shear(v, 1.0 / testing::kTwoPi, false);  // omega T = 1: (omega T)^n = 1
   EXPECT_NEAR(w.speed / reference_speed, 1.0, 1e-6);
   // alpha_s / k_s = tan(n pi/4) ~ n pi/4: the loss per wavelength vanishes with n.
-  EXPECT_NEAR(w.attenuation * w.speed, std::tan(1e-3 * kPi / 4.0), 1e-15);
+  EXPECT_NEAR(w.attenuation * w.speed, std::tan(1e-3 * std::numbers::pi / 4.0), 1e-15);
 }
 
 /// c_p or c_s at omega = 1/tau of VGS(λ), evaluated by the model.
@@ -83,7 +82,7 @@ TEST(ViscousGrainShearingShear, IsGrainShearingFarAboveItsTransition) {
   const double f = 1e6 / (testing::kTwoPi * tau_s);  // omega tau_s = 1e6
   const double omega = testing::kTwoPi * f;
   const Wave w = vgs.evaluate_shear(v, f, false);
-  EXPECT_NEAR(w.speed / (reference_speed * std::pow(omega, n / 2.0) / std::cos(n * kPi / 4.0)), 1.0, 1e-5);
+  EXPECT_NEAR(w.speed / (reference_speed * std::pow(omega, n / 2.0) / std::cos(n * std::numbers::pi / 4.0)), 1.0, 1e-5);
 }
 
 TEST(ViscousGrainShearingShear, IsViscousFarBelowItsTransition) {
@@ -114,7 +113,7 @@ TEST(BiotStollShear, FluidMovesWithTheFrameAtLowFrequency) {
   const std::vector<double> v = bs.default_values();
   const double rho = v[PoreSpace::kPorosity] * v[PoreSpace::kWaterDensity] +
                      (1.0 - v[PoreSpace::kPorosity]) * v[PoreSpace::kGrainDensity];
-  const Std mu(v[BiotStollModel::kFrameShear], -v[BiotStollModel::kFrameShear] * v[BiotStollModel::kShearDecrement] / kPi);
+  const Std mu(v[BiotStollModel::kFrameShear], -v[BiotStollModel::kFrameShear] * v[BiotStollModel::kShearDecrement] / std::numbers::pi);
   for (const double f : {1e-3, 1e-1}) {
     const double omega = testing::kTwoPi * f;
     const Std k = low_frequency_biot_shear(omega, rho, v[PoreSpace::kWaterDensity], v[PoreSpace::kPermeability],

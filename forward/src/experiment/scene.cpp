@@ -88,8 +88,9 @@ class SceneContactKeys final : public dem::ContactKeySource {
     return s_.choice(key, "", std::set<std::string>(names.begin(), names.end()));
   }
   std::optional<double> number(const dem::ContactKey& k) override {
-    const dem::KeyBounds& b = k.bounds;
-    return s_.optional_number(std::string(k.key), Range{b.low, b.high, b.low_open, b.high_open, std::string(k.unit)});
+    io::Range range = k.bounds;  // the key's own unit note in messages
+    range.unit = k.unit;
+    return s_.optional_number(std::string(k.key), range);
   }
   [[noreturn]] void fail(const std::string& why) override { s_.fail_table(why); }
 

@@ -12,6 +12,7 @@
 
 namespace sedwave::forward::table::h5 {
 
+using io::attribute_text;
 using io::create_group;
 using io::flush;
 using io::Handle;
@@ -24,6 +25,7 @@ using io::read_attribute;
 using io::read_string_attribute;
 using io::read_string_dataset;
 using io::read_vector;
+using io::require_float_dataset;
 using io::shape;
 using io::StringBytes;
 using io::write;

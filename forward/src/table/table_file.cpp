@@ -3,8 +3,11 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "hdf5_table_io.hpp"
@@ -175,14 +178,11 @@ void require_shape(const h5::Handle& dataset, const std::string& name, const std
 }
 
 DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& path) {
-  std::string format;
-  try {
-    format = h5::read_string_attribute(file, "format");
-  } catch (const std::runtime_error&) {
-    format = "(none)";
-  }
-  if (format != kFormatName) {
-    throw std::runtime_error(path.string() + ": not a sedwave dispersion table (format '" + format + "')");
+  // The attribute as stored, whatever its type: a file written by other tools names what it holds.
+  const std::string format = h5::attribute_text(file, "format");
+  if (format != "'" + std::string(kFormatName) + "'") {
+    throw std::runtime_error(path.string() + ": not a sedwave dispersion table (attribute 'format' is " + format +
+                             ", expected '" + std::string(kFormatName) + "')");
   }
   const int version = h5::read_attribute<int>(file, "format_version");
   if (version != kFormatVersion) {
@@ -190,6 +190,9 @@ DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& p
                              std::to_string(kFormatVersion) + " (a table of another sedwave version)");
   }
   const h5::Handle grid_group = h5::open_group(file, "grid");
+  for (const char* axis : {"omega_hat", "gamma_hat"}) {
+    h5::require_float_dataset(h5::open_dataset(grid_group, axis), path.string() + ": dataset /grid/" + axis);
+  }
   TableGrid grid{h5::read_vector<double>(grid_group, "omega_hat"), h5::read_vector<double>(grid_group, "gamma_hat")};
   DispersionTable table(std::move(grid), read_metadata(file));
 
@@ -197,7 +200,10 @@ DispersionTable read_file(const h5::Handle& file, const std::filesystem::path& p
   // Shapes, not only element counts: a matrix stored transposed has the right count and every
   // value in the wrong place.
   const std::vector<hsize_t> shape{table.n_gamma(), table.n_omega()};
-  for (std::size_t i = 0; i < kFloatColumns.size(); ++i) require_shape(sets.floats[i], kFloatColumns[i].name, shape, path);
+  for (std::size_t i = 0; i < kFloatColumns.size(); ++i) {
+    require_shape(sets.floats[i], kFloatColumns[i].name, shape, path);
+    h5::require_float_dataset(sets.floats[i], path.string() + ": dataset /results/" + kFloatColumns[i].name);
+  }
   require_shape(sets.status, "status", shape, path);
   require_shape(sets.reason, "reason", shape, path);
   std::array<std::vector<double>, kFloatColumns.size()> floats;
@@ -355,10 +361,45 @@ TableFile TableFile::open(const std::filesystem::path& path) {
   return TableFile(std::move(state));
 }
 
+namespace {
+
+/// Why the file at `path` is not a table at all (not HDF5, or HDF5 whose 'format' attribute names
+/// something else); nothing for a table, damaged or not. A table sedwave wrote is renamed into place
+/// complete, so its signature and attributes are there even when a later write damaged it.
+std::optional<std::string> not_a_table(const std::filesystem::path& path) {
+  std::array<char, 8> head{};
+  std::ifstream(path, std::ios::binary).read(head.data(), head.size());
+  if (std::string_view(head.data(), head.size()) != std::string_view("\x89HDF\r\n\x1a\n", 8)) {
+    return "it is not an HDF5 file";
+  }
+  const h5::QuietErrors quiet;
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (id < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return std::nullopt;  // HDF5 that cannot be opened: a damaged table
+  }
+  const h5::Handle file(id, H5Fclose, "open " + path.string());
+  const std::string format = h5::attribute_text(file, "format");
+  if (format == "'" + std::string(kFormatName) + "'") return std::nullopt;
+  return "it is an HDF5 file whose attribute 'format' is " + format;
+}
+
+}  // namespace
+
+void require_table_or_nothing(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) return;
+  if (const std::optional<std::string> why = not_a_table(path)) {
+    throw std::runtime_error("cannot write table " + path.string() + ": the file exists and is not a sedwave "
+                             "dispersion table (" + *why + "); name another file, or move it away");
+  }
+}
+
 TableFile TableFile::resume_or_create(const std::filesystem::path& path, const TableGrid& grid,
                                       const TableMetadata& metadata, bool allow_changed_inputs) {
   // Before anything is opened: a device or FIFO is neither read as a damaged table nor moved aside.
   io::require_seekable_output(path, "HDF5");
+  // Nor is a file of another kind (a typing error in the path): only a damaged table is rebuilt.
+  require_table_or_nothing(path);
   // The journal lock first: a file that fails to open because another live writer holds it must
   // not be mistaken for a damaged one.
   Journal journal(journal_path(path));

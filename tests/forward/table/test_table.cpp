@@ -2,6 +2,7 @@
 // writer, and the interpolating model on a table computed from the lattice theory (accuracy,
 // derivatives, C1 joins, out-of-range errors, the theory fallback, unresolved points, 1D tables).
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -260,6 +261,79 @@ TEST_F(TableTest, RebuildsADamagedFileFromTheJournal) {
   EXPECT_TRUE(fs::exists(file("t.h5.corrupt")));
   EXPECT_EQ(rebuilt.finished_points().size(), 3u);
   for (std::size_t g = 0; g < 3; ++g) expect_identical(rebuilt.table().at(g, g), point_for(grid, {g, g}), {g, g});
+}
+
+/// The message read_table (or resume_or_create) throws for `path`; empty when it throws nothing.
+template <typename Read>
+std::string failure_of(Read read) {
+  try {
+    read();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// A written table changed by `edit` through the HDF5 C API (as another tool would write it).
+template <typename Edit>
+void edit_table(const fs::path& path, Edit edit) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  edit(file);
+  H5Fclose(file);
+}
+
+TEST_F(TableTest, AFormatAttributeOfAnotherKindIsNamed) {
+  const TableGrid grid{log_spaced(0.01, 1.0, 3), log_spaced(0.1, 10.0, 2)};
+  { const TableFile out = TableFile::create(file("t.h5"), grid, theory_metadata()); }
+  edit_table(file("t.h5"), [](hid_t f) {
+    H5Adelete(f, "format");  // rewritten as h5py writes strings: variable-length
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t attribute = H5Acreate2(f, "format", type, space, H5P_DEFAULT, H5P_DEFAULT);
+    const char* text = "my dispersion table";
+    H5Awrite(attribute, type, &text);
+    H5Aclose(attribute);
+    H5Sclose(space);
+    H5Tclose(type);
+  });
+  const std::string message = failure_of([&] { (void)read_table(file("t.h5")); });
+  EXPECT_NE(message.find("attribute 'format' is 'my dispersion table' (a variable-length string)"), std::string::npos)
+      << message;
+}
+
+TEST_F(TableTest, ANonFloatingResultDatasetIsRefusedByNameAndType) {
+  const TableGrid grid{log_spaced(0.01, 1.0, 3), log_spaced(0.1, 10.0, 2)};
+  { const TableFile out = TableFile::create(file("t.h5"), grid, theory_metadata()); }
+  edit_table(file("t.h5"), [](hid_t f) {
+    H5Ldelete(f, "/results/alpha_hat", H5P_DEFAULT);  // values x 1000 as int32, as another tool might store them
+    const std::array<hsize_t, 2> shape{2, 3};
+    const hid_t space = H5Screate_simple(2, shape.data(), nullptr);
+    const hid_t set = H5Dcreate2(f, "/results/alpha_hat", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const std::array<std::int32_t, 6> values{10, 20, 30, 40, 50, -2147483647 - 1};
+    H5Dwrite(set, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    H5Dclose(set);
+    H5Sclose(space);
+  });
+  const std::string message = failure_of([&] { (void)read_table(file("t.h5")); });
+  EXPECT_NE(message.find("dataset /results/alpha_hat holds 32-bit signed integer values"), std::string::npos)
+      << message;
+}
+
+TEST_F(TableTest, AFileThatIsNotATableIsRefusedAndLeftAlone) {
+  const TableGrid grid{log_spaced(0.01, 1.0, 3), log_spaced(0.1, 10.0, 2)};
+  std::ofstream(file("grid.toml")) << "omega_hat = [0.01, 1.0]\n";
+  const std::string message =
+      failure_of([&] { (void)TableFile::resume_or_create(file("grid.toml"), grid, theory_metadata()); });
+  EXPECT_NE(message.find("grid.toml: the file exists and is not a sedwave dispersion table (it is not an HDF5 file)"),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(file("grid.toml.corrupt")));
+  EXPECT_FALSE(fs::exists(TableFile::journal_path(file("grid.toml"))));
+  std::string kept;
+  std::getline(std::ifstream(file("grid.toml")), kept);
+  EXPECT_EQ(kept, "omega_hat = [0.01, 1.0]");
 }
 
 // ---- The interpolating model ----------------------------------------------------------------------

@@ -59,17 +59,6 @@ void require_keys_apply(const ContactSpec& s) {
 
 }  // namespace
 
-std::string KeyBounds::describe() const {
-  const auto bound = [](double x) {
-    if (std::isinf(x)) return std::string(x < 0 ? "-inf" : "inf");
-    std::ostringstream text;
-    text << x;
-    return text.str();
-  };
-  return std::string(low_open || std::isinf(low) ? "(" : "[") + bound(low) + ", " + bound(high) +
-         (high_open || std::isinf(high) ? ")" : "]");
-}
-
 std::optional<double> ContactValues::find(const ContactKey& k) const {
   const std::optional<double> x = spec_.find(k.key);
   if (x && !(std::isfinite(*x) && k.bounds.contains(*x))) {

@@ -11,6 +11,8 @@
 //   const Ranking ranking = compare_models(data, candidates, {});
 //   ranking.best().model  // the name of the model ranked first
 //
+// Both evidences come from one importance-sampling pass around the fit where its diagnostics
+// allow, from parallel tempering where they do not (posterior.hpp, importance_sampled_evidence).
 // The work runs as jobs on `threads` threads; each job writes only its own results and each
 // sampler has its own seeded random stream, so the ranking is the same, bit for bit, for any
 // thread count.
@@ -52,6 +54,11 @@ struct ComparedModel {
   ModelEvidence evidence;           ///< under the candidate's priors
   ModelEvidence widened;            ///< under them widened kPriorWidening times (posterior.hpp, widened)
   PredictiveBand band;              ///< over the data's frequencies, from the evidence run's posterior
+  long fit_evaluations = 0;         ///< the model's evaluations at a parameter point during the fit
+  /// Every evaluation the comparison made for this model: the fit's, the evidence's under both sets
+  /// of priors (importance sampling's once, as both share them; parallel tempering's where it ran)
+  /// and the band's posterior draws.
+  long evaluations = 0;
 };
 
 struct Ranking {

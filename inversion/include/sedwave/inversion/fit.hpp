@@ -31,12 +31,12 @@ struct FitOptions {
   int max_global_evaluations = 5000;
   int max_iterations = 200;                   ///< Levenberg-Marquardt iterations
   double default_relative_sigma = 0.1;        ///< for observations whose file gave no sigma
-  /// A parameter or combination is "determined" when its 1-sigma spread in ln units is below this
+  /// A parameter or derived quantity is "determined" when its 1-sigma spread in ln units is below this
   /// (0.5: known to within a factor e^0.5 = 1.65) and it has no component along unseen directions.
   double determined_log_sigma = 0.5;
   unsigned random_seed = 20090501;            ///< for the stochastic NLopt algorithms
   /// Also compute profile-likelihood intervals (Delta chi^2 = 1) of each free parameter and
-  /// combination, and call a quantity determined only if its profile closes on both sides. Costs
+  /// derived quantity, and call a quantity determined only if its profile closes on both sides. Costs
   /// ~40-80 local fits each.
   bool profile_likelihood = true;
   /// Called with the name of each stage as it starts (global search, each profile): a long fit
@@ -59,7 +59,7 @@ struct ParameterResult {
 };
 
 /// A function of the parameters that the data may determine even when they do not.
-struct CombinationResult {
+struct DerivedResult {
   std::string name;
   std::string unit;
   std::string meaning;
@@ -101,7 +101,9 @@ struct FitResult {
   std::string method;
   FitParameters fitted;  ///< the solution (values updated)
   std::vector<ParameterResult> parameters;
-  std::vector<CombinationResult> combinations;
+  /// The model's derived quantities (sediment::DerivedQuantity) at the fit; fit.json keeps its
+  /// key "combinations" for them, as files written before do.
+  std::vector<DerivedResult> derived;
   std::vector<std::string> free_names;
   Eigen::MatrixXd correlation;       ///< of the free ln-parameters (NaN rows for undetermined ones)
   Eigen::MatrixXd covariance;        ///< of the free ln-parameters (pseudo-inverse)

@@ -38,6 +38,12 @@ enum class Quantity { Attenuation, SoundSpeed, BottomLoss, ShearSpeed, ShearAtte
 /// Whether a quantity is of the shear wave.
 [[nodiscard]] inline bool is_shear(Quantity q) { return q == Quantity::ShearSpeed || q == Quantity::ShearAttenuation; }
 
+/// The observation file's name of a quantity ("attenuation", "sound_speed", "bottom_loss", ...).
+[[nodiscard]] const char* quantity_name(Quantity q);
+
+/// The unit a quantity's values are held in: Np/m, m/s, dB (bottom loss) or 1 (|R|).
+[[nodiscard]] const char* quantity_unit(Quantity q);
+
 /// One measured value, in SI.
 struct Observation {
   Quantity quantity = Quantity::Attenuation;

@@ -51,7 +51,8 @@ struct FitParameters {
   /// Mark free exactly the parameters named in a list like "kappa,d,gamma" (others fixed). For a
   /// model with a contact damping, naming gamma or en (e_n) selects that damping form. Throws
   /// std::invalid_argument naming an unknown, repeated or conflicting name.
-  void set_free_from_list(const std::string& list);
+  /// `origin` names the list in messages (default "--fit 'LIST'").
+  void set_free_from_list(const std::string& list, const std::string& origin = "");
   [[nodiscard]] std::vector<int> free_indices() const;
   [[nodiscard]] std::vector<double> values() const;
   /// theta = natural logarithms of the values.
@@ -62,7 +63,7 @@ struct FitParameters {
   void require_parameters_of(const sediment::SedimentModel& model) const;
 };
 
-/// The entry named `name` of a list of named results (FitResult::parameters, ::combinations,
+/// The entry named `name` of a list of named results (FitResult::parameters, ::derived quantities,
 /// PosteriorResult::parameters ...); throws std::invalid_argument if there is none.
 template <typename Named>
 [[nodiscard]] const Named& by_name(const std::vector<Named>& list, const std::string& name) {

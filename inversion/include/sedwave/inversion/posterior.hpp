@@ -4,7 +4,7 @@
 // from walkers started around the best fit. The likelihood is the fit's: exp(-chi^2/2) with the
 // same whitened residuals (residuals.hpp), so a posterior and a fit answer the same question.
 //
-// Reported per free parameter and per combination (c0, tau, f*, gamma_hat, kappa/kappa_Hertz where
+// Reported per free parameter and per derived quantity (c0, tau, f*, gamma_hat, kappa/kappa_Hertz where
 // they mean something): the posterior median, the 68 % and 95 % central credible intervals, and the
 // sampler's split-R-hat and effective sample size; plus the acceptance, a convergence verdict with
 // advice, and whether the prior rather than the data made each interval.
@@ -17,6 +17,7 @@
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/priors.hpp"
+#include "sedwave/sampling/importance.hpp"
 #include "sedwave/sampling/tempering.hpp"
 
 namespace sedwave::inversion {
@@ -63,16 +64,19 @@ struct PosteriorQuantity {
   double split_rhat = 0.0;
   double effective_samples = 0.0;
   /// The prior, not the data, made this interval: the prior supplies more than half of the
-  /// posterior precision behind the quantity's spread (prior_share > 0.5), judged over the whole
-  /// posterior against the data's information at its central draw, so that a ridge through several
-  /// parameters (e.g. kappa d gamma unseen), which no single marginal shows, is flagged too.
+  /// posterior precision behind the quantity's spread (prior_share > 0.5). Judged two ways, the
+  /// larger share counting: over the whole posterior against the data's information at its central
+  /// draw, so that a ridge through several parameters (e.g. kappa d gamma unseen), which no single
+  /// marginal shows, is flagged; and by the marginal's width against the prior's, (w_posterior /
+  /// w_prior)^2 of the central 95 % intervals in the prior's own coordinate, so that a curved ridge,
+  /// which the information at one draw misses, is flagged too.
   bool prior_dominated = false;
   double prior_share = 0.0;  ///< the prior's share, 0 (the data alone) .. 1 (the prior alone)
 };
 
 struct PosteriorResult {
   std::vector<PosteriorQuantity> parameters;    ///< the free ones
-  std::vector<PosteriorQuantity> combinations;
+  std::vector<PosteriorQuantity> derived;       ///< the model's derived quantities
   std::vector<std::string> priors;              ///< one line per free parameter (Prior::describe)
   Eigen::MatrixXd samples;                      ///< pooled kept draws x free parameters, values [unit]
   std::vector<std::string> sample_names;
@@ -94,13 +98,23 @@ struct PosteriorResult {
                                                const FitResult& best, const std::vector<Prior>& priors,
                                                const FitOptions& fit_options, const PosteriorOptions& options);
 
-/// How the evidence is computed: parallel tempering over a ladder of inverse temperatures from 1,
+/// How the evidence is computed. Automatic: importance sampling around the best fit
+/// (sampling/importance.hpp) where its own diagnostics say it applies, parallel tempering elsewhere
+/// (docs/sampling.md, "The evidence from the fit"); Tempering: parallel tempering always.
+enum class EvidenceMethod { Automatic, Tempering };
+
+/// The options of parallel tempering over a ladder of inverse temperatures from 1,
 /// evenly spaced in ln beta down to 1/max_temperature, and beta = 0 (the prior, sampled by
 /// independent draws) (sampling/tempering.hpp); then stepping stones. Hot temperatures start from
 /// prior draws, cold ones around the best fit. The run length adapts: every check_every steps the
 /// evidence's standard error and the beta = 1 ensemble are checked, and the run ends once the error
 /// is at most target_uncertainty and the posterior ensemble has converged, or at `steps`.
 struct EvidenceOptions {
+  EvidenceMethod method = EvidenceMethod::Automatic;
+  /// The importance sampler's draws and target (its seed and threads are set from those below).
+  sampling::ImportanceOptions importance = {};
+  /// Equally weighted posterior draws resampled from importance-sampled ones (for bands and plots).
+  int posterior_draws = 4000;
   int temperatures = 32;  ///< rungs from beta = 1 to 1/max_temperature, more where that is extended
   /// The ladder reaches at least this far; further where the prior's draws have ln L below the best
   /// fit's by more (beta_min (ln L_best - median ln L over the prior) <= 1 keeps the last stone's
@@ -121,6 +135,12 @@ struct EvidenceOptions {
 };
 
 struct ModelEvidence {
+  /// "importance sampling" or "parallel tempering": what gave log_evidence.
+  std::string method;
+  /// Why importance sampling did not serve (then parallel tempering did); empty where it did.
+  std::string fallback_reason;
+  double pareto_k = 0.0;         ///< of the importance weights (sampling::ImportanceEstimate), where they were drawn
+  double effective_draws = 0.0;  ///< Kish's effective number of the importance draws
   /// ln Z = ln of the integral of likelihood x prior over the free ln-parameters, with the
   /// likelihood exp(-chi^2/2): up to a constant that is the same for every model fitted to the same
   /// data (the Gaussian normalisation of the data's sigmas), so differences between models are exact.
@@ -142,18 +162,32 @@ struct ModelEvidence {
   /// the target; else the cap ended the run, and advice says how far it got.
   bool converged = false;
   std::string advice;
+  /// Likelihood evaluations: importance sampling's (shared by every prior set it integrated at
+  /// once) plus parallel tempering's where it ran.
   int evaluations = 0;
   double wall_seconds = 0.0;
-  /// The beta = 1 ensemble's pooled kept draws x free parameters, values [unit] (as
+  /// Equally weighted posterior draws: resampled from the importance draws, or the beta = 1
+  /// ensemble's pooled kept draws x free parameters, values [unit] (as
   /// PosteriorResult::samples): the posterior under these priors, e.g. for its predictive band.
   Eigen::MatrixXd samples;
 };
 
 /// The evidence of `model` for `data` under `priors` (all proper: every prior is normalised over
-/// the search bounds), started around the best fit.
+/// the search bounds), started around the best fit: by options.method.
 [[nodiscard]] ModelEvidence model_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
                                            const FitResult& best, const std::vector<Prior>& priors,
                                            const FitOptions& fit_options, const EvidenceOptions& options);
+
+/// The evidence under each of `prior_sets` (priors of the same parameters, e.g. priors and
+/// widened(priors)) by importance sampling from one set of likelihood evaluations, the proposal
+/// built from the best fit's linearised posterior. Each entry whose fallback_reason is not empty is
+/// one the importance sampler's diagnostics refused (a direction the linearisation leaves open, a
+/// fit far worse than the noise, Pareto k-hat > 0.7, posterior mass far from the linearisation, a
+/// posterior pressed against a bound, or an error above 0.05): model_evidence with
+/// EvidenceMethod::Tempering computes that one.
+[[nodiscard]] std::vector<ModelEvidence> importance_sampled_evidence(
+    const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+    const std::vector<std::vector<Prior>>& prior_sets, const FitOptions& fit_options, const EvidenceOptions& options);
 
 /// The evidence's integrand over the free ln-parameters x (in the order of best.fitted's free
 /// indices, other parameters at the best fit): ln prior(x) (normalised, Prior::log_density_theta),

@@ -16,7 +16,9 @@ namespace sedwave::inversion {
 /// highest: the data's range "and beyond".
 [[nodiscard]] std::vector<double> curve_frequencies(const ObservationSet& data, int count = 241);
 
-/// Writes curves as CSV; the sound-speed ratio column appears only when the water speed is known.
+/// Writes curves as CSV; the sound-speed ratio column appears only when the water speed is known,
+/// the dimensionless ones (omega_hat, gamma_hat, alpha_hat, c_hat) only for a model with a dry
+/// grain-contact frame (CurvePoint: NaN for every other).
 void write_curves_csv(const std::filesystem::path& file, const std::vector<CurvePoint>& curves,
                       std::optional<double> water_sound_speed);
 

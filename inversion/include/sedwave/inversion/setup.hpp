@@ -62,6 +62,7 @@ struct ModelSetup {
   /// A model object to use instead of `model` (e.g. one of the caller's own); labelled by its name.
   std::shared_ptr<const sediment::SedimentModel> instance;
   std::string free;  ///< comma-separated free parameters; empty: the model's typical set
+  std::string free_origin;  ///< names `free` in messages ("--fit 'lattice=kappa,d'"); empty: "--fit 'LIST'"
   std::vector<GivenValue> values;
   std::vector<GivenBounds> bounds;
   /// Measured site values given one by one (origins such as "--phi"): each must name a parameter of

@@ -91,6 +91,17 @@ class OutputLock {
   FileLock lock_;
 };
 
+/// An exclusive lock on one output file (a FileLock on `.NAME.lock` beside it), for a command whose
+/// output is a single file: two runs writing it would each report success and leave the last one's.
+/// Waits and says so as OutputLock does; its directory must exist.
+class OutputFileLock {
+ public:
+  OutputFileLock(const std::filesystem::path& file, const std::string& option);
+
+ private:
+  FileLock lock_;
+};
+
 /// Writes a text file atomically: `write` fills the stream; any stream error (a full disk, say)
 /// throws std::runtime_error naming the file, and the old file stays. A device, FIFO or open
 /// descriptor is written in place.

@@ -275,6 +275,63 @@ inline std::string read_string_attribute(hid_t parent, const std::string& name) 
   return trimmed(buffer.data(), bytes);
 }
 
+/// A stored type in words, for messages: "64-bit float", "32-bit signed integer", "variable-length
+/// string" ...
+inline std::string type_description(hid_t type) {
+  const std::string bits = std::to_string(8 * H5Tget_size(type)) + "-bit ";
+  switch (H5Tget_class(type)) {
+    case H5T_FLOAT: return bits + "float";
+    case H5T_INTEGER: return bits + (H5Tget_sign(type) == H5T_SGN_NONE ? "unsigned integer" : "signed integer");
+    case H5T_STRING: return H5Tis_variable_str(type) > 0 ? "variable-length string" : "fixed-length string";
+    case H5T_ENUM: return bits + "enumeration";
+    case H5T_COMPOUND: return "compound";
+    case H5T_ARRAY: return "array";
+    case H5T_VLEN: return "variable-length sequence";
+    case H5T_BITFIELD: return bits + "bitfield";
+    case H5T_OPAQUE: return "opaque";
+    case H5T_REFERENCE: return "reference";
+    default: return "unknown type";
+  }
+}
+
+/// What attribute `name` of `parent` holds, for a message that must name it: its text when it is a
+/// scalar string of either kind ('text'), else its type ("a 32-bit signed integer"), or "absent".
+inline std::string attribute_text(hid_t parent, const std::string& name) {
+  if (H5Aexists(parent, name.c_str()) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return "absent";
+  }
+  Handle attr(H5Aopen(parent, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + name);
+  Handle stored(H5Aget_type(attr), H5Tclose, "get the type of attribute " + name);
+  Handle space(H5Aget_space(attr), H5Sclose, "get the dataspace of attribute " + name);
+  const bool scalar = H5Sget_simple_extent_npoints(space) == 1;
+  if (H5Tget_class(stored) != H5T_STRING || !scalar) return "a " + type_description(stored);
+  if (H5Tis_variable_str(stored) > 0) {
+    Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy the string type");
+    check(H5Tset_size(type, H5T_VARIABLE), "size a string type");
+    char* text = nullptr;
+    check(H5Aread(attr, type, &text), "read attribute " + name);
+    std::string value = text ? text : "";
+    H5free_memory(text);
+    return "'" + value + "' (a variable-length string)";
+  }
+  const std::size_t bytes = H5Tget_size(stored);
+  std::vector<char> buffer(bytes + 1, '\0');
+  check(H5Aread(attr, string_type(bytes), buffer.data()), "read attribute " + name);
+  return "'" + trimmed(buffer.data(), bytes) + "'";
+}
+
+/// Throws std::runtime_error naming `what` (e.g. "FILE: dataset /results/alpha_hat") and its stored
+/// type unless the dataset holds floating-point numbers: HDF5 would convert integers silently, and
+/// an integer column is a file of another kind (scaled values, a sentinel where a NaN belongs).
+inline void require_float_dataset(hid_t dataset, const std::string& what) {
+  const Handle stored(H5Dget_type(dataset), H5Tclose, "get the type of " + what);
+  if (H5Tget_class(stored) != H5T_FLOAT) {
+    throw std::runtime_error(what + " holds " + type_description(stored) +
+                             " values; it must hold floating-point numbers (sedwave writes 64-bit floats)");
+  }
+}
+
 /// A scalar dataset holding one string (any length, including empty).
 inline void write_string_dataset(hid_t parent, const std::string& name, const std::string& value,
                                  StringBytes bytes = StringBytes::exact) {

@@ -17,6 +17,8 @@
 #include <toml.hpp>
 #include <utility>
 
+#include "sedwave/io/range.hpp"
+
 namespace sedwave::io {
 
 /// The file toml11 read `v` from, or `origin` when it does not know (text parsed from a string).
@@ -35,44 +37,6 @@ template <class Error>
 [[noreturn]] void fail(const toml::value& v, const std::string& key, const std::string& why, const std::string& origin) {
   throw Error(where(v, origin) + ": key '" + key + "': " + why);
 }
-
-/// Shortest text that reads back as the same double ("0.1", not "0.10000000000000001"; whole
-/// numbers without an exponent: "1000000", not "1e+06").
-inline std::string shortest(double x) {
-  if (std::trunc(x) == x && std::abs(x) < 1e16) return std::to_string(static_cast<std::int64_t>(x));
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
-  return std::string(buffer, end);
-}
-
-/// The values a key accepts, with their unit, as a message shows them: "(0, 1] (of the column)".
-/// Open ends exclude the bound; infinite ends are open.
-struct Range {
-  double low = -INFINITY;
-  double high = INFINITY;
-  bool low_open = false;
-  bool high_open = false;
-  std::string unit;
-
-  static Range positive(std::string unit = "") { return {0.0, INFINITY, true, true, std::move(unit)}; }
-  static Range non_negative(std::string unit = "") { return {0.0, INFINITY, false, true, std::move(unit)}; }
-  /// [low, high]
-  static Range closed(double low, double high, std::string unit = "") { return {low, high, false, false, std::move(unit)}; }
-  /// (low, high)
-  static Range open(double low, double high, std::string unit = "") { return {low, high, true, true, std::move(unit)}; }
-  /// (low, high]
-  static Range above(double low, double high, std::string unit = "") { return {low, high, true, false, std::move(unit)}; }
-
-  [[nodiscard]] bool contains(double x) const {
-    return (low_open ? x > low : x >= low) && (high_open ? x < high : x <= high);
-  }
-  [[nodiscard]] std::string describe() const {
-    const auto bound = [](double x) { return std::isinf(x) ? std::string(x < 0 ? "-inf" : "inf") : shortest(x); };
-    std::string text = std::string(low_open || std::isinf(low) ? "(" : "[") + bound(low) + ", " + bound(high) +
-                       (high_open || std::isinf(high) ? ")" : "]");
-    return unit.empty() ? text : text + " " + unit;
-  }
-};
 
 /// The text `v` was written as in its file ("99999999999999999999", which toml11 reads as the
 /// largest 64-bit integer), or "" when toml11 does not know it (a value built in code).
@@ -224,7 +188,7 @@ class Table {
     return number_value(at(key), name(key), range);
   }
   double positive(const std::string& key, double fallback, std::string unit = "") {
-    return number(key, fallback, Range::positive(std::move(unit)));
+    return number(key, fallback, Range::positive(unit));
   }
   double required_positive(const std::string& key) { return number_value(at(key), name(key), Range::positive()); }
   /// An integer within `range` that also fits T (a value T cannot hold is an error, never truncated).

@@ -136,6 +136,8 @@ class SedimentModel {
 
   /// Index of a parameter by name; throws std::invalid_argument listing the accepted names.
   [[nodiscard]] int index_of(const std::string& name) const;
+  /// Whether the model has a parameter of that name.
+  [[nodiscard]] bool has_parameter(const std::string& name) const;
   /// The defaults, in parameters() order.
   [[nodiscard]] std::vector<double> default_values() const;
   /// Throws std::invalid_argument naming the parameter, its value and its range if a value lies

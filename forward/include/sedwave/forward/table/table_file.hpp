@@ -26,6 +26,11 @@
 
 namespace sedwave::forward::table {
 
+/// Throws std::runtime_error naming `path` and what it is if a file there exists and is not a
+/// dispersion table at all (not HDF5, or HDF5 whose 'format' attribute names something else): a
+/// mistyped path, never to be rebuilt over. A table, damaged or not, or no file passes.
+void require_table_or_nothing(const std::filesystem::path& path);
+
 class TableFile {
  public:
   /// A new table with every point missing. Throws std::runtime_error if `path` or its journal

@@ -9,25 +9,10 @@
 #include <string>
 #include <string_view>
 
+#include "sedwave/io/range.hpp"
+
 namespace sedwave::forward::dem {
 
-/// The values a key accepts; open ends exclude the bound, infinite ends are open.
-struct KeyBounds {
-  double low = -INFINITY;
-  double high = INFINITY;
-  bool low_open = false;
-  bool high_open = false;
-
-  static constexpr KeyBounds positive() { return {0.0, INFINITY, true, true}; }
-  static constexpr KeyBounds non_negative() { return {0.0, INFINITY, false, true}; }
-  /// (low, high]
-  static constexpr KeyBounds above(double low, double high) { return {low, high, true, false}; }
-  [[nodiscard]] bool contains(double x) const {
-    return (low_open ? x > low : x >= low) && (high_open ? x < high : x <= high);
-  }
-  /// "(0, 1]", "[0, inf)"
-  [[nodiscard]] std::string describe() const;
-};
 
 /// One number a part reads: its scene key (`key`, in [contact]) and `sedwave dem` option
 /// (--option), what it means, the values it accepts and what a range message adds to them.
@@ -35,7 +20,7 @@ struct ContactKey {
   std::string_view key;
   std::string_view option;
   std::string_view help;
-  KeyBounds bounds;
+  io::Range bounds;
   std::string_view unit = "";
 };
 

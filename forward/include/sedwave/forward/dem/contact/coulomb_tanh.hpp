@@ -17,7 +17,7 @@ struct CoulombTanhFriction {
   static constexpr std::string_view name = "coulomb_tanh";
   static constexpr ContactKey velocity_scale_key{"tanh_velocity_scale", "tanh-velocity-scale",
                                                  "coulomb_tanh k_s [time/length]: F_t saturates above |v_t| ~ 1/k_s",
-                                                 KeyBounds::positive()};
+                                                 io::Range::positive()};
   static constexpr std::array keys{&keys::friction, &velocity_scale_key};
   static constexpr bool enabled = true;
   static constexpr bool needs_history = false;

@@ -32,7 +32,7 @@ struct HertzNormal {
   static constexpr ContactKey modulus_key{"effective_modulus", "effective-modulus",
                                           "hertz E* [force/length^2]; or youngs_modulus (and poisson_ratio): "
                                           "E* = E / (2 (1 - nu^2))",
-                                          KeyBounds::positive()};
+                                          io::Range::positive()};
   static constexpr std::array keys{&modulus_key, &keys::youngs_modulus, &keys::poisson_ratio, &keys::restitution,
                                    &keys::gamma};
   /// The keys that choose the dashpot (at most one may be given).

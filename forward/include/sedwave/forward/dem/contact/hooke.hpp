@@ -21,10 +21,10 @@ struct HookeNormal {
   static constexpr ContactKey kn_key{"kn", "kn",
                                      "normal stiffness kn [force/length]; or youngs_modulus (and poisson_ratio): "
                                      "kn = 4G/(3(1-nu)), G = E/(2(1+nu)) (LAMMPS example scripts)",
-                                     KeyBounds::positive()};
+                                     io::Range::positive()};
   static constexpr ContactKey gamma_n_key{"lammps_gamma_n", "gamma-n",
                                           "hooke dashpot per unit reduced mass [1/time] (LAMMPS gamma_n)",
-                                          KeyBounds::non_negative()};
+                                          io::Range::non_negative()};
   static constexpr std::array keys{&kn_key, &keys::youngs_modulus, &keys::poisson_ratio, &keys::restitution,
                                    &keys::gamma, &gamma_n_key};
   /// The keys that choose the dashpot (at most one may be given).

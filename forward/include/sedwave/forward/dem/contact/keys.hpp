@@ -6,21 +6,21 @@
 namespace sedwave::forward::dem::keys {
 
 inline constexpr ContactKey youngs_modulus{"youngs_modulus", "young", "Young's modulus E of the grains",
-                                           KeyBounds::positive()};
+                                           io::Range::positive()};
 // Stable isotropic materials have -1 < nu <= 0.5; the stiffness formulas divide by 1 - nu and 1 + nu.
 inline constexpr ContactKey poisson_ratio{"poisson_ratio", "poisson", "Poisson's ratio nu (default 2/7)",
-                                          KeyBounds::above(-1.0, 0.5)};
+                                          io::Range::above(-1.0, 0.5)};
 inline constexpr ContactKey restitution{"restitution", "restitution",
                                         "normal restitution e_n in (0, 1], exact for every pair",
-                                        KeyBounds::above(0.0, 1.0)};
+                                        io::Range::above(0.0, 1.0)};
 inline constexpr ContactKey gamma{"gamma", "gamma",
                                   "normal dashpot: hooke gamma [force time/length], hertz Tsuji's alpha [-]",
-                                  KeyBounds::non_negative()};
+                                  io::Range::non_negative()};
 inline constexpr ContactKey friction{"friction", "friction", "Coulomb friction coefficient mu",
-                                     KeyBounds::non_negative(), "(Coulomb coefficient)"};
+                                     io::Range::non_negative(), "(Coulomb coefficient)"};
 inline constexpr ContactKey gamma_t{"gamma_t", "gamma-t",
                                     "tangential dashpot per unit reduced mass [1/time] (LAMMPS gamma_t; default 0)",
-                                    KeyBounds::non_negative()};
+                                    io::Range::non_negative()};
 
 /// Poisson's ratio when a scene gives E alone (the thesis's grains).
 inline constexpr double default_poisson_ratio = 2.0 / 7.0;

@@ -19,10 +19,10 @@ struct ConstantTorqueRolling {
   static constexpr std::string_view label = "rolling";  ///< its part of describe(), if not its name
   static constexpr ContactKey friction_key{"rolling_friction", "rolling-friction",
                                            "constant_torque mu_r: torque mu_r R_eff |F_n| (default 0)",
-                                           KeyBounds::non_negative()};
+                                           io::Range::non_negative()};
   static constexpr ContactKey regularisation_key{"rolling_regularisation", "rolling-regularisation",
                                                  "constant_torque omega_reg [1/time] (default 1e-3)",
-                                                 KeyBounds::positive()};
+                                                 io::Range::positive()};
   static constexpr std::array keys{&friction_key, &regularisation_key};
   static constexpr bool enabled = true;
   /// A torque of fixed magnitude has no linear part the linear engine could hold.

@@ -47,7 +47,7 @@ struct TangentialBlock {
 struct TangentialSpringHistory {
   static constexpr std::string_view name = "spring_history";
   static constexpr ContactKey kt_key{"kt", "kt", "spring_history tangential stiffness kt [force/length] (default 2/7 kn)",
-                                     KeyBounds::positive()};
+                                     io::Range::positive()};
   static constexpr std::array keys{&keys::friction, &kt_key, &keys::gamma_t};
   static constexpr bool enabled = true;
   static constexpr bool needs_history = true;

@@ -1,4 +1,4 @@
-// Combinations: functions of theta that the data may determine when the parameters are not. They
+// Derived quantities: functions of theta that the data may determine when the parameters are not. They
 // are the model's own derived quantities (sediment::SedimentModel::derived_quantities), evaluated
 // with exact gradients by the model; here each becomes ln q(theta) with d ln q / d theta, so the
 // same code gives the value, the linearised sigma, the likelihood profile and a posterior sample's value.
@@ -49,8 +49,8 @@ std::vector<double> derived_at(const Setup& s, const Theta& theta) {
   return out;
 }
 
-std::vector<Combination> combinations_for(const Setup& s) {
-  std::vector<Combination> list;
+std::vector<DerivedFunction> derived_functions_for(const Setup& s) {
+  std::vector<DerivedFunction> list;
   const std::vector<sediment::DerivedQuantity>& quantities = s.model->derived_quantities();
   for (std::size_t k = 0; k < quantities.size(); ++k) {
     list.push_back({quantities[k].name, quantities[k].unit, quantities[k].meaning,
