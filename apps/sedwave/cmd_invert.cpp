@@ -21,6 +21,7 @@
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/observations.hpp"
 #include "sedwave/plot/plot.hpp"
+#include "sedwave/plot/reflection_plot.hpp"
 #include "sedwave/inversion/posterior.hpp"
 #include "sedwave/inversion/study.hpp"
 #include "sedwave/inversion/report.hpp"
@@ -210,7 +211,8 @@ std::vector<OutputPath> output_files(const std::filesystem::path& out) {
                            "posterior_corner.gp", "posterior_corner.png", "posterior_corner.svg",
                            "posterior_corner_density.dat",
                            "posterior_predictive.csv", "posterior_residuals.csv", "posterior_predictive.gp",
-                           "posterior_predictive.png", "posterior_predictive.svg"}) {
+                           "posterior_predictive.png", "posterior_predictive.svg", "bottom_loss_curves.csv",
+                           "bottom_loss_fit.gp", "bottom_loss_fit.png", "bottom_loss_fit.svg"}) {
     const bool hdf5 = std::filesystem::path(name).extension() == ".h5";
     outputs.push_back({"--out", out / name, hdf5 ? io::OutputFormat::seekable : io::OutputFormat::text});
   }
@@ -335,6 +337,11 @@ Command add_invert_command(CLI::App& app) {
               const bool chain = o->model.model == "lattice" || o->model.model == "continuum";
               plot = plot::draw_fit_plot(out, "sedwave fit: " + result.model + (chain ? " chain model" : ""),
                                               data.water_sound_speed.has_value(), result);
+              if (const std::vector<double> at = inversion::reflection_frequencies(data); !at.empty()) {
+                const plot::PlotOutcome loss =
+                    plot::draw_bottom_loss_fit_plot(out, "sedwave fit: " + result.model + ", bottom loss", at);
+                plot.message += "\n" + loss.message;
+              }
             }
             print_summary(result, plot, o->out, options.profile_likelihood);
             if (sampled) {

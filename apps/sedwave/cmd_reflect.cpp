@@ -28,6 +28,7 @@
 #include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/propagation_files.hpp"
 #include "sedwave/sediment/reflection.hpp"
+#include "sedwave/sediment/layered_seabed.hpp"
 #include "sedwave/sediment/seabed_reflection.hpp"
 
 namespace sedwave::app {
@@ -298,7 +299,15 @@ bool flag_implausible_medium(const sediment::AcousticMedium& m, const std::strin
 
 int run_reflect(const ReflectOptions& o) {
   std::vector<std::string> halfspace_sets = o.model.set_values;
-  const auto layer_sets = split_layer_settings(halfspace_sets, static_cast<int>(o.layers.size()));
+  // A layered model (layered:...) names its layers' parameters lN.NAME itself.
+  const bool layered_model = o.model.model.starts_with(sediment::kLayeredPrefix);
+  if (layered_model && !o.layers.empty()) {
+    throw UsageError("--layer: model '" + o.model.model + "' is layered itself (its layers' parameters are lN.NAME, "
+                     "their thicknesses lN.thickness); use one or the other");
+  }
+  const auto layer_sets =
+      layered_model ? std::map<int, std::vector<std::string>>{}
+                    : split_layer_settings(halfspace_sets, static_cast<int>(o.layers.size()));
   ModelOptions halfspace_options = o.model;
   halfspace_options.set_values = halfspace_sets;
   sediment::SeabedModel seabed;
@@ -314,6 +323,12 @@ int run_reflect(const ReflectOptions& o) {
   const std::vector<std::string>& site_notes = halfspace.notes;
   seabed.halfspace = {halfspace.model, halfspace.parameters.values(), 0.0};
   if (!o.from_fit.empty()) apply_fit_report(o.from_fit, seabed.halfspace, halfspace_sets);
+  if (layered_model) {
+    const sediment::SeabedModel stack = sediment::seabed_of(seabed.halfspace.model, seabed.halfspace.values,
+                                                            seabed.water_speed, seabed.water_density);
+    seabed.layers = stack.layers;
+    seabed.halfspace = stack.halfspace;
+  }
   for (const std::string& note : site_notes) std::printf("site: %s\n", note.c_str());
   if (!o.brc.empty() && o.frequencies.size() != 1) throw UsageError("--brc is for one --frequency (a table per frequency)");
   if (!o.env.empty() && !(o.water_depth > 0.0)) throw UsageError("--env needs --water-depth (the half-space's depth [m])");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -50,13 +51,15 @@ Command add_synthesize_command(CLI::App& app) {
   struct Options {
     ModelOptions model;
     inversion::SyntheticDesign design;
+    std::vector<double> grazing_angles_deg;
+    bool reflection_only = false;
     std::string out;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "synthesize", "Write the attenuation and sound speed a sediment model predicts for given parameters (by default "
-                    "the grain contact's kappa, d and gamma or e_n) at log-spaced frequencies, with noise, as an "
-                    "observation CSV (SI units)");
+                    "the grain contact's kappa, d and gamma or e_n) at log-spaced frequencies, and the bottom loss at "
+                    "grazing angles if asked, with noise, as an observation CSV (SI units)");
   add_model_options(*cmd, o->model, ModelUse::Truth);
   cmd->add_option("--from", o->design.lowest_hz, "lowest frequency [Hz]")->required()->check(finite_positive());
   cmd->add_option("--to", o->design.highest_hz, "highest frequency [Hz]")->required()->check(finite_positive());
@@ -67,6 +70,17 @@ Command add_synthesize_command(CLI::App& app) {
   cmd->add_option("--speed-noise", o->design.speed_noise, "relative 1-sigma noise of the sound speed, also its sigma")
       ->capture_default_str()->check(finite_positive());
   cmd->add_option("--seed", o->design.seed, "seed of the noise")->capture_default_str();
+  cmd->add_option("--grazing-angles", o->grazing_angles_deg,
+                  "grazing angles [deg], comma-separated: bottom-loss rows at each frequency and angle, water over "
+                  "the seabed the model describes (docs/reflection.md)")
+      ->delimiter(',')->check(CLI::Range(0.0, 90.0));
+  cmd->add_option("--bottom-loss-sigma", o->design.bottom_loss_sigma_db, "1-sigma Gaussian noise of the bottom loss [dB], also its sigma")
+      ->capture_default_str()->check(finite_positive());
+  cmd->add_option("--water-speed", o->design.water_speed, "sound speed of the water above [m/s] (bottom-loss rows)")
+      ->capture_default_str()->check(finite_positive());
+  cmd->add_option("--water-density", o->design.water_density, "density of the water above [kg/m^3] (bottom-loss rows)")
+      ->capture_default_str()->check(finite_positive());
+  cmd->add_flag("--reflection-only", o->reflection_only, "bottom-loss rows only (no attenuation and sound speed)");
   cmd->add_option("--out", o->out, "observation CSV to write")->required();
   return {cmd, [o]() {
     const inversion::Candidate candidate = candidate_of(setup_of(o->model), ModelUse::Truth);
@@ -83,6 +97,14 @@ Command add_synthesize_command(CLI::App& app) {
     if (!(o->design.highest_hz > o->design.lowest_hz)) {
       throw std::invalid_argument("--from must be below --to");
     }
+    for (const double degrees : o->grazing_angles_deg) {
+      if (!(degrees > 0.0)) throw UsageError("--grazing-angles: a grazing angle must be in (0, 90] degrees");
+      o->design.grazing_angles.push_back(degrees * std::numbers::pi / 180.0);
+    }
+    if (o->reflection_only && o->design.grazing_angles.empty()) {
+      throw UsageError("--reflection-only needs --grazing-angles (the bottom-loss rows to write)");
+    }
+    o->design.waves = !o->reflection_only;
     std::vector<std::filesystem::path> inputs;
     if (const auto table = sediment::sediment_model_file(o->model.model)) inputs.emplace_back(*table);
     check_outputs({{"--out", o->out}}, inputs, "synthesize");
@@ -94,10 +116,16 @@ Command add_synthesize_command(CLI::App& app) {
       truth_line << (i ? ", " : " ") << truth.spec[i].name << " " << truth.spec[i].value
                  << (truth.spec[i].unit == "1" ? "" : " " + truth.spec[i].unit);
     }
-    char noise_line[160];
-    std::snprintf(noise_line, sizeof noise_line,
-                  "synthetic_noise: relative Gaussian, attenuation %g, sound speed %g (also the sigmas), seed %u",
-                  o->design.alpha_noise, o->design.speed_noise, o->design.seed);
+    char noise_line[240];
+    if (o->reflection_only) {
+      std::snprintf(noise_line, sizeof noise_line, "synthetic_noise: Gaussian, bottom loss %g dB (also the sigma), seed %u",
+                    o->design.bottom_loss_sigma_db, o->design.seed);
+    } else {
+      std::snprintf(noise_line, sizeof noise_line,
+                    "synthetic_noise: relative Gaussian, attenuation %g, sound speed %g (also the sigmas)%s, seed %u",
+                    o->design.alpha_noise, o->design.speed_noise,
+                    o->design.grazing_angles.empty() ? "" : "; Gaussian, bottom loss (dB) as its sigma", o->design.seed);
+    }
     inversion::write_observation_csv(o->out, set,
                                      {"data_kind: SYNTHETIC, not measurements (sedwave synthesize)",
                                       "synthetic_model: " + model->name(), truth_line.str(), noise_line});

@@ -145,20 +145,6 @@ class ConstraintResidual final : public ceres::CostFunction {
   Constraint constraint_;
 };
 
-/// The water density a data set declares, else sea water's 1025 kg/m^3.
-double water_density_of(const ObservationSet& data) {
-  const auto it = data.metadata.find("water_density_kg_per_m3");
-  if (it == data.metadata.end()) return 1025.0;
-  double rho = 0.0;
-  const std::string& text = it->second;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), rho);
-  if (error != std::errc{} || end != text.data() + text.size() || !(rho > 0.0) || !std::isfinite(rho)) {
-    throw std::invalid_argument("metadata 'water_density_kg_per_m3' = '" + text +
-                                "' is not one positive number [kg/m^3]");
-  }
-  return rho;
-}
-
 /// Where the fit compares the reflection coefficient: the reflection groups (quantity, frequency,
 /// grazing angle), in order.
 std::vector<Setup::RowGroup> reflection_points_of_groups(const Setup& s) {
@@ -177,24 +163,27 @@ std::vector<Setup::RowGroup> reflection_points_of_rows(const Setup& s) {
   return points;
 }
 
-/// The bottom loss [dB] or |R| at each point for parameter values: water over a half-space of the
-/// model (elastic where the model has a shear wave). False where the model has no answer there.
+/// The seabed the setup's model describes at parameter values, under the data's water: a half-space
+/// of the model, or a layered seabed's stack (the model is held by the setup: a non-owning pointer).
+sediment::SeabedModel seabed_at(const Setup& s, const sediment::SedimentModel& model, const std::vector<double>& values) {
+  return sediment::seabed_of(std::shared_ptr<const sediment::SedimentModel>(std::shared_ptr<const sediment::SedimentModel>{}, &model),
+                             values, s.water_speed, s.water_density);
+}
+
+/// The bottom loss [dB] or |R| at each point for parameter values: water over the seabed the model
+/// describes (elastic parts where a model has a shear wave). False where the model has no answer there.
 bool reflection_values_at(const Setup& s, const std::vector<double>& values, const std::vector<Setup::RowGroup>& points,
                           std::vector<double>& out, std::string* why = nullptr) {
   out.clear();
   if (points.empty()) return true;
-  // The medium of each frequency once; the model is held by the setup (a non-owning pointer).
-  std::vector<std::optional<sediment::AcousticMedium>> media(s.frequencies.size());
-  const sediment::SeabedPart part{std::shared_ptr<const sediment::SedimentModel>(
-                                      std::shared_ptr<const sediment::SedimentModel>{}, s.model),
-                                  values, 0.0};
-  const sediment::AcousticMedium water{s.water_speed, 0.0, 0.0, 0.0, s.water_density};
+  // The media of each frequency once.
+  std::vector<std::optional<sediment::LayeredHalfspace>> media(s.frequencies.size());
   try {
+    const sediment::SeabedModel seabed = seabed_at(s, *s.model, values);
     for (const Setup::RowGroup& p : points) {
       const double f = s.frequencies[p.frequency];
-      if (!media[p.frequency]) media[p.frequency] = sediment::medium_of(part, f, false, "half-space");
-      const sediment::LayeredHalfspace seabed{water, {}, *media[p.frequency]};
-      const std::complex<double> reflection = sediment::reflection_coefficient(seabed, p.grazing_angle, f);
+      if (!media[p.frequency]) media[p.frequency] = sediment::layered_halfspace_at(seabed, f);
+      const std::complex<double> reflection = sediment::reflection_coefficient(*media[p.frequency], p.grazing_angle, f);
       out.push_back(p.quantity == Quantity::BottomLoss ? sediment::bottom_loss_db(reflection) : std::abs(reflection));
     }
   } catch (const std::domain_error& e) {
@@ -280,11 +269,8 @@ Setup make_setup(const ObservationSet& data, const sediment::SedimentModel& mode
     }
     s.water_speed = *data.water_sound_speed;
     s.water_density = water_density_of(data);
-    // Refuses, in the model's words, a model that fixes no bulk density.
-    (void)sediment::medium_of({std::shared_ptr<const sediment::SedimentModel>(
-                                   std::shared_ptr<const sediment::SedimentModel>{}, &model),
-                               parameters.values(), 0.0},
-                              first.frequency_hz, false, "half-space");
+    // Refuses, in the model's words, a model (or a layer's) that fixes no bulk density.
+    (void)sediment::layered_halfspace_at(seabed_at(s, model, parameters.values()), first.frequency_hz);
   }
   return s;
 }

@@ -380,20 +380,23 @@ void check_value_unit(const LineRef& at, const Field& field, const QuantitySpec&
   }
 }
 
-/// A bottom-loss or |R| row: a loss >= 0 dB (0 is total reflection) or an |R| >= 0, a sigma in its
-/// unit (a relative default means nothing for a value that may be 0), and a grazing angle in
-/// (0, 90] degrees. A measured |R| may exceed 1 by its noise.
+/// A bottom-loss or |R| row: a loss or an |R| >= 0, a sigma in its unit (a relative default means
+/// nothing for a value that may be 0), and a grazing angle in (0, 90] degrees. A passive seabed
+/// reflects no more than it receives (loss >= 0 dB, |R| <= 1), but a measurement near total
+/// reflection may pass that bound by its noise: a loss below 0 dB is refused only beyond three sigmas.
 Observation parse_bottom_loss_row(const LineRef& at, const std::function<Field(int)>& field, const QuantitySpec& spec,
                                   double frequency_hz, const ReferenceSpeeds& speeds) {
   const double value = parse_number(at, field(4));
-  if (value < 0.0) {
-    at.fail(4, "value", std::string(spec.quantity == Quantity::BottomLoss ? "bottom loss must be >= 0 dB (|R| <= 1)"
-                                                                          : "|R| must be >= 0") +
-                            ", got '" + std::string(field(4).text) + "'");
+  if (spec.quantity == Quantity::ReflectionMagnitude && value < 0.0) {
+    at.fail(4, "value", "|R| must be >= 0, got '" + std::string(field(4).text) + "'");
   }
   check_value_unit(at, field(5), spec, speeds, SpeedSource::FileOrOption);
   if (field(6).text.empty()) at.fail(6, "sigma", "a reflection row needs its 1-sigma uncertainty in its own unit");
   const double sigma = parse_positive(at, field(6), "sigma");
+  if (spec.quantity == Quantity::BottomLoss && value < -3.0 * sigma) {
+    at.fail(4, "value", "bottom loss " + std::string(field(4).text) + " dB is below 0 dB (|R| > 1) by more than three "
+                        "of its sigmas: a passive seabed reflects no more than it receives");
+  }
   if (field(7).text.empty()) {
     at.fail(7, "grazing_angle_deg", "a reflection row needs its grazing angle in degrees (header '" +
                                         std::string(kAngleHeaderText) + "')");
@@ -687,6 +690,19 @@ const char* quantity_unit(Quantity q) {
   if (q == Quantity::BottomLoss) return "dB";
   if (q == Quantity::ReflectionMagnitude) return "1";
   return is_attenuation(q) ? "Np/m" : "m/s";
+}
+
+double water_density_of(const ObservationSet& data) {
+  const auto it = data.metadata.find("water_density_kg_per_m3");
+  if (it == data.metadata.end()) return 1025.0;
+  double rho = 0.0;
+  const std::string& text = it->second;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), rho);
+  if (error != std::errc{} || end != text.data() + text.size() || !(rho > 0.0) || !std::isfinite(rho)) {
+    throw std::invalid_argument("metadata 'water_density_kg_per_m3' = '" + text +
+                                "' is not one positive number [kg/m^3]");
+  }
+  return rho;
 }
 
 }  // namespace sedwave::inversion

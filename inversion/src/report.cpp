@@ -156,9 +156,10 @@ void write_observations_table(const std::filesystem::path& file, const Observati
          "2 = bottom loss [dB] (its display columns in dB too), 3 = shear speed [m/s] (display m/s), "
          "4 = shear attenuation [Np/m] (display dB/m), 5 = |R| [1] (display |R|);\n"
       << "# display columns: attenuation in dB/m, sound speed as ratio to water if known, else m/s;\n"
-      << "# normalized_residual = (observed - model)/sigma as fitted (attenuation in log space) [1]\n"
+      << "# normalized_residual = (observed - model)/sigma as fitted (attenuation in log space) [1]; "
+         "grazing_angle_deg: of a reflection row (empty for others)\n"
       << "quantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,display_model_value,"
-         "normalized_residual\n";
+         "normalized_residual,grazing_angle_deg\n";
   const double speed_unit = data.water_sound_speed.value_or(1.0);
   for (const PointResidual& p : result.residuals) {
     const Observation& o = p.observation;
@@ -167,7 +168,9 @@ void write_observations_table(const std::filesystem::path& file, const Observati
                                                                                                     : 1.0 / speed_unit;
     // The fit's residual is model minus observed; a plot reads better as observed minus model.
     out << quantity_code(o.quantity) << ',' << o.frequency_hz << ',' << o.value << ',' << p.sigma << ',' << o.value * scale
-        << ',' << p.sigma * scale << ',' << p.model << ',' << p.model * scale << ',' << -p.normalized << "\n";
+        << ',' << p.sigma * scale << ',' << p.model << ',' << p.model * scale << ',' << -p.normalized << ',';
+    if (is_reflection(o.quantity)) out << o.grazing_angle * 180.0 / std::numbers::pi;
+    out << "\n";
   }
   });
 }

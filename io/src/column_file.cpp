@@ -9,11 +9,15 @@
 namespace sedwave::io {
 namespace {
 
+/// Letters, digits, '_' and '.' (a layer's parameter: l1.thickness), not starting with '.' (HDF5
+/// reads "." as the group itself).
 void require_dataset_name(const std::string& name) {
-  const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
-    return std::isalnum(c) != 0 || c == '_';
+  const bool plain = !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || c == '_' || c == '.';
   });
-  if (!plain) throw std::invalid_argument("column name '" + name + "': use letters, digits and '_' only");
+  if (!plain) {
+    throw std::invalid_argument("column name '" + name + "': use letters, digits, '_' and '.' only, starting with no '.'");
+  }
 }
 
 }  // namespace

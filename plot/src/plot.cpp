@@ -708,6 +708,7 @@ PlotOutcome draw_fit_plot(const std::filesystem::path& dir, const std::string& t
   } catch (const std::exception& e) {
     return {false, std::string("plot skipped: ") + e.what()};
   }
+  if (panels_with_data(result).empty()) return {false, kNoWaveRows};
   return run_gnuplot(dir, "fit", "1150,1250", plot_body(title, ratio_axis, columns, result));
 }
 
@@ -729,6 +730,7 @@ PlotOutcome draw_corner_plot(const std::filesystem::path& dir, const std::vector
 PlotOutcome draw_predictive_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
                                  bool ratio_axis, const FitResult& any_fit, const std::vector<BandFile>& bands,
                                  const std::string& residuals_file) {
+  if (panels_with_data(any_fit).empty()) return {false, kNoWaveRows};
   const double largest = largest_residual_in(dir / residuals_file);
   return run_gnuplot(dir, stem, "1150,1250",
                      predictive_body(title, ratio_axis, any_fit, bands, residuals_file, largest));

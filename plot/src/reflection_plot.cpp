@@ -53,6 +53,26 @@ PlotOutcome draw_bottom_loss_plot(const std::filesystem::path& dir, const std::s
   return run_gnuplot(dir, "bottom_loss", "1000,700", g.str());
 }
 
+PlotOutcome draw_bottom_loss_fit_plot(const std::filesystem::path& dir, const std::string& title,
+                                      const std::vector<double>& frequencies) {
+  std::ostringstream g;
+  g.precision(10);
+  g << "set datafile separator ','\nset title " << quoted(title) << " noenhanced\n"
+    << "set xlabel 'grazing angle (deg)'\nset ylabel 'bottom loss -20 log_{10}|R| (dB)'\n"
+    << "set xrange [0:90]\nset grid\nset key top left\nplot ";
+  for (std::size_t i = 0; i < frequencies.size(); ++i) {
+    std::ostringstream f;
+    f.precision(10);
+    f << frequencies[i];
+    g << (i ? ", \\\n  " : "") << "'bottom_loss_curves.csv' skip 2 using 2:($1==" << f.str()
+      << " ? $3 : NaN) with lines lw 1.5 lc rgb '" << colour(i) << "' title " << quoted(f.str() + " Hz fit")
+      << ", \\\n  'observations.csv' skip 4 using 10:($1==2 && $2==" << f.str()
+      << " ? $3 : NaN):4 with yerrorbars pt 7 ps 0.6 lc rgb '" << colour(i) << "' title " << quoted(f.str() + " Hz data");
+  }
+  g << "\n";
+  return run_gnuplot(dir, "bottom_loss_fit", "1000,700", g.str());
+}
+
 PlotOutcome draw_waves_plot(const std::filesystem::path& dir, const std::string& title,
                             const std::vector<std::string>& parts, const std::vector<bool>& has_shear) {
   std::ostringstream g;

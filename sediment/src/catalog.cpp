@@ -8,6 +8,7 @@
 #include "sedwave/sediment/biot_stoll.hpp"
 #include "sedwave/sediment/edfm.hpp"
 #include "sedwave/sediment/grain_shearing.hpp"
+#include "sedwave/sediment/layered_seabed.hpp"
 #include "sedwave/sediment/saturated_granular.hpp"
 
 namespace sedwave::sediment {
@@ -65,6 +66,35 @@ CatalogEntry saturated_frames() {
           }};
 }
 
+/// Layers over a half-space, each part any other specification: "layered:L1,...,HALFSPACE".
+CatalogEntry layered_seabeds() {
+  return {{std::string(kLayeredPrefix) + "LAYER,...,HALFSPACE"},
+          [](const std::string& spec, const ModelChoices& choices) {
+            std::vector<std::shared_ptr<const SedimentModel>> parts;
+            const std::string list = spec.substr(kLayeredPrefix.size());
+            for (std::size_t start = 0; start <= list.size();) {
+              const std::size_t comma = std::min(list.find(',', start), list.size());
+              const std::string part = list.substr(start, comma - start);
+              if (part.empty() || part.starts_with(kLayeredPrefix)) {
+                throw std::invalid_argument("model '" + spec + "': each part of a layered seabed is one model (" +
+                                            (part.empty() ? "an empty part" : "'" + part + "' is layered itself") +
+                                            "), top layer first, the half-space last");
+              }
+              parts.push_back(make_sediment_model(part, choices));
+              start = comma + 1;
+            }
+            if (parts.size() < 2) {
+              throw std::invalid_argument("model '" + spec + "': a layered seabed names at least one layer and its "
+                                          "half-space (layered:LAYER,...,HALFSPACE)");
+            }
+            const std::shared_ptr<const SedimentModel> halfspace = parts.back();
+            parts.pop_back();
+            return std::make_shared<const LayeredSeabed>(std::move(parts), halfspace);
+          },
+          [](const std::string& spec) { return spec.starts_with(kLayeredPrefix); },
+          [] { return std::vector<std::shared_ptr<const SedimentModel>>{make_sediment_model("layered:edfm,biot-stoll")}; }};
+}
+
 /// The catalog, one entry per model. The dry frame takes any specification no other entry takes
 /// (forward/ then names what it accepts), so it is asked last.
 struct Catalog {
@@ -75,6 +105,7 @@ struct Catalog {
       closed_form<EffectiveDensityFluidModel>("edfm"),
       closed_form<GrainShearingModel>("grain-shearing"),
       closed_form<ViscousGrainShearingModel>("vgs-lambda"),
+      layered_seabeds(),
   };
   CatalogEntry fallback = dry_frames();
 

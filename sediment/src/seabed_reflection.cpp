@@ -1,5 +1,7 @@
 #include "sedwave/sediment/seabed_reflection.hpp"
 
+#include "sedwave/sediment/layered_seabed.hpp"
+
 #include <optional>
 #include <stdexcept>
 
@@ -21,6 +23,20 @@ AcousticMedium medium_of(const SeabedPart& part, double frequency_hz, bool fluid
     m.shear_attenuation = s.attenuation;
   }
   return m;
+}
+
+SeabedModel seabed_of(const std::shared_ptr<const SedimentModel>& model, std::span<const double> values,
+                      double water_speed, double water_density) {
+  SeabedModel seabed;
+  seabed.water_speed = water_speed;
+  seabed.water_density = water_density;
+  if (const auto* layered = dynamic_cast<const LayeredSeabed*>(model.get())) {
+    seabed.layers = layered->layer_parts(values);
+    seabed.halfspace = layered->halfspace_part(values);
+  } else {
+    seabed.halfspace = {model, {values.begin(), values.end()}, 0.0};
+  }
+  return seabed;
 }
 
 LayeredHalfspace layered_halfspace_at(const SeabedModel& seabed, double frequency_hz) {

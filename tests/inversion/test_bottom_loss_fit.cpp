@@ -14,6 +14,7 @@
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/setup.hpp"
+#include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/seabed_reflection.hpp"
 
 namespace sedwave::inversion {
@@ -185,7 +186,10 @@ TEST(BottomLossFit, BadRowsNameFileLineAndField) {
   const std::string water = "# water_sound_speed_m_per_s: 1500\n";
   const std::string header = "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
   const auto error = [&](const std::string& row, const std::string& head) { return read_error(head + row); };
-  EXPECT_NE(error("bottom_loss,1,kHz,-1,dB,0.5,30\n", water + header).find("bad.csv:3:4: field 'value': bottom loss must be >= 0 dB"),
+  EXPECT_NE(error("bottom_loss,1,kHz,-2,dB,0.5,30\n", water + header).find("bad.csv:3:4: field 'value': bottom loss -2 dB is below 0 dB"),
+            std::string::npos);
+  EXPECT_EQ(error("bottom_loss,1,kHz,-1,dB,0.5,30\n", water + header), "(no error)");  // within its noise
+  EXPECT_NE(error("reflection_magnitude,1,kHz,-0.1,1,0.05,30\n", water + header).find(":3:4: field 'value': |R| must be >= 0"),
             std::string::npos);
   EXPECT_NE(error("bottom_loss,1,kHz,3,dB,,30\n", water + header).find(":3:6: field 'sigma': a reflection row needs"),
             std::string::npos);
@@ -258,6 +262,68 @@ TEST(ShearObservations, DecibelPerWavelengthIsRefused) {
   EXPECT_NE(read_error("quantity,frequency,frequency_unit,value,value_unit,sigma\nshear_attenuation,1,kHz,3,dB/lambda,\n")
                 .find(":2:5: field 'value_unit': unknown unit 'dB/lambda' for shear_attenuation"),
             std::string::npos);
+}
+
+/// A layered seabed (layered:edfm,edfm): noise-free bottom loss of a soft layer over a harder
+/// half-space at 1-4 kHz, from the reflection code's own stack built part by part.
+std::string layered_file(double layer_porosity, double thickness, double halfspace_porosity) {
+  const auto model = sediment::make_sediment_model("edfm");
+  std::vector<double> layer = model->default_values();
+  std::vector<double> below = layer;
+  layer[static_cast<std::size_t>(model->index_of("porosity"))] = layer_porosity;
+  below[static_cast<std::size_t>(model->index_of("porosity"))] = halfspace_porosity;
+  std::ostringstream out;
+  out.precision(12);
+  out << "# water_sound_speed_m_per_s: " << kWaterSpeed << "\n# water_density_kg_per_m3: " << kWaterDensity << "\n"
+      << "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
+  for (double f : {1e3, 2e3, 4e3}) {
+    const sediment::AcousticMedium water{kWaterSpeed, 0.0, 0.0, 0.0, kWaterDensity};
+    const sediment::LayeredHalfspace seabed{water,
+                                            {{sediment::medium_of({model, layer, thickness}, f, false, "l1"), thickness}},
+                                            sediment::medium_of({model, below, 0.0}, f, false, "half-space")};
+    for (double degrees = 5.0; degrees <= 85.0; degrees += 8.0) {
+      const double loss =
+          sediment::bottom_loss_db(sediment::reflection_coefficient(seabed, degrees * std::numbers::pi / 180.0, f));
+      out << "bottom_loss," << f << ",Hz," << loss << ",dB," << kSigmaDb << ',' << degrees << '\n';
+    }
+  }
+  return out.str();
+}
+
+Candidate layered(const std::string& free, double layer_porosity, double thickness, double halfspace_porosity) {
+  ModelSetup setup;
+  setup.model = "layered:edfm,edfm";
+  setup.free = free;
+  setup.values.push_back({"porosity", halfspace_porosity, "test", ""});
+  setup.values.push_back({"l1.porosity", layer_porosity, "test", ""});
+  setup.values.push_back({"l1.thickness", thickness, "test", ""});
+  return make_candidate(setup);
+}
+
+TEST(LayeredSeabedFit, LayerThicknessAndPorositiesRecovered) {
+  const ObservationSet data = read_observation_csv(write_file("layered.csv", layered_file(0.7, 0.5, 0.4)));
+  const Candidate start = layered("porosity,l1.porosity,l1.thickness", 0.6, 0.4, 0.45);
+  const FitResult r = fit(data, *start.model, start.parameters, quick());
+  ASSERT_TRUE(r.converged) << r.solver_message;
+  EXPECT_LT(r.chi2, 1e-6);
+  for (const auto& [name, truth] : {std::pair{"porosity", 0.4}, std::pair{"l1.porosity", 0.7}, std::pair{"l1.thickness", 0.5}}) {
+    const ParameterResult& p = parameter(r, name);
+    EXPECT_TRUE(p.determined) << name;
+    EXPECT_NEAR(p.value, truth, 1e-3 * truth) << name;
+  }
+}
+
+/// A layer of the half-space's own material leaves the reflection unchanged whatever its thickness:
+/// the data cannot see it, and the fit says so.
+TEST(LayeredSeabedFit, AnInvisibleLayersThicknessIsNotDetermined) {
+  const ObservationSet data = read_observation_csv(write_file("invisible.csv", layered_file(0.4, 0.5, 0.4)));
+  const Candidate start = layered("porosity,l1.thickness", 0.4, 0.3, 0.45);
+  const FitResult r = fit(data, *start.model, start.parameters, quick());
+  ASSERT_TRUE(r.converged) << r.solver_message;
+  EXPECT_LT(r.chi2, 1e-6);
+  EXPECT_TRUE(parameter(r, "porosity").determined);
+  EXPECT_NEAR(parameter(r, "porosity").value, 0.4, 1e-4);
+  EXPECT_FALSE(parameter(r, "l1.thickness").determined);
 }
 
 }  // namespace

@@ -91,14 +91,14 @@ TEST_F(FitPlotTest, ObservationsTableAddsModelAndNormalisedResidualAtTheEnd) {
   EXPECT_NE(text.find("# sedwave observations as fitted; quantity 0 = attenuation [Np/m], 1 = sound speed [m/s]"),
             std::string::npos);
   EXPECT_NE(text.find("\nquantity,frequency_hz,value,sigma,display_value,display_sigma,model_value,"
-                      "display_model_value,normalized_residual\n"),
+                      "display_model_value,normalized_residual,grazing_angle_deg\n"),
             std::string::npos);
   const auto row_start = text.find("\n0,1000,");
   ASSERT_NE(row_start, std::string::npos) << text;
   std::vector<double> row;
   std::stringstream cells(text.substr(row_start + 1, text.find('\n', row_start + 1) - row_start - 1));
   for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-  ASSERT_EQ(row.size(), 9U);
+  ASSERT_EQ(row.size(), 9U);  // no grazing angle: not a reflection row
   EXPECT_DOUBLE_EQ(row[4], 0.1 * kDecibelPerNeper);   // display value, dB/m
   EXPECT_DOUBLE_EQ(row[6], 0.16);                     // model, Np/m
   EXPECT_DOUBLE_EQ(row[7], 0.16 * kDecibelPerNeper);  // model, dB/m

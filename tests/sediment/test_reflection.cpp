@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "sedwave/sediment/catalog.hpp"
 #include "sedwave/sediment/grain_shearing.hpp"
 #include "sedwave/sediment/reflection.hpp"
 #include "sedwave/sediment/seabed_reflection.hpp"
@@ -243,6 +244,40 @@ TEST(Seabed, FromModelsUsesTheirWavesAndDensity) {
   EXPECT_EQ(at.halfspace.density, *gs->bulk_density(gs->default_values()));
   seabed.fluid_only = true;
   EXPECT_EQ(layered_halfspace_at(seabed, 1e3).halfspace.shear_speed, 0.0);
+}
+
+/// A layered model from the catalog is its parts: its stack equals the one built part by part, its
+/// parameters are the half-space's then lN.thickness and lN.NAME, and its own wave is the top
+/// layer's with the gradient in the top layer's places.
+TEST(Seabed, LayeredModelIsItsParts) {
+  const auto model = make_sediment_model("layered:grain-shearing,edfm");
+  const auto gs = make_sediment_model("grain-shearing");
+  const auto edfm = make_sediment_model("edfm");
+  const std::size_t below = edfm->parameters().size();
+  ASSERT_EQ(model->parameters().size(), below + 1 + gs->parameters().size());
+  EXPECT_EQ(model->parameters()[below].name, "l1.thickness");
+  EXPECT_EQ(model->parameters()[below + 1].name, "l1." + gs->parameters()[0].name);
+  std::vector<double> values = edfm->default_values();
+  values.push_back(0.8);
+  for (double v : gs->default_values()) values.push_back(v);
+  SeabedModel by_hand;
+  by_hand.layers.push_back({gs, gs->default_values(), 0.8});
+  by_hand.halfspace = {edfm, edfm->default_values(), 0.0};
+  const SeabedModel described = seabed_of(model, values, by_hand.water_speed, by_hand.water_density);
+  for (double f : {500.0, 5e3}) {
+    for (double angle : {0.1, 0.5, 1.2}) {
+      EXPECT_EQ(reflection_coefficient(layered_halfspace_at(described, f), angle, f),
+                reflection_coefficient(layered_halfspace_at(by_hand, f), angle, f));
+    }
+  }
+  const Wave top = gs->evaluate(gs->default_values(), 2e3, true);
+  const Wave own = model->evaluate(values, 2e3, true);
+  EXPECT_EQ(own.speed, top.speed);
+  EXPECT_EQ(own.attenuation, top.attenuation);
+  for (std::size_t i = 0; i <= below; ++i) EXPECT_EQ(own.d_speed[i], 0.0);
+  for (std::size_t i = 0; i < top.d_speed.size(); ++i) EXPECT_EQ(own.d_speed[below + 1 + i], top.d_speed[i]);
+  EXPECT_THROW((void)make_sediment_model("layered:edfm"), std::invalid_argument);
+  EXPECT_THROW((void)make_sediment_model("layered:edfm,,edfm"), std::invalid_argument);
 }
 
 TEST(Reflection, RefusesImpossibleInput) {

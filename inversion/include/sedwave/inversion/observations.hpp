@@ -71,6 +71,12 @@ struct ObservationSet {
   void append(const ObservationSet& other);
 };
 
+/// The density [kg/m^3] of the water above the seabed that a data set declares
+/// ("# water_density_kg_per_m3: ..."), else sea water's 1025 kg/m^3. Throws std::invalid_argument
+/// for a value that is not one positive number.
+[[nodiscard]] double water_density_of(const ObservationSet& data);
+
+
 /// Error in an input file: "FILE:LINE:COLUMN: field 'NAME': REASON". ":COLUMN" is omitted when column
 /// is 0 (whole-row errors), " field 'NAME'" when field is empty, and ":LINE" (with the column) when
 /// line is 0 (whole-file errors: cannot open, empty file, no data rows, and digitized-column options).

@@ -19,11 +19,23 @@
 
 namespace sedwave::inversion {
 
-/// A fit's files in `dir`: curves.csv (the best fit's model over the data's band, curve_frequencies)
-/// and observations.csv (the data beside the fit). Returns how many of the curve's frequencies the
+/// A fit's files in `dir`: curves.csv (the best fit's model over the data's band, curve_frequencies),
+/// observations.csv (the data beside the fit) and, where the data have reflection rows,
+/// bottom_loss_curves.csv (write_bottom_loss_curves). Returns how many of the curve's frequencies the
 /// model did not answer (left out of curves.csv).
 std::size_t write_fit_files(const std::filesystem::path& dir, const FitResult& best,
                             const sediment::SedimentModel& model, const ObservationSet& data);
+
+/// The frequencies [Hz] of the data's reflection rows (bottom loss, |R|), ascending.
+[[nodiscard]] std::vector<double> reflection_frequencies(const ObservationSet& data);
+
+/// The best fit's bottom loss [dB] against grazing angle (0.5 deg steps) at `frequencies` [Hz], water
+/// of the data's sound speed and density over the seabed the model describes, as a CSV
+/// (frequency_hz, grazing_angle_deg, bottom_loss_db); write_fit_files writes it as
+/// bottom_loss_curves.csv where the data have reflection rows. Throws where the model has no answer.
+void write_bottom_loss_curves(const std::filesystem::path& file, const FitResult& best,
+                              const sediment::SedimentModel& model, const ObservationSet& data,
+                              const std::vector<double>& frequencies);
 
 struct PosteriorStudy {
   PosteriorResult posterior;

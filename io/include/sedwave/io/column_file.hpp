@@ -10,7 +10,7 @@
 namespace sedwave::io {
 
 struct NamedColumn {
-  std::string name;     ///< the dataset's name: letters, digits, '_' (no '/')
+  std::string name;     ///< the dataset's name: letters, digits, '_', '.' (no '/', no leading '.')
   std::string unit;     ///< SI unit, "1" if dimensionless
   std::string meaning;  ///< one line
   std::vector<double> values;

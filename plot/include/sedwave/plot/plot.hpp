@@ -19,6 +19,10 @@
 
 namespace sedwave::plot {
 
+/// The message of a fit plot against frequency that has nothing to draw: the data are reflection
+/// rows only (their plot is reflection_plot.hpp's draw_bottom_loss_fit_plot).
+inline constexpr const char* kNoWaveRows = "no frequency plot: the data have no attenuation or speed rows";
+
 using inversion::FitResult;
 
 struct PlotOutcome {

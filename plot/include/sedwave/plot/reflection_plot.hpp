@@ -24,6 +24,13 @@ PlotOutcome draw_bottom_loss_plot(const std::filesystem::path& dir, const std::s
                                   const std::vector<std::string>& frequencies, const std::string& band,
                                   bool posterior_band);
 
+/// From DIR/bottom_loss_curves.csv (the best fit's bottom loss: 1 frequency [Hz], 2 grazing angle
+/// [deg], 3 bottom loss [dB]) and DIR/observations.csv (its bottom-loss rows: quantity code 2,
+/// frequency in column 2, value and sigma [dB] in 3 and 4, grazing angle in 10) writes
+/// DIR/bottom_loss_fit.gp, .png, .svg: one colour per frequency, the data with their 1-sigma bars.
+PlotOutcome draw_bottom_loss_fit_plot(const std::filesystem::path& dir, const std::string& title,
+                                      const std::vector<double>& frequencies);
+
 /// From DIR/media.csv (columns: 1 part index, 2 frequency [Hz], 3 c_p [m/s], 4 alpha_p [dB/m],
 /// 5 c_s [m/s], 6 alpha_s [dB/m]) writes DIR/waves.gp, .png, .svg: speeds above, attenuations below,
 /// one colour per part (`parts`, index 1 first), shear dashed where `has_shear`.

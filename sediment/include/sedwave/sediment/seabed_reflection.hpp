@@ -3,6 +3,7 @@
 // of reflection.hpp at each frequency: each model's compressional wave, its shear wave where it has
 // one, and its bulk density.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct SeabedModel {
 /// naming the part (`what`) where the model fixes no bulk density (the dry frame alone).
 [[nodiscard]] AcousticMedium medium_of(const SeabedPart& part, double frequency_hz, bool fluid_only,
                                        const std::string& what);
+
+/// The seabed a model describes at parameter `values` (SI, its parameters() order), under water of
+/// `water_speed` [m/s] and `water_density` [kg/m^3]: a layered seabed's layers and half-space
+/// (layered_seabed.hpp), any other model as a half-space.
+[[nodiscard]] SeabedModel seabed_of(const std::shared_ptr<const SedimentModel>& model, std::span<const double> values,
+                                    double water_speed, double water_density);
 
 /// Every part's medium at frequency_hz.
 [[nodiscard]] LayeredHalfspace layered_halfspace_at(const SeabedModel& seabed, double frequency_hz);
