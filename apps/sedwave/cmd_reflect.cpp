@@ -23,6 +23,7 @@
 #include "sedwave/inversion/predictive.hpp"
 #include "sedwave/plot/reflection_plot.hpp"
 #include "sedwave/inversion/samples_file.hpp"
+#include "sedwave/inversion/setup.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/sampling/summary.hpp"
 #include "sedwave/sediment/catalog.hpp"
@@ -322,7 +323,14 @@ int run_reflect(const ReflectOptions& o) {
   const inversion::Candidate halfspace = candidate_of(setup_of(halfspace_options), ModelUse::Truth);
   const std::vector<std::string>& site_notes = halfspace.notes;
   seabed.halfspace = {halfspace.model, halfspace.parameters.values(), 0.0};
-  if (!o.from_fit.empty()) apply_fit_report(o.from_fit, seabed.halfspace, halfspace_sets);
+  if (!o.from_fit.empty()) {
+    apply_fit_report(o.from_fit, seabed.halfspace, halfspace_sets);
+  } else if (const std::vector<std::string> missing = inversion::values_not_given(halfspace); !missing.empty()) {
+    // A layer's thickness or a grain contact's stiffness: no typical value stands in for it.
+    std::string names;
+    for (const std::string& name : missing) names += (names.empty() ? "" : ", ") + name;
+    throw UsageError("model '" + halfspace.model->name() + "': give " + names + " (--set NAME=VALUE, or --from-fit)");
+  }
   if (layered_model) {
     const sediment::SeabedModel stack = sediment::seabed_of(seabed.halfspace.model, seabed.halfspace.values,
                                                             seabed.water_speed, seabed.water_density);

@@ -95,4 +95,34 @@ PY
 check "every unit gives the same attenuation" \
       "(lambda v: max(v) / min(v) - 1 < 1e-7)([float(l.split()[2]) for l in open('env_alpha.txt')])"
 result sand_alpha_p_3khz_np_per_m "$(sed -n 's/^N alpha_p \([0-9.]*\).*/\1/p' env_alpha.txt)"
+step "Reflection data back to the seabed: the mud's thickness and porosity from noisy bottom loss"
+# Bottom loss of the mud over the sand at 1, 2 and 4 kHz and twelve grazing angles, 0.5 dB noise;
+# then a fit of the layer's thickness and porosity (the sand held at its values). The interference
+# of the layer makes chi^2 many-valleyed in thickness: the search bounds say what the site allows.
+run 0 "$SEDWAVE" synthesize --model layered:edfm,grain-shearing --set l1.thickness=2 --set l1.porosity=0.7 \
+    --from 1000 --to 4000 --points 3 --grazing-angles 5,10,15,20,25,30,35,40,50,60,70,80 --reflection-only \
+    --bottom-loss-sigma 0.5 --seed 1 --out mud_observations.csv
+run 0 "$SEDWAVE" invert mud_observations.csv --model layered:edfm,grain-shearing --fit l1.porosity,l1.thickness \
+    --bounds l1.thickness=0.5,5 --out mud_fit | grep -E '^  l1\.(thickness|porosity) |^chi2'
+python3 - <<'PY' | tee mud_fit.txt
+import json
+fit = json.load(open('mud_fit/fit.json'))
+p = fit['parameters']
+for name, truth in (('l1.thickness', 2.0), ('l1.porosity', 0.7)):
+    v, s = p[name]['value'], p[name]['sigma']
+    print(f"{name} {v:.5g} +- {s:.2g} (truth {truth}, {abs(v - truth) / s:.2f} sigma away)")
+PY
+result mud_thickness_fit_m "$(sed -n 's/^l1.thickness \([0-9.]*\) .*/\1/p' mud_fit.txt)"
+check "the fit finds the truth within three of its sigmas" \
+      "all(float(l.split('(truth ')[1].split(', ')[1].split()[0]) < 3 for l in open('mud_fit.txt'))"
+# The fitted seabed handed on: its bottom loss at 3 kHz from the fit report, as BELLHOP reads it.
+run 0 "$SEDWAVE" reflect --model layered:edfm,grain-shearing --from-fit mud_fit/fit.json --frequency 3000 \
+    --angle-step 0.5 --out mud_fitted --brc mud_fitted.brc >/dev/null
+python3 - <<'PY' | tee mud_fitted.txt
+import csv
+rows = [r for r in csv.reader(l for l in open('mud_fitted/reflection.csv') if not l.startswith('#'))][1:]
+print(f"fitted seabed: loss at 5 deg {dict((float(r[1]), float(r[6])) for r in rows)[5.0]:.3f} dB at 3 kHz")
+PY
+check "the fitted seabed reflects as the true one (5 deg, 3 kHz) within 0.5 dB" \
+      "abs(float(open('mud_fitted.txt').read().split('5 deg ')[1].split()[0]) - float(open('mud_checks.txt').read().split('loss at 5 deg: ')[1].split()[0])) < 0.5"
 finish
