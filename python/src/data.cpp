@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 
@@ -50,9 +51,35 @@ DoubleArray flat_numbers(const py::handle& given, const std::string& argument) {
 }
 
 /// Observations from arrays, each value converted to SI from its unit (the observation CSV's units).
+/// A reflection row (bottom loss [dB] or |R|): its sigma and grazing angle [deg] are required, a
+/// bottom loss may fall below 0 dB by its noise (down to -3 sigma), an |R| not below 0 (the
+/// observation CSV's rules).
+void set_reflection_row(Observation& o, std::size_t i, double raw, bool has_sigma, double raw_sigma,
+                        const std::string& unit, const std::optional<DoubleArray>& angles) {
+  const std::string at = "[" + std::to_string(i) + "]";
+  const bool loss = o.quantity == Quantity::BottomLoss;
+  o.unit = unit.empty() ? (loss ? "dB" : "1") : unit;
+  if (o.unit != (loss ? "dB" : "1")) {
+    throw py::value_error("unit" + at + ": '" + o.unit + "': a " + (loss ? "bottom loss is in dB" : "|R| is in 1"));
+  }
+  if (!has_sigma) throw py::value_error("sigma" + at + ": a reflection row needs its 1-sigma uncertainty");
+  if (!angles) throw py::value_error("grazing_angle_deg: reflection rows need their grazing angles [deg]");
+  const double degrees = angles->data()[i];
+  if (!(degrees > 0.0 && degrees <= 90.0)) {
+    throw py::value_error("grazing_angle_deg" + at + " = " + std::to_string(degrees) + ": must be in (0, 90] degrees");
+  }
+  if (!std::isfinite(raw) || (loss ? raw < -3.0 * raw_sigma : raw < 0.0)) {
+    throw py::value_error("value" + at + ": " + (loss ? "a bottom loss below 0 dB by more than three sigmas" : "|R| must be >= 0"));
+  }
+  o.value = raw;
+  o.sigma = raw_sigma;
+  o.grazing_angle = degrees * std::numbers::pi / 180.0;
+}
+
 ObservationSet from_arrays(const py::handle& quantity, const py::handle& frequency_hz, const py::handle& value,
                            const py::object& sigma, const py::object& unit, std::optional<double> water_speed,
-                           std::optional<double> sediment_speed, const std::string& source) {
+                           std::optional<double> sediment_speed, const std::string& source,
+                           const py::object& grazing_angle_deg) {
   const DoubleArray f = flat_numbers(frequency_hz, "frequency_hz");
   const DoubleArray v = flat_numbers(value, "value");
   const auto n = static_cast<std::size_t>(f.size());
@@ -65,6 +92,14 @@ ObservationSet from_arrays(const py::handle& quantity, const py::handle& frequen
     s = flat_numbers(sigma, "sigma");
     if (static_cast<std::size_t>(s->size()) != n) {
       throw py::value_error("sigma: " + std::to_string(s->size()) + " entries for " + std::to_string(n) + " frequencies");
+    }
+  }
+  std::optional<DoubleArray> angles;
+  if (!grazing_angle_deg.is_none()) {
+    angles = flat_numbers(grazing_angle_deg, "grazing_angle_deg");
+    if (static_cast<std::size_t>(angles->size()) != n) {
+      throw py::value_error("grazing_angle_deg: " + std::to_string(angles->size()) + " entries for " + std::to_string(n) +
+                            " frequencies");
     }
   }
   const std::vector<std::string> quantities = texts_of(quantity, n, "quantity");
@@ -87,12 +122,31 @@ ObservationSet from_arrays(const py::handle& quantity, const py::handle& frequen
     // A plain double and a flag, not an optional: GCC 12 takes the optional's value for uninitialised.
     const bool has_sigma = s.has_value();
     const double raw_sigma = has_sigma ? s->data()[i] : 0.0;
-    if (!std::isfinite(raw) || !(raw > 0.0)) throw py::value_error("value" + at + ": must be positive and finite");
     if (has_sigma && (!std::isfinite(raw_sigma) || !(raw_sigma > 0.0))) {
       throw py::value_error("sigma" + at + ": must be positive and finite (give None for no sigma)");
     }
+    if (q == "bottom_loss" || q == "reflection_magnitude") {
+      o.quantity = q == "bottom_loss" ? Quantity::BottomLoss : Quantity::ReflectionMagnitude;
+      set_reflection_row(o, i, raw, has_sigma, raw_sigma, units.empty() ? std::string() : units[i], angles);
+      set.observations.push_back(o);
+      continue;
+    }
+    if (!std::isfinite(raw) || !(raw > 0.0)) throw py::value_error("value" + at + ": must be positive and finite");
     try {
-      if (q == "attenuation") {
+      if (q == "shear_speed" || q == "shear_attenuation") {
+        const bool speed = q == "shear_speed";
+        o.quantity = speed ? Quantity::ShearSpeed : Quantity::ShearAttenuation;
+        o.unit = units.empty() ? (speed ? "m/s" : "Np/m") : units[i];
+        if (o.unit == "ratio" || o.unit == "dB/lambda") {
+          throw std::invalid_argument("'" + o.unit + "' is not a unit of " + q + " (it would need the shear speed)");
+        }
+        const auto to_si = [&](double x) {
+          return speed ? inversion::sound_speed_to_m_per_s(x, o.unit, water_speed)
+                       : inversion::attenuation_to_np_per_m(x, o.unit, o.frequency_hz, sediment_speed);
+        };
+        o.value = to_si(raw);
+        if (has_sigma) o.sigma = to_si(raw_sigma);
+      } else if (q == "attenuation") {
         o.quantity = Quantity::Attenuation;
         o.unit = units.empty() ? "Np/m" : units[i];
         o.value = inversion::attenuation_to_np_per_m(raw, o.unit, o.frequency_hz, sediment_speed);
@@ -103,11 +157,15 @@ ObservationSet from_arrays(const py::handle& quantity, const py::handle& frequen
         o.value = inversion::sound_speed_to_m_per_s(raw, o.unit, water_speed);
         if (has_sigma) o.sigma = inversion::sound_speed_to_m_per_s(raw_sigma, o.unit, water_speed);
       } else {
-        throw std::invalid_argument("'" + q + "': expected attenuation, sound_speed or sound_speed_ratio");
+        throw std::invalid_argument("'" + q + "': expected attenuation, sound_speed, sound_speed_ratio, "
+                                    "shear_speed, shear_attenuation, bottom_loss or reflection_magnitude");
       }
     } catch (const std::invalid_argument& e) {
-      throw py::value_error((q == "attenuation" || q.starts_with("sound_speed") ? "unit" : "quantity") + at + ": " +
-                            e.what());
+      const bool known = q == "attenuation" || q.starts_with("sound_speed") || q.starts_with("shear_");
+      throw py::value_error((known ? "unit" : "quantity") + at + ": " + e.what());
+    }
+    if (angles && !std::isnan(angles->data()[i])) {  // reflection rows went on above
+      throw py::value_error("grazing_angle_deg" + at + ": only a reflection row has a grazing angle (NaN for others)");
     }
     set.observations.push_back(o);
   }
@@ -156,17 +214,21 @@ void bind_data(py::module_& m) {
   });
 
   py::class_<ObservationSet>(m, "Observations", R"doc(
-Observations in SI: quantity ("attenuation" [Np/m] or "sound_speed" [m/s]; sound-speed ratios are
-converted with the water sound speed), frequency_hz [Hz], value, sigma (NaN where none was given).
+Observations in SI: quantity ("attenuation" [Np/m], "sound_speed" [m/s] (sound-speed ratios are
+converted with the water sound speed), "shear_speed" [m/s], "shear_attenuation" [Np/m],
+"bottom_loss" [dB], "reflection_magnitude" [1]), frequency_hz [Hz], value, sigma (NaN where none
+was given), grazing_angle_deg (of reflection rows; NaN for others).
 
 Observations(quantity, frequency_hz, value, sigma=None, unit=None, water_speed=None,
-sediment_speed=None): from arrays. quantity: "attenuation", "sound_speed" or "sound_speed_ratio",
-one for all rows or one per row; unit: the values' unit as the observation CSV spells it ("Np/m",
-"dB/m", "dB/kHz/m", "dB/lambda", "m/s", "km/s", "ratio"); default SI (ratio for ratios). sigma is
-in the value's unit.)doc")
+sediment_speed=None, grazing_angle_deg=None): from arrays. quantity: one of the names above or
+"sound_speed_ratio", one for all rows or one per row; unit: the values' unit as the observation
+CSV spells it ("Np/m", "dB/m", "dB/kHz/m", "dB/lambda", "m/s", "km/s", "ratio", "dB", "1");
+default SI (ratio for ratios). sigma is in the value's unit. Reflection rows need their sigma, their
+grazing angle [deg] and water_speed (the water above the seabed).)doc")
       .def(py::init(&from_arrays), py::arg("quantity"), py::arg("frequency_hz"), py::arg("value"),
            py::arg("sigma") = py::none(), py::arg("unit") = py::none(), py::arg("water_speed") = py::none(),
-           py::arg("sediment_speed") = py::none(), py::arg("source") = "arrays")
+           py::arg("sediment_speed") = py::none(), py::arg("source") = "arrays",
+           py::arg("grazing_angle_deg") = py::none())
       .def("__len__", [](const ObservationSet& s) { return s.observations.size(); })
       .def_property_readonly("frequency_hz", [](const ObservationSet& s) {
         return column(s, [](const Observation& o) { return o.frequency_hz; });
@@ -176,6 +238,11 @@ in the value's unit.)doc")
       })
       .def_property_readonly("sigma", [](const ObservationSet& s) {
         return column(s, [](const Observation& o) { return o.sigma.value_or(std::nan("")); });
+      })
+      .def_property_readonly("grazing_angle_deg", [](const ObservationSet& s) {
+        return column(s, [](const Observation& o) {
+          return is_reflection(o.quantity) ? o.grazing_angle * 180.0 / std::numbers::pi : std::nan("");
+        });
       })
       .def_property_readonly("quantity", [](const ObservationSet& s) {
         std::vector<std::string> q;

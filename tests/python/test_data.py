@@ -73,3 +73,27 @@ def test_bad_arrays_name_the_argument_and_index():
         sedwave.Observations("attenuation", [100.0], [1e-3], unit="furlongs")
     with pytest.raises(ValueError, match="value: 1 entries for 2"):
         sedwave.Observations("attenuation", [100.0, 200.0], [1e-3])
+
+
+def test_bottom_loss_rows_from_arrays_equal_the_files(tmp_path):
+    # The same rows from arrays and from an observation file: one set of values, angles in degrees.
+    path = tmp_path / "bl.csv"
+    path.write_text("# water_sound_speed_m_per_s: 1500\n"
+                    "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n"
+                    "bottom_loss,1000,Hz,3.5,dB,0.5,20\n"
+                    "bottom_loss,1000,Hz,-0.4,dB,0.5,5\n"
+                    "shear_speed,1000,Hz,210,m/s,5,\n")
+    from_file = sedwave.read_observations(path)
+    arrays = sedwave.Observations(["bottom_loss", "bottom_loss", "shear_speed"], [1000.0] * 3, [3.5, -0.4, 210.0],
+                                  sigma=[0.5, 0.5, 5.0], water_speed=1500.0, grazing_angle_deg=[20.0, 5.0, np.nan])
+    for name in ("frequency_hz", "value", "sigma"):
+        np.testing.assert_array_equal(getattr(arrays, name), getattr(from_file, name))
+    np.testing.assert_allclose(arrays.grazing_angle_deg[:2], [20.0, 5.0], rtol=1e-15)
+    assert np.isnan(arrays.grazing_angle_deg[2]) and np.isnan(from_file.grazing_angle_deg[2])
+    assert list(arrays.quantity) == ["bottom_loss", "bottom_loss", "shear_speed"]
+    with pytest.raises(ValueError, match=r"grazing_angle_deg: reflection rows need their grazing angles"):
+        sedwave.Observations("bottom_loss", [1000.0], [3.0], sigma=[0.5], water_speed=1500.0)
+    with pytest.raises(ValueError, match=r"value\[0\]: a bottom loss below 0 dB by more than three sigmas"):
+        sedwave.Observations("bottom_loss", [1000.0], [-2.0], sigma=[0.5], grazing_angle_deg=[10.0])
+    with pytest.raises(ValueError, match=r"grazing_angle_deg\[0\]: only a reflection row"):
+        sedwave.Observations("attenuation", [1000.0], [0.1], grazing_angle_deg=[10.0])
