@@ -142,8 +142,9 @@ namespace sedwave::bench {
 /// search bounds raise it (profile.hpp: along kappa d gamma, d reaches its bound first). So the fit
 /// with that parameter fixed at its search bound must lie within Delta chi^2 = 1 (+ 0.05 for the
 /// solvers' tolerance) of the best fit: refitted by the global search within the search bounds, or
-/// else with the other parameters' bounds lifted (widened 10^12 times each way, refitted locally
-/// from the best fit). Returns {sides checked, sides that are not open}.
+/// else with the other parameters' bounds lifted (widened 10^12 times each way), refitted locally
+/// from the best fit moved along the unseen kappa d gamma (all three scaled by the factor that takes
+/// the held one to its bound: c0 and tau stay). Returns {sides checked, sides that are not open}.
 inline std::pair<int, int> verify_open_sides(unsigned seed, int index) {
   std::mt19937_64 rng(seed * 1000003ull + static_cast<unsigned>(index));
   const Truth truth = draw_truth(rng);
@@ -167,10 +168,12 @@ inline std::pair<int, int> verify_open_sides(unsigned seed, int index) {
       held.spec[i].free = false;
       ++checked;
       if (inversion::fit(data, lattice, held, quick).chi2 <= fit.chi2 + 1.05) continue;
+      const double scale = held.spec[i].value / p.value;
       for (const int j : free) {
         if (j == i) continue;
         held.spec[j].lower *= 1e-12;
         held.spec[j].upper *= 1e12;
+        held.spec[j].value *= scale;
       }
       if (inversion::fit(data, lattice, held, local).chi2 > fit.chi2 + 1.05) ++wrong;
     }
