@@ -33,7 +33,8 @@ struct ProfiledQuantity {
 };
 
 struct Profile {
-  std::optional<double> lower;  ///< ln units; missing: open (chi^2 stays within 1 up to the bound)
+  std::optional<double> lower;  ///< ln units; missing: open (chi^2 stays within 1 up to the bound, or
+                                ///< only other parameters' bounds raise it: see above)
   std::optional<double> upper;
   bool bounded_at_2_sigma = true;  ///< both extremes of q within the bounds lie beyond Delta chi^2 = 4
   std::optional<Theta> better;     ///< a point whose chi^2 is below the minimum the fit reported
