@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
               "truth, noise-free); where the fit calls it determined; and the coverage where the fit does not "
               "(intervals along flat directions to a bound)\nbinomial 1 sigma at 0.68: %.3f for %d data sets\n",
               sedwave::bench::coverage_sigma(n), n);
-  std::printf("open sides of parameter intervals checked: %d, not open (Delta chi2 > 1.05 at the bound): %d\n",
+  std::printf("open sides of parameter intervals checked: %d, not open (Delta chi2 > 1.05 at the bound, also with the "
+              "other bounds lifted): %d\n",
               open_checked, open_wrong);
   return 0;
 }

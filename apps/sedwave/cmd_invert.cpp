@@ -80,7 +80,8 @@ inversion::ObservationSet read_all(const InvertOptions& o) {
   return all;
 }
 
-/// "open" for a missing end of a profile interval (the search bound lies within it).
+/// "open" for a missing end of a profile interval (the data do not bound the quantity there: chi^2
+/// stays within 1 up to the search bounds, or only another parameter's bound raises it).
 std::string format_end(const std::optional<double>& end) {
   if (!end) return "open";
   char text[32];

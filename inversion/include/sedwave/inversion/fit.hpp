@@ -53,7 +53,8 @@ struct ParameterResult {
   bool determined = false;  ///< fixed parameters count as determined
   double log_sigma = 0.0;   ///< 1-sigma of ln(value); meaningful only if determined
   double sigma = 0.0;       ///< value * log_sigma (first order) [unit]
-  /// Profile-likelihood 68% interval [unit]; a missing side is open (the bound lies within it).
+  /// Profile-likelihood 68% interval [unit]; a missing side is open (the bound lies within it, or
+  /// only another parameter's bound closes it: profile.hpp).
   std::optional<double> profile_lower;
   std::optional<double> profile_upper;
 };
@@ -67,7 +68,8 @@ struct DerivedResult {
   bool determined = false;
   double log_sigma = 0.0;
   double sigma = 0.0;
-  /// Profile-likelihood 68% interval [unit]; a missing side is open (reaches the parameter bounds).
+  /// Profile-likelihood 68% interval [unit]; a missing side is open (reaches the parameter bounds, or
+  /// only another parameter's bound closes it).
   std::optional<double> profile_lower;
   std::optional<double> profile_upper;
 };
