@@ -168,10 +168,13 @@ int run_interface_command(const InterfaceOptions& o) {
     std::printf("written to %s%s\n", o.out.c_str(), o.csv.empty() ? "" : (" and " + o.csv + "/*.csv").c_str());
   }
   // The element must be much larger than the contact patch: the Hertz modulus already holds the
-  // plate's local indentation (docs/interface.md, "The coupling").
+  // plate's local indentation, or the patch must fit its rigid layer (docs/interface.md, "The coupling").
   if (r.max_contact_radius > 0.5 * r.element_size) {
-    std::printf("flagged: the contact radius exceeds half the element size; the plate's local compliance is "
-                "counted twice\n");
+    std::printf(scene.contacts.plate_contact == forward::interface::PlateContactModel::rigid_layers
+                    ? "flagged: the contact radius exceeds half the element size; the contact patch is wider than "
+                      "its rigid layer\n"
+                    : "flagged: the contact radius exceeds half the element size; the plate's local compliance is "
+                      "counted twice\n");
     return kExitIncomplete;
   }
   // The beads' collective push can exceed the single strike the estimate checked before the run.

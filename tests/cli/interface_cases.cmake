@@ -11,6 +11,10 @@ sedwave_cli_case(interface.output_over_scene 2 [=[--out: output .*would overwrit
 sedwave_cli_case(interface.tiny_run 0 [=[largest share in the plate [0-9.]+. energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/tiny.h5)
 sedwave_cli_case(interface.precompression_needs_a_clamped_edge 1 [=[unsupported_precompression\.toml:13: key 'packing\.precompression': a static load needs a clamped plate edge]=] interface ${INTERFACE_DATA}/unsupported_precompression.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.direct_strike 0 [=[direct strike on the plate's edge over x = 0\.00575 \.\. 0\.02075 m with the energy of 3 beads]=] interface ${INTERFACE_DATA}/tiny.toml --direct --out ${INTERFACE_OUT}/direct.h5)
+# The paper's rigid-layer contact: a value outside the list, a bead between nodes, a tiny run.
+sedwave_cli_case(interface.bad_plate_contact 1 [=[bad_plate_contact\.toml:3: key 'plate\.contact': must be one of interpolated, rigid_layers]=] interface ${INTERFACE_DATA}/bad_plate_contact.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.rigid_layers_between_nodes 1 [=[rigid_layers_between_nodes\.toml:7: key 'plate\.contact': .*grain 0 at x = 0\.00575 m lies between the nodes at 0\.003 and 0\.006 m]=] interface ${INTERFACE_DATA}/rigid_layers_between_nodes.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.rigid_layers_run 0 [=[energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/rigid_layers.toml --out ${INTERFACE_OUT}/rigid_layers.h5)
 
 # Bad input of every kind, each refused before the run with its cause (docs/interface.md, "Limits
 # and budgets"). Outputs: none may replace the scene or another output of the same run.

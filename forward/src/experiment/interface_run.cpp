@@ -115,7 +115,7 @@ InterfaceEstimate estimate_interface_run(const InterfaceScene& scene) {
     const double force = std::max(strike ? 0.0 : scene.drive.peak, scene.packing_load);
     const double edge_mass = 0.5 * pm.density * pm.thickness * a * b;  // a top-edge node's
     const PeakContact plate_contact =
-        peak_contact(hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, pm.youngs_modulus, pm.poisson_ratio), r,
+        peak_contact(interface::grain_plate_modulus(g, pm, scene.contacts.plate_contact), r,
                      1.0 / m + 1.0 / edge_mass, 1.0 / m + 1.0 / edge_mass + rotation, omega2, speed, force,
                      scene.contacts);
     const PeakContact grain_contact =

@@ -52,6 +52,9 @@ void read_plate(Section s, InterfaceScene& scene) {
   mesh.length_y = s.number("length_y", mesh.length_y, kSize);
   mesh.elements_x = s.integer<int>("elements_x", mesh.elements_x, kCount);
   mesh.elements_y = s.integer<int>("elements_y", mesh.elements_y, kCount);
+  scene.contacts.plate_contact = s.choice("contact", "interpolated", {"interpolated", "rigid_layers"}) == "rigid_layers"
+                                     ? interface::PlateContactModel::rigid_layers
+                                     : interface::PlateContactModel::interpolated;
   Section edges = s.sub("edges");
   scene.edges.top = edge(edges, "top", scene.edges.top);
   scene.edges.bottom = edge(edges, "bottom", scene.edges.bottom);
@@ -151,6 +154,20 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   top.allow_only({"plate", "packing", "contact", "drive", "run"});
   read_plate(top.sub("plate"), scene);
   read_packing(top.sub("packing"), scene);
+  if (scene.contacts.plate_contact == interface::PlateContactModel::rigid_layers) {
+    // The beads that can touch the plate (within the neighbour list's skin, 0.2 r) sit over nodes:
+    // those of the row on the plate, or of the chains' lowest layer (at most 1e5 beads to place).
+    interface::HexPacking lowest = scene.packing;
+    (lowest.orientation == interface::HexOrientation::rows_parallel ? lowest.rows : lowest.columns) = 1;
+    try {
+      interface::check_grains_over_nodes(interface::make_hex_packing(lowest), scene.mesh.length_x / scene.mesh.elements_x,
+                                         scene.mesh.length_x, 0.2 * scene.packing.radius);
+    } catch (const std::invalid_argument& e) {
+      top.sub("plate").fail_key("contact", std::string(e.what()).substr(std::string("interface: ").size()) +
+                                               " (the element width is plate.length_x / plate.elements_x; the beads "
+                                               "sit at packing.x_offset + radius + k (2 radius + gap))");
+    }
+  }
   read_contact(top.sub("contact"), scene);
   read_drive(top.sub("drive"), scene);
   if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -34,6 +35,29 @@ double oscillator_limit(double omega_squared, double beta) {
   return denominator > 0.0 ? 4.0 / denominator : inf;
 }
 
+double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate, PlateContactModel model) {
+  if (model == PlateContactModel::rigid_layers)
+    return grain.youngs_modulus / (1.0 - grain.poisson_ratio * grain.poisson_ratio);
+  return hertz_effective_modulus(grain.youngs_modulus, grain.poisson_ratio, plate.youngs_modulus, plate.poisson_ratio);
+}
+
+void check_grains_over_nodes(const std::vector<Grain>& grains, double element_width, double length_x, double reach) {
+  const double a = element_width;
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const auto& g = grains[i];
+    if (!(g.y - g.radius < reach) || g.x < 0.0 || g.x > length_x) continue;
+    const double offset = g.x / a - std::round(g.x / a);
+    if (std::abs(offset) <= 1e-6) continue;
+    const double left = a * std::floor(g.x / a);
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "interface: the rigid-layer contact acts at the plate's nodes, and grain %zu at x = %.6g m lies "
+                  "between the nodes at %.6g and %.6g m: place every grain that can touch the plate over a node",
+                  i, g.x, left, left + a);
+    throw std::invalid_argument(text);
+  }
+}
+
 double StepLimits::tightest() const { return std::min({plate, hertz, friction}); }
 
 GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& grain_material,
@@ -49,8 +73,7 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
                                            grain_material.youngs_modulus, grain_material.poisson_ratio);
   if (plate_) {
     const auto& pm = plate_->material();
-    plate_modulus_ = hertz_effective_modulus(grain_material.youngs_modulus, grain_material.poisson_ratio,
-                                             pm.youngs_modulus, pm.poisson_ratio);
+    plate_modulus_ = grain_plate_modulus(grain_material, pm, contacts.plate_contact);
     u_.assign(static_cast<std::size_t>(plate_->dof_count()), 0.0);
     v_ = u_;
   }
@@ -63,6 +86,8 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   }
   if (!grains_.empty()) mean_radius /= static_cast<double>(grains_.size());
   skin_ = 0.2 * mean_radius;
+  if (plate_ && contacts.plate_contact == PlateContactModel::rigid_layers)
+    check_grains_over_nodes(grains_, plate_->element_width(), plate_->mesh().length_x, skin_);
   const std::size_t n = grains_.size();
   conservative_.resize(n);
   friction_.resize(n);
@@ -232,7 +257,7 @@ void GranularPlate::add_plate_contact(int index) {
   auto& g = grains_[static_cast<std::size_t>(index)];
   const auto& mesh = plate_->mesh();
   if (g.x < 0.0 || g.x > mesh.length_x) return;  // beyond the plate's ends
-  const auto e = plate_->top_edge_point(g.x);
+  const auto e = contact_point(g.x);
   const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
   const double edge_y = e.shape_left * u_[ya] + e.shape_right * u_[yb];
   const double overlap = g.radius - (g.y - edge_y);
@@ -240,6 +265,7 @@ void GranularPlate::add_plate_contact(int index) {
   // Hertz sphere on a flat: R* = r. Force = -grad of (2/5) k delta^(5/2) with
   // delta = r - y_g + sum_a N_a(x_g) u_a: on the grain +F_n along y and -F_n du_y/dx along x (the
   // tilt of the deformed edge), on node a -F_n N_a along y.
+  // With rigid layers e names one node at weight 1: no tilt, and everything acts on that node.
   const double contact_radius = std::sqrt(g.radius * overlap);
   const double fn = (4.0 / 3.0) * plate_modulus_ * contact_radius * overlap;
   const double slope = (u_[yb] - u_[ya]) / plate_->element_width();
@@ -267,6 +293,11 @@ void GranularPlate::add_plate_contact(int index) {
   f_friction_[xa] -= ft * e.shape_left;
   f_friction_[xb] -= ft * e.shape_right;
   plate_tangential_force_ -= ft;
+}
+
+plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
+  return contacts_.plate_contact == PlateContactModel::rigid_layers ? plate_->top_edge_node(x)
+                                                                    : plate_->top_edge_point(x);
 }
 
 // Velocity-dependent forces (friction, dashpots) at t + dt see the half-step velocity advanced by the
@@ -420,7 +451,7 @@ StepLimits GranularPlate::current_limits() const {
   double plate_scale = 0.0, plate_largest = 0.0, plate_beta = 0.0;
   for (const auto& g : grains_) {
     if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;
-    const auto e = plate_->top_edge_point(g.x);
+    const auto e = contact_point(g.x);
     const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
     const double overlap = g.radius - (g.y - (e.shape_left * u_[ya] + e.shape_right * u_[yb]));
     if (overlap < -skin_) continue;

@@ -11,6 +11,12 @@
 // force is the gradient of the Hertz energy (2/5) k delta^(5/2), k = (4/3) E*_gp sqrt(r), so it goes
 // back to the nodes with the same shape functions, equal and opposite. Friction acts along x with the
 // edge's interpolated velocity. Units: any consistent set (SI in scenes).
+//
+// The other grain-plate contact, PlateContactModel::rigid_layers, is Wang, Zhang & Vakakis's (Granular
+// Matter 23, 21 (2021), appendix 1, eqs. 19a,b): a flat, massless rigid layer at each top-edge node
+// (as wide as an element), moving with its node; the grain's overlap is r - (y_g - u_y(node)), the
+// modulus E_b/(1 - nu_b^2) of the grain alone (the plate's compliance is not in the law), R* = r, and
+// the normal force, the friction and their reactions act on that one node.
 #include <functional>
 #include <limits>
 #include <optional>
@@ -26,12 +32,27 @@ struct GrainMaterial {
   double poisson_ratio;
 };
 
+/// How a grain presses on the plate (the header's comment): the deforming edge interpolated by its
+/// shape functions with the two bodies' Hertz modulus, or the paper's rigid layers at the nodes.
+enum class PlateContactModel { interpolated, rigid_layers };
+
 struct InterfaceContacts {
   double friction = 0.0;             ///< mu, grain-grain and grain-plate (0: frictionless)
   double tanh_velocity_scale = 1e3;  ///< k_s [time/length] of Coulomb-tanh
   double restitution = 1.0;          ///< grain-grain Hertz-Tsuji dashpot from e_n (1: none)
   bool rotation = true;              ///< integrate spins (false: spins stay zero)
+  PlateContactModel plate_contact = PlateContactModel::interpolated;
 };
+
+/// The Hertz modulus E* of a grain-plate contact: 1/E* = (1 - nu_g^2)/E_g + (1 - nu_p^2)/E_p
+/// (interpolated), or E_g/(1 - nu_g^2) (rigid_layers: the layer is rigid).
+[[nodiscard]] double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate,
+                                         PlateContactModel model);
+
+/// rigid_layers only: throws std::invalid_argument naming the first grain within `reach` of the
+/// undeformed edge (y - r < reach) and over the plate (0 <= x <= length_x) whose centre is not over a
+/// top-edge node (nodes every element_width from x = 0; to 1e-6 of an element).
+void check_grains_over_nodes(const std::vector<Grain>& grains, double element_width, double length_x, double reach);
 
 /// dt = tolerance * min(the stability limits of the FE mesh, of every Hertz contact and of every
 /// Coulomb-tanh contact), each evaluated from the state at the start of the step.
@@ -154,6 +175,8 @@ class GranularPlate {
   void compute_forces(double half_step);
   void add_grain_pair(const Pair& p);
   void add_plate_contact(int g);
+  /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
+  [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
   void kick(double h, bool second_half);
   void drift(double h);
 

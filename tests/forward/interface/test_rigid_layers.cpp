@@ -1,0 +1,150 @@
+// The paper's grain-plate contact (Wang, Zhang & Vakakis 2021, eqs. 19a,b): flat rigid layers at the
+// plate's nodes, E* = E_b/(1 - nu_b^2), R* = r, no dashpot, Coulomb-tanh friction, everything on one
+// node. Checked against Hertz's rigid-wall closed forms (Johnson 1985, sec. 11.1) and Coulomb's
+// sliding impact.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "sedwave/forward/interface/granular_plate.hpp"
+#include "sedwave/forward/units.hpp"
+#include "steel_beads.hpp"
+
+namespace {
+
+using namespace sedwave::forward::interface;
+using namespace sedwave::forward::interface::test;
+using sedwave::forward::plate::EdgeCondition;
+using sedwave::forward::plate::ElasticPlate;
+using sedwave::forward::plate::PlateEdges;
+using sedwave::forward::plate::PlateMaterial;
+
+// 2 int_0^1 dx / sqrt(1 - x^(5/2)) = (4/5) B(2/5, 1/2) = 2.943: the collision lasts this times delta_max / v.
+double hertz_time_factor() { return 0.8 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9); }
+
+const PlateEdges clamped_below{EdgeCondition::free, EdgeCondition::clamped, EdgeCondition::free, EdgeCondition::free};
+constexpr double strike = 0.5;  // [m/s]
+
+struct Bounce {
+  double contact_time = 0.0;
+  double max_overlap = 0.0;
+  double peak_force = 0.0;      // on the plate, the largest sampled
+  double largest_plate_u = 0.0; // over every degree of freedom and step
+  double final_vx = 0.0, final_vy = 0.0;
+};
+
+// A steel bead 10 um above the node at x = 10 mm of a 4 x 2 mesh (5 mm elements), struck down at
+// `strike` m/s with tangential speed vx; runs until it leaves the plate.
+Bounce bounce(const PlateMaterial& material, PlateContactModel model, bool clamp_node, double vx = 0.0,
+              double friction = 0.0) {
+  ElasticPlate plate(material, {4, 2, 20e-3, 10e-3}, clamped_below);
+  if (clamp_node) plate.fix(plate.node(2, 2), 0), plate.fix(plate.node(2, 2), 1);
+  auto grains = chain(1, 1e-5);
+  grains[0].x = 10e-3;
+  grains[0].vy = -strike;
+  grains[0].vx = vx;
+  InterfaceContacts contacts;
+  contacts.plate_contact = model;
+  contacts.friction = friction;
+  contacts.tanh_velocity_scale = 1e4;  // tanh(k_s slip) = 1 to 1e-9 while the bead slides
+  GranularPlate run(grains, steel, plate, contacts, StepControl{0.01});
+  Bounce b;
+  double t_start = -1.0, t_end = -1.0, previous = bead_radius - run.grains()[0].y, t_previous = 0.0;
+  for (int step = 0; step < 10'000'000 && t_end < 0.0; ++step) {
+    run.step();
+    const double now = bead_radius - (run.grains()[0].y - run.plate_displacement()[2 * plate.node(2, 2) + 1]);
+    if (previous <= 0.0 && now > 0.0) t_start = t_previous + (run.time() - t_previous) * (-previous) / (now - previous);
+    if (previous > 0.0 && now <= 0.0) t_end = t_previous + (run.time() - t_previous) * previous / (previous - now);
+    b.max_overlap = std::max(b.max_overlap, now);
+    b.peak_force = std::max(b.peak_force, run.plate_normal_force());
+    for (const double u : run.plate_displacement()) b.largest_plate_u = std::max(b.largest_plate_u, std::abs(u));
+    previous = now;
+    t_previous = run.time();
+  }
+  b.contact_time = t_end - t_start;
+  b.final_vx = run.grains()[0].vx;
+  b.final_vy = run.grains()[0].vy;
+  return b;
+}
+
+// Johnson eqs. 11.23-11.24 for a bead of mass m and radius r on a rigid wall of modulus e_star.
+struct RigidWall {
+  double max_overlap, contact_time, peak_force;
+};
+RigidWall rigid_wall(double e_star) {
+  const double r = bead_radius, m = chain(1)[0].mass;
+  const double delta = std::pow(15.0 * m * strike * strike / (16.0 * e_star * std::sqrt(r)), 0.4);
+  return {delta, hertz_time_factor() * delta / strike, (4.0 / 3.0) * e_star * std::sqrt(r) * delta * std::sqrt(delta)};
+}
+
+const double paper_modulus = steel.youngs_modulus / (1.0 - steel.poisson_ratio * steel.poisson_ratio);
+
+TEST(RigidLayers, ModulusIsTheGrainsAlone) {
+  EXPECT_DOUBLE_EQ(grain_plate_modulus(steel, aluminium, PlateContactModel::rigid_layers), paper_modulus);
+  EXPECT_DOUBLE_EQ(grain_plate_modulus(steel, aluminium, PlateContactModel::interpolated),
+                   sedwave::forward::hertz_effective_modulus(steel.youngs_modulus, steel.poisson_ratio,
+                                                            aluminium.youngs_modulus, aluminium.poisson_ratio));
+}
+
+// The node under the bead held: its layer is a rigid wall, so the bounce is Hertz's against a wall of
+// the bead's own E/(1 - nu^2), whatever the plate's material (aluminium here), and no other node
+// moves: the force acts on that node alone.
+TEST(RigidLayers, HeldNodeIsARigidWallOfTheBeadsModulus) {
+  const Bounce b = bounce(aluminium, PlateContactModel::rigid_layers, true);
+  const RigidWall wall = rigid_wall(paper_modulus);
+  EXPECT_NEAR(b.max_overlap / wall.max_overlap, 1.0, 1e-4);
+  EXPECT_NEAR(b.contact_time / wall.contact_time, 1.0, 1e-4);
+  EXPECT_NEAR(b.peak_force / wall.peak_force, 1.0, 1e-4);
+  EXPECT_EQ(b.largest_plate_u, 0.0);
+  EXPECT_NEAR(b.final_vy / strike, 1.0, 1e-6);  // no dashpot on this contact
+  // The interpolated contact on the same held node sees the plate's compliance in E*: t ~ E*^(-2/5).
+  const Bounce soft = bounce(aluminium, PlateContactModel::interpolated, true);
+  const double ratio = std::pow(paper_modulus / grain_plate_modulus(steel, aluminium, PlateContactModel::interpolated), 0.4);
+  EXPECT_NEAR(soft.contact_time / b.contact_time / ratio, 1.0, 1e-4);
+}
+
+// A plate 1000 times stiffer than steel, the node free: its layer barely yields, so the bounce
+// approaches the rigid wall's (the node's motion is the residual).
+TEST(RigidLayers, VeryStiffPlateApproachesTheRigidWall) {
+  const PlateMaterial stiff{200e12, 0.3, 7850.0, 5e-3};
+  const Bounce b = bounce(stiff, PlateContactModel::rigid_layers, false);
+  const RigidWall wall = rigid_wall(paper_modulus);
+  EXPECT_NEAR(b.max_overlap / wall.max_overlap, 1.0, 2e-3);
+  EXPECT_NEAR(b.contact_time / wall.contact_time, 1.0, 2e-3);
+  EXPECT_NEAR(b.peak_force / wall.peak_force, 1.0, 2e-3);
+  EXPECT_GT(b.largest_plate_u, 0.0);
+}
+
+// Sliding throughout on a held layer: Coulomb's impact, the tangential impulse mu times the normal
+// one (2 m v), and the bead's spin from its torque r F_t: Delta v_x = -2 mu v.
+TEST(RigidLayers, SlidingBounceLosesMuTimesTheNormalImpulse) {
+  const double mu = 0.1, vx = 1.0;  // the slip falls by 7/2 * 2 mu v = 0.35 m/s: still sliding
+  const Bounce b = bounce(aluminium, PlateContactModel::rigid_layers, true, vx, mu);
+  EXPECT_NEAR(b.final_vy / strike, 1.0, 1e-6);
+  EXPECT_NEAR((b.final_vx - vx) / (-2.0 * mu * strike), 1.0, 1e-4);
+  EXPECT_EQ(b.largest_plate_u, 0.0);
+}
+
+TEST(RigidLayers, RefusesAGrainBetweenNodes) {
+  ElasticPlate plate(aluminium, {4, 2, 20e-3, 10e-3}, clamped_below);
+  auto grains = chain(1, 1e-5);
+  grains[0].x = 11.3e-3;
+  InterfaceContacts contacts;
+  contacts.plate_contact = PlateContactModel::rigid_layers;
+  try {
+    GranularPlate run(grains, steel, plate, contacts, StepControl{});
+    FAIL() << "a grain between nodes was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("grain 0 at x = 0.0113 m lies between the nodes at 0.01 and 0.015 m"),
+              std::string::npos)
+        << e.what();
+  }
+  // The same grain lifted beyond the neighbour list's reach cannot touch the plate: accepted.
+  grains[0].y = 3.0 * bead_radius;
+  EXPECT_NO_THROW(GranularPlate(grains, steel, plate, contacts, StepControl{}));
+}
+
+}  // namespace
