@@ -109,6 +109,11 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
                 "(no beads), %d x %d plate elements; %ld steps in %.2f s\n",
                 r.direct_from, r.direct_to, r.driven.size(), scene.drive.speed, scene.mesh.elements_x,
                 scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  } else if (scene.drive.kind == experiment::InterfaceDrive::Kind::edge_impulse) {
+    std::printf("uniform impulse of %g N/m for %g s on the plate's edge over x = %.4g .. %.4g m (no beads), %d x %d "
+                "plate elements; %ld steps in %.2f s\n",
+                scene.drive.line_load, scene.drive.duration, r.direct_from, r.direct_to, scene.mesh.elements_x,
+                scene.mesh.elements_y, r.series.steps.back(), r.seconds);
   } else {
     std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
                 r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);

@@ -15,6 +15,9 @@ sedwave_cli_case(interface.direct_strike 0 [=[direct strike on the plate's edge 
 sedwave_cli_case(interface.bad_plate_contact 1 [=[bad_plate_contact\.toml:3: key 'plate\.contact': must be one of interpolated, rigid_layers]=] interface ${INTERFACE_DATA}/bad_plate_contact.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.rigid_layers_between_nodes 1 [=[rigid_layers_between_nodes\.toml:7: key 'plate\.contact': .*grain 0 at x = 0\.00575 m lies between the nodes at 0\.003 and 0\.006 m]=] interface ${INTERFACE_DATA}/rigid_layers_between_nodes.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.rigid_layers_run 0 [=[energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/rigid_layers.toml --out ${INTERFACE_OUT}/rigid_layers.h5)
+# The monolithic plate's edge impulse: a load beyond any solid, and a precompression with no beads.
+sedwave_cli_case(interface.huge_line_load 1 [=[huge_line_load\.toml:4: key 'drive\.line_load' = 1000000000000: accepted range \(0, 100000000\] N/m]=] interface ${INTERFACE_DATA}/huge_line_load.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.edge_impulse_precompression 1 [=[edge_impulse_precompression\.toml:6: key 'packing\.precompression': drive\.kind = "edge_impulse" strikes the plate alone]=] interface ${INTERFACE_DATA}/edge_impulse_precompression.toml --out ${INTERFACE_OUT}/never.h5)
 
 # Bad input of every kind, each refused before the run with its cause (docs/interface.md, "Limits
 # and budgets"). Outputs: none may replace the scene or another output of the same run.

@@ -113,10 +113,15 @@ void read_contact(Section s, InterfaceScene& scene) {
 
 void read_drive(Section s, InterfaceScene& scene) {
   auto& d = scene.drive;
-  const bool force = s.choice("kind", "velocity", {"velocity", "force"}) == "force";
-  d.kind = force ? InterfaceDrive::Kind::force : InterfaceDrive::Kind::velocity;
-  if (force) {
+  const std::string kind = s.choice("kind", "velocity", {"velocity", "force", "edge_impulse"});
+  d.kind = kind == "force" ? InterfaceDrive::Kind::force
+                           : (kind == "edge_impulse" ? InterfaceDrive::Kind::edge_impulse : InterfaceDrive::Kind::velocity);
+  if (d.kind == InterfaceDrive::Kind::force) {
     d.peak = s.number_value(s.at("peak"), s.name("peak"), Range::above(0.0, 1e6, "N"));
+    d.duration = s.number_value(s.at("duration"), s.name("duration"), kRunTime);
+  } else if (d.kind == InterfaceDrive::Kind::edge_impulse) {
+    // Up to 1e8 N/m: 2e10 Pa under a 5 mm plate, beyond any solid's strength (the plate is linear).
+    d.line_load = s.number_value(s.at("line_load"), s.name("line_load"), Range::above(0.0, 1e8, "N/m"));
     d.duration = s.number_value(s.at("duration"), s.name("duration"), kRunTime);
   } else {
     d.speed = s.number("speed", d.speed, strike_speed_range());
@@ -172,7 +177,9 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   read_drive(top.sub("drive"), scene);
   if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");
   read_recording(top.sub("run"), scene);
-  if (scene.drive.kind == InterfaceDrive::Kind::force && scene.drive.duration > scene.recording.duration) {
+  if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
+    top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
+  if (scene.drive.kind != InterfaceDrive::Kind::velocity && scene.drive.duration > scene.recording.duration) {
     Section drive = top.sub("drive");
     drive.fail_key("duration", "the pulse (" + io::shortest(scene.drive.duration) + " s) outlasts the run (run.duration = " +
                                    io::shortest(scene.recording.duration) + " s): most of its work would never be done");

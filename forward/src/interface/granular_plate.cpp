@@ -116,6 +116,19 @@ void GranularPlate::set_static_load(std::vector<int> grains, double force_x, dou
   compute_forces(0.0);
 }
 
+void GranularPlate::set_plate_pulse(PlatePulse pulse) {
+  if (!plate_) throw std::invalid_argument("interface: a plate pulse needs a plate");
+  if (pulse.forces.size() != u_.size())
+    throw std::invalid_argument("interface: a plate pulse needs one force per degree of freedom");
+  if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: plate pulse duration must be > 0");
+  plate_pulse_ = std::move(pulse);
+}
+
+double GranularPlate::plate_pulse_time(double t0, double t1) const {
+  if (!plate_pulse_) return 0.0;
+  return std::max(0.0, std::min(t1, plate_pulse_->duration) - std::max(t0, 0.0));
+}
+
 long GranularPlate::relax(double damping_time, double tolerance, long max_steps) {
   if (!(damping_time > 0.0)) throw std::invalid_argument("interface: relaxation damping time must be > 0");
   const auto kinetic = [&] {
@@ -371,10 +384,13 @@ void GranularPlate::kick(double h, bool second_half) {
   const auto& mass = plate_->mass();
   const auto& damping = plate_->damping();
   const auto& fixed = plate_->fixed();
+  // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
+  const double on = second_half ? plate_pulse_time(time_ - h, time_) : plate_pulse_time(time_, time_ + h);
   for (std::size_t d = 0; d < u_.size(); ++d) {
     if (fixed[d]) continue;
     const double v = v_[d];
-    const double force = f_conservative_[d] + f_friction_[d];
+    const double pulse = on > 0.0 ? plate_pulse_->forces[d] * on / h : 0.0;  // its mean force over the half kick
+    const double force = f_conservative_[d] + f_friction_[d] + pulse;
     // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
     // full step multiplies a free dashpot's velocity by (1 - h c/m)/(1 + h c/m), stable for any c.
     double dashpot_velocity = v;
@@ -387,6 +403,7 @@ void GranularPlate::kick(double h, bool second_half) {
     const double mean = 0.5 * (v + v_[d]);
     boundary_work_ += h * damping[d] * dashpot_velocity * mean;
     friction_work_ -= h * f_friction_[d] * mean;
+    drive_work_ += h * pulse * mean;
   }
 }
 

@@ -89,6 +89,14 @@ struct ForcePulse {
   double direction_y = -1.0;
 };
 
+/// A rectangular pulse of forces on the plate's degrees of freedom (`forces`, one per degree of
+/// freedom, zero where none acts), held for 0 <= t < duration. Each half kick receives exactly the
+/// impulse that falls inside it, so the pulse delivers forces * duration whatever the steps.
+struct PlatePulse {
+  std::vector<double> forces;
+  double duration = 0.0;
+};
+
 /// Energies [force length]. The balance kinetic + potential + dissipated - drive_work is constant.
 struct Energies {
   double grain_translation = 0.0;
@@ -124,6 +132,7 @@ class GranularPlate {
   void advance_to(double t_end);
 
   void set_drive(ForcePulse pulse);
+  void set_plate_pulse(PlatePulse pulse);
   /// A constant force (force_x, force_y) on each of `grains`, held for the whole run: a static
   /// precompression of the packing against the plate. Its work counts as the drive's.
   void set_static_load(std::vector<int> grains, double force_x, double force_y);
@@ -201,6 +210,9 @@ class GranularPlate {
   std::vector<double> plate_seen_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
   std::optional<ForcePulse> pulse_;
+  std::optional<PlatePulse> plate_pulse_;
+  /// The plate pulse's force times the part of [t0, t1] it is on: its impulse over that interval per unit force.
+  [[nodiscard]] double plate_pulse_time(double t0, double t1) const;
   std::vector<int> loaded_;
   double load_x_ = 0.0, load_y_ = 0.0;
 

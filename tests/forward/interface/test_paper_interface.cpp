@@ -1,7 +1,8 @@
-// The paper's grain-plate contact (Wang, Zhang & Vakakis 2021, eqs. 19a,b): flat rigid layers at the
-// plate's nodes, E* = E_b/(1 - nu_b^2), R* = r, no dashpot, Coulomb-tanh friction, everything on one
-// node. Checked against Hertz's rigid-wall closed forms (Johnson 1985, sec. 11.1) and Coulomb's
-// sliding impact.
+// The pieces of Wang, Zhang & Vakakis (2021) beside sedwave's own: the paper's grain-plate contact
+// (eqs. 19a,b: flat rigid layers at the plate's nodes, E* = E_b/(1 - nu_b^2), R* = r, no dashpot,
+// Coulomb-tanh friction, everything on one node), checked against Hertz's rigid-wall closed forms
+// (Johnson 1985, sec. 11.1) and Coulomb's sliding impact; and the pulse on the plate's edge that
+// drives its monolithic scenario (appendix 2), checked against the impulse-momentum theorem.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -145,6 +146,35 @@ TEST(RigidLayers, RefusesAGrainBetweenNodes) {
   // The same grain lifted beyond the neighbour list's reach cannot touch the plate: accepted.
   grains[0].y = 3.0 * bead_radius;
   EXPECT_NO_THROW(GranularPlate(grains, steel, plate, contacts, StepControl{}));
+}
+
+// A free plate (every edge free: it may move as a whole) under a rectangular pulse on its top edge,
+// stepped with a fixed step that does not divide the pulse's duration: the momentum it gains is the
+// pulse's impulse, sum F tau, to round-off, and the energy books close (the pulse's work is the
+// plate's energy).
+TEST(PlatePulse, DeliversItsImpulseWhateverTheStep) {
+  const PlateEdges free{EdgeCondition::free, EdgeCondition::free, EdgeCondition::free, EdgeCondition::free};
+  ElasticPlate plate(aluminium, {6, 2, 30e-3, 10e-3}, free);
+  PlatePulse pulse;
+  pulse.forces.assign(static_cast<std::size_t>(plate.dof_count()), 0.0);
+  double total = 0.0;
+  for (int i = 1; i <= 4; ++i) {
+    const double f = -100.0 * i;  // [N], into the plate, unequal so that the plate also deforms
+    pulse.forces[static_cast<std::size_t>(2 * plate.node(i, 2) + 1)] = f;
+    total += f;
+  }
+  const double tau = 1e-6;
+  pulse.duration = tau;
+  GranularPlate run({}, steel, plate, InterfaceContacts{}, StepControl{0.1, 1.0, tau / 37.3});
+  run.set_plate_pulse(pulse);
+  run.advance_to(2.0 * tau);
+  double momentum = 0.0;
+  for (int n = 0; n < plate.node_count(); ++n)
+    momentum += plate.mass()[static_cast<std::size_t>(2 * n + 1)] * run.plate_velocity()[static_cast<std::size_t>(2 * n + 1)];
+  EXPECT_NEAR(momentum / (total * tau), 1.0, 1e-12);
+  const Energies e = run.energies();
+  EXPECT_GT(e.drive_work, 0.0);
+  EXPECT_NEAR(e.balance() / e.drive_work, 0.0, 1e-3);
 }
 
 }  // namespace
