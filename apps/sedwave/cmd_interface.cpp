@@ -152,6 +152,10 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
   }
   std::printf("largest grain-plate contact radius %.3g m against element size %.3g m\n", r.max_contact_radius,
               r.element_size);
+  if (scene.recording.scheme == forward::interface::Scheme::newmark_rk4)
+    std::printf("newmark_rk4: %ld fixed-point iterations (%.3g a step, at most %d), %ld factorisations\n",
+                r.iterations, static_cast<double>(r.iterations) / static_cast<double>(r.series.steps.back()),
+                r.most_iterations, r.factorisations);
 }
 
 int run_interface_command(const InterfaceOptions& o) {

@@ -150,6 +150,16 @@ void read_recording(Section s, InterfaceScene& scene) {
   r.probe_depth = s.number("probe_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
   r.line_depth = s.number("line_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
   r.arrival_fraction = s.number("arrival_fraction", r.arrival_fraction, Range::open(0.0, 1.0));
+  r.scheme = s.choice("scheme", "velocity_verlet", {"velocity_verlet", "newmark_rk4"}) == "newmark_rk4"
+                 ? interface::Scheme::newmark_rk4
+                 : interface::Scheme::velocity_verlet;
+  // Tolerances of the fixed point: below round-off's 1e-16 the iteration cannot stop, above 1e-2 it
+  // is no iteration; a force of 1e6 N is the largest drive a scene takes.
+  r.iteration_reltol = s.number("iteration_reltol", r.iteration_reltol, Range::closed(1e-15, 1e-2));
+  r.iteration_abstol = s.number("iteration_abstol", r.iteration_abstol, Range::closed(0.0, 1e6, "N"));
+  if (r.scheme != interface::Scheme::newmark_rk4 && (s.has("iteration_reltol") || s.has("iteration_abstol")))
+    s.fail_key(s.has("iteration_reltol") ? "iteration_reltol" : "iteration_abstol",
+               "sets the newmark_rk4 scheme's iteration, and run.scheme is velocity_verlet");
   s.finish();
 }
 
@@ -177,6 +187,9 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   read_drive(top.sub("drive"), scene);
   if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");
   read_recording(top.sub("run"), scene);
+  if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.recording.scheme == interface::Scheme::newmark_rk4)
+    top.sub("run").fail_key("scheme", "newmark_rk4 takes no pulse on the plate (drive.kind = \"edge_impulse\"): its load "
+                                      "at the step's ends would not deliver a rectangular pulse's impulse");
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
     top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
   if (scene.drive.kind != InterfaceDrive::Kind::velocity && scene.drive.duration > scene.recording.duration) {

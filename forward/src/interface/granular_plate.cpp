@@ -95,6 +95,12 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   drive_.resize(n);
   build_pairs();
   compute_forces(0.0);
+  if (control.scheme == Scheme::newmark_rk4) {
+    if (!plate_) throw std::invalid_argument("interface: the newmark_rk4 scheme needs a plate");
+    if (!(control.reltol > 0.0 && control.abstol >= 0.0 && control.max_iterations >= 1))
+      throw std::invalid_argument("interface: newmark_rk4 needs reltol > 0, abstol >= 0 and max_iterations >= 1");
+    make_newmark();
+  }
 }
 
 void GranularPlate::set_drive(ForcePulse pulse) {
@@ -118,6 +124,9 @@ void GranularPlate::set_static_load(std::vector<int> grains, double force_x, dou
 
 void GranularPlate::set_plate_pulse(PlatePulse pulse) {
   if (!plate_) throw std::invalid_argument("interface: a plate pulse needs a plate");
+  if (control_.scheme == Scheme::newmark_rk4)
+    throw std::invalid_argument("interface: the newmark_rk4 scheme takes no pulse on the plate (its load at the step's "
+                                "ends would not deliver a rectangular pulse's impulse)");
   if (pulse.forces.size() != u_.size())
     throw std::invalid_argument("interface: a plate pulse needs one force per degree of freedom");
   if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: plate pulse duration must be > 0");
@@ -142,6 +151,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     const double keep = std::exp(-dt / damping_time);
     for (auto& g : grains_) g.vx *= keep, g.vy *= keep, g.spin *= keep;
     for (auto& v : v_) v *= keep;
+    restart_newmark();
     const double now = kinetic();
     largest = std::max(largest, now);
     if (n > 10 && now < tolerance * largest) break;
@@ -161,6 +171,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
 }
 
 void GranularPlate::refresh_forces() {
+  restart_newmark();
   build_pairs();
   compute_forces(0.0);
 }
@@ -317,7 +328,7 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // old acceleration, v(t + dt/2) + (dt/2) a(t), which is v(t + dt) to O(dt^2). With the half-step
 // velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
 // frictional run (measured: order 1.2 in the tolerance instead of 2).
-void GranularPlate::compute_forces(double half_step) {
+void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   seen_.resize(grains_.size());
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
@@ -345,7 +356,7 @@ void GranularPlate::compute_forces(double half_step) {
   if (plate_) {
     f_conservative_.assign(u_.size(), 0.0);
     f_friction_.assign(u_.size(), 0.0);
-    plate_->add_elastic_forces(u_, f_conservative_);
+    if (with_elastic) plate_->add_elastic_forces(u_, f_conservative_);
     for (std::size_t g = 0; g < grains_.size(); ++g) add_plate_contact(static_cast<int>(g));
   }
   for (const int g : loaded_) {
@@ -466,6 +477,12 @@ StepLimits GranularPlate::current_limits() const {
   if (!plate_) return limits;
   const auto& mass = plate_->mass();
   double plate_scale = 0.0, plate_largest = 0.0, plate_beta = 0.0;
+  // newmark_rk4: the paper's criteria (eqs. 29a,b) with T (M + K dt^2/4)^-1 T^T bounded by sum N_a^2/M_a
+  // (K is positive semi-definite), the granule's own sensitivity neglected as the paper does:
+  // |lambda_1| < 1 is dt < 2/omega with omega^2 = (3/2) k delta^(1/2) sum N_a^2/M_a, |lambda_2| < 1 is
+  // dt < 2/beta with beta = mu k_s |N| sum N_a^2/M_a (cosh^-2 <= 1).
+  const bool newmark = control_.scheme == Scheme::newmark_rk4;
+  double newmark_omega2 = 0.0;
   for (const auto& g : grains_) {
     if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;
     const auto e = contact_point(g.x);
@@ -479,6 +496,13 @@ StepLimits GranularPlate::current_limits() const {
         e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
     const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
+    if (newmark) {
+      const double reach = std::pow(reach_energy(overlap, vn, 1.0 / inverse_m, k), 0.2);  // delta_max^(1/2)
+      newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * edge_inverse_mass);
+      if (mu_ks > 0.0 && overlap > 0.0)
+        plate_beta = std::max(plate_beta, mu_ks * k * overlap * std::sqrt(overlap) * edge_inverse_mass);
+      continue;
+    }
     if (plate_scale == 0.0) plate_scale = k * inverse_m;
     const double ratio = k * inverse_m / plate_scale;
     plate_largest =
@@ -489,6 +513,11 @@ StepLimits GranularPlate::current_limits() const {
       if (contacts_.rotation) inverse_mt += g.radius * g.radius / g.inertia;  // 2m/7 on a rigid wall
       plate_beta = std::max(plate_beta, mu_ks * fn * inverse_mt);
     }
+  }
+  if (newmark) {
+    if (newmark_omega2 > 0.0) limits.hertz = std::min(limits.hertz, oscillator_limit(newmark_omega2, 0.0));
+    if (plate_beta > 0.0) limits.friction = std::min(limits.friction, oscillator_limit(0.0, plate_beta));
+    return limits;
   }
   // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
   if (plate_largest > 0.0) {
@@ -509,6 +538,13 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
                         : std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
+  if (control_.scheme == Scheme::newmark_rk4) {
+    // On a ladder of steps theta T_FE 2^-k (unless fixed or cut to land on a time), so that the
+    // factorisation of M + C dt/2 + K dt^2/4 serves many steps.
+    const double ladder = control_.tolerance * limits_.plate;
+    const bool free_step = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
+    return step_newmark_rk4(free_step ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
+  }
   kick(0.5 * dt, false);
   drift(dt);
   time_ += dt;

@@ -44,6 +44,9 @@ struct InterfaceRecording {
   double probe_depth = 0.0;      ///< depth of the probes below the interface [m] (0: the interface)
   double line_depth = 0.0;       ///< depth of the recorded line of nodes [m] (the wavenumber analysis)
   double arrival_fraction = 0.1; ///< arrival: first time |v| reaches this fraction of its maximum
+  interface::Scheme scheme = interface::Scheme::velocity_verlet;
+  double iteration_reltol = 1e-10;  ///< newmark_rk4: the fixed point's relative tolerance
+  double iteration_abstol = 1e-9;   ///< newmark_rk4: and its absolute one [N]
 };
 
 struct InterfaceScene {

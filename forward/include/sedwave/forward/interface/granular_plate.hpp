@@ -19,6 +19,7 @@
 // the normal force, the friction and their reactions act on that one node.
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -54,6 +55,13 @@ struct InterfaceContacts {
 /// top-edge node (nodes every element_width from x = 0; to 1e-6 of an element).
 void check_grains_over_nodes(const std::vector<Grain>& grains, double element_width, double length_x, double reach);
 
+/// How grains and plate advance together. velocity_verlet: one explicit step for both (the default).
+/// newmark_rk4: the paper's (appendix 1, eqs. 15-18): the plate by average-acceleration Newmark
+/// (M + C dt/2 + K dt^2/4 factorised by a sparse LDL^T), its motion interpolated over the step
+/// (eq. 16), the grains by RK4 against that motion, and the forces on the plate iterated to a fixed
+/// point within each step; its grain-plate limits are eqs. 29a,b (docs/interface.md, "Two schemes").
+enum class Scheme { velocity_verlet, newmark_rk4 };
+
 /// dt = tolerance * min(the stability limits of the FE mesh, of every Hertz contact and of every
 /// Coulomb-tanh contact), each evaluated from the state at the start of the step.
 struct StepControl {
@@ -61,6 +69,13 @@ struct StepControl {
   double max_step = std::numeric_limits<double>::infinity();
   /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
   double fixed_step = 0.0;
+  Scheme scheme = Scheme::velocity_verlet;
+  /// newmark_rk4: a force on the plate has converged when its change in one iteration is below
+  /// abstol [force] or below reltol times itself (eqs. 18a,b), every one of them; at most
+  /// max_iterations, else the step throws std::runtime_error.
+  double abstol = 1e-9;
+  double reltol = 1e-10;
+  int max_iterations = 100;
 };
 
 /// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
@@ -168,6 +183,11 @@ class GranularPlate {
   [[nodiscard]] double max_plate_contact_radius() const { return max_plate_contact_radius_; }
   /// Number of grain-grain pairs in contact now.
   [[nodiscard]] int grain_contacts() const;
+  /// newmark_rk4: fixed-point iterations taken in all, the most in one step, and the factorisations
+  /// of M + C dt/2 + K dt^2/4 (one per step size met; zeros for velocity_verlet).
+  [[nodiscard]] long iterations() const { return iterations_; }
+  [[nodiscard]] int most_iterations() const { return most_iterations_; }
+  [[nodiscard]] long factorisations() const { return factorisations_; }
 
  private:
   struct Pair {
@@ -178,10 +198,21 @@ class GranularPlate {
     double fx = 0.0, fy = 0.0, torque = 0.0;
   };
   double step_with(const StepLimits& limits, double max_dt);
+  double step_newmark_rk4(double dt);  // newmark_rk4.cpp
+  void make_newmark();                 // K assembled once
+  void restart_newmark();              // the state was changed by hand: start_newmark at the next step
+  void start_newmark();                // the plate's acceleration and forces from the state
+  struct GrainRates;
+  /// RK4 of the grains from `start` over dt against the plate path x(t) of eq. 16; the works of the
+  /// non-conservative forces over the step go to `works` (friction, dashpot, drive).
+  void rk4_grains(const std::vector<Grain>& start, double t0, double dt, const std::vector<double>& x0,
+                  const std::vector<double>& v0, const std::vector<double>& x1, double works[3]);
+  void evaluate_rates(double t, GrainRates& rates);
   [[nodiscard]] Energies energies_without_strain() const;  ///< kinetic parts only
   void build_pairs();
   bool pairs_stale() const;
-  void compute_forces(double half_step);
+  /// with_elastic false: the contact forces on the plate alone in f_conservative_ and f_friction_.
+  void compute_forces(double half_step, bool with_elastic = true);
   void add_grain_pair(const Pair& p);
   void add_plate_contact(int g);
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
@@ -223,6 +254,13 @@ class GranularPlate {
   double friction_work_ = 0.0, dashpot_work_ = 0.0, boundary_work_ = 0.0, drive_work_ = 0.0;
   double plate_normal_force_ = 0.0, plate_tangential_force_ = 0.0;
   double max_plate_contact_radius_ = 0.0;
+
+  std::vector<Motion> stage_velocity_[4];  // newmark_rk4: each RK4 stage's grain velocities
+  struct Newmark;  // the factorisations, the plate's acceleration, the converged forces
+  std::shared_ptr<Newmark> newmark_;
+  long iterations_ = 0;
+  int most_iterations_ = 0;
+  long factorisations_ = 0;
 };
 
 }  // namespace sedwave::forward::interface
