@@ -478,9 +478,11 @@ StepLimits GranularPlate::current_limits() const {
   const auto& mass = plate_->mass();
   double plate_scale = 0.0, plate_largest = 0.0, plate_beta = 0.0;
   // newmark_rk4: the paper's criteria (eqs. 29a,b) with T (M + K dt^2/4)^-1 T^T bounded by sum N_a^2/M_a
-  // (K is positive semi-definite), the granule's own sensitivity neglected as the paper does:
-  // |lambda_1| < 1 is dt < 2/omega with omega^2 = (3/2) k delta^(1/2) sum N_a^2/M_a, |lambda_2| < 1 is
-  // dt < 2/beta with beta = mu k_s |N| sum N_a^2/M_a (cosh^-2 <= 1).
+  // (K is positive semi-definite) and cosh^-2 by 1: |lambda_1| < 1 is dt < 2/omega with
+  // omega^2 = (3/2) k delta^(1/2) sum N_a^2/M_a, |lambda_2| < 1 is dt < 2/beta with
+  // beta = mu k_s |N| sum N_a^2/M_a. The paper neglects the granule's own sensitivity; a bead lighter
+  // than its node then blows up at that step (docs/interface.md, "Two schemes"), so the bead's
+  // inverse mass (and r^2/I along the edge) is added to sum N_a^2/M_a.
   const bool newmark = control_.scheme == Scheme::newmark_rk4;
   double newmark_omega2 = 0.0;
   for (const auto& g : grains_) {
@@ -498,9 +500,10 @@ StepLimits GranularPlate::current_limits() const {
     const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
     if (newmark) {
       const double reach = std::pow(reach_energy(overlap, vn, 1.0 / inverse_m, k), 0.2);  // delta_max^(1/2)
-      newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * edge_inverse_mass);
+      newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * inverse_m);
+      const double inverse_mt = inverse_m + (contacts_.rotation ? g.radius * g.radius / g.inertia : 0.0);
       if (mu_ks > 0.0 && overlap > 0.0)
-        plate_beta = std::max(plate_beta, mu_ks * k * overlap * std::sqrt(overlap) * edge_inverse_mass);
+        plate_beta = std::max(plate_beta, mu_ks * k * overlap * std::sqrt(overlap) * inverse_mt);
       continue;
     }
     if (plate_scale == 0.0) plate_scale = k * inverse_m;
