@@ -94,7 +94,7 @@ void GranularPlate::evaluate_rates(double t, GrainRates& rates) {
     rates.dashpot_power += d.fx * g.vx + d.fy * g.vy;
     rates.drive_power += w.fx * g.vx + w.fy * g.vy;
   }
-  // The plate's own friction reaction dissipates too; it is booked by the Newmark step.
+  // The friction's reaction on the plate dissipates too; step_newmark_rk4 books it.
 }
 
 void GranularPlate::rk4_grains(const std::vector<Grain>& start, double t0, double dt, const std::vector<double>& x0,
@@ -115,8 +115,8 @@ void GranularPlate::rk4_grains(const std::vector<Grain>& start, double t0, doubl
     if (stage > 0) {
       const GrainRates& r = k[stage - 1];
       const double h = offsets[stage];
-      // The previous stage's velocities are its state's: start + h' * rate, read back from the
-      // stage's grains (kept in the rates' companion, below).
+      // Stage state = start + h (the previous stage's rates): its velocities for the positions,
+      // its accelerations for the velocities.
       for (std::size_t i = 0; i < n; ++i) {
         auto& g = grains_[i];
         const auto& prev = stage_velocity_[stage - 1][i];
