@@ -25,9 +25,6 @@ struct GranularPlate::Newmark {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   };
   std::list<Factor> factors;  // most recently used first
-  bool started = false;
-  std::vector<double> acceleration;                  // the plate's, converged, at the step's start
-  std::vector<double> contact_conservative, contact_friction;  // forces on the plate there
 };
 
 struct GranularPlate::GrainRates {
@@ -55,25 +52,22 @@ void GranularPlate::make_newmark() {
   newmark_->stiffness.setFromTriplets(entries.begin(), entries.end());
 }
 
-void GranularPlate::restart_newmark() {
-  if (newmark_) newmark_->started = false;
-}
+void GranularPlate::restart_newmark() { newmark_started_ = false; }
 
 // The plate's acceleration from M a = F_contact - K u - C v (lumped M), and the contact forces.
 void GranularPlate::start_newmark() {
-  auto& nm = *newmark_;
   compute_forces(0.0, false);
-  nm.contact_conservative = f_conservative_;
-  nm.contact_friction = f_friction_;
+  contact_conservative_ = f_conservative_;
+  contact_friction_ = f_friction_;
   std::vector<double> elastic(u_.size(), 0.0);
   plate_->add_elastic_forces(u_, elastic);
   const auto& mass = plate_->mass();
   const auto& damping = plate_->damping();
-  nm.acceleration.assign(u_.size(), 0.0);
+  newmark_acceleration_.assign(u_.size(), 0.0);
   for (std::size_t d = 0; d < u_.size(); ++d)
     if (!plate_->fixed()[d])
-      nm.acceleration[d] = (f_conservative_[d] + f_friction_[d] + elastic[d] - damping[d] * v_[d]) / mass[d];
-  nm.started = true;
+      newmark_acceleration_[d] = (f_conservative_[d] + f_friction_[d] + elastic[d] - damping[d] * v_[d]) / mass[d];
+  newmark_started_ = true;
 }
 
 // Grain accelerations and the powers of the non-conservative forces at time t, for the grain and
@@ -156,7 +150,7 @@ void GranularPlate::rk4_grains(const std::vector<Grain>& start, double t0, doubl
 double GranularPlate::step_newmark_rk4(double dt) {
   auto& nm = *newmark_;
   if (pairs_stale()) build_pairs();
-  if (!nm.started) start_newmark();
+  if (!newmark_started_) start_newmark();
   const auto& mass = plate_->mass();
   const auto& damping = plate_->damping();
   const auto& fixed = plate_->fixed();
@@ -184,7 +178,7 @@ double GranularPlate::step_newmark_rk4(double dt) {
 
   // Eqs. 21: x1 = x0 + dt v0 + dt^2/4 (a0 + a1), v1 = v0 + dt/2 (a0 + a1), (M + C dt/2 + K dt^2/4) a1
   // = F1 - K (x0 + dt v0 + dt^2/4 a0) - C (v0 + dt/2 a0).
-  const std::vector<double> x0 = u_, v0 = v_, a0 = nm.acceleration;
+  const std::vector<double> x0 = u_, v0 = v_, a0 = newmark_acceleration_;
   std::vector<double> predicted(n), predicted_v(n), elastic(n, 0.0);
   for (std::size_t d = 0; d < n; ++d) {
     predicted[d] = x0[d] + dt * v0[d] + 0.25 * dt * dt * a0[d];
@@ -193,7 +187,7 @@ double GranularPlate::step_newmark_rk4(double dt) {
   plate_->add_elastic_forces(predicted, elastic);  // -K x_predicted
   const std::vector<Grain> start = grains_;
   const double t0 = time_;
-  std::vector<double> force_c = nm.contact_conservative, force_f = nm.contact_friction;  // F^(1) = F_s
+  std::vector<double> force_c = contact_conservative_, force_f = contact_friction_;  // F^(1) = F_s
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(n));
   std::vector<double> x1(n), v1(n), a1(n);
   double works[3] = {0.0, 0.0, 0.0};
@@ -242,14 +236,14 @@ double GranularPlate::step_newmark_rk4(double dt) {
   for (std::size_t d = 0; d < n; ++d) {
     const double mean_v = 0.5 * (v0[d] + v1[d]);
     boundary_work_ += dt * damping[d] * mean_v * mean_v;
-    friction_work_ -= 0.5 * (nm.contact_friction[d] + force_f[d]) * (x1[d] - x0[d]);
+    friction_work_ -= 0.5 * (contact_friction_[d] + force_f[d]) * (x1[d] - x0[d]);
   }
   friction_work_ += works[0];
   dashpot_work_ += works[1];
   drive_work_ += works[2];
-  nm.acceleration = a1;
-  nm.contact_conservative = force_c;
-  nm.contact_friction = force_f;
+  newmark_acceleration_ = a1;
+  contact_conservative_ = force_c;
+  contact_friction_ = force_f;
   ++steps_;
   return dt;
 }

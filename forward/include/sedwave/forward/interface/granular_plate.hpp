@@ -256,8 +256,12 @@ class GranularPlate {
   double max_plate_contact_radius_ = 0.0;
 
   std::vector<Motion> stage_velocity_[4];  // newmark_rk4: each RK4 stage's grain velocities
-  struct Newmark;  // the factorisations, the plate's acceleration, the converged forces
+  // newmark_rk4: K and the factorisations, which depend on the plate and the step alone (copies
+  // share them), and this run's state: the plate's acceleration and the converged forces on it.
+  struct Newmark;
   std::shared_ptr<Newmark> newmark_;
+  bool newmark_started_ = false;
+  std::vector<double> newmark_acceleration_, contact_conservative_, contact_friction_;
   long iterations_ = 0;
   int most_iterations_ = 0;
   long factorisations_ = 0;
