@@ -25,6 +25,7 @@ sedwave_cli_case(interface.huge_iteration_abstol 1 [=[huge_iteration_abstol\.tom
 sedwave_cli_case(interface.reltol_without_newmark 1 [=[reltol_without_newmark\.toml:4: key 'run\.iteration_reltol': sets the newmark_rk4 scheme's iteration, and run\.scheme is velocity_verlet]=] interface ${INTERFACE_DATA}/reltol_without_newmark.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.edge_impulse_newmark 1 [=[edge_impulse_newmark\.toml:9: key 'run\.scheme': newmark_rk4 takes no pulse on the plate]=] interface ${INTERFACE_DATA}/edge_impulse_newmark.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.newmark_rk4_run 0 [=[newmark_rk4: [0-9]+ fixed-point iterations \([0-9.]+ a step, at most [0-9]+\), [0-9]+ factorisations]=] interface ${INTERFACE_DATA}/newmark_rk4.toml --out ${INTERFACE_OUT}/newmark_rk4.h5)
+sedwave_cli_case(interface.newmark_below_roundoff 1 [=[did not converge in 100 iterations at t = .*the iteration's tolerances \(0 N, 1e-15 relative\) lie below what round-off]=] interface ${INTERFACE_DATA}/newmark_below_roundoff.toml --out ${INTERFACE_OUT}/never.h5)
 
 # Bad input of every kind, each refused before the run with its cause (docs/interface.md, "Limits
 # and budgets"). Outputs: none may replace the scene or another output of the same run.

@@ -194,12 +194,13 @@ double GranularPlate::step_newmark_rk4(double dt) {
   int iteration = 0;
   for (bool converged = false; !converged;) {
     if (++iteration > control_.max_iterations) {
-      char text[400];
+      char text[600];
       std::snprintf(text, sizeof text,
                     "interface: the newmark_rk4 iteration of the forces on the plate did not converge in %d iterations "
                     "at t = %.6g s (step %.3g s): the step is beyond the paper's criteria (eqs. 29a,b) or their "
-                    "assumptions fail here; lower the tolerance",
-                    control_.max_iterations, t0, dt);
+                    "assumptions fail here (lower the step's tolerance), or the iteration's tolerances (%.3g N, "
+                    "%.3g relative) lie below what round-off lets the forces settle to (raise them)",
+                    control_.max_iterations, t0, dt, control_.abstol, control_.reltol);
       time_ = t0;
       throw std::runtime_error(text);
     }
