@@ -55,7 +55,8 @@ void apply_overrides(const InterfaceOptions& o, experiment::InterfaceScene& scen
     throw UsageError("--tolerance sets the adaptive step's theta, and this run has a fixed step (" +
                      std::string(o.fixed_step ? "--fixed-step" : "run.fixed_step in " + o.scene) + "): give one of them");
   if (o.speed && scene.drive.kind != experiment::InterfaceDrive::Kind::velocity)
-    throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene drives a force pulse");
+    throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene's drive.kind is " +
+                                (scene.drive.kind == experiment::InterfaceDrive::Kind::force ? "force" : "edge_impulse"));
   try {
     if (o.speed) experiment::override_speed(scene, *o.speed, "--speed");
     if (o.tolerance) experiment::override_tolerance(scene, *o.tolerance, "--tolerance");

@@ -18,6 +18,8 @@ sedwave_cli_case(interface.rigid_layers_run 0 [=[energy balance within [0-9.]+e-
 # The monolithic plate's edge impulse: a load beyond any solid, and a precompression with no beads.
 sedwave_cli_case(interface.huge_line_load 1 [=[huge_line_load\.toml:4: key 'drive\.line_load' = 1000000000000: accepted range \(0, 100000000\] N/m]=] interface ${INTERFACE_DATA}/huge_line_load.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.edge_impulse_precompression 1 [=[edge_impulse_precompression\.toml:6: key 'packing\.precompression': drive\.kind = "edge_impulse" strikes the plate alone]=] interface ${INTERFACE_DATA}/edge_impulse_precompression.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.edge_impulse_run 0 [=[uniform impulse of 20000 N/m for 1e-06 s on the plate's edge over x = 0\.00575 \.\. 0\.02075 m \(no beads\)]=] interface ${INTERFACE_DATA}/edge_impulse.toml --out ${INTERFACE_OUT}/edge_impulse.h5)
+sedwave_cli_case(interface.speed_with_edge_impulse 1 [=[--speed overrides a velocity drive. this scene's drive\.kind is edge_impulse]=] interface ${INTERFACE_DATA}/edge_impulse.toml --speed 1 --out ${INTERFACE_OUT}/never.h5)
 # The paper's scheme: a wrong name, tolerances out of range or without it, a pulse it cannot take, a tiny run.
 sedwave_cli_case(interface.bad_scheme 1 [=[bad_scheme\.toml:4: key 'run\.scheme': must be one of newmark_rk4, velocity_verlet]=] interface ${INTERFACE_DATA}/bad_scheme.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.tiny_iteration_reltol 1 [=[tiny_iteration_reltol\.toml:5: key 'run\.iteration_reltol' = 1e-20: accepted range \[1e-15, 0\.01\]]=] interface ${INTERFACE_DATA}/tiny_iteration_reltol.toml --out ${INTERFACE_OUT}/never.h5)
