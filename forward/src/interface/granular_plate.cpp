@@ -164,6 +164,8 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
   std::fill(v_.begin(), v_.end(), 0.0);
   time_ = 0.0;
   steps_ = 0;
+  iterations_ = factorisations_ = 0;
+  most_iterations_ = 0;
   friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
   max_plate_contact_radius_ = 0.0;
   refresh_forces();

@@ -153,8 +153,8 @@ class GranularPlate {
   void set_static_load(std::vector<int> grains, double force_x, double force_y);
   /// Brings the loaded packing and plate to rest: steps with every velocity scaled by
   /// exp(-dt/damping_time) after each step until the kinetic energy falls below `tolerance` times
-  /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step count
-  /// and the energy books, so that the run starts from the static state. Returns the steps taken;
+  /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step and
+  /// iteration counts and the energy books, so that the run starts from the static state. Returns the steps taken;
   /// throws std::runtime_error when the packing is not at rest after max_steps.
   long relax(double damping_time, double tolerance, long max_steps);
   /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
