@@ -10,7 +10,7 @@ system time); then, per scheme, the CPU time at which each error first falls bel
 1e-6 (interpolated in log-log between the runs that bracket it; "<" when the coarsest run is
 already below, "-" when the finest is not). With --hard, the same for the hard cases: k_s v = 1e3,
 steel beads on a plate 1000 times softer, beads 1000 times softer than the plate, a finer mesh
-(elements a quarter of the bead radius), and a precompressed chain. About 2 minutes, and with --hard
+(elements a quarter of the bead radius), and a precompressed chain. About 15 s, and with --hard
 about 25 minutes (Newmark-RK4 on the finer mesh is the most of it).
 
     bench/interface/scheme_error.py [SEDWAVE [OUT]] [--hard] [--only=NAME-PART]
