@@ -55,7 +55,8 @@ void apply_overrides(const InterfaceOptions& o, experiment::InterfaceScene& scen
     throw UsageError("--tolerance sets the adaptive step's theta, and this run has a fixed step (" +
                      std::string(o.fixed_step ? "--fixed-step" : "run.fixed_step in " + o.scene) + "): give one of them");
   if (o.speed && scene.drive.kind != experiment::InterfaceDrive::Kind::velocity)
-    throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene drives a force pulse");
+    throw std::invalid_argument(o.scene + ": --speed overrides a velocity drive; this scene's drive.kind is " +
+                                (scene.drive.kind == experiment::InterfaceDrive::Kind::force ? "force" : "edge_impulse"));
   try {
     if (o.speed) experiment::override_speed(scene, *o.speed, "--speed");
     if (o.tolerance) experiment::override_tolerance(scene, *o.tolerance, "--tolerance");
@@ -109,6 +110,11 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
                 "(no beads), %d x %d plate elements; %ld steps in %.2f s\n",
                 r.direct_from, r.direct_to, r.driven.size(), scene.drive.speed, scene.mesh.elements_x,
                 scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+  } else if (scene.drive.kind == experiment::InterfaceDrive::Kind::edge_impulse) {
+    std::printf("uniform impulse of %g N/m for %g s on the plate's edge over x = %.4g .. %.4g m (no beads), %d x %d "
+                "plate elements; %ld steps in %.2f s\n",
+                scene.drive.line_load, scene.drive.duration, r.direct_from, r.direct_to, scene.mesh.elements_x,
+                scene.mesh.elements_y, r.series.steps.back(), r.seconds);
   } else {
     std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
                 r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);
@@ -147,6 +153,10 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
   }
   std::printf("largest grain-plate contact radius %.3g m against element size %.3g m\n", r.max_contact_radius,
               r.element_size);
+  if (scene.recording.scheme == forward::interface::Scheme::newmark_rk4)
+    std::printf("newmark_rk4: %ld fixed-point iterations (%.3g a step, at most %d), %ld factorisations\n",
+                r.iterations, static_cast<double>(r.iterations) / static_cast<double>(r.series.steps.back()),
+                r.most_iterations, r.factorisations);
 }
 
 int run_interface_command(const InterfaceOptions& o) {
@@ -168,10 +178,13 @@ int run_interface_command(const InterfaceOptions& o) {
     std::printf("written to %s%s\n", o.out.c_str(), o.csv.empty() ? "" : (" and " + o.csv + "/*.csv").c_str());
   }
   // The element must be much larger than the contact patch: the Hertz modulus already holds the
-  // plate's local indentation (docs/interface.md, "The coupling").
+  // plate's local indentation, or the patch must fit its rigid layer (docs/interface.md, "The coupling").
   if (r.max_contact_radius > 0.5 * r.element_size) {
-    std::printf("flagged: the contact radius exceeds half the element size; the plate's local compliance is "
-                "counted twice\n");
+    std::printf(scene.contacts.plate_contact == forward::interface::PlateContactModel::rigid_layers
+                    ? "flagged: the contact radius exceeds half the element size; the contact patch is wider than "
+                      "its rigid layer\n"
+                    : "flagged: the contact radius exceeds half the element size; the plate's local compliance is "
+                      "counted twice\n");
     return kExitIncomplete;
   }
   // The beads' collective push can exceed the single strike the estimate checked before the run.

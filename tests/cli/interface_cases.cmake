@@ -11,6 +11,23 @@ sedwave_cli_case(interface.output_over_scene 2 [=[--out: output .*would overwrit
 sedwave_cli_case(interface.tiny_run 0 [=[largest share in the plate [0-9.]+. energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/tiny.h5)
 sedwave_cli_case(interface.precompression_needs_a_clamped_edge 1 [=[unsupported_precompression\.toml:13: key 'packing\.precompression': a static load needs a clamped plate edge]=] interface ${INTERFACE_DATA}/unsupported_precompression.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.direct_strike 0 [=[direct strike on the plate's edge over x = 0\.00575 \.\. 0\.02075 m with the energy of 3 beads]=] interface ${INTERFACE_DATA}/tiny.toml --direct --out ${INTERFACE_OUT}/direct.h5)
+# The paper's rigid-layer contact: a value outside the list, a bead between nodes, a tiny run.
+sedwave_cli_case(interface.bad_plate_contact 1 [=[bad_plate_contact\.toml:3: key 'plate\.contact': must be one of interpolated, rigid_layers]=] interface ${INTERFACE_DATA}/bad_plate_contact.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.rigid_layers_between_nodes 1 [=[rigid_layers_between_nodes\.toml:7: key 'plate\.contact': .*grain 0 at x = 0\.00575 m lies between the nodes at 0\.003 and 0\.006 m]=] interface ${INTERFACE_DATA}/rigid_layers_between_nodes.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.rigid_layers_run 0 [=[energy balance within [0-9.]+e-0[6-9] of the input]=] interface ${INTERFACE_DATA}/rigid_layers.toml --out ${INTERFACE_OUT}/rigid_layers.h5)
+# The monolithic plate's edge impulse: a load beyond any solid, and a precompression with no beads.
+sedwave_cli_case(interface.huge_line_load 1 [=[huge_line_load\.toml:4: key 'drive\.line_load' = 1000000000000: accepted range \(0, 100000000\] N/m]=] interface ${INTERFACE_DATA}/huge_line_load.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.edge_impulse_precompression 1 [=[edge_impulse_precompression\.toml:6: key 'packing\.precompression': drive\.kind = "edge_impulse" strikes the plate alone]=] interface ${INTERFACE_DATA}/edge_impulse_precompression.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.edge_impulse_run 0 [=[uniform impulse of 20000 N/m for 1e-06 s on the plate's edge over x = 0\.00575 \.\. 0\.02075 m \(no beads\)]=] interface ${INTERFACE_DATA}/edge_impulse.toml --out ${INTERFACE_OUT}/edge_impulse.h5)
+sedwave_cli_case(interface.speed_with_edge_impulse 1 [=[--speed overrides a velocity drive. this scene's drive\.kind is edge_impulse]=] interface ${INTERFACE_DATA}/edge_impulse.toml --speed 1 --out ${INTERFACE_OUT}/never.h5)
+# The paper's scheme: a wrong name, tolerances out of range or without it, a pulse it cannot take, a tiny run.
+sedwave_cli_case(interface.bad_scheme 1 [=[bad_scheme\.toml:4: key 'run\.scheme': must be one of newmark_rk4, velocity_verlet]=] interface ${INTERFACE_DATA}/bad_scheme.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.tiny_iteration_reltol 1 [=[tiny_iteration_reltol\.toml:5: key 'run\.iteration_reltol' = 1e-20: accepted range \[1e-15, 0\.01\]]=] interface ${INTERFACE_DATA}/tiny_iteration_reltol.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_iteration_abstol 1 [=[huge_iteration_abstol\.toml:5: key 'run\.iteration_abstol' = 1000000000: accepted range \[0, 1000000\] N]=] interface ${INTERFACE_DATA}/huge_iteration_abstol.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.reltol_without_newmark 1 [=[reltol_without_newmark\.toml:4: key 'run\.iteration_reltol': sets the newmark_rk4 scheme's iteration, and run\.scheme is velocity_verlet]=] interface ${INTERFACE_DATA}/reltol_without_newmark.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.edge_impulse_newmark 1 [=[edge_impulse_newmark\.toml:9: key 'run\.scheme': newmark_rk4 takes no pulse on the plate]=] interface ${INTERFACE_DATA}/edge_impulse_newmark.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.newmark_rk4_run 0 [=[newmark_rk4: [0-9]+ fixed-point iterations \([0-9.]+ a step, at most [0-9]+\), [0-9]+ factorisations]=] interface ${INTERFACE_DATA}/newmark_rk4.toml --out ${INTERFACE_OUT}/newmark_rk4.h5)
+sedwave_cli_case(interface.newmark_below_roundoff 1 [=[did not converge in 100 iterations at t = .*the iteration's tolerances \(0 N, 1e-15 relative\) lie below what round-off]=] interface ${INTERFACE_DATA}/newmark_below_roundoff.toml --out ${INTERFACE_OUT}/never.h5)
 
 # Bad input of every kind, each refused before the run with its cause (docs/interface.md, "Limits
 # and budgets"). Outputs: none may replace the scene or another output of the same run.

@@ -50,6 +50,24 @@ double arrival_time(const std::vector<double>& t, const std::vector<double>& v, 
   return nan;
 }
 
+/// The consistent nodal forces of a uniform load `q` per unit length along y on the top edge over
+/// [x0, x1]: q times the integral of each node's linear shape function over the loaded part of its
+/// segments (an interior node of a fully loaded span gets q a, an end node q a / 2).
+std::vector<double> edge_line_load(const plate::ElasticPlate& p, double x0, double x1, double q) {
+  std::vector<double> f(static_cast<std::size_t>(p.dof_count()), 0.0);
+  const double a = p.element_width();
+  const int j = p.nodes_y() - 1;
+  for (int i = 0; i + 1 < p.nodes_x(); ++i) {
+    // The loaded part of segment i in its coordinate xi = (x - x_i)/a, in [0, 1].
+    const double s = std::clamp((x0 - i * a) / a, 0.0, 1.0), e = std::clamp((x1 - i * a) / a, 0.0, 1.0);
+    if (!(e > s)) continue;
+    const double right = 0.5 * (e * e - s * s);  // integral of xi
+    f[static_cast<std::size_t>(2 * p.node(i, j) + 1)] += q * a * ((e - s) - right);
+    f[static_cast<std::size_t>(2 * p.node(i + 1, j) + 1)] += q * a * right;
+  }
+  return f;
+}
+
 /// One Hertz contact at the run's peak: the overlap its strike (kinetic energy of approach at
 /// `speed`) or a static `force` reaches, whichever is larger, and its limits.
 struct PeakContact {
@@ -108,14 +126,14 @@ InterfaceEstimate estimate_interface_run(const InterfaceScene& scene) {
   const double m = (4.0 / 3.0) * std::numbers::pi * r * r * r * scene.packing.density;
   const double rotation = scene.contacts.rotation ? r * r / (0.4 * m * r * r) : 0.0;  // a^2/I with a = r
   double travel = std::numeric_limits<double>::infinity();
-  if (!scene.drive.direct) {
+  if (!scene.drive.direct && scene.drive.kind != InterfaceDrive::Kind::edge_impulse) {
     const auto& g = scene.grain_material;
     const bool strike = scene.drive.kind == InterfaceDrive::Kind::velocity;
     const double speed = strike ? scene.drive.speed : 0.0;
     const double force = std::max(strike ? 0.0 : scene.drive.peak, scene.packing_load);
     const double edge_mass = 0.5 * pm.density * pm.thickness * a * b;  // a top-edge node's
     const PeakContact plate_contact =
-        peak_contact(hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, pm.youngs_modulus, pm.poisson_ratio), r,
+        peak_contact(interface::grain_plate_modulus(g, pm, scene.contacts.plate_contact), r,
                      1.0 / m + 1.0 / edge_mass, 1.0 / m + 1.0 / edge_mass + rotation, omega2, speed, force,
                      scene.contacts);
     const PeakContact grain_contact =
@@ -148,7 +166,7 @@ void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimat
   };
   const std::string cause = scene.drive.kind == InterfaceDrive::Kind::velocity
                                 ? "the strike at " + text(scene.drive.speed) + " m/s (drive.speed, --speed)"
-                                : "the force of " + text(scene.drive.peak) + " N (drive.peak)";
+                                : "the force of " + text(scene.drive.peak) + " N (drive.peak)";  // edge_impulse: no bead
   const std::string load = scene.packing_load > 0.0 ? " and the precompression (packing.precompression)" : "";
   const double r = scene.packing.radius;
   if (e.peak_overlap > kMaxOverlapFraction * r) {
@@ -164,7 +182,8 @@ void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimat
                                 text(0.5 * t) + " m): the plane-stress plate cannot carry such a contact "
                                 "(docs/interface.md, \"The coupling\")");
   }
-  if (scene.recording.fixed_step > e.plate_limit) {
+  // Average-acceleration Newmark is unconditionally stable: only the explicit plate has this limit.
+  if (scene.recording.scheme == interface::Scheme::velocity_verlet && scene.recording.fixed_step > e.plate_limit) {
     throw std::invalid_argument("interface: the fixed step " + text(scene.recording.fixed_step) +
                                 " s (run.fixed_step, --fixed-step) exceeds the plate's stability limit 2/omega_max = " +
                                 text(e.plate_limit) + " s: the explicit integration would blow up; use at most that");
@@ -192,20 +211,24 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
   if (scene.drive.direct && scene.drive.kind != InterfaceDrive::Kind::velocity)
     throw std::invalid_argument("interface: a direct strike takes a velocity drive's energy");
   double strike_energy = 0.0;
-  if (scene.drive.direct) {
+  const bool beadless = scene.drive.direct || scene.drive.kind == InterfaceDrive::Kind::edge_impulse;
+  if (beadless) {
     out.direct_from = std::numeric_limits<double>::infinity();
     out.direct_to = -out.direct_from;
     for (const int g : out.driven) {
       const auto& b = grains[static_cast<std::size_t>(g)];
-      strike_energy += 0.5 * b.mass * scene.drive.speed * scene.drive.speed;
+      if (scene.drive.direct) strike_energy += 0.5 * b.mass * scene.drive.speed * scene.drive.speed;
       out.direct_from = std::min(out.direct_from, b.x - b.radius);
       out.direct_to = std::max(out.direct_to, b.x + b.radius);
     }
     grains.clear();
   }
-  interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts,
-                               interface::StepControl{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
-                                                      scene.recording.fixed_step});
+  interface::StepControl control{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
+                                 scene.recording.fixed_step};
+  control.scheme = scene.recording.scheme;
+  control.reltol = scene.recording.iteration_reltol;
+  control.abstol = scene.recording.iteration_abstol;
+  interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts, control);
   double static_energy = 0.0;
   if (scene.packing_load > 0.0) {
     // Static precompression: the whole free row pushed towards the plate, relaxed to rest first.
@@ -228,6 +251,9 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
     const double speed = std::sqrt(2.0 * strike_energy / mass);
     for (const std::size_t d : struck) run.plate_velocity_mutable()[d] = -speed;
     run.refresh_forces();
+  } else if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse) {
+    run.set_plate_pulse({edge_line_load(*run.plate(), out.direct_from, out.direct_to, -scene.drive.line_load),
+                         scene.drive.duration});
   } else if (scene.drive.kind == InterfaceDrive::Kind::velocity) {
     for (const int g : out.driven) run.grains_mutable()[static_cast<std::size_t>(g)].vy = -scene.drive.speed;
     run.refresh_forces();
@@ -343,6 +369,9 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
     out.near_impact_share = near / std::max(out.input_energy, 1e-300);
   }
   out.max_contact_radius = run.max_plate_contact_radius();
+  out.iterations = run.iterations();
+  out.most_iterations = run.most_iterations();
+  out.factorisations = run.factorisations();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -382,6 +411,10 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     io::write_attribute(file, "max_plate_contact_radius", r.max_contact_radius);
     io::write_attribute(file, "element_size", r.element_size);
     io::write_attribute(file, "wall_seconds", r.seconds);
+    // newmark_rk4: the fixed-point iterations in all and the most in one step, the factorisations.
+    io::write_attribute(file, "fixed_point_iterations", static_cast<double>(r.iterations));
+    io::write_attribute(file, "most_fixed_point_iterations_in_a_step", static_cast<double>(r.most_iterations));
+    io::write_attribute(file, "factorisations", static_cast<double>(r.factorisations));
     const auto& s = r.series;
     io::Handle ts = io::create_group(file, "time_series");
     write_with_unit(ts, "time", s.time, "s");

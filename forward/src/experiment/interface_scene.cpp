@@ -52,6 +52,9 @@ void read_plate(Section s, InterfaceScene& scene) {
   mesh.length_y = s.number("length_y", mesh.length_y, kSize);
   mesh.elements_x = s.integer<int>("elements_x", mesh.elements_x, kCount);
   mesh.elements_y = s.integer<int>("elements_y", mesh.elements_y, kCount);
+  scene.contacts.plate_contact = s.choice("contact", "interpolated", {"interpolated", "rigid_layers"}) == "rigid_layers"
+                                     ? interface::PlateContactModel::rigid_layers
+                                     : interface::PlateContactModel::interpolated;
   Section edges = s.sub("edges");
   scene.edges.top = edge(edges, "top", scene.edges.top);
   scene.edges.bottom = edge(edges, "bottom", scene.edges.bottom);
@@ -110,10 +113,15 @@ void read_contact(Section s, InterfaceScene& scene) {
 
 void read_drive(Section s, InterfaceScene& scene) {
   auto& d = scene.drive;
-  const bool force = s.choice("kind", "velocity", {"velocity", "force"}) == "force";
-  d.kind = force ? InterfaceDrive::Kind::force : InterfaceDrive::Kind::velocity;
-  if (force) {
+  const std::string kind = s.choice("kind", "velocity", {"velocity", "force", "edge_impulse"});
+  d.kind = kind == "force" ? InterfaceDrive::Kind::force
+                           : (kind == "edge_impulse" ? InterfaceDrive::Kind::edge_impulse : InterfaceDrive::Kind::velocity);
+  if (d.kind == InterfaceDrive::Kind::force) {
     d.peak = s.number_value(s.at("peak"), s.name("peak"), Range::above(0.0, 1e6, "N"));
+    d.duration = s.number_value(s.at("duration"), s.name("duration"), kRunTime);
+  } else if (d.kind == InterfaceDrive::Kind::edge_impulse) {
+    // Up to 1e8 N/m: 2e10 Pa under a 5 mm plate, beyond any solid's strength (the plate is linear).
+    d.line_load = s.number_value(s.at("line_load"), s.name("line_load"), Range::above(0.0, 1e8, "N/m"));
     d.duration = s.number_value(s.at("duration"), s.name("duration"), kRunTime);
   } else {
     d.speed = s.number("speed", d.speed, strike_speed_range());
@@ -142,6 +150,16 @@ void read_recording(Section s, InterfaceScene& scene) {
   r.probe_depth = s.number("probe_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
   r.line_depth = s.number("line_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
   r.arrival_fraction = s.number("arrival_fraction", r.arrival_fraction, Range::open(0.0, 1.0));
+  r.scheme = s.choice("scheme", "velocity_verlet", {"velocity_verlet", "newmark_rk4"}) == "newmark_rk4"
+                 ? interface::Scheme::newmark_rk4
+                 : interface::Scheme::velocity_verlet;
+  // Tolerances of the fixed point: below round-off's 1e-16 the iteration cannot stop, above 1e-2 it
+  // is no iteration; a force of 1e6 N is the largest drive a scene takes.
+  r.iteration_reltol = s.number("iteration_reltol", r.iteration_reltol, Range::closed(1e-15, 1e-2));
+  r.iteration_abstol = s.number("iteration_abstol", r.iteration_abstol, Range::closed(0.0, 1e6, "N"));
+  if (r.scheme != interface::Scheme::newmark_rk4 && (s.has("iteration_reltol") || s.has("iteration_abstol")))
+    s.fail_key(s.has("iteration_reltol") ? "iteration_reltol" : "iteration_abstol",
+               "sets the newmark_rk4 scheme's iteration, and run.scheme is velocity_verlet");
   s.finish();
 }
 
@@ -151,11 +169,30 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   top.allow_only({"plate", "packing", "contact", "drive", "run"});
   read_plate(top.sub("plate"), scene);
   read_packing(top.sub("packing"), scene);
+  if (scene.contacts.plate_contact == interface::PlateContactModel::rigid_layers) {
+    // The beads that can touch the plate (within the neighbour list's skin, 0.2 r) sit over nodes:
+    // those of the row on the plate, or of the chains' lowest layer (at most 1e5 beads to place).
+    interface::HexPacking lowest = scene.packing;
+    (lowest.orientation == interface::HexOrientation::rows_parallel ? lowest.rows : lowest.columns) = 1;
+    try {
+      interface::check_grains_over_nodes(interface::make_hex_packing(lowest), scene.mesh.length_x / scene.mesh.elements_x,
+                                         scene.mesh.length_x, 0.2 * scene.packing.radius);
+    } catch (const std::invalid_argument& e) {
+      top.sub("plate").fail_key("contact", std::string(e.what()).substr(std::string("interface: ").size()) +
+                                               " (the element width is plate.length_x / plate.elements_x; the beads "
+                                               "sit at packing.x_offset + radius + k (2 radius + gap))");
+    }
+  }
   read_contact(top.sub("contact"), scene);
   read_drive(top.sub("drive"), scene);
   if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");
   read_recording(top.sub("run"), scene);
-  if (scene.drive.kind == InterfaceDrive::Kind::force && scene.drive.duration > scene.recording.duration) {
+  if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.recording.scheme == interface::Scheme::newmark_rk4)
+    top.sub("run").fail_key("scheme", "newmark_rk4 takes no pulse on the plate (drive.kind = \"edge_impulse\"): its load "
+                                      "at the step's ends would not deliver a rectangular pulse's impulse");
+  if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
+    top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
+  if (scene.drive.kind != InterfaceDrive::Kind::velocity && scene.drive.duration > scene.recording.duration) {
     Section drive = top.sub("drive");
     drive.fail_key("duration", "the pulse (" + io::shortest(scene.drive.duration) + " s) outlasts the run (run.duration = " +
                                    io::shortest(scene.recording.duration) + " s): most of its work would never be done");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -34,6 +35,29 @@ double oscillator_limit(double omega_squared, double beta) {
   return denominator > 0.0 ? 4.0 / denominator : inf;
 }
 
+double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate, PlateContactModel model) {
+  if (model == PlateContactModel::rigid_layers)
+    return grain.youngs_modulus / (1.0 - grain.poisson_ratio * grain.poisson_ratio);
+  return hertz_effective_modulus(grain.youngs_modulus, grain.poisson_ratio, plate.youngs_modulus, plate.poisson_ratio);
+}
+
+void check_grains_over_nodes(const std::vector<Grain>& grains, double element_width, double length_x, double reach) {
+  const double a = element_width;
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const auto& g = grains[i];
+    if (!(g.y - g.radius < reach) || g.x < 0.0 || g.x > length_x) continue;
+    const double offset = g.x / a - std::round(g.x / a);
+    if (std::abs(offset) <= 1e-6) continue;
+    const double left = a * std::floor(g.x / a);
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "interface: the rigid-layer contact acts at the plate's nodes, and grain %zu at x = %.6g m lies "
+                  "between the nodes at %.6g and %.6g m: place every grain that can touch the plate over a node",
+                  i, g.x, left, left + a);
+    throw std::invalid_argument(text);
+  }
+}
+
 double StepLimits::tightest() const { return std::min({plate, hertz, friction}); }
 
 GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& grain_material,
@@ -49,8 +73,7 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
                                            grain_material.youngs_modulus, grain_material.poisson_ratio);
   if (plate_) {
     const auto& pm = plate_->material();
-    plate_modulus_ = hertz_effective_modulus(grain_material.youngs_modulus, grain_material.poisson_ratio,
-                                             pm.youngs_modulus, pm.poisson_ratio);
+    plate_modulus_ = grain_plate_modulus(grain_material, pm, contacts.plate_contact);
     u_.assign(static_cast<std::size_t>(plate_->dof_count()), 0.0);
     v_ = u_;
   }
@@ -63,6 +86,8 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   }
   if (!grains_.empty()) mean_radius /= static_cast<double>(grains_.size());
   skin_ = 0.2 * mean_radius;
+  if (plate_ && contacts.plate_contact == PlateContactModel::rigid_layers)
+    check_grains_over_nodes(grains_, plate_->element_width(), plate_->mesh().length_x, skin_);
   const std::size_t n = grains_.size();
   conservative_.resize(n);
   friction_.resize(n);
@@ -70,6 +95,12 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   drive_.resize(n);
   build_pairs();
   compute_forces(0.0);
+  if (control.scheme == Scheme::newmark_rk4) {
+    if (!plate_) throw std::invalid_argument("interface: the newmark_rk4 scheme needs a plate");
+    if (!(control.reltol > 0.0 && control.abstol >= 0.0 && control.max_iterations >= 1))
+      throw std::invalid_argument("interface: newmark_rk4 needs reltol > 0, abstol >= 0 and max_iterations >= 1");
+    make_newmark();
+  }
 }
 
 void GranularPlate::set_drive(ForcePulse pulse) {
@@ -91,6 +122,22 @@ void GranularPlate::set_static_load(std::vector<int> grains, double force_x, dou
   compute_forces(0.0);
 }
 
+void GranularPlate::set_plate_pulse(PlatePulse pulse) {
+  if (!plate_) throw std::invalid_argument("interface: a plate pulse needs a plate");
+  if (control_.scheme == Scheme::newmark_rk4)
+    throw std::invalid_argument("interface: the newmark_rk4 scheme takes no pulse on the plate (its load at the step's "
+                                "ends would not deliver a rectangular pulse's impulse)");
+  if (pulse.forces.size() != u_.size())
+    throw std::invalid_argument("interface: a plate pulse needs one force per degree of freedom");
+  if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: plate pulse duration must be > 0");
+  plate_pulse_ = std::move(pulse);
+}
+
+double GranularPlate::plate_pulse_time(double t0, double t1) const {
+  if (!plate_pulse_) return 0.0;
+  return std::max(0.0, std::min(t1, plate_pulse_->duration) - std::max(t0, 0.0));
+}
+
 long GranularPlate::relax(double damping_time, double tolerance, long max_steps) {
   if (!(damping_time > 0.0)) throw std::invalid_argument("interface: relaxation damping time must be > 0");
   const auto kinetic = [&] {
@@ -104,6 +151,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     const double keep = std::exp(-dt / damping_time);
     for (auto& g : grains_) g.vx *= keep, g.vy *= keep, g.spin *= keep;
     for (auto& v : v_) v *= keep;
+    restart_newmark();
     const double now = kinetic();
     largest = std::max(largest, now);
     if (n > 10 && now < tolerance * largest) break;
@@ -116,6 +164,8 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
   std::fill(v_.begin(), v_.end(), 0.0);
   time_ = 0.0;
   steps_ = 0;
+  iterations_ = factorisations_ = 0;
+  most_iterations_ = 0;
   friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
   max_plate_contact_radius_ = 0.0;
   refresh_forces();
@@ -123,6 +173,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
 }
 
 void GranularPlate::refresh_forces() {
+  restart_newmark();
   build_pairs();
   compute_forces(0.0);
 }
@@ -232,7 +283,7 @@ void GranularPlate::add_plate_contact(int index) {
   auto& g = grains_[static_cast<std::size_t>(index)];
   const auto& mesh = plate_->mesh();
   if (g.x < 0.0 || g.x > mesh.length_x) return;  // beyond the plate's ends
-  const auto e = plate_->top_edge_point(g.x);
+  const auto e = contact_point(g.x);
   const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
   const double edge_y = e.shape_left * u_[ya] + e.shape_right * u_[yb];
   const double overlap = g.radius - (g.y - edge_y);
@@ -240,6 +291,7 @@ void GranularPlate::add_plate_contact(int index) {
   // Hertz sphere on a flat: R* = r. Force = -grad of (2/5) k delta^(5/2) with
   // delta = r - y_g + sum_a N_a(x_g) u_a: on the grain +F_n along y and -F_n du_y/dx along x (the
   // tilt of the deformed edge), on node a -F_n N_a along y.
+  // With rigid layers e names one node at weight 1: no tilt, and everything acts on that node.
   const double contact_radius = std::sqrt(g.radius * overlap);
   const double fn = (4.0 / 3.0) * plate_modulus_ * contact_radius * overlap;
   const double slope = (u_[yb] - u_[ya]) / plate_->element_width();
@@ -269,11 +321,16 @@ void GranularPlate::add_plate_contact(int index) {
   plate_tangential_force_ -= ft;
 }
 
+plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
+  return contacts_.plate_contact == PlateContactModel::rigid_layers ? plate_->top_edge_node(x)
+                                                                    : plate_->top_edge_point(x);
+}
+
 // Velocity-dependent forces (friction, dashpots) at t + dt see the half-step velocity advanced by the
 // old acceleration, v(t + dt/2) + (dt/2) a(t), which is v(t + dt) to O(dt^2). With the half-step
 // velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
 // frictional run (measured: order 1.2 in the tolerance instead of 2).
-void GranularPlate::compute_forces(double half_step) {
+void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   seen_.resize(grains_.size());
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
@@ -301,7 +358,7 @@ void GranularPlate::compute_forces(double half_step) {
   if (plate_) {
     f_conservative_.assign(u_.size(), 0.0);
     f_friction_.assign(u_.size(), 0.0);
-    plate_->add_elastic_forces(u_, f_conservative_);
+    if (with_elastic) plate_->add_elastic_forces(u_, f_conservative_);
     for (std::size_t g = 0; g < grains_.size(); ++g) add_plate_contact(static_cast<int>(g));
   }
   for (const int g : loaded_) {
@@ -340,10 +397,13 @@ void GranularPlate::kick(double h, bool second_half) {
   const auto& mass = plate_->mass();
   const auto& damping = plate_->damping();
   const auto& fixed = plate_->fixed();
+  // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
+  const double on = second_half ? plate_pulse_time(time_ - h, time_) : plate_pulse_time(time_, time_ + h);
   for (std::size_t d = 0; d < u_.size(); ++d) {
     if (fixed[d]) continue;
     const double v = v_[d];
-    const double force = f_conservative_[d] + f_friction_[d];
+    const double pulse = on > 0.0 ? plate_pulse_->forces[d] * on / h : 0.0;  // its mean force over the half kick
+    const double force = f_conservative_[d] + f_friction_[d] + pulse;
     // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
     // full step multiplies a free dashpot's velocity by (1 - h c/m)/(1 + h c/m), stable for any c.
     double dashpot_velocity = v;
@@ -356,6 +416,7 @@ void GranularPlate::kick(double h, bool second_half) {
     const double mean = 0.5 * (v + v_[d]);
     boundary_work_ += h * damping[d] * dashpot_velocity * mean;
     friction_work_ -= h * f_friction_[d] * mean;
+    drive_work_ += h * pulse * mean;
   }
 }
 
@@ -418,9 +479,17 @@ StepLimits GranularPlate::current_limits() const {
   if (!plate_) return limits;
   const auto& mass = plate_->mass();
   double plate_scale = 0.0, plate_largest = 0.0, plate_beta = 0.0;
+  // newmark_rk4: the paper's criteria (eqs. 29a,b) with T (M + K dt^2/4)^-1 T^T bounded by sum N_a^2/M_a
+  // (K is positive semi-definite) and cosh^-2 by 1: |lambda_1| < 1 is dt < 2/omega with
+  // omega^2 = (3/2) k delta^(1/2) sum N_a^2/M_a, |lambda_2| < 1 is dt < 2/beta with
+  // beta = mu k_s |N| sum N_a^2/M_a. The paper neglects the granule's own sensitivity; a bead lighter
+  // than its node then blows up at that step (docs/interface.md, "Two schemes"), so the bead's
+  // inverse mass (and r^2/I along the edge) is added to sum N_a^2/M_a.
+  const bool newmark = control_.scheme == Scheme::newmark_rk4;
+  double newmark_omega2 = 0.0;
   for (const auto& g : grains_) {
     if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;
-    const auto e = plate_->top_edge_point(g.x);
+    const auto e = contact_point(g.x);
     const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
     const double overlap = g.radius - (g.y - (e.shape_left * u_[ya] + e.shape_right * u_[yb]));
     if (overlap < -skin_) continue;
@@ -431,6 +500,14 @@ StepLimits GranularPlate::current_limits() const {
         e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
     const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
+    if (newmark) {
+      const double reach = std::pow(reach_energy(overlap, vn, 1.0 / inverse_m, k), 0.2);  // delta_max^(1/2)
+      newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * inverse_m);
+      const double inverse_mt = inverse_m + (contacts_.rotation ? g.radius * g.radius / g.inertia : 0.0);
+      if (mu_ks > 0.0 && overlap > 0.0)
+        plate_beta = std::max(plate_beta, mu_ks * k * overlap * std::sqrt(overlap) * inverse_mt);
+      continue;
+    }
     if (plate_scale == 0.0) plate_scale = k * inverse_m;
     const double ratio = k * inverse_m / plate_scale;
     plate_largest =
@@ -441,6 +518,11 @@ StepLimits GranularPlate::current_limits() const {
       if (contacts_.rotation) inverse_mt += g.radius * g.radius / g.inertia;  // 2m/7 on a rigid wall
       plate_beta = std::max(plate_beta, mu_ks * fn * inverse_mt);
     }
+  }
+  if (newmark) {
+    if (newmark_omega2 > 0.0) limits.hertz = std::min(limits.hertz, oscillator_limit(newmark_omega2, 0.0));
+    if (plate_beta > 0.0) limits.friction = std::min(limits.friction, oscillator_limit(0.0, plate_beta));
+    return limits;
   }
   // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
   if (plate_largest > 0.0) {
@@ -461,6 +543,13 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
                         : std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
+  if (control_.scheme == Scheme::newmark_rk4) {
+    // On a ladder of steps theta T_FE 2^-k (unless fixed or cut to land on a time), so that the
+    // factorisation of M + C dt/2 + K dt^2/4 serves many steps.
+    const double ladder = control_.tolerance * limits_.plate;
+    const bool free_step = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
+    return step_newmark_rk4(free_step ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
+  }
   kick(0.5 * dt, false);
   drift(dt);
   time_ += dt;

@@ -161,4 +161,11 @@ ElasticPlate::EdgePoint ElasticPlate::top_edge_point(double x) const {
   return {node(column, j), node(column + 1, j), 1.0 - xi, xi};
 }
 
+ElasticPlate::EdgePoint ElasticPlate::top_edge_node(double x) const {
+  const double nearest = std::round(x / a_);  // clamped as a double, as above
+  const int i = nearest >= 0.0 ? static_cast<int>(std::min(nearest, static_cast<double>(mesh_.elements_x))) : 0;
+  const int n = node(i, mesh_.elements_y);
+  return {n, n, 1.0, 0.0};
+}
+
 }  // namespace sedwave::forward::plate

@@ -45,6 +45,9 @@ struct InterfaceRun {
   /// end, as a fraction of the input: how much stays localised near the impact.
   double near_impact_share = 0.0;
   double seconds = 0.0;                        ///< wall-clock time of the run
+  long iterations = 0;       ///< newmark_rk4: fixed-point iterations in all (0: velocity_verlet)
+  int most_iterations = 0;   ///< newmark_rk4: the most in one step
+  long factorisations = 0;   ///< newmark_rk4: factorisations of M + C dt/2 + K dt^2/4
 };
 
 /// What a run will cost and how hard it strikes, from closed forms before anything is allocated

@@ -18,13 +18,16 @@ class InterfaceSceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The impulse on the packing's free end (its row farthest from the plate), towards the plate.
+/// The impulse on the packing's free end (its row farthest from the plate), towards the plate; or,
+/// edge_impulse, a uniform line load on the plate's top edge under the driven beads' span (no beads:
+/// the monolithic plate), into the plate, held for `duration`.
 struct InterfaceDrive {
-  enum class Kind { velocity, force };
+  enum class Kind { velocity, force, edge_impulse };
   Kind kind = Kind::velocity;
   double speed = 1.0;       ///< velocity: initial speed of the driven grains [m/s]
   double peak = 0.0;        ///< force: peak of the half-sine on each driven grain [N]
-  double duration = 0.0;    ///< force: its duration [s]
+  double duration = 0.0;    ///< force, edge_impulse: its duration [s]
+  double line_load = 0.0;   ///< edge_impulse: the load per unit length of edge [N/m]
   int width = 0;            ///< driven grains of the free row, centred on the plate (0: the whole row)
   /// The reference for the delay: no beads; the plate's top-edge nodes under the driven beads' span
   /// start with one speed towards the plate's inside, carrying the strike's kinetic energy.
@@ -41,6 +44,9 @@ struct InterfaceRecording {
   double probe_depth = 0.0;      ///< depth of the probes below the interface [m] (0: the interface)
   double line_depth = 0.0;       ///< depth of the recorded line of nodes [m] (the wavenumber analysis)
   double arrival_fraction = 0.1; ///< arrival: first time |v| reaches this fraction of its maximum
+  interface::Scheme scheme = interface::Scheme::velocity_verlet;
+  double iteration_reltol = 1e-10;  ///< newmark_rk4: the fixed point's relative tolerance
+  double iteration_abstol = 1e-9;   ///< newmark_rk4: and its absolute one [N]
 };
 
 struct InterfaceScene {

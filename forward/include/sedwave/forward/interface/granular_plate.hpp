@@ -11,8 +11,15 @@
 // force is the gradient of the Hertz energy (2/5) k delta^(5/2), k = (4/3) E*_gp sqrt(r), so it goes
 // back to the nodes with the same shape functions, equal and opposite. Friction acts along x with the
 // edge's interpolated velocity. Units: any consistent set (SI in scenes).
+//
+// The other grain-plate contact, PlateContactModel::rigid_layers, is Wang, Zhang & Vakakis's (Granular
+// Matter 23, 21 (2021), appendix 1, eqs. 19a,b): a flat, massless rigid layer at each top-edge node
+// (as wide as an element), moving with its node; the grain's overlap is r - (y_g - u_y(node)), the
+// modulus E_b/(1 - nu_b^2) of the grain alone (the plate's compliance is not in the law), R* = r, and
+// the normal force, the friction and their reactions act on that one node.
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -26,12 +33,34 @@ struct GrainMaterial {
   double poisson_ratio;
 };
 
+/// How a grain presses on the plate (the header's comment): the deforming edge interpolated by its
+/// shape functions with the two bodies' Hertz modulus, or the paper's rigid layers at the nodes.
+enum class PlateContactModel { interpolated, rigid_layers };
+
 struct InterfaceContacts {
   double friction = 0.0;             ///< mu, grain-grain and grain-plate (0: frictionless)
   double tanh_velocity_scale = 1e3;  ///< k_s [time/length] of Coulomb-tanh
   double restitution = 1.0;          ///< grain-grain Hertz-Tsuji dashpot from e_n (1: none)
   bool rotation = true;              ///< integrate spins (false: spins stay zero)
+  PlateContactModel plate_contact = PlateContactModel::interpolated;
 };
+
+/// The Hertz modulus E* of a grain-plate contact: 1/E* = (1 - nu_g^2)/E_g + (1 - nu_p^2)/E_p
+/// (interpolated), or E_g/(1 - nu_g^2) (rigid_layers: the layer is rigid).
+[[nodiscard]] double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate,
+                                         PlateContactModel model);
+
+/// rigid_layers only: throws std::invalid_argument naming the first grain within `reach` of the
+/// undeformed edge (y - r < reach) and over the plate (0 <= x <= length_x) whose centre is not over a
+/// top-edge node (nodes every element_width from x = 0; to 1e-6 of an element).
+void check_grains_over_nodes(const std::vector<Grain>& grains, double element_width, double length_x, double reach);
+
+/// How grains and plate advance together. velocity_verlet: one explicit step for both (the default).
+/// newmark_rk4: the paper's (appendix 1, eqs. 15-18): the plate by average-acceleration Newmark
+/// (M + C dt/2 + K dt^2/4 factorised by a sparse LDL^T), its motion interpolated over the step
+/// (eq. 16), the grains by RK4 against that motion, and the forces on the plate iterated to a fixed
+/// point within each step; its grain-plate limits are eqs. 29a,b (docs/interface.md, "Two schemes").
+enum class Scheme { velocity_verlet, newmark_rk4 };
 
 /// dt = tolerance * min(the stability limits of the FE mesh, of every Hertz contact and of every
 /// Coulomb-tanh contact), each evaluated from the state at the start of the step.
@@ -40,6 +69,13 @@ struct StepControl {
   double max_step = std::numeric_limits<double>::infinity();
   /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
   double fixed_step = 0.0;
+  Scheme scheme = Scheme::velocity_verlet;
+  /// newmark_rk4: a force on the plate has converged when its change in one iteration is below
+  /// abstol [force] or below reltol times itself (eqs. 18a,b), every one of them; at most
+  /// max_iterations, else the step throws std::runtime_error.
+  double abstol = 1e-9;
+  double reltol = 1e-10;
+  int max_iterations = 100;
 };
 
 /// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
@@ -66,6 +102,14 @@ struct ForcePulse {
   double duration = 0.0;
   double direction_x = 0.0;
   double direction_y = -1.0;
+};
+
+/// A rectangular pulse of forces on the plate's degrees of freedom (`forces`, one per degree of
+/// freedom, zero where none acts), held for 0 <= t < duration. Each half kick receives exactly the
+/// impulse that falls inside it, so the pulse delivers forces * duration whatever the steps.
+struct PlatePulse {
+  std::vector<double> forces;
+  double duration = 0.0;
 };
 
 /// Energies [force length]. The balance kinetic + potential + dissipated - drive_work is constant.
@@ -103,13 +147,14 @@ class GranularPlate {
   void advance_to(double t_end);
 
   void set_drive(ForcePulse pulse);
+  void set_plate_pulse(PlatePulse pulse);
   /// A constant force (force_x, force_y) on each of `grains`, held for the whole run: a static
   /// precompression of the packing against the plate. Its work counts as the drive's.
   void set_static_load(std::vector<int> grains, double force_x, double force_y);
   /// Brings the loaded packing and plate to rest: steps with every velocity scaled by
   /// exp(-dt/damping_time) after each step until the kinetic energy falls below `tolerance` times
-  /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step count
-  /// and the energy books, so that the run starts from the static state. Returns the steps taken;
+  /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step and
+  /// iteration counts and the energy books, so that the run starts from the static state. Returns the steps taken;
   /// throws std::runtime_error when the packing is not at rest after max_steps.
   long relax(double damping_time, double tolerance, long max_steps);
   /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
@@ -138,6 +183,11 @@ class GranularPlate {
   [[nodiscard]] double max_plate_contact_radius() const { return max_plate_contact_radius_; }
   /// Number of grain-grain pairs in contact now.
   [[nodiscard]] int grain_contacts() const;
+  /// newmark_rk4: fixed-point iterations taken in all, the most in one step, and the factorisations
+  /// of M + C dt/2 + K dt^2/4 (one per step size met; zeros for velocity_verlet).
+  [[nodiscard]] long iterations() const { return iterations_; }
+  [[nodiscard]] int most_iterations() const { return most_iterations_; }
+  [[nodiscard]] long factorisations() const { return factorisations_; }
 
  private:
   struct Pair {
@@ -148,12 +198,25 @@ class GranularPlate {
     double fx = 0.0, fy = 0.0, torque = 0.0;
   };
   double step_with(const StepLimits& limits, double max_dt);
+  double step_newmark_rk4(double dt);  // newmark_rk4.cpp
+  void make_newmark();                 // K assembled once
+  void restart_newmark();              // the state was changed by hand: start_newmark at the next step
+  void start_newmark();                // the plate's acceleration and forces from the state
+  struct GrainRates;
+  /// RK4 of the grains from `start` over dt against the plate path x(t) of eq. 16; the works of the
+  /// non-conservative forces over the step go to `works` (friction, dashpot, drive).
+  void rk4_grains(const std::vector<Grain>& start, double t0, double dt, const std::vector<double>& x0,
+                  const std::vector<double>& v0, const std::vector<double>& x1, double works[3]);
+  void evaluate_rates(double t, GrainRates& rates);
   [[nodiscard]] Energies energies_without_strain() const;  ///< kinetic parts only
   void build_pairs();
   bool pairs_stale() const;
-  void compute_forces(double half_step);
+  /// with_elastic false: the contact forces on the plate alone in f_conservative_ and f_friction_.
+  void compute_forces(double half_step, bool with_elastic = true);
   void add_grain_pair(const Pair& p);
   void add_plate_contact(int g);
+  /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
+  [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
   void kick(double h, bool second_half);
   void drift(double h);
 
@@ -178,6 +241,9 @@ class GranularPlate {
   std::vector<double> plate_seen_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
   std::optional<ForcePulse> pulse_;
+  std::optional<PlatePulse> plate_pulse_;
+  /// The plate pulse's force times the part of [t0, t1] it is on: its impulse over that interval per unit force.
+  [[nodiscard]] double plate_pulse_time(double t0, double t1) const;
   std::vector<int> loaded_;
   double load_x_ = 0.0, load_y_ = 0.0;
 
@@ -188,6 +254,17 @@ class GranularPlate {
   double friction_work_ = 0.0, dashpot_work_ = 0.0, boundary_work_ = 0.0, drive_work_ = 0.0;
   double plate_normal_force_ = 0.0, plate_tangential_force_ = 0.0;
   double max_plate_contact_radius_ = 0.0;
+
+  std::vector<Motion> stage_velocity_[4];  // newmark_rk4: each RK4 stage's grain velocities
+  // newmark_rk4: K and the factorisations, which depend on the plate and the step alone (copies
+  // share them), and this run's state: the plate's acceleration and the converged forces on it.
+  struct Newmark;
+  std::shared_ptr<Newmark> newmark_;
+  bool newmark_started_ = false;
+  std::vector<double> newmark_acceleration_, contact_conservative_, contact_friction_;
+  long iterations_ = 0;
+  int most_iterations_ = 0;
+  long factorisations_ = 0;
 };
 
 }  // namespace sedwave::forward::interface

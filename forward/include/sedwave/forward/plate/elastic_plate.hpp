@@ -92,6 +92,9 @@ class ElasticPlate {
     double shape_right;  ///< xi
   };
   [[nodiscard]] EdgePoint top_edge_point(double x) const;
+  /// The top-edge node nearest abscissa x, at full weight (node_left = node_right, shapes 1 and 0):
+  /// the node whose flat rigid layer carries a contact at x (a layer as wide as an element).
+  [[nodiscard]] EdgePoint top_edge_node(double x) const;
 
  private:
   PlateMaterial material_;
