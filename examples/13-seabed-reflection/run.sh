@@ -99,10 +99,10 @@ step "Reflection data back to the seabed: the mud's thickness and porosity from 
 # Bottom loss of the mud over the sand at 1, 2 and 4 kHz and twelve grazing angles, 0.5 dB noise;
 # then a fit of the layer's thickness and porosity (the sand held at its values). The interference
 # of the layer makes chi^2 many-valleyed in thickness: the search bounds say what the site allows.
-run 0 "$SEDWAVE" synthesize --model layered:edfm,grain-shearing --set l1.thickness=2 --set l1.porosity=0.7 \
+run 0 "$SEDWAVE" synthesize --model layered:edfm+grain-shearing --set l1.thickness=2 --set l1.porosity=0.7 \
     --from 1000 --to 4000 --points 3 --grazing-angles 5,10,15,20,25,30,35,40,50,60,70,80 --reflection-only \
     --bottom-loss-sigma 0.5 --seed 1 --out mud_observations.csv
-run 0 "$SEDWAVE" invert mud_observations.csv --model layered:edfm,grain-shearing --fit l1.porosity,l1.thickness \
+run 0 "$SEDWAVE" invert mud_observations.csv --model layered:edfm+grain-shearing --fit l1.porosity,l1.thickness \
     --bounds l1.thickness=0.5,5 --out mud_fit | grep -E '^  l1\.(thickness|porosity) |^chi2'
 python3 - <<'PY' | tee mud_fit.txt
 import json
@@ -116,7 +116,7 @@ result mud_thickness_fit_m "$(sed -n 's/^l1.thickness \([0-9.]*\) .*/\1/p' mud_f
 check "the fit finds the truth within three of its sigmas" \
       "all(float(l.split('(truth ')[1].split(', ')[1].split()[0]) < 3 for l in open('mud_fit.txt'))"
 # The fitted seabed handed on: its bottom loss at 3 kHz from the fit report, as BELLHOP reads it.
-run 0 "$SEDWAVE" reflect --model layered:edfm,grain-shearing --from-fit mud_fit/fit.json --frequency 3000 \
+run 0 "$SEDWAVE" reflect --model layered:edfm+grain-shearing --from-fit mud_fit/fit.json --frequency 3000 \
     --angle-step 0.5 --out mud_fitted --brc mud_fitted.brc >/dev/null
 python3 - <<'PY' | tee mud_fitted.txt
 import csv

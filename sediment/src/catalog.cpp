@@ -66,33 +66,34 @@ CatalogEntry saturated_frames() {
           }};
 }
 
-/// Layers over a half-space, each part any other specification: "layered:L1,...,HALFSPACE".
+/// Layers over a half-space, each part any other specification: "layered:L1+...+HALFSPACE" ('+', not
+/// ',': a comparison's --models list is comma-separated).
 CatalogEntry layered_seabeds() {
-  return {{std::string(kLayeredPrefix) + "LAYER,...,HALFSPACE"},
+  return {{std::string(kLayeredPrefix) + "LAYER+...+HALFSPACE"},
           [](const std::string& spec, const ModelChoices& choices) {
             std::vector<std::shared_ptr<const SedimentModel>> parts;
             const std::string list = spec.substr(kLayeredPrefix.size());
             for (std::size_t start = 0; start <= list.size();) {
-              const std::size_t comma = std::min(list.find(',', start), list.size());
-              const std::string part = list.substr(start, comma - start);
+              const std::size_t plus = std::min(list.find(kLayerSeparator, start), list.size());
+              const std::string part = list.substr(start, plus - start);
               if (part.empty() || part.starts_with(kLayeredPrefix)) {
                 throw std::invalid_argument("model '" + spec + "': each part of a layered seabed is one model (" +
                                             (part.empty() ? "an empty part" : "'" + part + "' is layered itself") +
                                             "), top layer first, the half-space last");
               }
               parts.push_back(make_sediment_model(part, choices));
-              start = comma + 1;
+              start = plus + 1;
             }
             if (parts.size() < 2) {
               throw std::invalid_argument("model '" + spec + "': a layered seabed names at least one layer and its "
-                                          "half-space (layered:LAYER,...,HALFSPACE)");
+                                          "half-space (layered:LAYER+...+HALFSPACE)");
             }
             const std::shared_ptr<const SedimentModel> halfspace = parts.back();
             parts.pop_back();
             return std::make_shared<const LayeredSeabed>(std::move(parts), halfspace);
           },
           [](const std::string& spec) { return spec.starts_with(kLayeredPrefix); },
-          [] { return std::vector<std::shared_ptr<const SedimentModel>>{make_sediment_model("layered:edfm,biot-stoll")}; }};
+          [] { return std::vector<std::shared_ptr<const SedimentModel>>{make_sediment_model("layered:edfm+biot-stoll")}; }};
 }
 
 /// The catalog, one entry per model. The dry frame takes any specification no other entry takes

@@ -52,7 +52,10 @@ LayeredSeabed::LayeredSeabed(std::vector<std::shared_ptr<const SedimentModel>> l
 
 std::string LayeredSeabed::name() const {
   std::string out(kLayeredPrefix);
-  for (const auto& l : layers_) out += l->name() + ",";
+  for (const auto& l : layers_) {
+    out += l->name();
+    out += kLayerSeparator;
+  }
   return out + halfspace_->name();
 }
 

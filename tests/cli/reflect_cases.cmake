@@ -43,18 +43,18 @@ sedwave_cli_case(reflect.flags_an_impossible_speed 3 "^! half-space grain-sheari
 
 # Layered seabeds as one model (docs/reflection.md, "Layered seabeds"): a layer's thickness has no
 # typical value; a layered spec needs a layer and a half-space; its layers are not given twice.
-sedwave_cli_case(reflect.layered_needs_thickness 2 "model 'layered:edfm,edfm': give l1.thickness"
-  reflect --model layered:edfm,edfm --frequency 1000 --out ${CLI_OUT}/layered_no_thickness)
-sedwave_cli_case(reflect.layered_and_layer_option 2 "--layer: model 'layered:edfm,edfm' is layered itself"
-  reflect --model layered:edfm,edfm --layer edfm --set l1.thickness=1 --frequency 1000 --out ${CLI_OUT}/layered_twice)
+sedwave_cli_case(reflect.layered_needs_thickness 2 "model 'layered:edfm\\+edfm': give l1.thickness"
+  reflect --model layered:edfm+edfm --frequency 1000 --out ${CLI_OUT}/layered_no_thickness)
+sedwave_cli_case(reflect.layered_and_layer_option 2 "--layer: model 'layered:edfm\\+edfm' is layered itself"
+  reflect --model layered:edfm+edfm --layer edfm --set l1.thickness=1 --frequency 1000 --out ${CLI_OUT}/layered_twice)
 sedwave_cli_case(synthesize.layered_without_halfspace 1 "model 'layered:edfm': a layered seabed names at least one layer and its half-space"
   synthesize --model layered:edfm --from 1e3 --to 4e3 --grazing-angles 10 --out ${CLI_OUT}/never_layered.csv)
 sedwave_cli_case(synthesize.layered_needs_thickness 1 "give l1.thickness \\(--set NAME=VALUE\\)"
-  synthesize --model layered:edfm,edfm --from 1e3 --to 4e3 --grazing-angles 10 --out ${CLI_OUT}/never_thickness.csv)
+  synthesize --model layered:edfm+edfm --from 1e3 --to 4e3 --grazing-angles 10 --out ${CLI_OUT}/never_thickness.csv)
 sedwave_cli_case(synthesize.reflection_only_needs_angles 2 "--reflection-only needs --grazing-angles"
   synthesize --model edfm --from 1e3 --to 4e3 --reflection-only --out ${CLI_OUT}/never_angles.csv)
 sedwave_cli_case(synthesize.grazing_angle_beyond_90 2 "--grazing-angles"
   synthesize --model edfm --from 1e3 --to 4e3 --grazing-angles 10,95 --out ${CLI_OUT}/never_95.csv)
 sedwave_cli_case(invert.layered_dry_frame_layer 1 "layer l1: model 'lattice' fixes no bulk density"
-  invert ${CMAKE_CURRENT_SOURCE_DIR}/data/invert/bottom_loss_edfm.csv --model layered:lattice,edfm
+  invert ${CMAKE_CURRENT_SOURCE_DIR}/data/invert/bottom_loss_edfm.csv --model layered:lattice+edfm
   --set l1.thickness=1 --fit porosity --method ceres --no-plot --out ${CLI_OUT}/layered_dry)

@@ -264,7 +264,7 @@ TEST(ShearObservations, DecibelPerWavelengthIsRefused) {
             std::string::npos);
 }
 
-/// A layered seabed (layered:edfm,edfm): noise-free bottom loss of a soft layer over a harder
+/// A layered seabed (layered:edfm+edfm): noise-free bottom loss of a soft layer over a harder
 /// half-space at 1-4 kHz, from the reflection code's own stack built part by part.
 std::string layered_file(double layer_porosity, double thickness, double halfspace_porosity) {
   const auto model = sediment::make_sediment_model("edfm");
@@ -292,7 +292,7 @@ std::string layered_file(double layer_porosity, double thickness, double halfspa
 
 Candidate layered(const std::string& free, double layer_porosity, double thickness, double halfspace_porosity) {
   ModelSetup setup;
-  setup.model = "layered:edfm,edfm";
+  setup.model = "layered:edfm+edfm";
   setup.free = free;
   setup.values.push_back({"porosity", halfspace_porosity, "test", ""});
   setup.values.push_back({"l1.porosity", layer_porosity, "test", ""});

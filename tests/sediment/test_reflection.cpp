@@ -250,7 +250,7 @@ TEST(Seabed, FromModelsUsesTheirWavesAndDensity) {
 /// parameters are the half-space's then lN.thickness and lN.NAME, and its own wave is the top
 /// layer's with the gradient in the top layer's places.
 TEST(Seabed, LayeredModelIsItsParts) {
-  const auto model = make_sediment_model("layered:grain-shearing,edfm");
+  const auto model = make_sediment_model("layered:grain-shearing+edfm");
   const auto gs = make_sediment_model("grain-shearing");
   const auto edfm = make_sediment_model("edfm");
   const std::size_t below = edfm->parameters().size();
@@ -277,7 +277,7 @@ TEST(Seabed, LayeredModelIsItsParts) {
   for (std::size_t i = 0; i <= below; ++i) EXPECT_EQ(own.d_speed[i], 0.0);
   for (std::size_t i = 0; i < top.d_speed.size(); ++i) EXPECT_EQ(own.d_speed[below + 1 + i], top.d_speed[i]);
   EXPECT_THROW((void)make_sediment_model("layered:edfm"), std::invalid_argument);
-  EXPECT_THROW((void)make_sediment_model("layered:edfm,,edfm"), std::invalid_argument);
+  EXPECT_THROW((void)make_sediment_model("layered:edfm++edfm"), std::invalid_argument);
 }
 
 TEST(Reflection, RefusesImpossibleInput) {

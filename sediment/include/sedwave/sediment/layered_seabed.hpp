@@ -3,7 +3,7 @@
 // another, so that a fit of reflection data treats every layer's parameters and thickness like any
 // model's parameters (docs/reflection.md, "Fitting layered seabeds").
 //
-//   layered:edfm,biot-stoll     an EDFM layer over a Biot-Stoll half-space
+//   layered:edfm+biot-stoll     an EDFM layer over a Biot-Stoll half-space
 //
 // Parameters: the half-space's under their own names, then for each layer N (1 = top) its thickness
 // lN.thickness [m] and its model's parameters as lN.NAME. The seabed's own wave (evaluate(), what
@@ -54,8 +54,9 @@ class LayeredSeabed final : public SedimentModel {
   std::vector<Parameter> parameters_;
 };
 
-/// The catalog's specification prefix: "layered:" then the parts' specifications, comma-separated,
-/// top first, the half-space last.
+/// The catalog's specification prefix: "layered:" then the parts' specifications separated by '+'
+/// (a comparison's model list is comma-separated), top first, the half-space last.
 inline constexpr std::string_view kLayeredPrefix = "layered:";
+inline constexpr char kLayerSeparator = '+';
 
 }  // namespace sedwave::sediment
