@@ -38,6 +38,14 @@ LayeredSeabed::LayeredSeabed(std::vector<std::shared_ptr<const SedimentModel>> l
   if (layers_.empty()) throw std::invalid_argument("a layered seabed needs at least one layer over its half-space");
   if (!halfspace_) throw std::invalid_argument("a layered seabed needs a half-space model");
   parameters_ = halfspace_->parameters();
+  derived_ = halfspace_->derived_quantities();
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    for (DerivedQuantity q : layers_[i]->derived_quantities()) {
+      q.name = prefixed(i, q.name);
+      q.meaning.insert(0, layer_label(i) + ": ");
+      derived_.push_back(std::move(q));
+    }
+  }
   for (std::size_t i = 0; i < layers_.size(); ++i) {
     if (!layers_[i]) throw std::invalid_argument("layer " + layer_label(i) + " has no model");
     layer_offset_.push_back(parameters_.size());
@@ -118,6 +126,25 @@ std::string LayeredSeabed::shear_summary() const {
 std::optional<double> LayeredSeabed::bulk_density(std::span<const double> values) const {
   const SeabedPart top = layer_parts(values).front();
   return top.model->bulk_density(top.values);
+}
+
+std::vector<DerivedValue> LayeredSeabed::derived_values(std::span<const double> values, bool derivatives) const {
+  // Each part's values with its gradient placed among all parameters (at `first`).
+  std::vector<DerivedValue> out;
+  const auto append = [&](const SeabedPart& part, std::size_t first) {
+    for (DerivedValue d : part.model->derived_values(part.values, derivatives)) {
+      if (derivatives) {
+        std::vector<double> all(parameters_.size(), 0.0);
+        std::copy(d.gradient.begin(), d.gradient.end(), all.begin() + static_cast<std::ptrdiff_t>(first));
+        d.gradient = std::move(all);
+      }
+      out.push_back(std::move(d));
+    }
+  };
+  append(halfspace_part(values), 0);
+  const std::vector<SeabedPart> layers = layer_parts(values);
+  for (std::size_t i = 0; i < layers.size(); ++i) append(layers[i], layer_offset_[i] + 1);
+  return out;
 }
 
 std::string LayeredSeabed::typical_free_parameters() const {

@@ -36,6 +36,9 @@ class LayeredSeabed final : public SedimentModel {
   [[nodiscard]] std::string shear_summary() const override;
   [[nodiscard]] std::optional<double> bulk_density(std::span<const double> values) const override;
   [[nodiscard]] std::string typical_free_parameters() const override;
+  /// The half-space's derived quantities under their own names, then each layer's as lN.NAME.
+  [[nodiscard]] const std::vector<DerivedQuantity>& derived_quantities() const override { return derived_; }
+  [[nodiscard]] std::vector<DerivedValue> derived_values(std::span<const double> values, bool derivatives) const override;
 
   /// The layers (top first) and the half-space at parameter `values`, each with its own values and
   /// (layers) thickness.
@@ -52,6 +55,7 @@ class LayeredSeabed final : public SedimentModel {
   std::shared_ptr<const SedimentModel> halfspace_;
   std::vector<std::size_t> layer_offset_;  ///< index of lN.thickness; its model's values follow
   std::vector<Parameter> parameters_;
+  std::vector<DerivedQuantity> derived_;
 };
 
 /// The catalog's specification prefix: "layered:" then the parts' specifications separated by '+'
