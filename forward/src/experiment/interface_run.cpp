@@ -62,6 +62,7 @@ double front_time(const std::vector<double>& t, const std::vector<double>& v) {
   if (!(peak > 0.0)) return nan;
   std::size_t first = 0;
   while (first + 1 < v.size() && !(v[first] >= 0.5 * peak && v[first] >= v[first + 1])) ++first;
+  if (v.front() >= airy_front * v[first]) return t.front();  // a probe on the struck nodes: moving from the start
   return arrival_time(std::vector<double>(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(first) + 1),
                       std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(first) + 1), airy_front);
 }
