@@ -110,6 +110,15 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
                 "(no beads), %d x %d plate elements; %ld steps in %.2f s\n",
                 r.direct_from, r.direct_to, r.driven.size(), scene.drive.speed, scene.mesh.elements_x,
                 scene.mesh.elements_y, r.series.steps.back(), r.seconds);
+    // The front is read from the samples of a pulse as short as the mesh allows (docs/interface.md).
+    const auto& m = scene.plate_material;
+    const double c_l = std::sqrt(m.youngs_modulus / (m.density * (1.0 - m.poisson_ratio * m.poisson_ratio)));
+    const double transit = std::min(scene.mesh.length_x / scene.mesh.elements_x,
+                                    scene.mesh.length_y / scene.mesh.elements_y) / c_l;
+    if (scene.recording.output_interval > 0.1 * transit)
+      std::printf("note: the arrival (the direct pulse's front) is read from samples every %.3g s, coarser than a "
+                  "tenth of the mesh's transit time h/c_L = %.3g s: set run.output_interval below %.3g s\n",
+                  scene.recording.output_interval, transit, 0.1 * transit);
   } else if (scene.drive.kind == experiment::InterfaceDrive::Kind::edge_impulse) {
     std::printf("uniform impulse of %g N/m for %g s on the plate's edge over x = %.4g .. %.4g m (no beads), %d x %d "
                 "plate elements; %ld steps in %.2f s\n",

@@ -3,10 +3,14 @@
 // the time left, and a stop when the energy balance blows up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sedwave/forward/experiment/interface_run.hpp"
 #include "sedwave/forward/experiment/interface_scene.hpp"
@@ -74,6 +78,40 @@ TEST(InterfaceRun, AnUnstableRunIsStoppedWithItsCause) {
     EXPECT_NE(std::string(error.what()).find("energy balance is off by"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("the fixed step (run.fixed_step, --fixed-step) exceeds"), std::string::npos);
   }
+}
+
+// The direct strike's arrival (`--direct`) on three meshes against the dilatational front's
+// depth / c_L, c_L^2 = E / (rho (1 - nu^2)) in plane stress: the front (the speed reaching 0.663 of its
+// first maximum) converges to it, the speed reaching 10 % of its maximum stays in the mesh's precursor.
+TEST(InterfaceRun, DirectStrikesFrontConvergesToTheDilatationalFront) {
+  const double depth = 0.02;
+  std::vector<double> front_error, precursor_error;
+  for (const int n : {10, 20, 40}) {  // elements over the depth: h = 2, 1, 0.5 mm
+    auto scene = parse_interface_scene(
+        "[plate]\nlength_x = 0.04\nlength_y = 0.02\nelements_x = " + std::to_string(2 * n) + "\nelements_y = " +
+            std::to_string(n) + "\n[plate.edges]\nbottom = \"absorbing\"\n[packing]\nrows = 1\ncolumns = 4\n"
+            "[run]\nduration = 6e-6\noutput_interval = 5e-9\nsnapshots = 0\nprobe_x = [0.02]\nprobe_depth = 0.02\n",
+        "scene.toml");
+    scene.drive.direct = true;
+    const auto run = experiment::run_interface(scene, nullptr);
+    const auto& m = scene.plate_material;
+    const double transit = depth / std::sqrt(m.youngs_modulus / (m.density * (1.0 - m.poisson_ratio * m.poisson_ratio)));
+    front_error.push_back(run.arrival[0] / transit - 1.0);
+    const auto& v = run.probe_velocity[0];
+    const double tenth = 0.1 * *std::max_element(v.begin(), v.end());
+    std::size_t k = 0;
+    while (v[k] < tenth) ++k;
+    precursor_error.push_back(run.series.time[k] / transit - 1.0);
+    if (std::getenv("SEDWAVE_VERBOSE"))
+      std::printf("h %.2g mm: front %+.4f, 10 %% of the peak %+.4f of depth/c_L\n", 20.0 / n, front_error.back(),
+                  precursor_error.back());
+  }
+  for (std::size_t i = 1; i < front_error.size(); ++i) {
+    EXPECT_LT(std::abs(front_error[i]), 0.7 * std::abs(front_error[i - 1])) << "converges";
+    EXPECT_LT(precursor_error[i], 0.0) << "precursor ahead of the front";
+  }
+  EXPECT_LT(std::abs(front_error.back()), 0.01);
+  EXPECT_GT(std::abs(precursor_error.back()), 3.0 * std::abs(front_error.back()));
 }
 
 }  // namespace
