@@ -120,14 +120,16 @@ void print_table(const inversion::Ranking& ranking) {
   const std::vector<int>& order = ranking.order;
   const std::vector<int>& wide = ranking.order_widened;
   const double best = ranking.best().evidence.log_evidence;
-  std::printf("\n%-4s %-20s %3s %9s %7s %9s %9s %17s %8s %8s %10s %5s %7s %8s\n", "rank", "model", "k", "chi2",
-              "chi2/nu", "AIC", "BIC", "ln Z", "dln Z", "p(pred)", "ln Z x10", "rank", "method", "evals");
+  int name_width = 20;  // wider for a long name (a layered seabed's)
+  for (const inversion::ComparedModel& row : rows) name_width = std::max(name_width, static_cast<int>(row.model.size()));
+  std::printf("\n%-4s %-*s %3s %9s %7s %9s %9s %17s %8s %8s %10s %5s %7s %8s\n", "rank", name_width, "model", "k",
+              "chi2", "chi2/nu", "AIC", "BIC", "ln Z", "dln Z", "p(pred)", "ln Z x10", "rank", "method", "evals");
   for (std::size_t r = 0; r < order.size(); ++r) {
     const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
     const auto wide_rank = std::find(wide.begin(), wide.end(), order[r]) - wide.begin() + 1;
     const std::string method = method_code(row.evidence) + "/" + method_code(row.widened);
-    std::printf("%-4zu %-20s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld %7s %8ld%s\n",
-                r + 1, row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
+    std::printf("%-4zu %-*s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld %7s %8ld%s\n",
+                r + 1, name_width, row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
                 row.fit.dof > 0 ? row.fit.chi2 / row.fit.dof : NAN, row.fit.aic, row.fit.bic,
                 row.evidence.log_evidence, row.evidence.uncertainty, row.evidence.log_evidence - best,
                 row.evidence.predictive_p, row.widened.log_evidence, static_cast<long>(wide_rank), method.c_str(),
