@@ -684,6 +684,12 @@ std::string linearisation_refusal(const Setup& s, const FitResult& best, const E
   return "";
 }
 
+/// Why the stated error is too large to accept ("" where it is not).
+std::string error_refusal(const sampling::ImportanceEstimate& e) {
+  if (e.uncertainty <= kMaxStatedError) return "";
+  return formatted("the standard error of ln Z reached only %.3f (at most %.2f accepted)", e.uncertainty, kMaxStatedError);
+}
+
 /// Why the weighted draws of one prior set cannot be trusted ("" where they can).
 std::string importance_refusal(const Setup& s, const FitResult& best, const sampling::ImportanceRun& run,
                                const sampling::ImportanceEstimate& e, const std::vector<Prior>& priors) {
@@ -692,6 +698,16 @@ std::string importance_refusal(const Setup& s, const FitResult& best, const samp
     return formatted("%.1f %% of the posterior lies beyond %.0f sd of its mean (a far tail or another mode)",
                      100.0 * e.far_mass, sampling::kFarDistance);
   }
+  // A defensive slab along one parameter bounds the weights wherever the posterior strays from a
+  // single peak along it (a plateau its prior's bound closes, two modes, a cut at a bound): there
+  // the weights' tail and the stated error judge alone. A plateau along a combination of parameters
+  // (a ridge that the priors' bounds close obliquely) still goes to tempering.
+  const bool along_parameter = e.slab_axis >= 0;
+  if (e.min_axis_kurtosis < kMinAxisKurtosis && e.slab_axis == sampling::kSlabAlongCombination) {
+    return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3) and that "
+                     "axis combines parameters: a ridge or several modes", e.min_axis_kurtosis);
+  }
+  if (along_parameter) return error_refusal(e);
   if (e.min_axis_kurtosis < kMinAxisKurtosis) {
     return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3): several "
                      "modes or a plateau", e.min_axis_kurtosis);
@@ -715,11 +731,7 @@ std::string importance_refusal(const Setup& s, const FitResult& best, const samp
              (best.parameters[static_cast<std::size_t>(i)].at_bound ? "; the best fit is at a bound)" : ")");
     }
   }
-  if (!(e.uncertainty <= kMaxStatedError)) {
-    return formatted("the standard error of ln Z reached only %.3f (at most %.2f accepted)", e.uncertainty,
-                     kMaxStatedError);
-  }
-  return "";
+  return error_refusal(e);
 }
 
 }  // namespace
@@ -736,6 +748,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
   std::vector<ModelEvidence> out(prior_sets.size());
   std::vector<sampling::LogDensity> log_priors;
   std::vector<std::size_t> sampled;  // the sets the proposal serves
+  std::vector<sampling::Support> supports;  // theirs, in the free ln-parameters
   // Without derivatives at the best fit there is no linearisation to build the proposal from.
   Eigen::MatrixXd precision;
   std::string no_jacobian;
@@ -754,6 +767,13 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     if (!out[p].fallback_reason.empty()) continue;
     log_priors.push_back(density.log_prior);
     sampled.push_back(p);
+    sampling::Support support{Eigen::VectorXd(k), Eigen::VectorXd(k)};
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const auto [lo, hi] = prior_sets[p][static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])].support();
+      support.lower(j) = std::log(lo);
+      support.upper(j) = std::log(hi);
+    }
+    supports.push_back(support);
   }
   if (sampled.empty()) return out;
   Eigen::VectorXd centre(k);
@@ -761,6 +781,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
   sampling::ImportanceOptions importance = options.importance;
   importance.seed = options.seed;
   importance.threads = options.threads;
+  importance.supports = supports;
   const sampling::ImportanceRun run =
       sampling::importance_evidence(log_likelihood, log_priors, centre, precision.inverse(), importance);
   const double n = static_cast<double>(s.observations.size());
@@ -774,8 +795,12 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     e.evaluations = run.evaluations;
     e.fallback_reason = importance_refusal(s, best, run, w, prior_sets[sampled[q]]);
     e.converged = e.fallback_reason.empty();
-    e.advice = formatted("%.0f draws from a mixture of %.0f t distributions, Pareto k-hat %.2f, %.0f effective draws",
-                         static_cast<double>(run.draws.rows()), run.components, w.pareto_k, w.effective_draws);
+    e.advice = formatted("%.0f draws from a mixture of %.0f t distributions and %.0f defensive slabs",
+                         static_cast<double>(run.draws.rows()), run.components - run.slabs, run.slabs) +
+               (w.slab_axis >= 0 ? " (one along " + s.parameters.spec[s.free[static_cast<std::size_t>(w.slab_axis)]].name + ")"
+                : w.slab_axis == sampling::kSlabAlongCombination ? std::string(" (one along a combination of parameters)")
+                                                                 : std::string()) +
+               formatted(", Pareto k-hat %.2f, %.0f effective draws", w.pareto_k, w.effective_draws);
     double p_sum = 0.0;
     for (Eigen::Index i = 0; i < run.draws.rows(); ++i) {
       if (std::isfinite(w.log_weights(i))) p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -run.log_likelihood(i));
