@@ -657,6 +657,9 @@ constexpr double kMinAxisKurtosis = 2.0;
 constexpr double kBoundStrip = 0.5;
 constexpr double kBoundMass = 0.02;
 constexpr double kMaxStatedError = 0.05;  ///< the largest standard error of ln Z accepted
+/// A defensive slab serves a posterior that strays from the linearised peak along its axis only:
+/// across it the posterior's sd may exceed the linearised one by at most this factor.
+constexpr double kMaxAcrossSpread = 2.0;
 /// The resampled posterior draws' own stream.
 constexpr std::uint64_t kResampleStream = 0x9E3779B97F4A7C15ULL;
 
@@ -698,16 +701,16 @@ std::string importance_refusal(const Setup& s, const FitResult& best, const samp
     return formatted("%.1f %% of the posterior lies beyond %.0f sd of its mean (a far tail or another mode)",
                      100.0 * e.far_mass, sampling::kFarDistance);
   }
-  // A defensive slab along one parameter bounds the weights wherever the posterior strays from a
-  // single peak along it (a plateau its prior's bound closes, two modes, a cut at a bound): there
-  // the weights' tail and the stated error judge alone. A plateau along a combination of parameters
-  // (a ridge that the priors' bounds close obliquely) still goes to tempering.
-  const bool along_parameter = e.slab_axis >= 0;
-  if (e.min_axis_kurtosis < kMinAxisKurtosis && e.slab_axis == sampling::kSlabAlongCombination) {
-    return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3) and that "
-                     "axis combines parameters: a ridge or several modes", e.min_axis_kurtosis);
+  // A defensive slab bounds the weights inside it, but a posterior broad across it, or going on past
+  // its ends, can still hide mass from every diagnostic of the weights.
+  if (e.slab_across_spread > kMaxAcrossSpread) {
+    return formatted("the posterior's sd across the defensive slab is %.1f times the linearised one (more than "
+                     "one direction strays from the fit's peak)", e.slab_across_spread);
   }
-  if (along_parameter) return error_refusal(e);
+  if (e.slab_end_mass > kMaxFarMass) {
+    return formatted("%.1f %% of the posterior lies at an end of the defensive slab (it goes on past where the "
+                     "pilots looked)", 100.0 * e.slab_end_mass);
+  }
   if (e.min_axis_kurtosis < kMinAxisKurtosis) {
     return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3): several "
                      "modes or a plateau", e.min_axis_kurtosis);
@@ -797,7 +800,8 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     e.converged = e.fallback_reason.empty();
     e.advice = formatted("%.0f draws from a mixture of %.0f t distributions and %.0f defensive slabs",
                          static_cast<double>(run.draws.rows()), run.components - run.slabs, run.slabs) +
-               (w.slab_axis >= 0 ? " (one along " + s.parameters.spec[s.free[static_cast<std::size_t>(w.slab_axis)]].name + ")"
+               (w.slab_axis >= 0 ? " (one along " + s.parameters.spec[s.free[static_cast<std::size_t>(w.slab_axis)]].name +
+                                       formatted("; across it %.2f linearised sd", w.slab_across_spread) + ")"
                 : w.slab_axis == sampling::kSlabAlongCombination ? std::string(" (one along a combination of parameters)")
                                                                  : std::string()) +
                formatted(", Pareto k-hat %.2f, %.0f effective draws", w.pareto_k, w.effective_draws);

@@ -53,6 +53,7 @@ struct Slab {
   Eigen::VectorXd mean;
   Eigen::MatrixXd axes;  ///< orthonormal columns; the first is the uniform one
   int parameter = kSlabAlongCombination;  ///< the coordinate that first axis is, if it is one
+  bool lo_cut = false, hi_cut = false;     ///< that end is where the axis leaves the support
   double lo = 0.0, hi = 0.0;
   /// The t across, centred per equal segment of [lo, hi] on the posterior's own centre there (a
   /// plateau's cross-section need not stay on one line); none in one dimension.
@@ -298,9 +299,12 @@ bool needs_defence(const ImportanceEstimate& e, const Support& support, double d
 /// value, widened by its width on each side and cut to the support; across it, a t with the posterior's covariance
 /// scaled by `scale`^2. None where that covariance is not positive definite.
 /// The slab's t across it: each of kSlabSegments segments centred on the weighted mean of the
-/// draws there (where they hold at least 10 effective draws; else the nearest such segment's), the
-/// scale matrix the weighted covariance about those centres times `scale`^2.
-void place_across(Slab& slab, const Batch& b, const ImportanceEstimate& e, double scale, int nu) {
+/// draws there that `high_density` marks (1: within kHighDensityDepth of the largest L pi; the
+/// t's far draws, though they may hold effective draws, say nothing of where the posterior is)
+/// where they hold at least 10 effective draws, else on the nearest such segment's; the scale matrix
+/// the weighted covariance of those draws about their centres times `scale`^2.
+void place_across(Slab& slab, const Batch& b, const ImportanceEstimate& e, const Eigen::VectorXd& high_density,
+                  double scale, int nu) {
   const auto k = slab.mean.size() - 1;
   const std::size_t n = kSlabSegments;
   slab.centres.assign(n, Eigen::VectorXd::Zero(k));
@@ -310,7 +314,7 @@ void place_across(Slab& slab, const Batch& b, const ImportanceEstimate& e, doubl
   for (std::size_t i = 0; i < b.x.size(); ++i) {
     const double w = std::exp(e.log_weights(static_cast<Eigen::Index>(i)));
     z[i] = slab.axes.transpose() * (b.x[i] - slab.mean);
-    if (!(w > 0.0) || z[i](0) < slab.lo || z[i](0) > slab.hi) continue;
+    if (!(w > 0.0) || !(high_density(static_cast<Eigen::Index>(i)) > 0.0) || z[i](0) < slab.lo || z[i](0) > slab.hi) continue;
     at[i] = slab.segment(z[i](0));
     slab.centres[at[i]] += w * z[i].tail(k);
     sum[at[i]] += w, sum2[at[i]] += w * w;
@@ -406,12 +410,37 @@ std::optional<Slab> defensive_slab(const Batch& b, std::size_t prior, const Impo
     const double v = slab.axes(j, 0);
     if (std::abs(v) < 1e-12) continue;
     const double a = (lower_bound(support, j) - e.mean(j)) / v, c = (upper_bound(support, j) - e.mean(j)) / v;
-    slab.lo = std::max(slab.lo, std::min(a, c));
-    slab.hi = std::min(slab.hi, std::max(a, c));
+    if (std::min(a, c) >= slab.lo) slab.lo = std::min(a, c), slab.lo_cut = true;
+    if (std::max(a, c) <= slab.hi) slab.hi = std::max(a, c), slab.hi_cut = true;
   }
   if (!(slab.hi > slab.lo)) return std::nullopt;
-  if (dim > 1) place_across(slab, b, e, scale, nu);
+  if (dim > 1) place_across(slab, b, e, (value.array() >= peak - kHighDensityDepth).cast<double>(), scale, nu);
   return slab;
+}
+
+/// The posterior's largest sd across the slab (along any of its other axes) over the linearised
+/// posterior's (`linearised`) along the same axis.
+double across_spread(const Slab& slab, const ImportanceEstimate& e, const Eigen::MatrixXd& linearised) {
+  const auto k = slab.mean.size() - 1;
+  if (k == 0) return 0.0;
+  const Eigen::MatrixXd across = slab.axes.rightCols(k);
+  const Eigen::VectorXd posterior = (across.transpose() * e.covariance * across).diagonal();
+  const Eigen::VectorXd guess = (across.transpose() * linearised * across).diagonal();
+  return posterior.cwiseQuotient(guess).cwiseSqrt().maxCoeff();
+}
+
+/// The posterior's weighted mass in the slab's outermost segments at the ends that the support
+/// did not cut: beyond the pilots' high-density span by half that span.
+double end_mass(const Slab& slab, const Batch& b, const ImportanceEstimate& e) {
+  double mass = 0.0;
+  for (std::size_t i = 0; i < b.x.size(); ++i) {
+    const double w = std::exp(e.log_weights(static_cast<Eigen::Index>(i)));
+    if (!(w > 0.0)) continue;
+    const double along = slab.axes.col(0).dot(b.x[i] - slab.mean);
+    const double segment = (slab.hi - slab.lo) / kSlabSegments;
+    if ((!slab.lo_cut && along < slab.lo + segment) || (!slab.hi_cut && along > slab.hi - segment)) mass += w;
+  }
+  return mass;
 }
 
 }  // namespace
@@ -461,25 +490,31 @@ ImportanceRun importance_evidence(const LogDensity& log_likelihood, const std::v
   Mixture components{{first}, {}};
   // Two rounds: a pilot from the current mixture, then one adapted component per prior at its
   // posterior's weighted moments from every pilot so far (skipped where they saw too little of that
-  // posterior to place it: the first t then serves alone), and a defensive box for a prior whose
-  // posterior is not a single Gaussian-like peak inside its support. Each pilot's weights use its own q.
+  // posterior to place it: the first t then serves alone), and with options.defensive a slab for a
+  // prior whose posterior is not a single Gaussian-like peak inside its support. Each pilot's
+  // weights use its own q (with options.defensive, the balance heuristic over both rounds).
   Batch pilots;
   const auto dim = static_cast<double>(centre.size());
   std::vector<int> defended(log_priors.size(), kNoSlab);  // per prior: its slab's axis
+  std::vector<std::size_t> slab_of(log_priors.size(), 0);  // and its index among the slabs
   std::vector<Mixture> rounds;  // each pilot's mixture
   for (int round = 0; round < 2; ++round) {
     append(pilots, draw_batch(components, options.pilot_draws, log_likelihood, log_priors, random, options.threads));
     rounds.push_back(components);
-    balance(pilots, rounds);
+    if (options.defensive) balance(pilots, rounds);
     components = Mixture{{first}, {}};
     for (std::size_t p = 0; p < log_priors.size(); ++p) {
       const ImportanceEstimate e = estimate(pilots, p);
       const Support support = p < options.supports.size() ? options.supports[p] : Support{};
+      // Once a round has seen a prior's posterior stray from a peak, later rounds keep its slab (a
+      // pilot that has not yet reached a plateau's end can make it look like a peak again).
+      const bool before = defended[p] != kNoSlab;
       defended[p] = kNoSlab;
-      if (options.defensive && std::isfinite(e.log_evidence) && needs_defence(e, support, dim)) {
+      if (options.defensive && std::isfinite(e.log_evidence) && (before || needs_defence(e, support, dim))) {
         if (std::optional<Slab> slab = defensive_slab(pilots, p, e, support, covariance, options.adapted_scale, nu)) {
           components.slabs.push_back(std::move(*slab));
           defended[p] = components.slabs.back().parameter;
+          slab_of[p] = components.slabs.size() - 1;
         }
       }
       if (!(e.effective_draws >= 10.0 * (dim + 1.0))) continue;
@@ -497,6 +532,10 @@ ImportanceRun importance_evidence(const LogDensity& log_likelihood, const std::v
     for (std::size_t p = 0; p < log_priors.size(); ++p) {
       run.priors.push_back(estimate(all, p));
       run.priors.back().slab_axis = defended[p];
+      if (defended[p] != kNoSlab) {
+        run.priors.back().slab_end_mass = end_mass(components.slabs[slab_of[p]], all, run.priors.back());
+        run.priors.back().slab_across_spread = across_spread(components.slabs[slab_of[p]], run.priors.back(), covariance);
+      }
       worst = std::max(worst, run.priors.back().uncertainty);
     }
     return worst;

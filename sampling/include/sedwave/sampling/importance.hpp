@@ -10,10 +10,11 @@
 // component; the estimate uses only the draws from the final equal mixture of all of them (the
 // pilot's t included, so the mixture's tails stay at least as wide as the pilot's), each weighted by
 // L pi / q_mixture. The adaptation runs twice: the second pilot draws from the first mixture, and
-// the components are placed again from both pilots' weights (the balance heuristic: each pilot
-// draw weighted against the average of both rounds' mixtures). Where a prior's posterior is not a
-// single Gaussian-like peak inside its support (a plateau, a cut at a bound, two modes) the mixture
-// also holds a defensive slab for it (ImportanceOptions::defensive). Reproducible for any thread
+// the components are placed again from both pilots' weights (each pilot weighted by its own q).
+// With ImportanceOptions::defensive, where a prior's posterior is not a single Gaussian-like peak
+// inside its support (a plateau, a cut at a bound, two modes) the mixture also holds a defensive
+// slab for it, and the pilots are weighted by the balance heuristic (each draw against the average
+// of both rounds' mixtures). Reproducible for any thread
 // count: the draws come from one seeded stream before any likelihood is evaluated, and the sums
 // run in the draws' order.
 #include <Eigen/Dense>
@@ -62,7 +63,9 @@ struct ImportanceOptions {
   /// kHighDensityDepth of its largest density widened by that span on each side and cut to the
   /// support; across it a t, centred per kSlabSegments segment on the draws there. Inside the slab
   /// no weight exceeds (L pi / t)(length / share), whatever the posterior's shape along the axis.
-  bool defensive = true;
+  /// The pilots are then weighted by the balance heuristic (Owen & Zhou 2000). Off by default: on
+  /// some posteriors (docs/sampling.md) mass beside the slab is missed with every weight looking fine.
+  bool defensive = false;
   std::vector<Support> supports = {};  ///< per prior, in the order given (missing: unbounded)
   std::uint64_t seed = 20090501;
   int threads = 1;  ///< share the likelihood evaluations; the result does not depend on it
@@ -91,6 +94,14 @@ struct ImportanceEstimate {
   /// The final mixture's defensive slab for this prior runs along this coordinate (a parameter);
   /// kSlabAlongCombination: along a combination of them; kNoSlab: the prior has none.
   int slab_axis = kNoSlab;
+  /// With a slab: the posterior's mass in its outermost sixths at the ends the support did not cut
+  /// (beyond the pilots' high-density span by half that span). More than a trace says the posterior
+  /// goes on past where the pilots looked.
+  double slab_end_mass = 0.0;
+  /// With a slab: the posterior's largest sd across it over the linearised posterior's along the
+  /// same axis. About 1 where the slab's axis is the only one the linearisation got wrong (a
+  /// plateau along one direction); far above it, the posterior is broad across the slab as well.
+  double slab_across_spread = 0.0;
 };
 
 struct ImportanceRun {
