@@ -7,7 +7,8 @@
 // (inversion::evidence_integrand) on the same data. A deterministic method gives one answer per data
 // set, so the data vary as well as the seeds. Prints per family the sets within 2 stated sigmas
 // (>= 90 % expected), the mean difference with its standard error (within 2 of 0 expected), which
-// method served, the likelihood evaluations of the evidence and of the fit's global search.
+// method served, the likelihood evaluations of the evidence and of the fit's global search; and
+// every set that fell back or landed outside 2 stated sigmas, with the refusal or the proposal.
 //
 // Then the cases the fast path must refuse, each against its own quadrature:
 //   ridge:   the lattice chain's kappa and d from sound speeds alone at 100-300 Hz, far below its
@@ -100,11 +101,13 @@ void run_set(Tally& tally, const sediment::SedimentModel& model, const inversion
   const inversion::ModelEvidence e = inversion::model_evidence(data, model, best, priors, kFitOptions, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   tally.add(e, q, best, seconds);
-  if (verbose || !e.fallback_reason.empty()) {
-    std::printf("  %s set %u: ln Z %.3f +- %.3f (%s, %d evaluations), quadrature %.3f (+- %.3f); %s\n",
-                verbose ? verbose : model.name().c_str(), data_seed,
+  const bool outside = std::abs(e.log_evidence - q.log_evidence) > 2.0 * e.uncertainty;
+  if (verbose || !e.fallback_reason.empty() || outside) {
+    std::printf("  %s set %u%s: ln Z %.3f +- %.3f (%s, %d evaluations), quadrature %.3f (+- %.3f); %s\n",
+                verbose ? verbose : model.name().c_str(), data_seed, outside ? " (outside 2 sd)" : "",
                 e.log_evidence, e.uncertainty, e.method.c_str(), e.evaluations, q.log_evidence, q.refinement,
-                e.fallback_reason.empty() ? "fast path accepted" : ("refused: " + e.fallback_reason).c_str());
+                e.fallback_reason.empty() ? ("fast path accepted: " + e.advice).c_str()
+                                          : ("refused: " + e.fallback_reason).c_str());
   }
 }
 

@@ -657,6 +657,9 @@ constexpr double kMinAxisKurtosis = 2.0;
 constexpr double kBoundStrip = 0.5;
 constexpr double kBoundMass = 0.02;
 constexpr double kMaxStatedError = 0.05;  ///< the largest standard error of ln Z accepted
+/// A defensive slab serves a posterior that strays from the linearised peak along its axis only:
+/// across it the posterior's sd may exceed the linearised one by at most this factor.
+constexpr double kMaxAcrossSpread = 2.0;
 /// The resampled posterior draws' own stream.
 constexpr std::uint64_t kResampleStream = 0x9E3779B97F4A7C15ULL;
 
@@ -684,6 +687,12 @@ std::string linearisation_refusal(const Setup& s, const FitResult& best, const E
   return "";
 }
 
+/// Why the stated error is too large to accept ("" where it is not).
+std::string error_refusal(const sampling::ImportanceEstimate& e) {
+  if (e.uncertainty <= kMaxStatedError) return "";
+  return formatted("the standard error of ln Z reached only %.3f (at most %.2f accepted)", e.uncertainty, kMaxStatedError);
+}
+
 /// Why the weighted draws of one prior set cannot be trusted ("" where they can).
 std::string importance_refusal(const Setup& s, const FitResult& best, const sampling::ImportanceRun& run,
                                const sampling::ImportanceEstimate& e, const std::vector<Prior>& priors) {
@@ -691,6 +700,16 @@ std::string importance_refusal(const Setup& s, const FitResult& best, const samp
   if (e.far_mass > kMaxFarMass) {
     return formatted("%.1f %% of the posterior lies beyond %.0f sd of its mean (a far tail or another mode)",
                      100.0 * e.far_mass, sampling::kFarDistance);
+  }
+  // A defensive slab bounds the weights inside it, but a posterior broad across it, or going on past
+  // its ends, can still hide mass from every diagnostic of the weights.
+  if (e.slab_across_spread > kMaxAcrossSpread) {
+    return formatted("the posterior's sd across the defensive slab is %.1f times the linearised one (more than "
+                     "one direction strays from the fit's peak)", e.slab_across_spread);
+  }
+  if (e.slab_end_mass > kMaxFarMass) {
+    return formatted("%.1f %% of the posterior lies at an end of the defensive slab (it goes on past where the "
+                     "pilots looked)", 100.0 * e.slab_end_mass);
   }
   if (e.min_axis_kurtosis < kMinAxisKurtosis) {
     return formatted("the posterior's kurtosis along a principal axis is %.2f (a single peak has about 3): several "
@@ -715,11 +734,7 @@ std::string importance_refusal(const Setup& s, const FitResult& best, const samp
              (best.parameters[static_cast<std::size_t>(i)].at_bound ? "; the best fit is at a bound)" : ")");
     }
   }
-  if (!(e.uncertainty <= kMaxStatedError)) {
-    return formatted("the standard error of ln Z reached only %.3f (at most %.2f accepted)", e.uncertainty,
-                     kMaxStatedError);
-  }
-  return "";
+  return error_refusal(e);
 }
 
 }  // namespace
@@ -736,6 +751,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
   std::vector<ModelEvidence> out(prior_sets.size());
   std::vector<sampling::LogDensity> log_priors;
   std::vector<std::size_t> sampled;  // the sets the proposal serves
+  std::vector<sampling::Support> supports;  // theirs, in the free ln-parameters
   // Without derivatives at the best fit there is no linearisation to build the proposal from.
   Eigen::MatrixXd precision;
   std::string no_jacobian;
@@ -754,6 +770,13 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     if (!out[p].fallback_reason.empty()) continue;
     log_priors.push_back(density.log_prior);
     sampled.push_back(p);
+    sampling::Support support{Eigen::VectorXd(k), Eigen::VectorXd(k)};
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const auto [lo, hi] = prior_sets[p][static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])].support();
+      support.lower(j) = std::log(lo);
+      support.upper(j) = std::log(hi);
+    }
+    supports.push_back(support);
   }
   if (sampled.empty()) return out;
   Eigen::VectorXd centre(k);
@@ -761,6 +784,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
   sampling::ImportanceOptions importance = options.importance;
   importance.seed = options.seed;
   importance.threads = options.threads;
+  importance.supports = supports;
   const sampling::ImportanceRun run =
       sampling::importance_evidence(log_likelihood, log_priors, centre, precision.inverse(), importance);
   const double n = static_cast<double>(s.observations.size());
@@ -774,8 +798,13 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     e.evaluations = run.evaluations;
     e.fallback_reason = importance_refusal(s, best, run, w, prior_sets[sampled[q]]);
     e.converged = e.fallback_reason.empty();
-    e.advice = formatted("%.0f draws from a mixture of %.0f t distributions, Pareto k-hat %.2f, %.0f effective draws",
-                         static_cast<double>(run.draws.rows()), run.components, w.pareto_k, w.effective_draws);
+    e.advice = formatted("%.0f draws from a mixture of %.0f t distributions and %.0f defensive slabs",
+                         static_cast<double>(run.draws.rows()), run.components - run.slabs, run.slabs) +
+               (w.slab_axis >= 0 ? " (one along " + s.parameters.spec[s.free[static_cast<std::size_t>(w.slab_axis)]].name +
+                                       formatted("; across it %.2f linearised sd", w.slab_across_spread) + ")"
+                : w.slab_axis == sampling::kSlabAlongCombination ? std::string(" (one along a combination of parameters)")
+                                                                 : std::string()) +
+               formatted(", Pareto k-hat %.2f, %.0f effective draws", w.pareto_k, w.effective_draws);
     double p_sum = 0.0;
     for (Eigen::Index i = 0; i < run.draws.rows(); ++i) {
       if (std::isfinite(w.log_weights(i))) p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -run.log_likelihood(i));

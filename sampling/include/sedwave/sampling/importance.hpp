@@ -10,8 +10,13 @@
 // component; the estimate uses only the draws from the final equal mixture of all of them (the
 // pilot's t included, so the mixture's tails stay at least as wide as the pilot's), each weighted by
 // L pi / q_mixture. The adaptation runs twice: the second pilot draws from the first mixture, and
-// the components are placed again from both pilots' weights (each pilot weighted by its own q). Reproducible for any thread count: the draws come from one seeded stream before
-// any likelihood is evaluated, and the sums run in the draws' order.
+// the components are placed again from both pilots' weights (each pilot weighted by its own q).
+// With ImportanceOptions::defensive, where a prior's posterior is not a single Gaussian-like peak
+// inside its support (a plateau, a cut at a bound, two modes) the mixture also holds a defensive
+// slab for it, and the pilots are weighted by the balance heuristic (each draw against the average
+// of both rounds' mixtures). Reproducible for any thread
+// count: the draws come from one seeded stream before any likelihood is evaluated, and the sums
+// run in the draws' order.
 #include <Eigen/Dense>
 #include <cstdint>
 #include <vector>
@@ -21,6 +26,25 @@
 
 namespace sedwave::sampling {
 
+/// ImportanceEstimate::slab_axis's values other than a coordinate.
+inline constexpr int kNoSlab = -2;
+inline constexpr int kSlabAlongCombination = -1;
+/// ImportanceOptions::defensive's triggers and slab (see there).
+inline constexpr double kDefendBelowKurtosis = 2.5;
+inline constexpr double kDefendWithinSd = 3.0;
+/// In ln of L pi: a Gaussian posterior in 3 dimensions holds all but 3e-5 of its mass within it.
+inline constexpr double kHighDensityDepth = 12.0;
+/// Segments of a defensive slab, each with the t across it centred on its own draws.
+inline constexpr int kSlabSegments = 6;
+/// A slab's axis snaps to a coordinate axis within this cosine of it.
+inline constexpr double kSnapCosine = 0.98;
+
+/// Where a prior is non-zero: a box in the sampled coordinates (a coordinate beyond `lower` or
+/// `upper`'s size is unbounded).
+struct Support {
+  Eigen::VectorXd lower, upper;
+};
+
 struct ImportanceOptions {
   int pilot_draws = 800;   ///< per adaptation round (two), to place the adapted components
   int draws = 2400;        ///< from the final mixture: the estimate
@@ -29,6 +53,20 @@ struct ImportanceOptions {
   int degrees_of_freedom = 4;         ///< of every t component (heavier tails than any Gaussian posterior)
   double pilot_scale = 1.5;    ///< the pilot t's scale matrix is pilot_scale^2 x covariance
   double adapted_scale = 1.3;  ///< an adapted t's scale matrix is adapted_scale^2 x the weighted covariance
+  /// A defensive slab (after Hesterberg 1995, Technometrics 37, 185) per prior whose pilot
+  /// posterior is not a single Gaussian-like peak inside its support (too few effective draws to
+  /// place a t, mass beyond kFarDistance sd, a principal axis's kurtosis below kDefendBelowKurtosis,
+  /// or its mean within kDefendWithinSd sd of a bound) joins the final mixture as one more equal
+  /// component: uniform along one principal axis of that posterior (its flattest, where one is
+  /// flatter than a peak; else the one it reaches farthest beyond the linearisation along; snapped to
+  /// a parameter's own axis within kSnapCosine), over the span of the pilots' draws within
+  /// kHighDensityDepth of its largest density widened by that span on each side and cut to the
+  /// support; across it a t, centred per kSlabSegments segment on the draws there. Inside the slab
+  /// no weight exceeds (L pi / t)(length / share), whatever the posterior's shape along the axis.
+  /// The pilots are then weighted by the balance heuristic (Owen & Zhou 2000). Off by default: on
+  /// some posteriors (docs/sampling.md) mass beside the slab is missed with every weight looking fine.
+  bool defensive = false;
+  std::vector<Support> supports = {};  ///< per prior, in the order given (missing: unbounded)
   std::uint64_t seed = 20090501;
   int threads = 1;  ///< share the likelihood evaluations; the result does not depend on it
 };
@@ -53,6 +91,17 @@ struct ImportanceEstimate {
   /// modes of similar weight.
   double min_axis_kurtosis = 0.0;
   Eigen::VectorXd log_weights;  ///< per draw, normalised (log-sum-exp 0); -inf: zero
+  /// The final mixture's defensive slab for this prior runs along this coordinate (a parameter);
+  /// kSlabAlongCombination: along a combination of them; kNoSlab: the prior has none.
+  int slab_axis = kNoSlab;
+  /// With a slab: the posterior's mass in its outermost sixths at the ends the support did not cut
+  /// (beyond the pilots' high-density span by half that span). More than a trace says the posterior
+  /// goes on past where the pilots looked.
+  double slab_end_mass = 0.0;
+  /// With a slab: the posterior's largest sd across it over the linearised posterior's along the
+  /// same axis. About 1 where the slab's axis is the only one the linearisation got wrong (a
+  /// plateau along one direction); far above it, the posterior is broad across the slab as well.
+  double slab_across_spread = 0.0;
 };
 
 struct ImportanceRun {
@@ -60,12 +109,12 @@ struct ImportanceRun {
   Eigen::VectorXd log_likelihood;  ///< at each draw; -inf where every prior is zero (not evaluated)
   std::vector<ImportanceEstimate> priors;  ///< one per prior, in the order given
   int evaluations = 0;             ///< likelihood evaluations, the pilot's included
-  int components = 0;              ///< of the final mixture
+  int components = 0;              ///< of the final mixture, its defensive slabs included
+  int slabs = 0;                   ///< defensive slabs among them
 };
 
 /// Mahalanobis distance beyond which draws count towards ImportanceEstimate::far_mass.
 inline constexpr double kFarDistance = 4.0;
-
 /// Each prior's evidence with `log_likelihood` (-inf where it has no value), from proposals around
 /// `centre` scaled by `covariance` (symmetric positive definite). A prior that is -inf at a draw
 /// skips it; the likelihood is evaluated only where some prior is not. Throws std::invalid_argument
