@@ -12,6 +12,7 @@
 #include <numbers>
 #include <vector>
 
+#include "hertz_time.hpp"
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
 #include "sedwave/forward/interface/granular_plate.hpp"
 #include "sedwave/forward/units.hpp"
@@ -26,11 +27,7 @@ using sedwave::forward::plate::ElasticPlate;
 using sedwave::forward::plate::PlateEdges;
 using sedwave::forward::plate::PlateMaterial;
 
-// The integral 2 int_0^1 dx / sqrt(1 - x^(5/2)) = (4/5) B(2/5, 1/2): the undamped Hertz collision lasts
-// this times delta_max / v (Johnson 1985, Contact Mechanics, sec. 11.1, eq. 11.24).
-double hertz_time_factor() {
-  return 0.8 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9);
-}
+using sedwave::test::hertz_time_factor;
 
 struct Impact {
   double contact_time;

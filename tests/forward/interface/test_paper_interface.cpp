@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hertz_time.hpp"
 #include "sedwave/forward/interface/granular_plate.hpp"
 #include "sedwave/forward/units.hpp"
 #include "steel_beads.hpp"
@@ -27,8 +28,7 @@ using sedwave::forward::plate::ElasticPlate;
 using sedwave::forward::plate::PlateEdges;
 using sedwave::forward::plate::PlateMaterial;
 
-// 2 int_0^1 dx / sqrt(1 - x^(5/2)) = (4/5) B(2/5, 1/2) = 2.943: the collision lasts this times delta_max / v.
-double hertz_time_factor() { return 0.8 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9); }
+using sedwave::test::hertz_time_factor;
 
 const PlateEdges clamped_below{EdgeCondition::free, EdgeCondition::clamped, EdgeCondition::free, EdgeCondition::free};
 constexpr double strike = 0.5;  // [m/s]
