@@ -15,7 +15,8 @@
 # contact radius) and k_s v; the arrival at the far edge's middle; the largest share of the input in
 # the plate; the share transmitted (in the plate or absorbed by its edges) at the end; friction's
 # share; and the participation ratio of the grains' energy at the end (how many of the 200 grains
-# share it). Logs stay under OUT.
+# share it). Then that ratio over time at 1 m/s, frictionless and with friction (the runs' energies.csv).
+# Logs and runs stay under OUT.
 #
 #   bench/interface/sweep.sh [SEDWAVE [OUT]]
 set -euo pipefail
@@ -36,7 +37,7 @@ variant() {
 # One run: NAME SPEED; prints its row.
 row() {
   local log=$1_$2.log
-  "$SEDWAVE" interface "$1.toml" --speed "$2" --out "$1_$2.h5" > "$log"
+  "$SEDWAVE" interface "$1.toml" --speed "$2" --out "$1_$2.h5" --csv "$1_$2_csv" > "$log"
   python3 - "$1.toml" "$log" "$2" "$1" "${direct:-nan}" <<'PY'
 import math, re, sys, tomllib
 scene = tomllib.load(open(sys.argv[1], "rb"))
@@ -94,3 +95,18 @@ for material in "steel_al 200e9 70e9 3e-4" "soft_beads 21.7e9 70e9 7.5e-4" "stif
     for v in 0.1 1; do row "$1_ks$ks" $v; done
   done
 done
+
+# 3. How localised the grains' energy stays: the participation ratio over time at 1 m/s.
+echo
+echo "participation ratio of the grains' energy (of 200 grains) at 1 m/s"
+python3 - frictionless_1_csv/energies.csv friction_1_csv/energies.csv <<'PY'
+import csv, sys
+runs = {}
+for path in sys.argv[1:]:
+    rows = [r for r in csv.reader(open(path)) if r and not r[0].startswith("#")]
+    runs[path.split("_1_csv")[0]] = {round(float(r[0]) * 1e6, 3): float(r[-1]) for r in rows}
+times = [0, 10, 25, 50, 75, 100, 150, 200, 300]
+print(f"{'t us':22s}" + "".join(f"{t:7d}" for t in times))
+for name, p in runs.items():
+    print(f"{name:22s}" + "".join(f"{p[float(t)]:7.1f}" for t in times))
+PY
