@@ -138,7 +138,9 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
               e.boundary_work / in);
   std::printf("largest share in the plate %.4f; energy balance within %.3g of the input\n", plate_peak / in,
               r.worst_balance);
-  std::printf("kinetic energy left in the three rows at the free end: %.4f of the input\n", r.near_impact_share);
+  if (!r.final_grains.empty() && !r.series.grain_participation.empty())
+    std::printf("the grains' energy is shared by %.4g of %zu grains at the end (participation ratio; %.4g at the start)\n",
+                r.series.grain_participation.back(), r.final_grains.size(), r.series.grain_participation.front());
   double min_step = INFINITY, max_step = 0.0;
   for (std::size_t k = 1; k < r.series.time.size(); ++k) {
     min_step = std::min(min_step, r.series.step_min[k]);

@@ -224,7 +224,6 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
     for (int i = 0; i < plate.nodes_x(); ++i) out.line_nodes.push_back(row + i);
   }
 
-  const std::vector<interface::Grain> grains_at_start = grains;
   if (scene.drive.direct && scene.drive.kind != InterfaceDrive::Kind::velocity)
     throw std::invalid_argument("interface: a direct strike takes a velocity drive's energy");
   double strike_energy = 0.0;
@@ -292,6 +291,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
     s.step_max.push_back(interval_max);
     s.steps.push_back(run.steps());
     s.limits.push_back(run.last_limits());
+    s.grain_participation.push_back(interface::participation_ratio(run.grain_energies()));
     const auto& v = run.plate_velocity();
     for (std::size_t p = 0; p < out.probe_nodes.size(); ++p) {
       const auto n = static_cast<std::size_t>(out.probe_nodes[p]);
@@ -374,18 +374,6 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
     out.arrival.push_back(scene.drive.direct ? front_time(out.series.time, out.probe_velocity[p])
                                              : arrival_time(out.series.time, out.probe_velocity[p], rec.arrival_fraction));
   out.final_grains = run.grains();
-  {
-    const double r = scene.packing.radius, layer = (2.0 * r + scene.packing.gap) * std::sqrt(3.0) / 2.0;
-    double top = -std::numeric_limits<double>::infinity();
-    for (const auto& g : grains_at_start) top = std::max(top, g.y);
-    double near = 0.0;
-    for (std::size_t i = 0; i < out.final_grains.size(); ++i) {
-      const auto& g = out.final_grains[i];
-      if (grains_at_start[i].y < top - 2.5 * layer) continue;
-      near += 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy) + 0.5 * g.inertia * g.spin * g.spin;
-    }
-    out.near_impact_share = near / std::max(out.input_energy, 1e-300);
-  }
   out.max_contact_radius = run.max_plate_contact_radius();
   out.iterations = run.iterations();
   out.most_iterations = run.most_iterations();
@@ -425,7 +413,6 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     io::write_string_dataset(file, "scene", scene.text);
     io::write_attribute(file, "input_energy", r.input_energy);
     io::write_attribute(file, "worst_energy_balance", r.worst_balance);
-    io::write_attribute(file, "near_impact_share", r.near_impact_share);
     io::write_attribute(file, "max_plate_contact_radius", r.max_contact_radius);
     io::write_attribute(file, "element_size", r.element_size);
     io::write_attribute(file, "wall_seconds", r.seconds);
@@ -457,6 +444,7 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     write_with_unit(ts, "limit_plate", column(r, [&](std::size_t k) { return s.limits[k].plate; }), "s");
     write_with_unit(ts, "limit_hertz", column(r, [&](std::size_t k) { return s.limits[k].hertz; }), "s");
     write_with_unit(ts, "limit_friction", column(r, [&](std::size_t k) { return s.limits[k].friction; }), "s");
+    write_with_unit(ts, "grain_participation", s.grain_participation, "1");
 
     io::Handle probes = io::create_group(file, "probes");
     std::vector<double> px, py;
@@ -517,14 +505,15 @@ void write_interface_csv(const std::filesystem::path& dir, const InterfaceScene&
     f << "# granular-solid interface run of " << scene.path.string() << "; SI units; input energy " << r.input_energy
       << " J\n# time_s,grain_translation_J,grain_rotation_J,contact_J,plate_kinetic_J,plate_strain_J,friction_J,"
          "dashpot_J,boundary_J,drive_J,plate_normal_force_N,plate_tangential_force_N,step_s,limit_plate_s,"
-         "limit_hertz_s,limit_friction_s\n";
+         "limit_hertz_s,limit_friction_s,grain_participation\n";
     for (std::size_t k = 0; k < s.time.size(); ++k) {
       const auto& e = s.energies[k];
       char line[512];
-      std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g\n",
+      std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
                     s.time[k], e.grain_translation, e.grain_rotation, e.contact, e.plate_kinetic, e.plate_strain,
                     e.friction_work, e.dashpot_work, e.boundary_work, e.drive_work, s.plate_normal_force[k],
-                    s.plate_tangential_force[k], s.step[k], s.limits[k].plate, s.limits[k].hertz, s.limits[k].friction);
+                    s.plate_tangential_force[k], s.step[k], s.limits[k].plate, s.limits[k].hertz, s.limits[k].friction,
+                    s.grain_participation[k]);
       f << line;
     }
   });

@@ -588,6 +588,42 @@ Energies GranularPlate::energies_without_strain() const {
   return e;
 }
 
+double participation_ratio(const std::vector<double>& energies) {
+  double sum = 0.0, squares = 0.0;
+  for (const double e : energies) sum += e, squares += e * e;
+  return squares > 0.0 ? sum * sum / squares : 0.0;
+}
+
+std::vector<double> GranularPlate::grain_energies() const {
+  std::vector<double> held(grains_.size(), 0.0);
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto& g = grains_[i];
+    held[i] = 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy);
+    if (contacts_.rotation) held[i] += 0.5 * g.inertia * g.spin * g.spin;
+  }
+  const dem::HertzNormal law{grain_modulus_, dashpot_alpha_};
+  for (const auto& p : pairs_) {
+    const auto& gi = grains_[static_cast<std::size_t>(p.i)];
+    const auto& gj = grains_[static_cast<std::size_t>(p.j)];
+    const double overlap = gi.radius + gj.radius - std::hypot(gi.x - gj.x, gi.y - gj.y);
+    if (overlap <= 0.0) continue;
+    const double half = 0.5 * law.energy(overlap, gi.radius, gj.radius);
+    held[static_cast<std::size_t>(p.i)] += half;
+    held[static_cast<std::size_t>(p.j)] += half;
+  }
+  if (!plate_) return held;
+  for (std::size_t i = 0; i < grains_.size(); ++i) {
+    const auto& g = grains_[i];
+    if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;  // beyond the plate's ends (add_plate_contact)
+    const auto e = contact_point(g.x);
+    const double edge_y = e.shape_left * u_[static_cast<std::size_t>(2 * e.node_left + 1)] +
+                          e.shape_right * u_[static_cast<std::size_t>(2 * e.node_right + 1)];
+    const double overlap = g.radius - (g.y - edge_y);
+    if (overlap > 0.0) held[i] += 0.4 * (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius * overlap) * overlap * overlap;
+  }
+  return held;
+}
+
 Energies GranularPlate::energies() const {
   Energies e;
   for (const auto& g : grains_) {

@@ -250,3 +250,56 @@ TEST(Precompression, RelaxedChainPassesItsLoadToThePlateAndKeepsTheBalance) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(GrainEnergies, ParticipationRatioCountsTheGrainsThatShareTheEnergy) {
+  EXPECT_EQ(participation_ratio({}), 0.0);
+  EXPECT_EQ(participation_ratio({0.0, 0.0, 0.0}), 0.0);  // nobody holds energy
+  EXPECT_DOUBLE_EQ(participation_ratio({2.0, 2.0, 2.0, 2.0}), 4.0);
+  EXPECT_DOUBLE_EQ(participation_ratio({0.0, 0.0, 5.0, 0.0}), 1.0);
+  EXPECT_DOUBLE_EQ(participation_ratio({1.0, 3.0}), 1.6);  // 4^2 / (1 + 9)
+
+  // One bead at rest, alone: it holds nothing.
+  GranularPlate alone(chain(1), steel, std::nullopt, InterfaceContacts{}, StepControl{0.1});
+  EXPECT_EQ(alone.grain_energies(), std::vector<double>{0.0});
+
+  // Six separated beads at one speed (a uniform state): ratio 6.
+  HexPacking row = steel_beads(1, 6);
+  row.gap = 1e-4;
+  auto moving = make_hex_packing(row);
+  for (auto& g : moving) g.vx = 0.7, g.spin = 0.0;
+  GranularPlate uniform(moving, steel, std::nullopt, InterfaceContacts{}, StepControl{0.1});
+  EXPECT_NEAR(participation_ratio(uniform.grain_energies()), 6.0, 1e-12);
+  EXPECT_NEAR(uniform.grain_energies()[0], 0.5 * moving[0].mass * 0.49, 1e-15);
+
+  // Two beads at rest pressed together by delta: each holds half of (2/5) k delta^(5/2),
+  // k = (4/3) E* sqrt(R*), R* = r/2.
+  auto pair = chain(2);
+  const double delta = 1e-6;
+  pair[1].y -= delta;
+  GranularPlate pressed(pair, steel, std::nullopt, InterfaceContacts{}, StepControl{0.1});
+  const double e_star = sedwave::forward::hertz_effective_modulus(steel.youngs_modulus, steel.poisson_ratio,
+                                                                  steel.youngs_modulus, steel.poisson_ratio);
+  const double hertz = 0.4 * (4.0 / 3.0) * e_star * std::sqrt(0.5 * bead_radius) * std::pow(delta, 2.5);
+  const auto held = pressed.grain_energies();
+  EXPECT_NEAR(held[0] / (0.5 * hertz), 1.0, 1e-9);
+  EXPECT_NEAR(held[1] / (0.5 * hertz), 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(participation_ratio(held), 2.0);
+}
+
+TEST(GrainEnergies, SumToTheGrainsAndContactsEnergyInARunningPacking) {
+  // Rotation, friction, grain-grain and grain-plate contacts loaded: the shares add up to the books.
+  auto s = small_scene(InterfaceContacts{0.3, 1e2, 1.0, true}, 0.2, EdgeCondition::absorbing);
+  for (const double t : {5e-6, 1.5e-5, 3e-5}) {
+    s.run.advance_to(t);
+    const auto e = s.run.energies();
+    double sum = 0.0;
+    for (const double h : s.run.grain_energies()) sum += h;
+    EXPECT_NEAR(sum / (e.grain_translation + e.grain_rotation + e.contact), 1.0, 1e-12) << "at t = " << t;
+  }
+  EXPECT_GT(s.run.energies().contact, 0.0);
+  EXPECT_GT(s.run.plate_normal_force(), 0.0) << "a bead presses on the plate";
+}
+
+}  // namespace

@@ -19,6 +19,9 @@ struct InterfaceSeries {
   std::vector<double> step_min, step_max;      ///< [s] over the interval
   std::vector<long> steps;                     ///< steps taken so far
   std::vector<interface::StepLimits> limits;   ///< the limits of the last step [s]
+  /// How many grains share the grains' mechanical energy: the participation ratio (sum e_i)^2 / sum e_i^2
+  /// of each grain's energy (interface::GranularPlate::grain_energies); 0 without grains.
+  std::vector<double> grain_participation;
 };
 
 struct InterfaceRun {
@@ -41,9 +44,6 @@ struct InterfaceRun {
   double max_contact_radius = 0.0;             ///< [m] largest grain-plate contact radius
   double element_size = 0.0;                   ///< [m] min(a, b)
   double worst_balance = 0.0;                  ///< max |balance - input| / input over the samples
-  /// Kinetic energy (translation and rotation) left at the end in the three rows nearest the free
-  /// end, as a fraction of the input: how much stays localised near the impact.
-  double near_impact_share = 0.0;
   double seconds = 0.0;                        ///< wall-clock time of the run
   long iterations = 0;       ///< newmark_rk4: fixed-point iterations in all (0: velocity_verlet)
   int most_iterations = 0;   ///< newmark_rk4: the most in one step

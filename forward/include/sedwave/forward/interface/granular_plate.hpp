@@ -112,6 +112,10 @@ struct PlatePulse {
   double duration = 0.0;
 };
 
+/// The participation ratio (sum e)^2 / sum e^2 of non-negative energies: N when N holders share
+/// equally, 1 when one holds everything; 0 when none holds any.
+[[nodiscard]] double participation_ratio(const std::vector<double>& energies);
+
 /// Energies [force length]. The balance kinetic + potential + dissipated - drive_work is constant.
 struct Energies {
   double grain_translation = 0.0;
@@ -183,6 +187,10 @@ class GranularPlate {
   [[nodiscard]] double max_plate_contact_radius() const { return max_plate_contact_radius_; }
   /// Number of grain-grain pairs in contact now.
   [[nodiscard]] int grain_contacts() const;
+  /// The mechanical energy each grain holds [force length]: its kinetic energy (translation, and
+  /// rotation when on), half the Hertz energy of each grain-grain contact it is in and the whole of
+  /// its contact with the plate. They sum to grains + contacts of energies().
+  [[nodiscard]] std::vector<double> grain_energies() const;
   /// newmark_rk4: fixed-point iterations taken in all, the most in one step, and the factorisations
   /// of M + C dt/2 + K dt^2/4 (one per step size met; zeros for velocity_verlet).
   [[nodiscard]] long iterations() const { return iterations_; }
