@@ -1,0 +1,208 @@
+// Cost of the granular-solid interface's plate against a hand-written lumped Q4 update of the same
+// mesh, and ns per grain-step of whole interface runs (docs/performance.md, "The granular-solid
+// interface"). Run from the repository root or pass SEDWAVE_SOURCE_DIR at build time:
+//
+//   build-dev/bin/bench_interface_plate --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//
+// Meshes: example 11's 120 x 40 elements and a 480 x 160 one (16 times the nodes).
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sedwave/forward/experiment/interface_run.hpp"
+#include "sedwave/forward/experiment/interface_scene.hpp"
+#include "sedwave/forward/interface/granular_plate.hpp"
+#include "sedwave/forward/plate/elastic_plate.hpp"
+
+namespace {
+
+namespace plate = sedwave::forward::plate;
+namespace interface = sedwave::forward::interface;
+namespace experiment = sedwave::forward::experiment;
+
+// Example 11's aluminium plate (0.12 m x 0.04 m, 5 mm thick), free on top, absorbing elsewhere.
+plate::ElasticPlate example_plate(int elements_x, int elements_y) {
+  const plate::PlateMaterial aluminium{70e9, 0.33, 2700.0, 5e-3};
+  const plate::PlateEdges edges{plate::EdgeCondition::free, plate::EdgeCondition::absorbing,
+                                plate::EdgeCondition::absorbing, plate::EdgeCondition::absorbing};
+  return plate::ElasticPlate(aluminium, {elements_x, elements_y, 0.12, 0.04}, edges);
+}
+
+// A smooth displacement and velocity field of 1 um, so that no arithmetic meets zeros or denormals.
+void smooth_field(const plate::ElasticPlate& p, std::vector<double>& u, std::vector<double>& v) {
+  u.assign(static_cast<std::size_t>(p.dof_count()), 0.0);
+  v = u;
+  for (int n = 0; n < p.node_count(); ++n) {
+    const double x = p.node_x(n) / 0.12, y = p.node_y(n) / 0.04;
+    u[static_cast<std::size_t>(2 * n)] = 1e-6 * std::sin(3.0 * x) * std::cos(2.0 * y);
+    u[static_cast<std::size_t>(2 * n + 1)] = 1e-6 * std::cos(5.0 * x) * std::sin(1.0 + y);
+    v[static_cast<std::size_t>(2 * n + 1)] = 1e-3 * std::sin(7.0 * x + y);
+  }
+}
+
+// (i) The interface's plate update: one velocity-Verlet step of a GranularPlate without grains
+// (half kick, drift, internal forces, half kick with the edge dashpots and the energy books).
+void BM_InterfacePlateStep(benchmark::State& state) {
+  auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const double dt = 0.5 * p.stable_time_step();
+  const int dofs = p.dof_count();
+  interface::StepControl control;
+  control.fixed_step = dt;
+  interface::GranularPlate run({}, {200e9, 0.3}, std::move(p), {}, control);
+  smooth_field(*run.plate(), run.plate_displacement_mutable(), run.plate_velocity_mutable());
+  run.refresh_forces();
+  for (auto _ : state) {
+    run.step();
+    benchmark::DoNotOptimize(run.plate_velocity().data());
+  }
+  state.counters["per_node"] = benchmark::Counter(static_cast<double>(dofs / 2) * static_cast<double>(state.iterations()),
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// The interface's internal forces alone: f -= K u.
+void BM_InterfacePlateForces(benchmark::State& state) {
+  const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  std::vector<double> u, v;
+  smooth_field(p, u, v);
+  std::vector<double> f(u.size());
+  for (auto _ : state) {
+    std::fill(f.begin(), f.end(), 0.0);
+    p.add_elastic_forces(u, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+}
+
+// (ii) The reference: a hand-written lumped Q4 leapfrog update of the same mesh, f = -K u element by
+// element with the precomputed 8x8 element stiffness, v += dt f / m (inverse masses, zero where a
+// degree of freedom is held), u += dt v. No dashpots and no energy books: the least a step can do.
+struct HandQ4 {
+  int elements_x, elements_y;
+  std::array<double, 64> k;  // rows and columns ordered (i,j), (i+1,j), (i,j+1), (i+1,j+1), x then y
+  std::vector<double> inverse_mass, u, v, f;
+
+  explicit HandQ4(const plate::ElasticPlate& p)
+      : elements_x(p.mesh().elements_x), elements_y(p.mesh().elements_y), k{} {
+    // The plate's element order is counter-clockwise (lower left, lower right, upper right, upper
+    // left); reorder it so that an element's 8 unknowns are 4 consecutive values in each node row.
+    const int order[4] = {0, 1, 3, 2};
+    const auto& ke = p.element_stiffness();
+    for (int a = 0; a < 8; ++a)
+      for (int b = 0; b < 8; ++b)
+        k[static_cast<std::size_t>(8 * a + b)] = ke(2 * order[a / 2] + a % 2, 2 * order[b / 2] + b % 2);
+    inverse_mass.resize(p.mass().size());
+    for (std::size_t d = 0; d < inverse_mass.size(); ++d) inverse_mass[d] = p.fixed()[d] ? 0.0 : 1.0 / p.mass()[d];
+    smooth_field(p, u, v);
+    f.assign(u.size(), 0.0);
+  }
+
+  void forces() {
+    std::fill(f.begin(), f.end(), 0.0);
+    const std::size_t row = 2 * static_cast<std::size_t>(elements_x + 1);
+    for (int j = 0; j < elements_y; ++j) {
+      const double* lower_u = u.data() + static_cast<std::size_t>(j) * row;
+      double* lower_f = f.data() + static_cast<std::size_t>(j) * row;
+      for (int i = 0; i < elements_x; ++i) {
+        double ue[8];
+        for (int c = 0; c < 4; ++c) {
+          ue[c] = lower_u[2 * i + c];
+          ue[4 + c] = lower_u[row + 2 * static_cast<std::size_t>(i) + c];
+        }
+        for (int a = 0; a < 8; ++a) {
+          double s = 0.0;
+          for (int b = 0; b < 8; ++b) s += k[static_cast<std::size_t>(8 * a + b)] * ue[b];
+          lower_f[(a < 4 ? 0 : row) + 2 * static_cast<std::size_t>(i) + a % 4] -= s;
+        }
+      }
+    }
+  }
+
+  void step(double dt) {
+    forces();
+    for (std::size_t d = 0; d < u.size(); ++d) {
+      v[d] += dt * f[d] * inverse_mass[d];
+      u[d] += dt * v[d];
+    }
+  }
+};
+
+void BM_HandQ4Step(benchmark::State& state) {
+  const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  HandQ4 hand(p);
+  const double dt = 0.5 * p.stable_time_step();
+  for (auto _ : state) {
+    hand.step(dt);
+    benchmark::DoNotOptimize(hand.u.data());
+  }
+  state.counters["per_node"] = benchmark::Counter(static_cast<double>(p.node_count()) * static_cast<double>(state.iterations()),
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_HandQ4Forces(benchmark::State& state) {
+  const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  HandQ4 hand(p);
+  for (auto _ : state) {
+    hand.forces();
+    benchmark::DoNotOptimize(hand.f.data());
+  }
+}
+
+#ifndef SEDWAVE_SOURCE_DIR
+#define SEDWAVE_SOURCE_DIR "."
+#endif
+
+std::string example_11() {
+  std::ifstream in(std::string(SEDWAVE_SOURCE_DIR) + "/examples/11-granular-plate/scene.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error("bench: '" + from + "' not in example 11's scene");
+  return text.replace(at, from.size(), to);
+}
+
+// (iii) Whole runs, in ns per grain-step (the run's wall time over steps times grains). Example 11
+// as shipped (200 beads, 4800 elements: mostly plate); and the granular medium alone, 1000 beads on
+// a 4 x 2-element plate, frictionless (bench/interface/cost.sh's last row).
+void run_scene(benchmark::State& state, const std::string& text) {
+  const auto scene = experiment::parse_interface_scene(text, "bench");
+  double grain_steps = 0.0;
+  for (auto _ : state) {
+    const auto run = experiment::run_interface(scene, nullptr);
+    grain_steps += static_cast<double>(run.series.steps.back()) * static_cast<double>(run.final_grains.size());
+    benchmark::DoNotOptimize(run.series.steps.data());
+  }
+  state.counters["per_grain_step"] =
+      benchmark::Counter(grain_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_Example11(benchmark::State& state) { run_scene(state, example_11()); }
+
+void BM_GrainsOnly(benchmark::State& state) {
+  std::string s = example_11();
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"length_x = 0.12 ", "length_x = 0.26 "}, {"elements_x = 120 ", "elements_x = 4 "},
+        {"elements_y = 40", "elements_y = 2"}, {"rows = 10\n", "rows = 20\n"}, {"columns = 20\n", "columns = 50\n"},
+        {"friction = 0.3\n", "friction = 0.0\n"}, {"duration = 3e-4\n", "duration = 4.4e-3\n"},
+        {"output_interval = 5e-7", "output_interval = 2.2e-4"}, {"probe_x = [0.03, 0.06, 0.09]", "probe_x = [0.13]"}})
+    s = replaced(s, from, to);
+  run_scene(state, s);
+}
+
+}  // namespace
+
+BENCHMARK(BM_InterfacePlateStep)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HandQ4Step)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_InterfacePlateForces)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HandQ4Forces)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Example11)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_GrainsOnly)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+BENCHMARK_MAIN();
