@@ -70,6 +70,10 @@ ElasticPlate::ElasticPlate(const PlateMaterial& material, const PlateMesh& mesh,
   a_ = mesh.length_x / mesh.elements_x;
   b_ = mesh.length_y / mesh.elements_y;
   element_stiffness_ = rectangle_stiffness(material, a_, b_);
+  const int row_order[4] = {0, 1, 3, 2};  // counter-clockwise index of each node in row order
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 8; ++c)
+      row_stiffness_(r, c) = element_stiffness_(2 * row_order[r / 2] + r % 2, 2 * row_order[c / 2] + c % 2);
 
   const auto n = static_cast<std::size_t>(dof_count());
   mass_.assign(n, 0.0);
@@ -112,8 +116,11 @@ ElasticPlate::ElasticPlate(const PlateMaterial& material, const PlateMesh& mesh,
     apply(edges.left, node(0, j), 0, length);
     apply(edges.right, node(mesh.elements_x, j), 0, length);
   }
-  for (std::size_t d = 0; d < n; ++d)
+  inverse_mass_.resize(n);
+  for (std::size_t d = 0; d < n; ++d) {
     if (fixed_[d]) damping_[d] = 0.0;
+    inverse_mass_[d] = fixed_[d] ? 0.0 : 1.0 / mass_[d];
+  }
 }
 
 void ElasticPlate::fix(int node_index, int component) {
@@ -123,23 +130,24 @@ void ElasticPlate::fix(int node_index, int component) {
   const auto d = static_cast<std::size_t>(2 * node_index + component);
   fixed_[d] = 1;
   damping_[d] = 0.0;
+  inverse_mass_[d] = 0.0;
 }
 
+// One fixed-size 8x8 product per element. In row order an element's unknowns are two runs of 4
+// consecutive values (its lower and upper node pairs), loaded and stored without an index table.
 void ElasticPlate::add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {
-  const int nx = mesh_.elements_x;
-  Eigen::Matrix<double, 8, 1> ue;
+  using Pair = Eigen::Matrix<double, 4, 1>;
+  const auto row = static_cast<std::size_t>(2 * nodes_x());
   for (int j = 0; j < mesh_.elements_y; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const int nodes[4] = {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)};
-      for (int k = 0; k < 4; ++k) {
-        ue(2 * k) = u[static_cast<std::size_t>(2 * nodes[k])];
-        ue(2 * k + 1) = u[static_cast<std::size_t>(2 * nodes[k] + 1)];
-      }
-      const Eigen::Matrix<double, 8, 1> fe = element_stiffness_ * ue;
-      for (int k = 0; k < 4; ++k) {
-        f[static_cast<std::size_t>(2 * nodes[k])] -= fe(2 * k);
-        f[static_cast<std::size_t>(2 * nodes[k] + 1)] -= fe(2 * k + 1);
-      }
+    const double* lower_u = u.data() + static_cast<std::size_t>(j) * row;
+    double* lower_f = f.data() + static_cast<std::size_t>(j) * row;
+    for (int i = 0; i < mesh_.elements_x; ++i) {
+      const auto at = static_cast<std::size_t>(2 * i);
+      Eigen::Matrix<double, 8, 1> ue;
+      ue << Eigen::Map<const Pair>(lower_u + at), Eigen::Map<const Pair>(lower_u + row + at);
+      const Eigen::Matrix<double, 8, 1> fe = row_stiffness_ * ue;
+      Eigen::Map<Pair>(lower_f + at) -= fe.head<4>();
+      Eigen::Map<Pair>(lower_f + row + at) -= fe.tail<4>();
     }
   }
 }
