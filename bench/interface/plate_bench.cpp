@@ -7,10 +7,12 @@
 // Meshes: example 11's 120 x 40 elements and a 480 x 160 one (16 times the nodes).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -130,6 +132,112 @@ struct HandQ4 {
   }
 };
 
+// The same update by a hand-written node stencil: the 2 x 18 block that an interior node's four
+// elements sum to, applied to its 3 x 3 neighbourhood, and the border nodes from their elements'
+// rows. Checked against the element-by-element forces before it is timed.
+struct HandStencil : HandQ4 {
+  std::array<double, 36> stencil{};  // row r (x, y) of the node, column 6 (dy + 1) + 2 (dx + 1) + c
+
+  explicit HandStencil(const plate::ElasticPlate& p) : HandQ4(p) {
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        for (int r = 0; r < 2; ++r)
+          for (int c = 0; c < 2; ++c)
+            stencil[static_cast<std::size_t>(18 * r + 6 * (b / 2 - a / 2 + 1) + 2 * (b % 2 - a % 2 + 1) + c)] +=
+                k[static_cast<std::size_t>(8 * (2 * a + r) + 2 * b + c)];
+  }
+
+  void border_node(int i, int j, std::size_t row) {
+    for (int a = 0; a < 4; ++a) {
+      const int ei = i - a % 2, ej = j - a / 2;
+      if (ei < 0 || ei >= elements_x || ej < 0 || ej >= elements_y) continue;
+      const double* lower = u.data() + static_cast<std::size_t>(ej) * row + static_cast<std::size_t>(2 * ei);
+      for (int r = 0; r < 2; ++r) {
+        double s = 0.0;
+        for (int b = 0; b < 8; ++b)
+          s += k[static_cast<std::size_t>(8 * (2 * a + r) + b)] * lower[(b < 4 ? 0 : row) + static_cast<std::size_t>(b % 4)];
+        f[static_cast<std::size_t>(j) * row + static_cast<std::size_t>(2 * i + r)] -= s;
+      }
+    }
+  }
+
+  void forces() {
+    const std::size_t row = 2 * static_cast<std::size_t>(elements_x + 1);
+    for (int j = 1; j < elements_y; ++j) {
+      const double* below = u.data() + static_cast<std::size_t>(j - 1) * row;
+      double* out = f.data() + static_cast<std::size_t>(j) * row;
+      for (int i = 1; i < elements_x; ++i) {
+        const auto left = static_cast<std::size_t>(2 * (i - 1));
+        double sx = 0.0, sy = 0.0;
+        for (std::size_t level = 0; level < 3; ++level)
+          for (std::size_t c = 0; c < 6; ++c) {
+            const double value = below[level * row + left + c];
+            sx += stencil[6 * level + c] * value;
+            sy += stencil[18 + 6 * level + c] * value;
+          }
+        out[left + 2] = -sx;
+        out[left + 3] = -sy;
+      }
+    }
+    for (int i = 0; i <= elements_x; ++i) {
+      for (const int j : {0, elements_y}) {
+        f[static_cast<std::size_t>(j) * row + 2 * static_cast<std::size_t>(i)] = 0.0;
+        f[static_cast<std::size_t>(j) * row + 2 * static_cast<std::size_t>(i) + 1] = 0.0;
+        border_node(i, j, row);
+      }
+    }
+    for (int j = 1; j < elements_y; ++j)
+      for (const int i : {0, elements_x}) {
+        f[static_cast<std::size_t>(j) * row + 2 * static_cast<std::size_t>(i)] = 0.0;
+        f[static_cast<std::size_t>(j) * row + 2 * static_cast<std::size_t>(i) + 1] = 0.0;
+        border_node(i, j, row);
+      }
+  }
+
+  void step(double dt) {
+    forces();
+    for (std::size_t d = 0; d < u.size(); ++d) {
+      v[d] += dt * f[d] * inverse_mass[d];
+      u[d] += dt * v[d];
+    }
+  }
+};
+
+HandStencil checked_stencil(const plate::ElasticPlate& p) {
+  HandStencil stencil(p);
+  HandQ4 elements(p);
+  stencil.forces();
+  elements.forces();
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t d = 0; d < stencil.f.size(); ++d) {
+    largest = std::max(largest, std::abs(elements.f[d]));
+    worst = std::max(worst, std::abs(stencil.f[d] - elements.f[d]));
+  }
+  if (!(worst <= 1e-12 * largest)) throw std::logic_error("bench: the stencil's forces are not the elements'");
+  return stencil;
+}
+
+void BM_HandStencilStep(benchmark::State& state) {
+  const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  HandStencil hand = checked_stencil(p);
+  const double dt = 0.5 * p.stable_time_step();
+  for (auto _ : state) {
+    hand.step(dt);
+    benchmark::DoNotOptimize(hand.u.data());
+  }
+  state.counters["per_node"] = benchmark::Counter(static_cast<double>(p.node_count()) * static_cast<double>(state.iterations()),
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_HandStencilForces(benchmark::State& state) {
+  const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  HandStencil hand = checked_stencil(p);
+  for (auto _ : state) {
+    hand.forces();
+    benchmark::DoNotOptimize(hand.f.data());
+  }
+}
+
 void BM_HandQ4Step(benchmark::State& state) {
   const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   HandQ4 hand(p);
@@ -200,8 +308,10 @@ void BM_GrainsOnly(benchmark::State& state) {
 
 BENCHMARK(BM_InterfacePlateStep)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_HandQ4Step)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HandStencilStep)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_InterfacePlateForces)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_HandQ4Forces)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HandStencilForces)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Example11)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_GrainsOnly)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -108,6 +108,9 @@ class ElasticPlate {
   /// element_stiffness_ with nodes ordered (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1): an
   /// element's 8 unknowns are then 4 consecutive values in each of its two node rows.
   Eigen::Matrix<double, 8, 8> row_stiffness_;
+  /// The force on a node whose four elements all exist, -stencil_ times the displacements of its 3 x 3
+  /// neighbourhood (rows below, level and above; in each, nodes left, centre, right, x then y).
+  Eigen::Matrix<double, 2, 18> stencil_;
   std::vector<double> mass_;
   std::vector<double> inverse_mass_;
   std::vector<double> damping_;
