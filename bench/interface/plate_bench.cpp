@@ -1,6 +1,7 @@
-// Cost of the granular-solid interface's plate against a hand-written lumped Q4 update of the same
-// mesh, and ns per grain-step of whole interface runs (docs/performance.md, "The granular-solid
-// interface"). Run from the repository root or pass SEDWAVE_SOURCE_DIR at build time:
+// Cost of the granular-solid interface's plate against hand-written lumped Q4 updates of the same
+// mesh (element by element and by node stencil), and ns per grain-step of whole interface runs
+// (docs/performance.md, "The plate's step against a hand-written lumped Q4 update"). Example 11's
+// scene is read from the source tree the build was configured from:
 //
 //   build-dev/bin/bench_interface_plate --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
