@@ -93,6 +93,7 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   friction_.resize(n);
   dashpot_.resize(n);
   drive_.resize(n);
+  book_plate_dofs();
   build_pairs();
   compute_forces(0.0);
   if (control.scheme == Scheme::newmark_rk4) {
@@ -131,6 +132,7 @@ void GranularPlate::set_plate_pulse(PlatePulse pulse) {
     throw std::invalid_argument("interface: a plate pulse needs one force per degree of freedom");
   if (!(pulse.duration > 0.0)) throw std::invalid_argument("interface: plate pulse duration must be > 0");
   plate_pulse_ = std::move(pulse);
+  book_plate_dofs();
 }
 
 double GranularPlate::plate_pulse_time(double t0, double t1) const {
@@ -321,6 +323,21 @@ void GranularPlate::add_plate_contact(int index) {
   plate_tangential_force_ -= ft;
 }
 
+// A grain whose lowest point is above this height neither touches the top edge nor comes within
+// the skin of it (the edge lies nowhere above its highest node; the margin is twice the skin), so
+// the contact and step-limit loops pass it by without locating it on the edge. Infinite while the
+// edge is not finite, so that an unstable run still reaches every grain.
+double GranularPlate::contact_ceiling() const {
+  const int top = plate_->node(0, plate_->mesh().elements_y);
+  double highest = -inf, sum = 0.0;
+  for (int i = 0; i < plate_->nodes_x(); ++i) {
+    const double uy = u_[static_cast<std::size_t>(2 * (top + i) + 1)];
+    highest = std::max(highest, uy);
+    sum += uy;
+  }
+  return std::isfinite(sum) ? highest + 2.0 * skin_ : inf;
+}
+
 plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
   return contacts_.plate_contact == PlateContactModel::rigid_layers ? plate_->top_edge_node(x)
                                                                     : plate_->top_edge_point(x);
@@ -339,13 +356,16 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
                 g.vy + half_step * (c.fy + f.fy + d.fy + w.fy) / g.mass,
                 contacts_.rotation ? g.spin + half_step * (c.torque + f.torque) / g.inertia : 0.0};
   }
-  if (plate_) {
+  if (plate_ && contacts_.friction > 0.0) {
+    // Friction's slip reads the top edge's x velocities only.
     plate_seen_.resize(v_.size());
-    const auto& mass = plate_->mass();
+    const auto& inverse_mass = plate_->inverse_mass();
     const auto& damping = plate_->damping();
-    for (std::size_t d = 0; d < v_.size(); ++d) {
+    const int top = plate_->node(0, plate_->mesh().elements_y);
+    for (int i = 0; i < plate_->nodes_x(); ++i) {
+      const auto d = static_cast<std::size_t>(2 * (top + i));
       const double force = f_conservative_.empty() ? 0.0 : f_conservative_[d] + f_friction_[d];
-      plate_seen_[d] = plate_->fixed()[d] ? 0.0 : v_[d] + half_step * (force - damping[d] * v_[d]) / mass[d];
+      plate_seen_[d] = plate_->fixed()[d] ? 0.0 : v_[d] + half_step * (force - damping[d] * v_[d]) * inverse_mass[d];
     }
   }
   std::fill(conservative_.begin(), conservative_.end(), Parts{});
@@ -359,7 +379,9 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
     f_conservative_.assign(u_.size(), 0.0);
     f_friction_.assign(u_.size(), 0.0);
     if (with_elastic) plate_->add_elastic_forces(u_, f_conservative_);
-    for (std::size_t g = 0; g < grains_.size(); ++g) add_plate_contact(static_cast<int>(g));
+    const double ceiling = contact_ceiling();
+    for (std::size_t g = 0; g < grains_.size(); ++g)
+      if (!(grains_[g].y - grains_[g].radius > ceiling)) add_plate_contact(static_cast<int>(g));
   }
   for (const int g : loaded_) {
     drive_[static_cast<std::size_t>(g)].fx += load_x_;
@@ -393,30 +415,61 @@ void GranularPlate::kick(double h, bool second_half) {
       friction_work_ -= h * f.torque * 0.5 * (spin + g.spin);
     }
   }
+  if (plate_) kick_plate(h, second_half);
+}
+
+void GranularPlate::book_plate_dofs() {
+  booked_.clear();
   if (!plate_) return;
-  const auto& mass = plate_->mass();
-  const auto& damping = plate_->damping();
   const auto& fixed = plate_->fixed();
+  const auto& damping = plate_->damping();
+  const int top = plate_->node(0, plate_->mesh().elements_y);
+  for (std::size_t d = 0; d < fixed.size(); ++d) {
+    const bool rubbed = contacts_.friction > 0.0 && d % 2 == 0 && d >= static_cast<std::size_t>(2 * top);
+    const bool pulsed = plate_pulse_ && plate_pulse_->forces[d] != 0.0;
+    if (!fixed[d] && (damping[d] > 0.0 || rubbed || pulsed)) booked_.push_back(d);
+  }
+  booked_before_.resize(booked_.size());
+}
+
+// Every free degree of freedom takes v += h f / m in one pass without books; those with a dashpot,
+// friction or a pulse (booked_, along the edges) are then redone from their old velocity with
+// their dashpot and their work. Held ones have inverse mass 0 and stay put.
+void GranularPlate::kick_plate(double h, bool second_half) {
+  const auto& inverse_mass = plate_->inverse_mass();
+  const auto& damping = plate_->damping();
   // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
   const double on = second_half ? plate_pulse_time(time_ - h, time_) : plate_pulse_time(time_, time_ + h);
-  for (std::size_t d = 0; d < u_.size(); ++d) {
-    if (fixed[d]) continue;
-    const double v = v_[d];
-    const double pulse = on > 0.0 ? plate_pulse_->forces[d] * on / h : 0.0;  // its mean force over the half kick
-    const double force = f_conservative_[d] + f_friction_[d] + pulse;
+  const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
+  const double pulse_share = on / h;  // the pulse's mean force over the half kick, per unit force
+  for (std::size_t k = 0; k < booked_.size(); ++k) booked_before_[k] = v_[booked_[k]];
+  const double* fc = f_conservative_.data();
+  const double* ff = f_friction_.data();
+  const double* im = inverse_mass.data();
+  double* v = v_.data();
+  const std::size_t n = v_.size();
+  if (pulse)
+    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + ff[d] + pulse[d] * pulse_share) * im[d];
+  else
+    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + ff[d]) * im[d];
+  for (std::size_t k = 0; k < booked_.size(); ++k) {
+    const std::size_t d = booked_[k];
+    const double before = booked_before_[k];
+    const double load = pulse ? pulse[d] * pulse_share : 0.0;
+    const double force = fc[d] + ff[d] + load;
     // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
     // full step multiplies a free dashpot's velocity by (1 - h c/m)/(1 + h c/m), stable for any c.
-    double dashpot_velocity = v;
+    double dashpot_velocity = before;
     if (second_half) {
-      v_[d] = (v + h * force / mass[d]) / (1.0 + h * damping[d] / mass[d]);
-      dashpot_velocity = v_[d];
+      v[d] = (before + h * force * im[d]) / (1.0 + h * damping[d] * im[d]);
+      dashpot_velocity = v[d];
     } else {
-      v_[d] = v + h * (force - damping[d] * v) / mass[d];
+      v[d] = before + h * (force - damping[d] * before) * im[d];
     }
-    const double mean = 0.5 * (v + v_[d]);
+    const double mean = 0.5 * (before + v[d]);
     boundary_work_ += h * damping[d] * dashpot_velocity * mean;
-    friction_work_ -= h * f_friction_[d] * mean;
-    drive_work_ += h * pulse * mean;
+    friction_work_ -= h * ff[d] * mean;
+    drive_work_ += h * load * mean;
   }
 }
 
@@ -442,9 +495,13 @@ StepLimits GranularPlate::current_limits() const {
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
     const double dx = gi.x - gj.x, dy = gi.y - gj.y;
-    const double d = std::sqrt(dx * dx + dy * dy);
-    const double overlap = gi.radius + gj.radius - d;
-    const double vn = ((gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy) / d;
+    const double d2 = dx * dx + dy * dy;
+    const double reach = gi.radius + gj.radius;
+    const double approach = (gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy;
+    if (d2 >= reach * reach && approach >= 0.0) continue;  // apart and not closing: no root, no division
+    const double d = std::sqrt(d2);
+    const double overlap = reach - d;
+    const double vn = approach / d;
     if (overlap <= 0.0 && vn >= 0.0) continue;
     const double m = gi.mass * gj.mass / (gi.mass + gj.mass);
     const double r = gi.radius * gj.radius / (gi.radius + gj.radius);
@@ -487,8 +544,9 @@ StepLimits GranularPlate::current_limits() const {
   // inverse mass (and r^2/I along the edge) is added to sum N_a^2/M_a.
   const bool newmark = control_.scheme == Scheme::newmark_rk4;
   double newmark_omega2 = 0.0;
+  const double ceiling = contact_ceiling();
   for (const auto& g : grains_) {
-    if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;
+    if (g.x < 0.0 || g.x > plate_->mesh().length_x || g.y - g.radius > ceiling) continue;
     const auto e = contact_point(g.x);
     const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
     const double overlap = g.radius - (g.y - (e.shape_left * u_[ya] + e.shape_right * u_[yb]));

@@ -70,6 +70,18 @@ ElasticPlate::ElasticPlate(const PlateMaterial& material, const PlateMesh& mesh,
   a_ = mesh.length_x / mesh.elements_x;
   b_ = mesh.length_y / mesh.elements_y;
   element_stiffness_ = rectangle_stiffness(material, a_, b_);
+  const int row_order[4] = {0, 1, 3, 2};  // counter-clockwise index of each node in row order
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 8; ++c)
+      row_stiffness_(r, c) = element_stiffness_(2 * row_order[r / 2] + r % 2, 2 * row_order[c / 2] + c % 2);
+  // Node a of an element couples to node b at the offset (b - a) in the mesh: an interior node sums
+  // the blocks of its four elements into one 3 x 3 stencil.
+  stencil_.setZero();
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      const int dx = b % 2 - a % 2, dy = b / 2 - a / 2;
+      stencil_.block<2, 2>(0, 6 * (dy + 1) + 2 * (dx + 1)) += row_stiffness_.block<2, 2>(2 * a, 2 * b);
+    }
 
   const auto n = static_cast<std::size_t>(dof_count());
   mass_.assign(n, 0.0);
@@ -112,8 +124,11 @@ ElasticPlate::ElasticPlate(const PlateMaterial& material, const PlateMesh& mesh,
     apply(edges.left, node(0, j), 0, length);
     apply(edges.right, node(mesh.elements_x, j), 0, length);
   }
-  for (std::size_t d = 0; d < n; ++d)
+  inverse_mass_.resize(n);
+  for (std::size_t d = 0; d < n; ++d) {
     if (fixed_[d]) damping_[d] = 0.0;
+    inverse_mass_[d] = fixed_[d] ? 0.0 : 1.0 / mass_[d];
+  }
 }
 
 void ElasticPlate::fix(int node_index, int component) {
@@ -123,24 +138,48 @@ void ElasticPlate::fix(int node_index, int component) {
   const auto d = static_cast<std::size_t>(2 * node_index + component);
   fixed_[d] = 1;
   damping_[d] = 0.0;
+  inverse_mass_[d] = 0.0;
 }
 
+// Interior nodes by the 3 x 3 stencil (36 products a node, against 64 an element gathered and
+// scattered); the nodes of the border from their elements' rows of the element stiffness. In row
+// order a node row's unknowns are consecutive, so both read runs of values without an index table.
 void ElasticPlate::add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {
-  const int nx = mesh_.elements_x;
-  Eigen::Matrix<double, 8, 1> ue;
-  for (int j = 0; j < mesh_.elements_y; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const int nodes[4] = {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)};
-      for (int k = 0; k < 4; ++k) {
-        ue(2 * k) = u[static_cast<std::size_t>(2 * nodes[k])];
-        ue(2 * k + 1) = u[static_cast<std::size_t>(2 * nodes[k] + 1)];
-      }
-      const Eigen::Matrix<double, 8, 1> fe = element_stiffness_ * ue;
-      for (int k = 0; k < 4; ++k) {
-        f[static_cast<std::size_t>(2 * nodes[k])] -= fe(2 * k);
-        f[static_cast<std::size_t>(2 * nodes[k] + 1)] -= fe(2 * k + 1);
-      }
+  using Vec2 = Eigen::Matrix<double, 2, 1>;
+  using Vec4 = Eigen::Matrix<double, 4, 1>;
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  const int nx = mesh_.elements_x, ny = mesh_.elements_y;
+  const auto row = static_cast<std::size_t>(2 * nodes_x());
+  for (int j = 1; j < ny; ++j) {
+    const double* below = u.data() + static_cast<std::size_t>(j - 1) * row;
+    double* out = f.data() + static_cast<std::size_t>(j) * row;
+    for (int i = 1; i < nx; ++i) {
+      const auto left = static_cast<std::size_t>(2 * (i - 1));
+      Eigen::Matrix<double, 18, 1> around;
+      around << Eigen::Map<const Vec6>(below + left), Eigen::Map<const Vec6>(below + row + left),
+          Eigen::Map<const Vec6>(below + 2 * row + left);
+      Eigen::Map<Vec2>(out + left + 2) -= stencil_ * around;
     }
+  }
+  const auto border_node = [&](int i, int j) {
+    Vec2 sum = Vec2::Zero();
+    for (int a = 0; a < 4; ++a) {  // the node is node a of the element whose lower left is (i, j) - offset(a)
+      const int ei = i - a % 2, ej = j - a / 2;
+      if (ei < 0 || ei >= nx || ej < 0 || ej >= ny) continue;
+      const double* lower = u.data() + static_cast<std::size_t>(ej) * row + static_cast<std::size_t>(2 * ei);
+      Eigen::Matrix<double, 8, 1> ue;
+      ue << Eigen::Map<const Vec4>(lower), Eigen::Map<const Vec4>(lower + row);
+      sum += row_stiffness_.block<2, 8>(2 * a, 0) * ue;
+    }
+    Eigen::Map<Vec2>(f.data() + static_cast<std::size_t>(j) * row + static_cast<std::size_t>(2 * i)) -= sum;
+  };
+  for (int i = 0; i <= nx; ++i) {
+    border_node(i, 0);
+    border_node(i, ny);
+  }
+  for (int j = 1; j < ny; ++j) {
+    border_node(0, j);
+    border_node(nx, j);
   }
 }
 

@@ -2,6 +2,7 @@
 // form, its order in the element size, and the Lysmer-Kuhlemeyer edge.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -103,6 +104,58 @@ TEST(Plate, DispersionErrorFallsAsTheSquareOfTheElementSize) {
     const double order = std::log2(coarse / fine);
     EXPECT_NEAR(order, 2.0, 0.05) << "component " << moving << ": errors " << coarse << ", " << fine;
   }
+}
+
+// Patch test (Zienkiewicz & Taylor, vol. 1, ch. 9): bilinear elements reproduce a linear displacement
+// field exactly, so K u vanishes at interior nodes and, on the edges, equals the uniform stress's
+// traction times the thickness times each node's share of the edge (half at the ends).
+TEST(Plate, LinearDisplacementLoadsOnlyTheEdges) {
+  const PlateEdges free_edges{EdgeCondition::free, EdgeCondition::free, EdgeCondition::free, EdgeCondition::free};
+  const ElasticPlate plate(aluminium, {7, 5, 0.07, 0.03}, free_edges);  // 10 mm x 6 mm elements
+  const double exx = 1e-4, eyy = -3e-5, dux_dy = 2e-5, duy_dx = 5e-5;
+  std::vector<double> u(static_cast<std::size_t>(plate.dof_count())), f(u.size(), 0.0);
+  for (int n = 0; n < plate.node_count(); ++n) {
+    u[static_cast<std::size_t>(2 * n)] = exx * plate.node_x(n) + dux_dy * plate.node_y(n);
+    u[static_cast<std::size_t>(2 * n + 1)] = duy_dx * plate.node_x(n) + eyy * plate.node_y(n);
+  }
+  plate.add_elastic_forces(u, f);
+  const double nu = aluminium.poisson_ratio, e = aluminium.youngs_modulus / (1.0 - nu * nu), t = aluminium.thickness;
+  const double sxx = e * (exx + nu * eyy), syy = e * (eyy + nu * exx), sxy = e * 0.5 * (1.0 - nu) * (dux_dy + duy_dx);
+  const int nx = plate.mesh().elements_x, ny = plate.mesh().elements_y;
+  const double a = plate.element_width(), b = plate.element_height();
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double along_x = (i == 0 || i == nx ? 0.5 : 1.0) * a * t, along_y = (j == 0 || j == ny ? 0.5 : 1.0) * b * t;
+      double fx = 0.0, fy = 0.0;  // K u: the load that holds the field
+      if (i == 0) fx -= sxx * along_y, fy -= sxy * along_y;
+      if (i == nx) fx += sxx * along_y, fy += sxy * along_y;
+      if (j == 0) fx -= sxy * along_x, fy -= syy * along_x;
+      if (j == ny) fx += sxy * along_x, fy += syy * along_x;
+      const auto n = static_cast<std::size_t>(plate.node(i, j));
+      EXPECT_NEAR(-f[2 * n], fx, 1e-9 * sxx * b * t) << "node " << i << ", " << j;
+      EXPECT_NEAR(-f[2 * n + 1], fy, 1e-9 * sxx * b * t) << "node " << i << ", " << j;
+    }
+}
+
+// The forces of an arbitrary field are the element matrices' products summed over the elements
+// (the assembly written here from element_stiffness() and its node order).
+TEST(Plate, ForcesAreTheSumOfElementProducts) {
+  const ElasticPlate plate(aluminium, {6, 4, 0.06, 0.02}, PlateEdges{});
+  std::vector<double> u(static_cast<std::size_t>(plate.dof_count())), f(u.size(), 0.0), assembled(u.size(), 0.0);
+  for (std::size_t d = 0; d < u.size(); ++d) u[d] = 1e-6 * std::sin(1.7 * static_cast<double>(d * d % 97));
+  plate.add_elastic_forces(u, f);
+  const auto& k = plate.element_stiffness();
+  for (int j = 0; j < plate.mesh().elements_y; ++j)
+    for (int i = 0; i < plate.mesh().elements_x; ++i) {
+      const int nodes[4] = {plate.node(i, j), plate.node(i + 1, j), plate.node(i + 1, j + 1), plate.node(i, j + 1)};
+      for (int r = 0; r < 8; ++r)
+        for (int c = 0; c < 8; ++c)
+          assembled[static_cast<std::size_t>(2 * nodes[r / 2] + r % 2)] -=
+              k(r, c) * u[static_cast<std::size_t>(2 * nodes[c / 2] + c % 2)];
+    }
+  double largest = 0.0;
+  for (const double v : assembled) largest = std::max(largest, std::abs(v));
+  for (std::size_t d = 0; d < u.size(); ++d) EXPECT_NEAR(f[d], assembled[d], 1e-12 * largest) << "dof " << d;
 }
 
 TEST(Plate, ElementBoundBoundsTheMeshFrequency) {

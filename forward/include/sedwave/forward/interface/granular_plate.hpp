@@ -225,7 +225,10 @@ class GranularPlate {
   void add_plate_contact(int g);
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
+  [[nodiscard]] double contact_ceiling() const;
   void kick(double h, bool second_half);
+  void kick_plate(double h, bool second_half);
+  void book_plate_dofs();
   void drift(double h);
 
   std::vector<Grain> grains_;
@@ -246,7 +249,11 @@ class GranularPlate {
     double vx, vy, spin;
   };
   std::vector<Motion> seen_;
-  std::vector<double> plate_seen_;
+  std::vector<double> plate_seen_;  ///< only the top edge's x components are kept (friction's slip)
+  /// The plate's degrees of freedom whose work is booked in a kick (edge dashpots, the top edge
+  /// under friction, a pulse's loads), ascending, and their velocities before the kick.
+  std::vector<std::size_t> booked_;
+  std::vector<double> booked_before_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
   std::optional<ForcePulse> pulse_;
   std::optional<PlatePulse> plate_pulse_;

@@ -66,6 +66,9 @@ class ElasticPlate {
   [[nodiscard]] const std::vector<double>& damping() const { return damping_; }
   /// 1 where a degree of freedom is held at zero displacement, else 0.
   [[nodiscard]] const std::vector<char>& fixed() const { return fixed_; }
+  /// 1/mass of each degree of freedom, 0 where it is held: a kick v += h f / m without a division
+  /// that leaves a held degree of freedom where it is.
+  [[nodiscard]] const std::vector<double>& inverse_mass() const { return inverse_mass_; }
   /// Holds one more degree of freedom at zero (symmetry planes, tests).
   void fix(int node_index, int component);
 
@@ -102,7 +105,14 @@ class ElasticPlate {
   double a_;
   double b_;
   Eigen::Matrix<double, 8, 8> element_stiffness_;
+  /// element_stiffness_ with nodes ordered (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1): an
+  /// element's 8 unknowns are then 4 consecutive values in each of its two node rows.
+  Eigen::Matrix<double, 8, 8> row_stiffness_;
+  /// The force on a node whose four elements all exist, -stencil_ times the displacements of its 3 x 3
+  /// neighbourhood (rows below, level and above; in each, nodes left, centre, right, x then y).
+  Eigen::Matrix<double, 2, 18> stencil_;
   std::vector<double> mass_;
+  std::vector<double> inverse_mass_;
   std::vector<double> damping_;
   std::vector<char> fixed_;
   double omega_bound_ = 0.0;
