@@ -74,19 +74,24 @@ MpiSession::~MpiSession() {
 }
 
 int MpiSession::run(const std::function<int()>& body) const {
+  // The line goes out in one write: std::cerr is unbuffered, and piece by piece it would interleave
+  // with what Open MPI prints as it aborts the other ranks.
+  const auto say = [this](const char* what) {
+    std::cerr << "sedwave: error on rank " + std::to_string(rank_) + ": " + what + "\n";
+  };
   try {
     return body();
   } catch (const parallel::AgreedFailure& failure) {
     if (failure.ranks() == size_) end_together(report_failure(std::current_exception(), &std::cerr));
-    std::cerr << "sedwave: error on rank " << rank_ << ": " << failure.what() << '\n';
+    say(failure.what());
   } catch (const QuietExit&) {
     throw;
   } catch (const std::exception& failure) {
     if (size_ == 1) throw;
-    std::cerr << "sedwave: error on rank " << rank_ << ": " << failure.what() << '\n';
+    say(failure.what());
   } catch (...) {
     if (size_ == 1) throw;
-    std::cerr << "sedwave: error on rank " << rank_ << ": unknown exception\n";
+    say("unknown exception");
   }
   std::cerr.flush();
   MPI_Abort(MPI_COMM_WORLD, kExitError);
