@@ -186,27 +186,31 @@ TEST(BottomLossFit, BadRowsNameFileLineAndField) {
   const std::string water = "# water_sound_speed_m_per_s: 1500\n";
   const std::string header = "quantity,frequency,frequency_unit,value,value_unit,sigma,grazing_angle_deg\n";
   const auto error = [&](const std::string& row, const std::string& head) { return read_error(head + row); };
-  EXPECT_NE(error("bottom_loss,1,kHz,-2,dB,0.5,30\n", water + header).find("bad.csv:3:4: field 'value': bottom loss -2 dB is below 0 dB"),
-            std::string::npos);
+  // The row under `head` is refused with `message` in its text.
+  const auto refused = [&](const std::string& row, const std::string& head, const std::string& message) {
+    const std::string text = error(row, head);
+    EXPECT_NE(text.find(message), std::string::npos) << text;
+  };
+  refused("bottom_loss,1,kHz,-2,dB,0.5,30\n", water + header,
+          "bad.csv:3:4: field 'value': bottom loss -2 dB is below 0 dB");
   EXPECT_EQ(error("bottom_loss,1,kHz,-1,dB,0.5,30\n", water + header), "(no error)");  // within its noise
-  EXPECT_NE(error("reflection_magnitude,1,kHz,-0.1,1,0.05,30\n", water + header).find(":3:4: field 'value': |R| must be >= 0"),
-            std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,,30\n", water + header).find(":3:6: field 'sigma': a reflection row needs"),
-            std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,\n", water + header).find(":3:7: field 'grazing_angle_deg': a reflection row needs"),
-            std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,95\n", water + header).find(":3:7: field 'grazing_angle_deg': grazing angle must be in (0, 90]"),
-            std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,Np/m,0.5,30\n", water + header).find(":3:5: field 'value_unit': unknown unit 'Np/m'"),
-            std::string::npos);
-  EXPECT_NE(error("attenuation,1,kHz,3,dB/m,0.5,30\n", water + header).find(":3:7: field 'grazing_angle_deg': only a reflection row"),
-            std::string::npos);
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5,30\n", header).find(":2:5: field 'value_unit': reflection data need a water sound speed"),
-            std::string::npos);
+  refused("reflection_magnitude,1,kHz,-0.1,1,0.05,30\n", water + header,
+          ":3:4: field 'value': |R| must be >= 0");
+  refused("bottom_loss,1,kHz,3,dB,,30\n", water + header,
+          ":3:6: field 'sigma': a reflection row needs");
+  refused("bottom_loss,1,kHz,3,dB,0.5,\n", water + header,
+          ":3:7: field 'grazing_angle_deg': a reflection row needs");
+  refused("bottom_loss,1,kHz,3,dB,0.5,95\n", water + header,
+          ":3:7: field 'grazing_angle_deg': grazing angle must be in (0, 90]");
+  refused("bottom_loss,1,kHz,3,Np/m,0.5,30\n", water + header,
+          ":3:5: field 'value_unit': unknown unit 'Np/m'");
+  refused("attenuation,1,kHz,3,dB/m,0.5,30\n", water + header,
+          ":3:7: field 'grazing_angle_deg': only a reflection row");
+  refused("bottom_loss,1,kHz,3,dB,0.5,30\n", header,
+          ":2:5: field 'value_unit': reflection data need a water sound speed");
   // Without the angle column a bottom-loss row is missing its angle.
-  EXPECT_NE(error("bottom_loss,1,kHz,3,dB,0.5\n", water + "quantity,frequency,frequency_unit,value,value_unit,sigma\n")
-                .find(":3:7: field 'grazing_angle_deg'"),
-            std::string::npos);
+  refused("bottom_loss,1,kHz,3,dB,0.5\n", water + "quantity,frequency,frequency_unit,value,value_unit,sigma\n",
+          ":3:7: field 'grazing_angle_deg'");
 }
 
 TEST(BottomLossFit, AModelWithoutDensityIsRefused) {
