@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "mpi_session.hpp"
 #include "output_paths.hpp"
 #include "sedwave/forward/dem/contact/read_contact.hpp"
@@ -345,18 +346,13 @@ int run_dem(const DemOptions& o, const MpiSession& mpi) {
 
 /// --law, --tangential, --rolling and one option per key of the contact laws (dem::read_contact).
 void add_contact_options(CLI::App& cmd, DemOptions& o) {
-  const auto names = [](const std::vector<std::string>& list) {
-    std::string text;
-    for (const std::string& n : list) text += (text.empty() ? "" : ", ") + n;
-    return text;
-  };
-  cmd.add_option("--law", o.law, "normal contact law: " + names(dem::normal_law_names()) + " (default hooke)")
+  cmd.add_option("--law", o.law, "normal contact law: " + comma_separated(dem::normal_law_names()) + " (default hooke)")
       ->check(CLI::IsMember(dem::normal_law_names()));
   cmd.add_option("--tangential", o.tangential,
-                 "tangential law: " + names(dem::tangential_law_names()) +
+                 "tangential law: " + comma_separated(dem::tangential_law_names()) +
                      " (default spring_history with --friction, else none)")
       ->check(CLI::IsMember(dem::tangential_law_names()));
-  cmd.add_option("--rolling", o.rolling, "rolling law: " + names(dem::rolling_law_names()) + " (default none)")
+  cmd.add_option("--rolling", o.rolling, "rolling law: " + comma_separated(dem::rolling_law_names()) + " (default none)")
       ->check(CLI::IsMember(dem::rolling_law_names()));
   for (const dem::ContactKey* k : dem::all_contact_keys())
     cmd.add_option("--" + std::string(k->option), o.contact[std::string(k->key)], std::string(k->help))

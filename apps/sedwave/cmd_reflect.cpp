@@ -327,9 +327,8 @@ int run_reflect(const ReflectOptions& o) {
     apply_fit_report(o.from_fit, seabed.halfspace, halfspace_sets);
   } else if (const std::vector<std::string> missing = inversion::values_not_given(halfspace); !missing.empty()) {
     // A layer's thickness or a grain contact's stiffness: no typical value stands in for it.
-    std::string names;
-    for (const std::string& name : missing) names += (names.empty() ? "" : ", ") + name;
-    throw UsageError("model '" + halfspace.model->name() + "': give " + names + " (--set NAME=VALUE, or --from-fit)");
+    throw UsageError("model '" + halfspace.model->name() + "': give " + comma_separated(missing) +
+                     " (--set NAME=VALUE, or --from-fit)");
   }
   if (layered_model) {
     const sediment::SeabedModel stack = sediment::seabed_of(seabed.halfspace.model, seabed.halfspace.values,

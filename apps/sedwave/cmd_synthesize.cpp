@@ -95,9 +95,7 @@ Command add_synthesize_command(CLI::App& app) {
     }
     if (lacks("gamma") || lacks("e_n")) throw std::invalid_argument("give the damping: --gamma or --en");
     if (!missing.empty()) {  // a layer's thickness, or a model's own parameter without a typical value
-      std::string names;
-      for (const std::string& name : missing) names += (names.empty() ? "" : ", ") + name;
-      throw std::invalid_argument("give " + names + " (--set NAME=VALUE): no typical value stands in for it");
+      throw std::invalid_argument("give " + comma_separated(missing) + " (--set NAME=VALUE): no typical value stands in for it");
     }
     if (!(o->design.highest_hz > o->design.lowest_hz)) {
       throw std::invalid_argument("--from must be below --to");

@@ -7,10 +7,18 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "usable_cores.hpp"
 
 namespace sedwave::app {
+
+/// "a, b, c": names listed in a help text or a message.
+inline std::string comma_separated(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
 
 /// A finite number in [lower, upper] (both inclusive).
 inline CLI::Validator finite_in(double lower, double upper = std::numeric_limits<double>::max()) {
