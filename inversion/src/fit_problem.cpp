@@ -164,10 +164,9 @@ std::vector<Setup::RowGroup> reflection_points_of_rows(const Setup& s) {
 }
 
 /// The seabed the setup's model describes at parameter values, under the data's water: a half-space
-/// of the model, or a layered seabed's stack (the model is held by the setup: a non-owning pointer).
+/// of the model, or a layered seabed's stack.
 sediment::SeabedModel seabed_at(const Setup& s, const sediment::SedimentModel& model, const std::vector<double>& values) {
-  return sediment::seabed_of(std::shared_ptr<const sediment::SedimentModel>(std::shared_ptr<const sediment::SedimentModel>{}, &model),
-                             values, s.water_speed, s.water_density);
+  return sediment::seabed_of(model, values, s.water_speed, s.water_density);
 }
 
 /// The bottom loss [dB] or |R| at each point for parameter values: water over the seabed the model

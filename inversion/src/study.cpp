@@ -42,10 +42,8 @@ void write_bottom_loss_curves(const std::filesystem::path& file, const FitResult
                               const std::vector<double>& frequencies) {
   std::vector<double> values;
   for (const ParameterResult& p : best.parameters) values.push_back(p.value);
-  // The model is the caller's: the seabed holds it without owning it.
-  const sediment::SeabedModel seabed = sediment::seabed_of(
-      std::shared_ptr<const sediment::SedimentModel>(std::shared_ptr<const sediment::SedimentModel>{}, &model), values,
-      data.water_sound_speed.value_or(1500.0), water_density_of(data));
+  const sediment::SeabedModel seabed =
+      sediment::seabed_of(model, values, data.water_sound_speed.value_or(1500.0), water_density_of(data));
   std::vector<double> angles;
   for (int k = 1; k <= kBottomLossCurveAngles; ++k) angles.push_back(k * (std::numbers::pi / 2) / kBottomLossCurveAngles);
   io::write_text_atomically(file, [&](std::ostream& out) {

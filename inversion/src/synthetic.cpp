@@ -48,10 +48,7 @@ ObservationSet synthetic_observations(const sediment::SedimentModel& model, cons
     std::snprintf(density, sizeof density, "%.17g", design.water_density);
     set.metadata["water_density_kg_per_m3"] = density;
   }
-  // The model is the caller's: the seabed holds it without owning it.
-  const sediment::SeabedModel seabed = sediment::seabed_of(
-      std::shared_ptr<const sediment::SedimentModel>(std::shared_ptr<const sediment::SedimentModel>{}, &model), values,
-      design.water_speed, design.water_density);
+  const sediment::SeabedModel seabed = sediment::seabed_of(model, values, design.water_speed, design.water_density);
   for (int i = 0; i < design.points; ++i) {
     const double f = design.lowest_hz * std::pow(design.highest_hz / design.lowest_hz, i / (design.points - 1.0));
     if (!design.grazing_angles.empty()) {

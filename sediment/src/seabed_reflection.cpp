@@ -39,6 +39,13 @@ SeabedModel seabed_of(const std::shared_ptr<const SedimentModel>& model, std::sp
   return seabed;
 }
 
+SeabedModel seabed_of(const SedimentModel& model, std::span<const double> values, double water_speed,
+                      double water_density) {
+  // An aliasing pointer with no owner: it points at the model and never deletes it.
+  return seabed_of(std::shared_ptr<const SedimentModel>(std::shared_ptr<const SedimentModel>{}, &model), values,
+                   water_speed, water_density);
+}
+
 LayeredHalfspace layered_halfspace_at(const SeabedModel& seabed, double frequency_hz) {
   LayeredHalfspace out;
   out.water = {seabed.water_speed, 0.0, 0.0, 0.0, seabed.water_density};

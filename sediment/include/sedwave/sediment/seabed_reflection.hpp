@@ -42,6 +42,10 @@ struct SeabedModel {
 [[nodiscard]] SeabedModel seabed_of(const std::shared_ptr<const SedimentModel>& model, std::span<const double> values,
                                     double water_speed, double water_density);
 
+/// The same for a model the caller keeps alive longer than the seabed (held without owning it).
+[[nodiscard]] SeabedModel seabed_of(const SedimentModel& model, std::span<const double> values, double water_speed,
+                                    double water_density);
+
 /// Every part's medium at frequency_hz.
 [[nodiscard]] LayeredHalfspace layered_halfspace_at(const SeabedModel& seabed, double frequency_hz);
 
