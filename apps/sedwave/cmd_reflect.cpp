@@ -469,9 +469,9 @@ Command add_reflect_command(CLI::App& app) {
   cmd->add_option("--angle-step", o->angle_step, "grazing-angle step [deg] from 0 to 90")
       ->capture_default_str()->check(finite_in(1e-3, 90.0));
   cmd->add_option("--water-speed", o->water_speed, "sound speed of the water above [m/s]")
-      ->capture_default_str()->check(finite_positive());
+      ->capture_default_str()->check(water_speed_range());
   cmd->add_option("--water-density", o->water_density, "density of the water above [kg/m^3]")
-      ->capture_default_str()->check(finite_positive());
+      ->capture_default_str()->check(water_density_range());
   cmd->add_flag("--fluid", o->fluid, "leave shear waves out: every part a fluid");
   cmd->add_option("--band", o->band, "also |R|^2 averaged over a band this many octaves wide around each frequency "
                                      "(e.g. 0.3333 for third octaves); 0: none")

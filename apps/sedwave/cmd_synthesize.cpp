@@ -75,11 +75,11 @@ Command add_synthesize_command(CLI::App& app) {
                   "the seabed the model describes (docs/reflection.md)")
       ->delimiter(',')->check(CLI::Range(0.0, 90.0));
   cmd->add_option("--bottom-loss-sigma", o->design.bottom_loss_sigma_db, "1-sigma Gaussian noise of the bottom loss [dB], also its sigma")
-      ->capture_default_str()->check(finite_positive());
+      ->capture_default_str()->check(finite_in(1e-6, 100.0));
   cmd->add_option("--water-speed", o->design.water_speed, "sound speed of the water above [m/s] (bottom-loss rows)")
-      ->capture_default_str()->check(finite_positive());
+      ->capture_default_str()->check(water_speed_range());
   cmd->add_option("--water-density", o->design.water_density, "density of the water above [kg/m^3] (bottom-loss rows)")
-      ->capture_default_str()->check(finite_positive());
+      ->capture_default_str()->check(water_density_range());
   cmd->add_flag("--reflection-only", o->reflection_only, "bottom-loss rows only (no attenuation and sound speed)");
   cmd->add_option("--out", o->out, "observation CSV to write")->required();
   return {cmd, [o]() {

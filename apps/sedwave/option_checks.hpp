@@ -43,6 +43,11 @@ inline CLI::Validator finite_in(double lower, double upper = std::numeric_limits
       "FINITE");
 }
 
+/// The water above a seabed (reflection): its sound speed [m/s], from fresh water near freezing to
+/// hot brine, and its density [kg/m^3], from warm fresh water to dense brine.
+inline CLI::Validator water_speed_range() { return finite_in(1300.0, 1800.0); }
+inline CLI::Validator water_density_range() { return finite_in(950.0, 1300.0); }
+
 /// A non-empty list: `--fit ''` names no parameter, which is not the same as leaving --fit out.
 inline CLI::Validator non_empty_list() {
   return CLI::Validator(

@@ -58,3 +58,15 @@ sedwave_cli_case(synthesize.grazing_angle_beyond_90 2 "--grazing-angles"
 sedwave_cli_case(invert.layered_dry_frame_layer 1 "layer l1: model 'lattice' fixes no bulk density"
   invert ${CMAKE_CURRENT_SOURCE_DIR}/data/invert/bottom_loss_edfm.csv --model layered:lattice+edfm
   --set l1.thickness=1 --fit porosity --method ceres --no-plot --out ${CLI_OUT}/layered_dry)
+# The water above the seabed has a physical range (fresh water near freezing to hot brine); so has the
+# synthetic bottom loss's noise.
+sedwave_cli_case(reflect.water_speed_huge 2 "--water-speed: 1e308 is outside the accepted range \\[1300, 1800\\]"
+  reflect --model edfm --frequency 1000 --water-speed 1e308 --out ${CLI_OUT}/water_huge)
+sedwave_cli_case(reflect.water_density_nan 2 "--water-density"
+  reflect --model edfm --frequency 1000 --water-density nan --out ${CLI_OUT}/water_nan)
+sedwave_cli_case(synthesize.water_speed_huge 2 "--water-speed: 1e308 is outside the accepted range \\[1300, 1800\\]"
+  synthesize --model edfm --from 1e3 --to 4e3 --grazing-angles 10 --water-speed 1e308 --out ${CLI_OUT}/never_water.csv)
+sedwave_cli_case(synthesize.water_density_huge 2 "--water-density: 1e308 is outside the accepted range \\[950, 1300\\]"
+  synthesize --model edfm --from 1e3 --to 4e3 --grazing-angles 10 --water-density 1e308 --out ${CLI_OUT}/never_rho.csv)
+sedwave_cli_case(synthesize.bottom_loss_sigma_huge 2 "--bottom-loss-sigma: 1e308 is outside the accepted range"
+  synthesize --model edfm --from 1e3 --to 4e3 --grazing-angles 10 --bottom-loss-sigma 1e308 --out ${CLI_OUT}/never_sigma.csv)
