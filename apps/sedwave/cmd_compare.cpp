@@ -189,7 +189,7 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("--site", o->shared.site, "site file (TOML; docs/inversion.md, \"Site files\"): priors for every model")
       ->check(CLI::ExistingFile);
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
-      ->check(finite_in(100.0, 10000.0));
+      ->check(finite_in(inversion::kLowestDeclaredSpeed, inversion::kHighestDeclaredSpeed));
   cmd->add_option("--evidence", o->evidence.method,
                   "auto: importance sampling around each fit where its diagnostics allow, parallel tempering "
                   "elsewhere; tempering: parallel tempering always")

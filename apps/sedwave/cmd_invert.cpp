@@ -257,9 +257,9 @@ Command add_invert_command(CLI::App& app) {
                      "half-step, which on a busy machine costs more than it saves)");
   cmd->add_option("--out", o->out, "output directory")->capture_default_str();
   cmd->add_option("--water-speed", o->water_speed, "water sound speed [m/s] for sound-speed ratios")
-      ->check(finite_in(100.0, 10000.0));
+      ->check(finite_in(inversion::kLowestDeclaredSpeed, inversion::kHighestDeclaredSpeed));
   cmd->add_option("--sediment-speed", o->sediment_speed, "sediment sound speed [m/s] to convert dB/wavelength")
-      ->check(finite_in(100.0, 10000.0));
+      ->check(finite_in(inversion::kLowestDeclaredSpeed, inversion::kHighestDeclaredSpeed));
   cmd->add_option("--default-sigma", o->fit_options.default_relative_sigma,
                   "relative 1-sigma for observations given without one")->capture_default_str()
       ->check(finite_in(1e-12, 10.0));

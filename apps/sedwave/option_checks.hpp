@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sedwave/inversion/observations.hpp"
 #include "usable_cores.hpp"
 
 namespace sedwave::app {
@@ -44,9 +45,11 @@ inline CLI::Validator finite_in(double lower, double upper = std::numeric_limits
 }
 
 /// The water above a seabed (reflection): its sound speed [m/s], from fresh water near freezing to
-/// hot brine, and its density [kg/m^3], from warm fresh water to dense brine.
+/// hot brine, and its density [kg/m^3] (the range an observation file may declare).
 inline CLI::Validator water_speed_range() { return finite_in(1300.0, 1800.0); }
-inline CLI::Validator water_density_range() { return finite_in(950.0, 1300.0); }
+inline CLI::Validator water_density_range() {
+  return finite_in(inversion::kLowestWaterDensity, inversion::kHighestWaterDensity);
+}
 
 /// A non-empty list: `--fit ''` names no parameter, which is not the same as leaving --fit out.
 inline CLI::Validator non_empty_list() {

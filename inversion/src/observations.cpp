@@ -244,6 +244,21 @@ void declare_speed(DeclaredSpeed& declared, const LineRef& at, const MetadataLin
   }
   const Field field{meta.value, meta.value_column, meta.key};
   declared = {parse_positive(at, field, "sound speed"), at.line(), meta.value_column};
+  if (!(*declared.value >= kLowestDeclaredSpeed && *declared.value <= kHighestDeclaredSpeed)) {
+    at.fail(meta.value_column, meta.key,
+            "sound speed " + std::string(trim(meta.value)) + " m/s is outside [" + format_number(kLowestDeclaredSpeed) +
+                ", " + format_number(kHighestDeclaredSpeed) + "] m/s");
+  }
+}
+
+/// The water density a file declares: one number in the water's range, checked where it is written.
+void check_water_density(const LineRef& at, const MetadataLine& meta) {
+  const double rho = parse_positive(at, {meta.value, meta.value_column, meta.key}, "density");
+  if (!(rho >= kLowestWaterDensity && rho <= kHighestWaterDensity)) {
+    at.fail(meta.value_column, meta.key,
+            "water density " + std::string(trim(meta.value)) + " kg/m^3 is outside [" +
+                format_number(kLowestWaterDensity) + ", " + format_number(kHighestWaterDensity) + "] kg/m^3");
+  }
 }
 
 /// The file's value wins; if the caller gave one too they must agree, so a typo cannot silently
@@ -273,6 +288,7 @@ ReferenceSpeeds read_metadata(const std::string& file, const std::vector<std::st
     const LineRef at(file, static_cast<int>(i + 1));
     if (meta->key == kWaterSpeedKey) declare_speed(water, at, *meta);
     if (meta->key == kSedimentSpeedKey) declare_speed(sediment, at, *meta);
+    if (meta->key == "water_density_kg_per_m3") check_water_density(at, *meta);
     auto& text = set.metadata[std::string(meta->key)];
     text += text.empty() ? "" : " ";
     text += meta->value;
@@ -698,9 +714,11 @@ double water_density_of(const ObservationSet& data) {
   double rho = 0.0;
   const std::string& text = it->second;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), rho);
-  if (error != std::errc{} || end != text.data() + text.size() || !(rho > 0.0) || !std::isfinite(rho)) {
-    throw std::invalid_argument("metadata 'water_density_kg_per_m3' = '" + text +
-                                "' is not one positive number [kg/m^3]");
+  if (error != std::errc{} || end != text.data() + text.size() || !(rho >= kLowestWaterDensity) ||
+      !(rho <= kHighestWaterDensity)) {
+    throw std::invalid_argument("metadata 'water_density_kg_per_m3' = '" + text + "' is not one number in [" +
+                                format_number(kLowestWaterDensity) + ", " + format_number(kHighestWaterDensity) +
+                                "] kg/m^3");
   }
   return rho;
 }

@@ -86,3 +86,8 @@ sedwave_cli_case(invert.bottom_loss_without_angle 1 "bottom_loss_no_angle\\.csv:
 add_test(NAME cli.invert.prior_flag_one_frequency
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/prior_flag_one_frequency.sh $<TARGET_FILE:sedwave>
           ${CMAKE_CURRENT_SOURCE_DIR}/data/invert/one_attenuation_ten_times.csv)
+# The water an observation file declares has a physical range, named with its file, line and field.
+sedwave_cli_case(invert.file_water_density_huge 1 "water_density_huge\\.csv:2:28: field 'water_density_kg_per_m3': water density 1e308 kg/m\\^3 is outside \\[950, 1300\\]"
+  invert ${INV}/water_density_huge.csv --model edfm --fit porosity ${FAST})
+sedwave_cli_case(invert.file_water_speed_huge 1 "water_speed_huge\\.csv:1:30: field 'water_sound_speed_m_per_s': sound speed 1e308 m/s is outside \\[100, 10000\\]"
+  invert ${INV}/water_speed_huge.csv --model edfm --fit porosity ${FAST})

@@ -71,9 +71,18 @@ struct ObservationSet {
   void append(const ObservationSet& other);
 };
 
+/// The reference sound speeds a file or an option may declare [m/s] (water for ratios and reflection,
+/// sediment for dB/wavelength): from gassy mud to the grains' minerals.
+inline constexpr double kLowestDeclaredSpeed = 100.0;
+inline constexpr double kHighestDeclaredSpeed = 10000.0;
+/// The densities of the water above a seabed a file or an option may declare [kg/m^3]: from warm
+/// fresh water to dense brine.
+inline constexpr double kLowestWaterDensity = 950.0;
+inline constexpr double kHighestWaterDensity = 1300.0;
+
 /// The density [kg/m^3] of the water above the seabed that a data set declares
 /// ("# water_density_kg_per_m3: ..."), else sea water's 1025 kg/m^3. Throws std::invalid_argument
-/// for a value that is not one positive number.
+/// for a value that is not one number in [kLowestWaterDensity, kHighestWaterDensity].
 [[nodiscard]] double water_density_of(const ObservationSet& data);
 
 
