@@ -91,10 +91,7 @@ void read_packing(Section s, InterfaceScene& scene) {
   scene.grain_material.poisson_ratio =
       s.number("poisson_ratio", scene.grain_material.poisson_ratio, kPoisson);
   // Centred on the plate unless placed.
-  const double pitch = 2.0 * p.radius + p.gap;
-  const double span = p.orientation == interface::HexOrientation::rows_parallel
-                          ? (p.columns - 1) * pitch + 2.0 * p.radius + (p.rows > 1 ? 0.5 * pitch : 0.0)
-                          : (p.rows - 1) * pitch * std::sqrt(3.0) / 2.0 + 2.0 * p.radius;
+  const double span = interface::hex_packing_width(p);
   p.x_offset = s.number("x_offset", 0.5 * (scene.mesh.length_x - span), Range{});
   if (p.x_offset < 0.0 || p.x_offset + span > scene.mesh.length_x)
     s.fail_key("x_offset", "the packing (" + metres(span) + " wide) must lie over the plate (" +

@@ -146,6 +146,11 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     const Energies e = energies_without_strain();
     return e.grain_translation + e.grain_rotation + e.plate_kinetic;
   };
+  // Frictionless while relaxing (the header says why); the books of the edge's x velocities follow.
+  const double friction = contacts_.friction, wall_friction = walls_.friction;
+  contacts_.friction = walls_.friction = 0.0;
+  book_plate_dofs();
+  refresh_forces();
   double largest = 0.0;
   long n = 0;
   for (; n < max_steps; ++n) {
@@ -158,10 +163,13 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     largest = std::max(largest, now);
     if (n > 10 && now < tolerance * largest) break;
   }
+  contacts_.friction = friction;
+  walls_.friction = wall_friction;
+  book_plate_dofs();
   if (n == max_steps)
     throw std::runtime_error("interface: the loaded packing did not come to rest in " + std::to_string(max_steps) +
                              " steps (Coulomb-tanh has no static friction: a packing free to spread creeps under a "
-                             "static load)");
+                             "static load unless side walls hold it)");
   for (auto& g : grains_) g.vx = g.vy = g.spin = 0.0;
   std::fill(v_.begin(), v_.end(), 0.0);
   time_ = 0.0;
@@ -374,6 +382,7 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   std::fill(drive_.begin(), drive_.end(), Parts{});
   contact_energy_ = 0.0;
   plate_normal_force_ = plate_tangential_force_ = 0.0;
+  wall_force_[0] = wall_force_[1] = 0.0;
   for (const auto& p : pairs_) add_grain_pair(p);
   if (plate_) {
     f_conservative_.assign(u_.size(), 0.0);
@@ -383,6 +392,8 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
     for (std::size_t g = 0; g < grains_.size(); ++g)
       if (!(grains_[g].y - grains_[g].radius > ceiling)) add_plate_contact(static_cast<int>(g));
   }
+  if (walls_.left || walls_.right)
+    for (std::size_t g = 0; g < grains_.size(); ++g) add_wall_contacts(static_cast<int>(g));
   for (const int g : loaded_) {
     drive_[static_cast<std::size_t>(g)].fx += load_x_;
     drive_[static_cast<std::size_t>(g)].fy += load_y_;
@@ -530,6 +541,7 @@ StepLimits GranularPlate::current_limits() const {
     limits.hertz = oscillator_limit(omega2, dashpot_alpha_ * std::sqrt(omega2 / 1.5));
   }
   if (beta_friction > 0.0) limits.friction = oscillator_limit(0.0, beta_friction);
+  tighten_with_walls(limits);
   double v2_max = 0.0;
   for (const auto& g : grains_) v2_max = std::max(v2_max, g.vx * g.vx + g.vy * g.vy);
   if (v2_max > 0.0) limits.travel = 0.5 * skin_ / std::sqrt(v2_max);
@@ -590,6 +602,27 @@ StepLimits GranularPlate::current_limits() const {
   if (plate_beta > 0.0)
     limits.friction = std::min(limits.friction, oscillator_limit(omega_plate * omega_plate, plate_beta));
   return limits;
+}
+
+// A bead on a wall: the Hertz limit at the largest overlap it can reach, against the bead's mass (the
+// wall is fixed), and Coulomb-tanh's dashpot against 1/m + r^2/I, as for the plate's contact.
+void GranularPlate::tighten_with_walls(StepLimits& limits) const {
+  if (!walls_.left && !walls_.right) return;
+  const double mu_ks = walls_.friction * contacts_.tanh_velocity_scale;
+  double omega2 = 0.0, beta = 0.0;
+  for (const auto& g : grains_)
+    for (const auto& [face, normal] : {std::pair{walls_.left, 1.0}, std::pair{walls_.right, -1.0}}) {
+      if (!face) continue;
+      const double overlap = g.radius - normal * (g.x - *face);
+      const double vn = normal * g.vx;  // > 0: leaving the wall
+      if (overlap < -skin_ || (overlap <= 0.0 && vn >= 0.0)) continue;
+      const double k = (4.0 / 3.0) * walls_.modulus * std::sqrt(g.radius);
+      omega2 = std::max(omega2, 1.5 * k * std::pow(reach_energy(overlap, vn, g.mass, k), 0.2) / g.mass);
+      if (mu_ks > 0.0 && overlap > 0.0)
+        beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * (1.0 / g.mass + g.radius * g.radius / g.inertia));
+    }
+  if (omega2 > 0.0) limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
+  if (beta > 0.0) limits.friction = std::min(limits.friction, oscillator_limit(0.0, beta));
 }
 
 double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
@@ -669,6 +702,7 @@ std::vector<double> GranularPlate::grain_energies() const {
     held[static_cast<std::size_t>(p.i)] += half;
     held[static_cast<std::size_t>(p.j)] += half;
   }
+  add_wall_energies(held);
   if (!plate_) return held;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
