@@ -104,45 +104,183 @@ TEST(SideWalls, SlidingBounceIsHertzsRigidFlatAndCoulombsImpulse) {
   }
 }
 
-TEST(SideWalls, ZigZagColumnCarriesTheClosedFormForces) {
-  constexpr int rows = 6;
-  constexpr double load = 5.0;
-  auto [p, run] = loaded_packing(rows, 1, load, InterfaceContacts{0.3, 1e3, 1.0, true}, 0.3);
-  const auto& g = run.grains();
-  for (int k = 0; k + 1 < rows; ++k) {
-    const double d = overlap(g[k], g[k + 1]);
-    const double f = k_grain * d * std::sqrt(d);
-    const double angle = std::asin(std::abs(g[k + 1].y - g[k].y) / std::hypot(g[k + 1].x - g[k].x, g[k + 1].y - g[k].y));
-    if (verbose) std::printf("bond %d: F = %.9g N (P/cos30 = %.9g), angle %.9f deg\n", k, f, load / std::cos(std::numbers::pi / 6), angle * 180 / std::numbers::pi);
-  }
-  std::printf("walls %.9g %.9g plate %.9g\n", run.left_wall_force(), run.right_wall_force(), run.plate_normal_force());
-  double worst = 0.0;
-  const double contact_energy = run.energies().contact;
+// After the relaxation the packing is at rest: released, it gains no kinetic energy beyond round-off
+// (measured: 2e-16 J against 3e-5 J held in its contacts).
+void expect_at_rest(GranularPlate& run) {
+  const double held = run.energies().contact;
+  double most = 0.0;
   for (int s = 0; s < 4000; ++s) {
     run.step();
-    worst = std::max(worst, kinetic(run));
+    most = std::max(most, kinetic(run));
   }
-  std::printf("at rest: max kinetic %.3g of contact energy %.3g\n", worst, contact_energy);
+  EXPECT_LT(most, 1e-9 * held);
 }
 
-TEST(SideWalls, WidePackingCarriesItsLoadRowByRow) {
+// Bond force from an overlap (Hertz, bead on bead), and the bond's angle from the horizontal.
+double bond_force(const Grain& a, const Grain& b) {
+  const double d = overlap(a, b);
+  return d > 0.0 ? k_grain * d * std::sqrt(d) : 0.0;
+}
+double bond_angle(const Grain& a, const Grain& b) { return std::atan2(std::abs(b.y - a.y), std::abs(b.x - a.x)); }
+
+// One bead per row between walls 3r apart: a zig-zag of 60-degree bonds, statically determinate.
+// At rest Coulomb-tanh carries nothing, so every bond carries the load P vertically, F_k = P / sin(theta_k),
+// and each bead's wall takes its bonds' horizontal parts, W = sum F cos(theta) (P/sqrt(3) at the
+// ends, 2P/sqrt(3) between). The angles follow from the Hertz overlaps, dx = r + dw_k + dw_(k+1)
+// between the walls and cos(theta_k) = dx / (2r - db_k), solved here by a fixed point; F = P/cos(30)
+// to O(delta/r).
+TEST(SideWalls, ZigZagColumnCarriesTheStaticallyDeterminateForces) {
+  constexpr int rows = 6;
+  constexpr double load = 5.0, r = bead_radius;
+  auto [p, run] = loaded_packing(rows, 1, load, InterfaceContacts{0.3, 1e3, 1.0, true}, 0.3);
+  std::vector<double> theta(rows - 1, std::numbers::pi / 3.0), force(rows - 1), wall(rows);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    for (int k = 0; k + 1 < rows; ++k) force[k] = load / std::sin(theta[k]);
+    for (int k = 0; k < rows; ++k)
+      wall[k] = (k > 0 ? force[k - 1] * std::cos(theta[k - 1]) : 0.0) + (k + 1 < rows ? force[k] * std::cos(theta[k]) : 0.0);
+    for (int k = 0; k + 1 < rows; ++k) {
+      const double dx = r + std::pow(wall[k] / k_wall, 2.0 / 3.0) + std::pow(wall[k + 1] / k_wall, 2.0 / 3.0);
+      theta[k] = std::acos(dx / (2.0 * r - std::pow(force[k] / k_grain, 2.0 / 3.0)));
+    }
+  }
+  const auto& g = run.grains();
+  double left = 0.0, right = 0.0;
+  for (int k = 0; k < rows; ++k) (k % 2 == 0 ? left : right) += wall[k];
+  for (int k = 0; k + 1 < rows; ++k) {
+    const double f = bond_force(g[k], g[k + 1]);
+    if (verbose)
+      std::printf("bond %d: %.7g N, closed form %.7g N (P/cos 30 = %.7g N), angle %.6f deg\n", k, f, force[k],
+                  load / std::cos(std::numbers::pi / 6.0), bond_angle(g[k], g[k + 1]) * 180.0 / std::numbers::pi);
+    EXPECT_NEAR(f / force[k], 1.0, 1e-4);
+    EXPECT_NEAR(bond_angle(g[k], g[k + 1]) / theta[k], 1.0, 1e-6);
+    EXPECT_NEAR(f / (load / std::cos(std::numbers::pi / 6.0)), 1.0, 1e-3);
+  }
+  EXPECT_NEAR(run.left_wall_force() / left, 1.0, 1e-4);
+  EXPECT_NEAR(run.right_wall_force() / right, 1.0, 1e-4);
+  EXPECT_NEAR(run.plate_normal_force() / load, 1.0, 1e-4);
+  expect_at_rest(run);
+}
+
+// A hexagonal packing between walls under P on each bead of its top row: with the walls carrying no
+// vertical load at rest, the bonds between any two rows carry N P vertically, and so does the plate;
+// the walls push equally. A top-row bead on two beads (its row's contacts open) splits its load
+// along the two 60-degree bonds, F = P / (2 cos 30) each; the corner bead on one bond takes P / cos 30.
+TEST(SideWalls, HexagonalPackingCarriesItsLoadRowByRow) {
   constexpr int rows = 4, columns = 5;
   constexpr double load = 5.0;
   auto [p, run] = loaded_packing(rows, columns, load, InterfaceContacts{0.3, 1e3, 1.0, true}, 0.3);
   const auto& g = run.grains();
-  std::vector<double> vertical(rows, 0.0);
+  std::vector<double> vertical(rows - 1, 0.0);
+  std::vector<std::vector<double>> top_bonds(columns);
   for (std::size_t i = 0; i < g.size(); ++i)
     for (std::size_t j = i + 1; j < g.size(); ++j) {
-      const double d = overlap(g[i], g[j]);
-      if (d <= 0.0) continue;
-      const double f = k_grain * d * std::sqrt(d);
-      const double ny = (g[j].y - g[i].y) / std::hypot(g[j].x - g[i].x, g[j].y - g[i].y);
       const int ri = static_cast<int>(i) / columns, rj = static_cast<int>(j) / columns;
-      if (verbose) std::printf("%zu-%zu rows %d-%d: F = %.6g N (P/(2 cos 30) = %.6g)\n", i, j, ri, rj, f, load / std::sqrt(3.0));
-      if (rj == ri + 1) vertical[ri] += f * ny;
+      const double f = bond_force(g[i], g[j]);
+      if (rj != ri + 1 || f == 0.0) continue;
+      vertical[ri] += f * std::sin(bond_angle(g[i], g[j]));
+      if (rj == rows - 1) top_bonds[static_cast<std::size_t>(j) % columns].push_back(f);
     }
-  for (int r = 0; r + 1 < rows; ++r) std::printf("rows %d-%d: vertical %.9g of %.9g\n", r, r + 1, vertical[r], columns * load);
-  std::printf("walls %.9g %.9g plate %.9g\n", run.left_wall_force(), run.right_wall_force(), run.plate_normal_force());
+  for (int k = 0; k + 1 < rows; ++k) EXPECT_NEAR(vertical[k] / (columns * load), 1.0, 1e-4) << "rows " << k;
+  EXPECT_NEAR(run.plate_normal_force() / (columns * load), 1.0, 1e-4);
+  EXPECT_NEAR(run.left_wall_force() / run.right_wall_force(), 1.0, 1e-4);
+  const double split = load / (2.0 * std::cos(std::numbers::pi / 6.0));
+  for (const auto& bonds : top_bonds) {
+    ASSERT_TRUE(bonds.size() == 1 || bonds.size() == 2);
+    for (const double f : bonds) EXPECT_NEAR(f / (bonds.size() == 2 ? split : 2.0 * split), 1.0, 1e-3);
+  }
+  expect_at_rest(run);
+}
+
+// The loaded packing with friction, rebuilt from a relaxed one under `control`.
+GranularPlate rebuilt(const Loaded& relaxed, const InterfaceContacts& contacts, double wall_friction, double load,
+                      const StepControl& control) {
+  const auto& p = relaxed.packing;
+  GranularPlate run(relaxed.run.grains(), steel, *relaxed.run.plate(), contacts, control);
+  run.set_side_walls(side_walls_around(p, 0.0, true, true, wall_modulus, wall_friction));
+  std::vector<int> top;
+  for (int c = 0; c < p.columns; ++c) top.push_back((p.rows - 1) * p.columns + c);
+  run.set_static_load(top, 0.0, -load);
+  run.plate_displacement_mutable() = relaxed.run.plate_displacement();
+  run.refresh_forces();
+  return run;
+}
+
+// Small spins on every bead, |w| <= 0.002 rad/s: slips below 1e-5 m/s, k_s |slip| < 0.01 at
+// k_s = 1000 s/m, so every contact sticks (Coulomb-tanh in its linear, dashpot range). The kinetic
+// energy given, about 1e-13 J, is 500 times what the relaxed state's residue sets moving
+// (expect_at_rest), and an unstable mode grows 10^4 times before tanh saturates. Returns it.
+double nudge(GranularPlate& run) {
+  double given = 0.0;
+  unsigned state = 12345u;
+  for (auto& g : run.grains_mutable()) {
+    state = state * 1664525u + 1013904223u;  // a fixed sequence (Numerical Recipes' LCG)
+    g.spin = 0.002 * (2.0 * static_cast<double>(state) / 4294967296.0 - 1.0);
+    given += 0.5 * g.inertia * g.spin * g.spin;
+  }
+  run.refresh_forces();
+  return given;
+}
+
+// The most kinetic energy the packing holds over `steps` steps, against what it was given.
+double growth(GranularPlate& run, int steps) {
+  const double given = nudge(run);
+  double most = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    run.step();
+    most = std::max(most, kinetic(run));
+  }
+  return most / given;
+}
+
+// The interface's step: its tolerance theta times its step limits (granular_plate.hpp, StepControl).
+// The one constant of the stable run: where a limit derived for the packing's collective modes
+// replaces the pair's in GranularPlate::current_limits, this test steps at it unchanged.
+constexpr double kStepFactor = 0.1;
+
+// A loaded packing whose contacts stick: Coulomb-tanh is then a dashpot c = mu k_s |F_n| at each
+// contact, and it binds the step (mu k_s F_n / m is about 2000 times the Hertz frequency here). The
+// forces see v_(n+1/2) + (h/2) a_n, for which a dashpot mode of rate lambda (an eigenvalue of
+// M^-1 C) is stable only for h < 1/lambda (the amplification matrix of v' = -lambda v has
+// determinant -h lambda / 2 and trace 1 - 3 h lambda / 2). The uniform spin, every bead turning alike,
+// slips each bead-bead contact at (a_i + a_j) w: its Rayleigh quotient R = sum c (a_i + a_j)^2 / sum I
+// bounds lambda_max from below (a hexagon's interior: 30/7 times a pair's rate), so h = 2/R grows
+// whatever the other modes do. At the interface's step the packing's kinetic energy never exceeds
+// what it was given (friction only takes energy).
+TEST(StickingPacking, StableAtTheInterfacesStepAndGrowingBeyondTheUniformSpinsLimit) {
+  constexpr int rows = 4, columns = 5;
+  constexpr double load = 5.0, mu = 0.5, ks = 1e3;
+  const InterfaceContacts sticky{mu, ks, 1.0, true};
+  const Loaded relaxed = loaded_packing(rows, columns, load, sticky, mu);
+  double rate = 0.0, inertia = 0.0;
+  const auto& g = relaxed.run.grains();
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    inertia += g[i].inertia;
+    for (std::size_t j = i + 1; j < g.size(); ++j) {
+      const double d = overlap(g[i], g[j]);
+      if (d > 0.0) rate += mu * ks * bond_force(g[i], g[j]) * std::pow(g[i].radius + g[j].radius - d, 2);
+    }
+  }
+  rate /= inertia;
+  GranularPlate stable = rebuilt(relaxed, sticky, mu, load, StepControl{kStepFactor});
+  const double step = kStepFactor * stable.current_limits().tightest();
+  const double stable_growth = growth(stable, 3000);
+  StepControl beyond{kStepFactor};
+  beyond.fixed_step = 2.0 / rate;
+  GranularPlate unstable = rebuilt(relaxed, sticky, mu, load, beyond);
+  const double unstable_growth = growth(unstable, 300);
+  if (verbose) {
+    std::printf("interface's step %.4g s = %.3f / R, friction limit %.4g s; growth %.3g there, %.3g at 2/R = %.4g s\n",
+                step, step * rate, stable.current_limits().friction, stable_growth, unstable_growth, 2.0 / rate);
+    for (const double times : {0.5, 0.7, 0.8, 0.9, 1.0, 1.1, 1.5, 2.0}) {
+      StepControl fixed{kStepFactor};
+      fixed.fixed_step = times / rate;
+      GranularPlate scan = rebuilt(relaxed, sticky, mu, load, fixed);
+      std::printf("step %.2f / R = %.3f times the interface's limit: kinetic energy grows %.3g times in 1000 steps\n",
+                  times, fixed.fixed_step / stable.current_limits().tightest(), growth(scan, 1000));
+    }
+  }
+  EXPECT_LT(stable_growth, 1.01);
+  EXPECT_GT(unstable_growth, 100.0);
 }
 
 }  // namespace
