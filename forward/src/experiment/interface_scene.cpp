@@ -215,6 +215,8 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
                                       "at the step's ends would not deliver a rectangular pulse's impulse");
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
     top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
+  if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && (scene.walls.left || scene.walls.right))
+    top.sub("walls").fail_key("sides", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to hold");
   // Coulomb-tanh has no static friction: beyond one row on the plate (or one chain standing on it),
   // the 60-degree contacts push the packing apart under a static load, and only walls hold it.
   if (scene.packing_load > 0.0 && scene.packing.rows > 1 && !(scene.walls.left && scene.walls.right))

@@ -82,6 +82,7 @@ TEST(SideWalls, SlidingBounceIsHertzsRigidFlatAndCoulombsImpulse) {
     const double face = -side * (bead_radius + 1e-6);
     run.set_side_walls(SideWalls{side > 0 ? std::optional{face} : std::nullopt,
                                  side < 0 ? std::optional{face} : std::nullopt, wall_modulus, mu});
+    const double input = run.energies().balance();
     double t_start = -1.0, t_end = -1.0, peak = 0.0, previous = -1.0, t_previous = 0.0;
     while (t_end < 0.0) {
       run.step();
@@ -101,6 +102,9 @@ TEST(SideWalls, SlidingBounceIsHertzsRigidFlatAndCoulombsImpulse) {
     EXPECT_NEAR((g.vy - vy) / (-2.0 * mu * vn), 1.0, 1e-4);
     // The spin takes the friction's torque: the contact point slides up, so it turns the bead to roll up.
     EXPECT_NEAR(side * g.spin * bead_radius / (5.0 * mu * vn), 1.0, 1e-4);
+    // The friction's books hold what the bead lost: kinetic + dissipated is the input.
+    EXPECT_GT(run.energies().friction_work, 0.1 * input);
+    EXPECT_NEAR(run.energies().balance() / input, 1.0, 1e-5);  // the normal bounce's 1.6e-6 (above)
   }
 }
 
@@ -188,7 +192,29 @@ TEST(SideWalls, HexagonalPackingCarriesItsLoadRowByRow) {
     ASSERT_TRUE(bonds.size() == 1 || bonds.size() == 2);
     for (const double f : bonds) EXPECT_NEAR(f / (bonds.size() == 2 ? split : 2.0 * split), 1.0, 1e-3);
   }
+  // Each bead's share of the contacts' energy (its walls' whole, half of each bond) sums to the books'.
+  double shares = 0.0;
+  for (const double e : run.grain_energies()) shares += e;
+  const Energies e = run.energies();
+  EXPECT_NEAR(shares / (e.grain_translation + e.grain_rotation + e.contact), 1.0, 1e-12);
   expect_at_rest(run);
+  // Struck, with friction along the walls and between beads: the balance closes (the static state
+  // and the load's work included).
+  run.grains_mutable()[rows * columns - 3].vy = -0.5;
+  run.grains_mutable()[rows * columns - 3].vx = 0.2;
+  run.refresh_forces();
+  const double before = run.energies().balance(), struck = kinetic(run);
+  double worst = 0.0;
+  const double end = run.time() + 3e-5;
+  while (run.time() < end) {
+    run.step(end - run.time());
+    worst = std::max(worst, std::abs(run.energies().balance() - before));
+  }
+  if (verbose)
+    std::printf("struck: friction took %.3g of the strike, balance within %.3g of it\n",
+                run.energies().friction_work / struck, worst / struck);
+  EXPECT_GT(run.energies().friction_work, 0.1 * struck);
+  EXPECT_LT(worst / struck, 1e-5);
 }
 
 // The loaded packing with friction, rebuilt from a relaxed one under `control`.
