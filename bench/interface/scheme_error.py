@@ -20,8 +20,9 @@ The base case: 6 steel beads (3 struck at 1 m/s) on a 25 x 7.5 mm aluminium plat
 elements through the paper's rigid-layer contact, friction mu = 0.3, k_s = 100 s/m, rotation,
 40 us. With --hard the hard cases too (CASES below; one entry adds one). --figure=PATH draws error
 against CPU time, one panel per case, both schemes (matplotlib; where the running python lacks it,
-the figure is drawn by /usr/bin/python3 from the sweep's JSON). About 20 s; with --hard about
-25 minutes on one core (Newmark-RK4 on the finer mesh and the fastest friction are most of it).
+the figure is drawn by /usr/bin/python3 from the sweep's JSON). About 15 s; with --hard about 110
+runs in 17 minutes of wall time on a shared 2-core machine (Newmark-RK4 on the finer mesh and with
+the fastest friction are most of it), so it is a benchmark, not a test.
 
     bench/interface/scheme_error.py [SEDWAVE [OUT]] [--hard] [--only=NAME-PART] [--figure=PATH]
     bench/interface/scheme_error.py --plot OUT/scheme_error.json PATH
