@@ -103,9 +103,9 @@ HARD = [
          THETAS[:5], THETAS[:3]),
     case("k_s v = 1e5, 10 us", BASE.format(**dict(base, ks=1e5, duration=1e-5)), 0.025, THETAS[:4], THETAS[:2]),
     # Below theta = 0.0067 of the contact's limit the samples (40 ns) no longer cap the step: the
-    # sweep goes down to 0.003 to get under it.
+    # sweep goes down to 0.0015 to get under it.
     case("plate 1e3 softer", BASE.format(**dict(base, plate_modulus=200e6)), 0.0004,
-         THETAS + (0.00625, 0.003), THETAS + (0.00625,)),
+         THETAS + (0.00625, 0.003, 0.0015), THETAS + (0.00625,)),
     # Soft beads: contacts 1000^(2/5) = 16 times longer, so ten times the run.
     case("beads 1e3 softer, 400 us", BASE.format(**dict(base, bead_modulus=70e6, duration=4e-4)), 0.003),
     case("elements r/4", BASE.format(**dict(base, nx=40, ny=12)), 0.003, THETAS, THETAS[:3]),
