@@ -385,9 +385,16 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   wall_force_[0] = wall_force_[1] = 0.0;
   for (const auto& p : pairs_) add_grain_pair(p);
   if (plate_) {
-    f_conservative_.assign(u_.size(), 0.0);
-    f_friction_.assign(u_.size(), 0.0);
-    if (with_elastic) plate_->add_elastic_forces(u_, f_conservative_);
+    // The elastic forces overwrite f_conservative_; friction acts on the top edge's x components
+    // alone, so only that row of f_friction_ is cleared once it has been sized.
+    if (with_elastic)
+      plate_->elastic_forces(u_, f_conservative_);
+    else
+      f_conservative_.assign(u_.size(), 0.0);
+    if (f_friction_.size() != u_.size())
+      f_friction_.assign(u_.size(), 0.0);
+    else
+      std::fill(f_friction_.begin() + 2 * plate_->node(0, plate_->mesh().elements_y), f_friction_.end(), 0.0);
     const double ceiling = contact_ceiling();
     for (std::size_t g = 0; g < grains_.size(); ++g)
       if (!(grains_[g].y - grains_[g].radius > ceiling)) add_plate_contact(static_cast<int>(g));
@@ -459,10 +466,11 @@ void GranularPlate::kick_plate(double h, bool second_half) {
   const double* im = inverse_mass.data();
   double* v = v_.data();
   const std::size_t n = v_.size();
+  // Friction's forces lie on the top edge's x components, all booked: the pass leaves them out.
   if (pulse)
-    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + ff[d] + pulse[d] * pulse_share) * im[d];
+    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + pulse[d] * pulse_share) * im[d];
   else
-    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + ff[d]) * im[d];
+    for (std::size_t d = 0; d < n; ++d) v[d] += h * fc[d] * im[d];
   for (std::size_t k = 0; k < booked_.size(); ++k) {
     const std::size_t d = booked_[k];
     const double before = booked_before_[k];
