@@ -355,10 +355,16 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // old acceleration, v(t + dt/2) + (dt/2) a(t), which is v(t + dt) to O(dt^2). With the half-step
 // velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
 // frictional run (measured: order 1.2 in the tolerance instead of 2).
+// Without friction or dashpots nothing reads them but a dashpot of zero: they are the velocities.
 void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   seen_.resize(grains_.size());
+  const bool velocity_forces = contacts_.friction > 0.0 || walls_.friction > 0.0 || dashpot_alpha_ > 0.0;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
+    if (!velocity_forces) {
+      seen_[i] = {g.vx, g.vy, g.spin};
+      continue;
+    }
     const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
     seen_[i] = {g.vx + half_step * (c.fx + f.fx + d.fx + w.fx) / g.mass,
                 g.vy + half_step * (c.fy + f.fy + d.fy + w.fy) / g.mass,
@@ -418,6 +424,13 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
 // work of each non-conservative force is summed the same way and the energy balance closes to the
 // conservative forces' integration error alone.
 void GranularPlate::kick(double h, bool second_half) {
+  // The works are summed in locals (in the same order): stores through g could alias the members.
+  // A kind of force that the scene does not have is exactly zero on every grain, and so is its work:
+  // its sum is left out (three serial additions a grain that bound the loop).
+  double friction_work = friction_work_, dashpot_work = dashpot_work_, drive_work = drive_work_;
+  const bool rubbing = contacts_.friction > 0.0 || walls_.friction > 0.0;
+  const bool damped = dashpot_alpha_ > 0.0;
+  const bool driven = !loaded_.empty() || pulse_.has_value();
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     auto& g = grains_[i];
     const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
@@ -425,14 +438,15 @@ void GranularPlate::kick(double h, bool second_half) {
     g.vx += h * (c.fx + f.fx + d.fx + w.fx) / g.mass;
     g.vy += h * (c.fy + f.fy + d.fy + w.fy) / g.mass;
     const double mx = 0.5 * (vx + g.vx), my = 0.5 * (vy + g.vy);
-    friction_work_ -= h * (f.fx * mx + f.fy * my);
-    dashpot_work_ -= h * (d.fx * mx + d.fy * my);
-    drive_work_ += h * (w.fx * mx + w.fy * my);
+    if (rubbing) friction_work -= h * (f.fx * mx + f.fy * my);
+    if (damped) dashpot_work -= h * (d.fx * mx + d.fy * my);
+    if (driven) drive_work += h * (w.fx * mx + w.fy * my);
     if (contacts_.rotation) {
       g.spin += h * (c.torque + f.torque) / g.inertia;
-      friction_work_ -= h * f.torque * 0.5 * (spin + g.spin);
+      if (rubbing) friction_work -= h * f.torque * 0.5 * (spin + g.spin);
     }
   }
+  friction_work_ = friction_work, dashpot_work_ = dashpot_work, drive_work_ = drive_work;
   if (plate_) kick_plate(h, second_half);
 }
 
@@ -471,6 +485,8 @@ void GranularPlate::kick_plate(double h, bool second_half) {
     for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + pulse[d] * pulse_share) * im[d];
   else
     for (std::size_t d = 0; d < n; ++d) v[d] += h * fc[d] * im[d];
+  // The works are summed in locals (in the same order): stores through v could alias the members.
+  double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
   for (std::size_t k = 0; k < booked_.size(); ++k) {
     const std::size_t d = booked_[k];
     const double before = booked_before_[k];
@@ -486,10 +502,11 @@ void GranularPlate::kick_plate(double h, bool second_half) {
       v[d] = before + h * (force - damping[d] * before) * im[d];
     }
     const double mean = 0.5 * (before + v[d]);
-    boundary_work_ += h * damping[d] * dashpot_velocity * mean;
-    friction_work_ -= h * ff[d] * mean;
-    drive_work_ += h * load * mean;
+    boundary_work += h * damping[d] * dashpot_velocity * mean;
+    friction_work -= h * ff[d] * mean;
+    drive_work += h * load * mean;
   }
+  boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
 }
 
 void GranularPlate::drift(double h) {
