@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -110,13 +111,25 @@ ElasticPlate::ElasticPlate(const PlateMaterial& material, const PlateMesh& mesh,
       row_stiffness_(r, c) = element_stiffness_(2 * row_order[r / 2] + r % 2, 2 * row_order[c / 2] + c % 2);
   // Node a of an element couples to node b at the offset (b - a) in the mesh: an interior node sums
   // the blocks of its four elements into one 3 x 3 stencil.
-  stencil_.setZero();
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) {
-      const int dx = b % 2 - a % 2, dy = b / 2 - a / 2;
-      stencil_.block<2, 2>(0, 6 * (dy + 1) + 2 * (dx + 1)) += row_stiffness_.block<2, 2>(2 * a, 2 * b);
-    }
+  // A node of an edge has the elements in which it is node a for the a listed.
+  const auto stencil_of = [&](std::initializer_list<int> present) {
+    Eigen::Matrix<double, 2, 18> s = Eigen::Matrix<double, 2, 18>::Zero();
+    for (const int a : present)
+      for (int b = 0; b < 4; ++b) {
+        const int dx = b % 2 - a % 2, dy = b / 2 - a / 2;
+        s.block<2, 2>(0, 6 * (dy + 1) + 2 * (dx + 1)) += row_stiffness_.block<2, 2>(2 * a, 2 * b);
+      }
+    return s;
+  };
+  stencil_ = stencil_of({0, 1, 2, 3});
   node_stencil_ = compact_stencil(stencil_);
+  edge_stencil_[0] = stencil_of({0, 1}).rightCols<12>();  // bottom: the node's row and the one above
+  edge_stencil_[1] = stencil_of({2, 3}).leftCols<12>();   // top: the row below and the node's
+  const Eigen::Matrix<double, 2, 18> left = stencil_of({0, 2}), right = stencil_of({1, 3});
+  for (int dy = 0; dy < 3; ++dy) {  // left: the node and its right neighbour; right: its left one and the node
+    edge_stencil_[2].block<2, 4>(0, 4 * dy) = left.block<2, 4>(0, 6 * dy + 2);
+    edge_stencil_[3].block<2, 4>(0, 4 * dy) = right.block<2, 4>(0, 6 * dy);
+  }
 
   const auto n = static_cast<std::size_t>(dof_count());
   mass_.assign(n, 0.0);
@@ -176,8 +189,9 @@ void ElasticPlate::fix(int node_index, int component) {
   inverse_mass_[d] = 0.0;
 }
 
-// Interior nodes by the 3 x 3 stencil in its compact form (node_stencil_); the nodes of the border
-// from their elements' rows of the element stiffness. In row order a node row's unknowns are
+// Interior nodes by the 3 x 3 stencil in its compact form (node_stencil_), the edges' nodes by the
+// stencils of their two elements (edge_stencil_), the four corners from their element's rows of the
+// element stiffness. In row order a node row's unknowns are
 // consecutive, so both read runs of values without an index table.
 //
 // Each node's (x, y) pair is one two-lane vector. With column sums P = u_above + u_below and
@@ -218,7 +232,35 @@ void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<dou
       diff_left = diff_here, diff_here = diff_right;
     }
   }
-  const auto border_node = [&](int i, int j) {
+  const auto store = [&](std::size_t at, const Eigen::Vector2d& ku) {
+    Eigen::Map<Eigen::Vector2d> force(f.data() + at);
+    if constexpr (overwrite)
+      force = -ku;
+    else
+      force -= ku;
+  };
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  using Vec12 = Eigen::Matrix<double, 12, 1>;
+  const auto top = static_cast<std::size_t>(ny) * row;
+  for (std::size_t d = 2; d < row - 2; d += 2) {  // the bottom and top edges but their corners
+    Vec12 around;
+    around << Eigen::Map<const Vec6>(u.data() + d - 2), Eigen::Map<const Vec6>(u.data() + row + d - 2);
+    store(d, edge_stencil_[0] * around);
+    around << Eigen::Map<const Vec6>(u.data() + top - row + d - 2), Eigen::Map<const Vec6>(u.data() + top + d - 2);
+    store(top + d, edge_stencil_[1] * around);
+  }
+  for (int j = 1; j < ny; ++j) {  // the left and right edges but their corners
+    const auto below = static_cast<std::size_t>(j - 1) * row;
+    Vec12 around;
+    around << Eigen::Map<const Vec4>(u.data() + below), Eigen::Map<const Vec4>(u.data() + below + row),
+        Eigen::Map<const Vec4>(u.data() + below + 2 * row);
+    store(below + row, edge_stencil_[2] * around);
+    const std::size_t last = row - 4;
+    around << Eigen::Map<const Vec4>(u.data() + below + last), Eigen::Map<const Vec4>(u.data() + below + row + last),
+        Eigen::Map<const Vec4>(u.data() + below + 2 * row + last);
+    store(below + row + last + 2, edge_stencil_[3] * around);
+  }
+  const auto corner_node = [&](int i, int j) {
     Eigen::Vector2d sum = Eigen::Vector2d::Zero();
     for (int a = 0; a < 4; ++a) {  // the node is node a of the element whose lower left is (i, j) - offset(a)
       const int ei = i - a % 2, ej = j - a / 2;
@@ -228,20 +270,10 @@ void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<dou
       ue << Eigen::Map<const Vec4>(lower), Eigen::Map<const Vec4>(lower + row);
       sum += row_stiffness_.block<2, 8>(2 * a, 0) * ue;
     }
-    Eigen::Map<Eigen::Vector2d> force(f.data() + static_cast<std::size_t>(j) * row + static_cast<std::size_t>(2 * i));
-    if constexpr (overwrite)
-      force = -sum;
-    else
-      force -= sum;
+    store(static_cast<std::size_t>(j) * row + static_cast<std::size_t>(2 * i), sum);
   };
-  for (int i = 0; i <= nx; ++i) {
-    border_node(i, 0);
-    border_node(i, ny);
-  }
-  for (int j = 1; j < ny; ++j) {
-    border_node(0, j);
-    border_node(nx, j);
-  }
+  for (const int j : {0, ny})
+    for (const int i : {0, nx}) corner_node(i, j);
 }
 
 void ElasticPlate::add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {

@@ -122,6 +122,10 @@ class ElasticPlate {
     double corner_coupling;
   };
   NodeStencil node_stencil_{};
+  /// The force on a node of an edge, not a corner, from the two elements it has: -edge_stencil_ times
+  /// its neighbourhood's two node rows (bottom and top edges, 3 nodes each) or three node rows (left
+  /// and right edges, 2 nodes each), x then y. Order: bottom, top, left, right.
+  Eigen::Matrix<double, 2, 12> edge_stencil_[4];
   static NodeStencil compact_stencil(const Eigen::Matrix<double, 2, 18>& stencil);
   template <bool overwrite>
   void apply_stiffness(const std::vector<double>& u, std::vector<double>& f) const;
