@@ -81,7 +81,7 @@ ElasticPlate::NodeStencil ElasticPlate::compact_stencil(const Eigen::Matrix<doub
   s.along_y = 0.5 * (diagonal(block(0, -1)) + diagonal(block(0, 1)));
   s.corner = 0.25 * (diagonal(block(-1, -1)) + diagonal(block(1, -1)) + diagonal(block(-1, 1)) + diagonal(block(1, 1)));
   double coupling = 0.0;
-  for (const auto& [dx, dy] : {std::pair{-1, -1}, {1, -1}, {-1, 1}, {1, 1}}) {
+  for (const auto& [dx, dy] : {std::pair{-1, -1}, std::pair{1, -1}, std::pair{-1, 1}, std::pair{1, 1}}) {
     const Eigen::Matrix2d m = block(dx, dy);
     coupling -= dx * dy * (m(0, 1) + m(1, 0));
   }
