@@ -355,10 +355,16 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // old acceleration, v(t + dt/2) + (dt/2) a(t), which is v(t + dt) to O(dt^2). With the half-step
 // velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
 // frictional run (measured: order 1.2 in the tolerance instead of 2).
+// Without friction or dashpots nothing reads them but a dashpot of zero: they are the velocities.
 void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   seen_.resize(grains_.size());
+  const bool velocity_forces = contacts_.friction > 0.0 || walls_.friction > 0.0 || dashpot_alpha_ > 0.0;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
+    if (!velocity_forces) {
+      seen_[i] = {g.vx, g.vy, g.spin};
+      continue;
+    }
     const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
     seen_[i] = {g.vx + half_step * (c.fx + f.fx + d.fx + w.fx) / g.mass,
                 g.vy + half_step * (c.fy + f.fy + d.fy + w.fy) / g.mass,
@@ -385,9 +391,16 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   wall_force_[0] = wall_force_[1] = 0.0;
   for (const auto& p : pairs_) add_grain_pair(p);
   if (plate_) {
-    f_conservative_.assign(u_.size(), 0.0);
-    f_friction_.assign(u_.size(), 0.0);
-    if (with_elastic) plate_->add_elastic_forces(u_, f_conservative_);
+    // The elastic forces overwrite f_conservative_; friction acts on the top edge's x components
+    // alone, so only that row of f_friction_ is cleared once it has been sized.
+    if (with_elastic)
+      plate_->elastic_forces(u_, f_conservative_);
+    else
+      f_conservative_.assign(u_.size(), 0.0);
+    if (f_friction_.size() != u_.size())
+      f_friction_.assign(u_.size(), 0.0);
+    else
+      std::fill(f_friction_.begin() + 2 * plate_->node(0, plate_->mesh().elements_y), f_friction_.end(), 0.0);
     const double ceiling = contact_ceiling();
     for (std::size_t g = 0; g < grains_.size(); ++g)
       if (!(grains_[g].y - grains_[g].radius > ceiling)) add_plate_contact(static_cast<int>(g));
@@ -410,7 +423,14 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
 // Half a kick (h = dt/2). The kinetic energy changes by exactly h F . (v + v')/2 in a kick, so the
 // work of each non-conservative force is summed the same way and the energy balance closes to the
 // conservative forces' integration error alone.
-void GranularPlate::kick(double h, bool second_half) {
+void GranularPlate::kick(double h, bool second_half, double plate_drift) {
+  // The works are summed in locals (in the same order): stores through g could alias the members.
+  // A kind of force that the scene does not have is exactly zero on every grain, and so is its work:
+  // its sum is left out (three serial additions a grain that bound the loop).
+  double friction_work = friction_work_, dashpot_work = dashpot_work_, drive_work = drive_work_;
+  const bool rubbing = contacts_.friction > 0.0 || walls_.friction > 0.0;
+  const bool damped = dashpot_alpha_ > 0.0;
+  const bool driven = !loaded_.empty() || pulse_.has_value();
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     auto& g = grains_[i];
     const auto &c = conservative_[i], &f = friction_[i], &d = dashpot_[i], &w = drive_[i];
@@ -418,15 +438,16 @@ void GranularPlate::kick(double h, bool second_half) {
     g.vx += h * (c.fx + f.fx + d.fx + w.fx) / g.mass;
     g.vy += h * (c.fy + f.fy + d.fy + w.fy) / g.mass;
     const double mx = 0.5 * (vx + g.vx), my = 0.5 * (vy + g.vy);
-    friction_work_ -= h * (f.fx * mx + f.fy * my);
-    dashpot_work_ -= h * (d.fx * mx + d.fy * my);
-    drive_work_ += h * (w.fx * mx + w.fy * my);
+    if (rubbing) friction_work -= h * (f.fx * mx + f.fy * my);
+    if (damped) dashpot_work -= h * (d.fx * mx + d.fy * my);
+    if (driven) drive_work += h * (w.fx * mx + w.fy * my);
     if (contacts_.rotation) {
       g.spin += h * (c.torque + f.torque) / g.inertia;
-      friction_work_ -= h * f.torque * 0.5 * (spin + g.spin);
+      if (rubbing) friction_work -= h * f.torque * 0.5 * (spin + g.spin);
     }
   }
-  if (plate_) kick_plate(h, second_half);
+  friction_work_ = friction_work, dashpot_work_ = dashpot_work, drive_work_ = drive_work;
+  if (plate_) kick_plate(h, second_half, plate_drift);
 }
 
 void GranularPlate::book_plate_dofs() {
@@ -440,32 +461,42 @@ void GranularPlate::book_plate_dofs() {
     const bool pulsed = plate_pulse_ && plate_pulse_->forces[d] != 0.0;
     if (!fixed[d] && (damping[d] > 0.0 || rubbed || pulsed)) booked_.push_back(d);
   }
-  booked_before_.resize(booked_.size());
 }
 
-// Every free degree of freedom takes v += h f / m in one pass without books; those with a dashpot,
-// friction or a pulse (booked_, along the edges) are then redone from their old velocity with
-// their dashpot and their work. Held ones have inverse mass 0 and stay put.
-void GranularPlate::kick_plate(double h, bool second_half) {
+// Every free degree of freedom but the booked ones (booked_: a dashpot, friction or a pulse, along
+// the edges) takes v += h f / m in one pass without books, between the booked ones; those take their
+// dashpot and their work after it. Held ones have inverse mass 0 and stay put. With drift > 0 the
+// same pass moves the plate, u += drift v, on the velocity just kicked.
+void GranularPlate::kick_plate(double h, bool second_half, double drift) {
   const auto& inverse_mass = plate_->inverse_mass();
   const auto& damping = plate_->damping();
   // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
   const double on = second_half ? plate_pulse_time(time_ - h, time_) : plate_pulse_time(time_, time_ + h);
   const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
   const double pulse_share = on / h;  // the pulse's mean force over the half kick, per unit force
-  for (std::size_t k = 0; k < booked_.size(); ++k) booked_before_[k] = v_[booked_[k]];
   const double* fc = f_conservative_.data();
   const double* ff = f_friction_.data();
   const double* im = inverse_mass.data();
   double* v = v_.data();
-  const std::size_t n = v_.size();
-  if (pulse)
-    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + ff[d] + pulse[d] * pulse_share) * im[d];
-  else
-    for (std::size_t d = 0; d < n; ++d) v[d] += h * (fc[d] + ff[d]) * im[d];
-  for (std::size_t k = 0; k < booked_.size(); ++k) {
-    const std::size_t d = booked_[k];
-    const double before = booked_before_[k];
+  double* u = u_.data();
+  // Friction and pulses act on booked degrees of freedom alone: the pass has the elastic and
+  // contact forces only.
+  const auto pass = [&](std::size_t from, std::size_t to) {
+    if (drift > 0.0)
+      for (std::size_t d = from; d < to; ++d) {
+        v[d] += h * fc[d] * im[d];
+        u[d] += drift * v[d];
+      }
+    else
+      for (std::size_t d = from; d < to; ++d) v[d] += h * fc[d] * im[d];
+  };
+  std::size_t from = 0;
+  for (const std::size_t d : booked_) pass(from, d), from = d + 1;
+  pass(from, v_.size());
+  // The works are summed in locals (in the same order): stores through v could alias the members.
+  double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
+  for (const std::size_t d : booked_) {
+    const double before = v[d];
     const double load = pulse ? pulse[d] * pulse_share : 0.0;
     const double force = fc[d] + ff[d] + load;
     // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
@@ -477,19 +508,20 @@ void GranularPlate::kick_plate(double h, bool second_half) {
     } else {
       v[d] = before + h * (force - damping[d] * before) * im[d];
     }
+    if (drift > 0.0) u[d] += drift * v[d];
     const double mean = 0.5 * (before + v[d]);
-    boundary_work_ += h * damping[d] * dashpot_velocity * mean;
-    friction_work_ -= h * ff[d] * mean;
-    drive_work_ += h * load * mean;
+    boundary_work += h * damping[d] * dashpot_velocity * mean;
+    friction_work -= h * ff[d] * mean;
+    drive_work += h * load * mean;
   }
+  boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
 }
 
-void GranularPlate::drift(double h) {
+void GranularPlate::drift_grains(double h) {
   for (auto& g : grains_) {
     g.x += h * g.vx;
     g.y += h * g.vy;
   }
-  for (std::size_t d = 0; d < u_.size(); ++d) u_[d] += h * v_[d];
 }
 
 // Every Hertz limit is a function of omega^2 = (3/2)(k/m) delta_max^(1/2) alone (the Tsuji dashpot's
@@ -641,8 +673,8 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
     const bool free_step = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
     return step_newmark_rk4(free_step ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
   }
-  kick(0.5 * dt, false);
-  drift(dt);
+  kick(0.5 * dt, false, dt);  // and the plate's drift
+  drift_grains(dt);
   time_ += dt;
   if (pairs_stale()) build_pairs();
   compute_forces(0.5 * dt);

@@ -93,12 +93,16 @@ void GranularPlate::evaluate_rates(double t, GrainRates& rates) {
 
 void GranularPlate::rk4_grains(const std::vector<Grain>& start, double t0, double dt, const std::vector<double>& x0,
                                const std::vector<double>& v0, const std::vector<double>& x1, double works[3]) {
-  // Eq. 16: x(t0 + s) = x0 + s v0 + (s/dt)^2 (x1 - x0 - dt v0), and its derivative.
+  // Eq. 16: x(t0 + s) = x0 + s v0 + (s/dt)^2 (x1 - x0 - dt v0), and its derivative. The grains meet
+  // the top edge's nodes alone (the last row), and the caller sets the whole plate to x1 afterwards:
+  // only that row is placed, its curvatures divided out once for the four stages.
+  const std::size_t edge = 2 * static_cast<std::size_t>(plate_->node(0, plate_->mesh().elements_y));
+  std::vector<double> curvature(u_.size() - edge);
+  for (std::size_t d = edge; d < u_.size(); ++d) curvature[d - edge] = (x1[d] - x0[d] - dt * v0[d]) / (dt * dt);
   const auto place_plate = [&](double s) {
-    for (std::size_t d = 0; d < u_.size(); ++d) {
-      const double curvature = (x1[d] - x0[d] - dt * v0[d]) / (dt * dt);
-      u_[d] = x0[d] + s * v0[d] + s * s * curvature;
-      v_[d] = v0[d] + 2.0 * s * curvature;
+    for (std::size_t d = edge; d < u_.size(); ++d) {
+      u_[d] = x0[d] + s * v0[d] + s * s * curvature[d - edge];
+      v_[d] = v0[d] + 2.0 * s * curvature[d - edge];
     }
   };
   const std::size_t n = start.size();

@@ -238,10 +238,11 @@ class GranularPlate {
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
   [[nodiscard]] double contact_ceiling() const;
-  void kick(double h, bool second_half);
-  void kick_plate(double h, bool second_half);
+  /// Half a kick of grains and plate; plate_drift > 0 then moves the plate by that step (kick_plate).
+  void kick(double h, bool second_half, double plate_drift = 0.0);
+  void kick_plate(double h, bool second_half, double drift);
   void book_plate_dofs();
-  void drift(double h);
+  void drift_grains(double h);
 
   std::vector<Grain> grains_;
   std::optional<plate::ElasticPlate> plate_;
@@ -263,9 +264,8 @@ class GranularPlate {
   std::vector<Motion> seen_;
   std::vector<double> plate_seen_;  ///< only the top edge's x components are kept (friction's slip)
   /// The plate's degrees of freedom whose work is booked in a kick (edge dashpots, the top edge
-  /// under friction, a pulse's loads), ascending, and their velocities before the kick.
+  /// under friction, a pulse's loads), ascending.
   std::vector<std::size_t> booked_;
-  std::vector<double> booked_before_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
   std::optional<ForcePulse> pulse_;
   std::optional<PlatePulse> plate_pulse_;

@@ -74,6 +74,9 @@ class ElasticPlate {
 
   /// f -= K u: the elastic forces of displacement u added to f.
   void add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const;
+  /// f = -K u: the elastic forces of displacement u written over f (sized to u), without a pass that
+  /// clears f first. The same arithmetic as add_elastic_forces on a zeroed f.
+  void elastic_forces(const std::vector<double>& u, std::vector<double>& f) const;
   /// (1/2) u^T K u.
   [[nodiscard]] double strain_energy(const std::vector<double>& u) const;
   /// Largest undamped circular frequency of M^-1 K, bounded from above by the element eigenvalue
@@ -111,6 +114,21 @@ class ElasticPlate {
   /// The force on a node whose four elements all exist, -stencil_ times the displacements of its 3 x 3
   /// neighbourhood (rows below, level and above; in each, nodes left, centre, right, x then y).
   Eigen::Matrix<double, 2, 18> stencil_;
+  /// The stencil's five distinct coefficients on the uniform mesh (elastic_plate.cpp says why they
+  /// are all): diagonal (x, y) entries of the centre, axis and corner blocks, and the corners' one
+  /// x-y coupling.
+  struct NodeStencil {
+    Eigen::Array2d centre, along_x, along_y, corner;
+    double corner_coupling;
+  };
+  NodeStencil node_stencil_{};
+  /// The force on a node of an edge, not a corner, from the two elements it has: -edge_stencil_ times
+  /// its neighbourhood's two node rows (bottom and top edges, 3 nodes each) or three node rows (left
+  /// and right edges, 2 nodes each), x then y. Order: bottom, top, left, right.
+  Eigen::Matrix<double, 2, 12> edge_stencil_[4];
+  static NodeStencil compact_stencil(const Eigen::Matrix<double, 2, 18>& stencil);
+  template <bool overwrite>
+  void apply_stiffness(const std::vector<double>& u, std::vector<double>& f) const;
   std::vector<double> mass_;
   std::vector<double> inverse_mass_;
   std::vector<double> damping_;
