@@ -58,7 +58,7 @@ ModelEvidence evidence_of(const Candidate& candidate, const ComparedModel& compa
 /// sampling's reason for the cubature).
 bool needs_tempering(const ModelEvidence& e, const EvidenceOptions& options) {
   return options.method == EvidenceMethod::Tempering ||
-         (!e.fallback_reason.empty() && e.method != "adaptive cubature");
+         (!e.fallback_reason.empty() && e.method != "adaptive cubature");  // Cubature: where it failed
 }
 
 /// Tempering's result for a column that importance sampling refused, saying why.
@@ -175,6 +175,9 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
           compared.evidence = fast[0];
           compared.widened = fast[1];
           compared.evaluations = std::max(fast[0].evaluations, fast[1].evaluations);
+          integrate_refused(candidate, compared, data, wide, evidence, options);
+        } else if (evidence.method == EvidenceMethod::Cubature) {
+          compared.evidence.fallback_reason = compared.widened.fallback_reason = "adaptive cubature asked for";
           integrate_refused(candidate, compared, data, wide, evidence, options);
         }
         EvidenceOptions tempering = evidence;

@@ -75,11 +75,13 @@ int integrand_of_box(unsigned dim, std::size_t points, const double* u, void* da
   return 0;
 }
 
-/// Per axis, the u of every support's ends strictly inside (0, 1): where sub-boxes meet.
-std::vector<std::vector<double>> cuts_of(const std::vector<AxisMap>& axes, const std::vector<Support>& supports) {
+/// Per axis, the u of every support's ends strictly inside (0, 1) and of `splits` equal pieces:
+/// where sub-boxes meet.
+std::vector<std::vector<double>> cuts_of(const std::vector<AxisMap>& axes, const std::vector<Support>& supports,
+                                         int splits) {
   std::vector<std::vector<double>> cuts(axes.size());
   for (std::size_t j = 0; j < axes.size(); ++j) {
-    cuts[j] = {0.0, 1.0};
+    for (int i = 0; i <= splits; ++i) cuts[j].push_back(static_cast<double>(i) / splits);
     for (const Support& s : supports) {
       const auto jj = static_cast<Eigen::Index>(j);
       for (const double end : {s.lower(jj), s.upper(jj)}) {
@@ -109,9 +111,9 @@ struct Box {
   std::vector<std::size_t> active;
 };
 
-/// Every sub-box with at least one prior active, the one where most priors are active first.
-std::vector<Box> boxes_of(const std::vector<AxisMap>& axes, const std::vector<Support>& supports) {
-  const std::vector<std::vector<double>> cuts = cuts_of(axes, supports);
+/// Every sub-box with at least one prior active, those where most priors are active first.
+std::vector<Box> boxes_of(const std::vector<AxisMap>& axes, const std::vector<Support>& supports, int splits) {
+  const std::vector<std::vector<double>> cuts = cuts_of(axes, supports, splits);
   const auto d = static_cast<Eigen::Index>(axes.size());
   std::vector<Box> out;
   std::vector<std::size_t> index(axes.size(), 0);
@@ -189,11 +191,12 @@ double AxisMap::cdf(double x) const {
 
 CubatureRun cubature_evidence(const LogDensity& log_likelihood, const std::vector<LogDensity>& log_priors,
                               const std::vector<AxisMap>& axes, double log_scale, const std::vector<Support>& supports,
-                              const CubatureOptions& options) {
+                              const CubatureOptions& options, const std::vector<double>& reference_log_evidence) {
   if (log_priors.empty()) throw std::invalid_argument("cubature_evidence: no priors");
   if (axes.empty()) throw std::invalid_argument("cubature_evidence: no axes");
-  if (!(options.relative_error > 0.0) || options.max_evaluations < 1 || options.threads < 1) {
-    throw std::invalid_argument("cubature_evidence: relative_error must be positive, max_evaluations and threads at least 1");
+  if (!(options.relative_error > 0.0) || options.max_evaluations < 1 || options.threads < 1 || options.splits < 1) {
+    throw std::invalid_argument("cubature_evidence: relative_error must be positive, max_evaluations, splits and "
+                                "threads at least 1");
   }
   const auto d = static_cast<Eigen::Index>(axes.size());
   std::vector<Support> all = supports;
@@ -205,24 +208,24 @@ CubatureRun cubature_evidence(const LogDensity& log_likelihood, const std::vecto
     }
   }
   all.resize(log_priors.size());
-  const std::vector<Box> boxes = boxes_of(axes, all);
+  const std::vector<Box> boxes = boxes_of(axes, all, options.splits);
   std::vector<double> value(log_priors.size(), 0.0), error(log_priors.size(), 0.0);
-  std::vector<double> first(log_priors.size(), 0.0);
   CubatureRun run;
   run.converged = true;
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    BoxIntegrand integrand{&log_likelihood, &log_priors, &axes, boxes[b].active, boxes[b].u_lower, boxes[b].u_upper,
+  for (const Box& box : boxes) {
+    BoxIntegrand integrand{&log_likelihood, &log_priors, &axes, box.active, box.u_lower, box.u_upper,
                            log_scale, options.threads, 0};
     const auto columns = static_cast<unsigned>(integrand.active.size());
-    // The first sub-box (where every narrower prior lives) to the relative error; the others to
-    // it too, or to their share of the first one's absolute error, whichever comes first.
-    double absolute = 0.0;
-    if (b > 0) {
-      absolute = std::numeric_limits<double>::infinity();
-      for (std::size_t p : integrand.active) {
-        absolute = std::min(absolute, options.relative_error * std::max(first[p], 0.0) / static_cast<double>(boxes.size()));
-      }
+    // An absolute target from the reference where every active column has one, else relative.
+    double absolute = std::numeric_limits<double>::infinity();
+    for (std::size_t p : integrand.active) {
+      const double reference = p < reference_log_evidence.size() ? reference_log_evidence[p] : NAN;
+      absolute = std::isfinite(reference)
+                     ? std::min(absolute, options.relative_error * std::exp(reference - log_scale) /
+                                              static_cast<double>(boxes.size()))
+                     : 0.0;
     }
+    const double relative = absolute > 0.0 ? 0.0 : options.relative_error;
     std::vector<double> val(columns), err(columns);
     const Eigen::VectorXd zeros = Eigen::VectorXd::Zero(d), ones = Eigen::VectorXd::Ones(d);
     const long left = options.max_evaluations - run.evaluations;
@@ -231,16 +234,13 @@ CubatureRun cubature_evidence(const LogDensity& log_likelihood, const std::vecto
       break;
     }
     const int status = hcubature_v(columns, integrand_of_box, &integrand, static_cast<unsigned>(d), zeros.data(),
-                                   ones.data(), static_cast<std::size_t>(left), absolute, options.relative_error,
-                                   ERROR_INDIVIDUAL, val.data(), err.data());
+                                   ones.data(), static_cast<std::size_t>(left), absolute, relative, ERROR_INDIVIDUAL,
+                                   val.data(), err.data());
     run.evaluations += integrand.evaluations;
     if (status != 0) throw std::runtime_error("cubature_evidence: hcubature failed");
     for (unsigned c = 0; c < columns; ++c) {
-      const std::size_t p = integrand.active[c];
-      if (b == 0) first[p] = val[c];
-      value[p] += val[c];
-      error[p] += err[c];
-      if (!(err[c] <= std::max(absolute, options.relative_error * std::abs(val[c])))) run.converged = false;
+      value[integrand.active[c]] += val[c];
+      error[integrand.active[c]] += err[c];
     }
   }
   run.boxes = static_cast<int>(boxes.size());
@@ -248,7 +248,7 @@ CubatureRun cubature_evidence(const LogDensity& log_likelihood, const std::vecto
     const bool positive = value[p] > 0.0;
     run.priors.push_back({positive ? std::log(value[p]) + log_scale : kMinusInfinity,
                           positive ? error[p] / value[p] : std::numeric_limits<double>::infinity()});
-    if (!positive) run.converged = false;
+    if (!(positive && error[p] <= options.relative_error * value[p])) run.converged = false;
   }
   return run;
 }

@@ -103,8 +103,10 @@ struct PosteriorResult {
 /// (sampling/importance.hpp) where its own diagnostics say it applies; elsewhere adaptive cubature
 /// over the priors' support (sampling/cubature.hpp) for up to EvidenceOptions::cubature_max_parameters
 /// free parameters, parallel tempering beyond that or where the cubature does not converge
-/// (docs/sampling.md, "The evidence from the fit"); Tempering: parallel tempering always.
-enum class EvidenceMethod { Automatic, Tempering };
+/// (docs/sampling.md, "The evidence from the fit"); Cubature: adaptive cubature first (parallel
+/// tempering where it fails; e.g. to check the cubature on every posterior); Tempering: parallel
+/// tempering always.
+enum class EvidenceMethod { Automatic, Cubature, Tempering };
 
 /// The options of parallel tempering over a ladder of inverse temperatures from 1,
 /// evenly spaced in ln beta down to 1/max_temperature, and beta = 0 (the prior, sampled by

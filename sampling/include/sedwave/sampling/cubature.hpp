@@ -49,7 +49,10 @@ class AxisMap {
 
 struct CubatureOptions {
   /// The relative error sought on every column's Z (about the standard error of ln Z).
-  double relative_error = 0.01;
+  double relative_error = 0.003;
+  /// Every axis's [0, 1] starts cut into this many equal pieces (besides the supports' ends): the
+  /// rule then looks at every part of the box before it judges where the mass is.
+  int splits = 4;
   /// Likelihood evaluations allowed in all (the sub-boxes share them); reached first: not converged.
   long max_evaluations = 300000;
   int threads = 1;  ///< share each batch of points; the result does not depend on it
@@ -72,11 +75,17 @@ struct CubatureRun {
 /// Each prior's evidence with `log_likelihood` (-inf where it has no value) over the box that
 /// `axes` span (one per coordinate), the integrand scaled by exp(-log_scale) (e.g. the largest ln L,
 /// so that it stays near 1). supports[p] is where prior p is non-zero (a box inside the axes'); a
-/// missing entry: the whole box. Throws std::invalid_argument for no priors or a support outside
-/// the box.
+/// missing entry: the whole box. `reference_log_evidence` (per prior; missing or not finite: none)
+/// is a rough ln Z known beforehand (e.g. from importance draws): every sub-box is then integrated
+/// to an absolute error of relative_error x that Z over the number of sub-boxes, so that a sub-box
+/// with little mass is not refined for its own sake, nor one with much left coarse; without it,
+/// each sub-box to relative_error of its own integral. Converged: the summed error of every column
+/// is at most relative_error of its Z. Throws std::invalid_argument for no priors or a support
+/// outside the box.
 [[nodiscard]] CubatureRun cubature_evidence(const LogDensity& log_likelihood, const std::vector<LogDensity>& log_priors,
                                             const std::vector<AxisMap>& axes, double log_scale,
-                                            const std::vector<Support>& supports, const CubatureOptions& options = {});
+                                            const std::vector<Support>& supports, const CubatureOptions& options = {},
+                                            const std::vector<double>& reference_log_evidence = {});
 
 /// Importance sampling from the axes' own density prod g (what the cubature integrates is the
 /// weight L pi / prod g): `count` independent draws from one seeded stream, their ln L (evaluated
