@@ -124,7 +124,9 @@ struct EvidenceOptions {
   /// integrated by adaptive cubature (cubature_integrated_evidence), others by parallel tempering.
   int cubature_max_parameters = 3;
   sampling::CubatureOptions cubature = {};  ///< its threads are set from `threads` below
-  /// Draws from the cubature's map, importance-weighted, behind its posterior draws and cross-check.
+  /// Draws from the cubature's first map, whose weighted draws place the second; and from the
+  /// second, importance-weighted, behind its posterior draws and cross-check.
+  int cubature_pilot_draws = 2000;
   int cubature_draws = 4000;
   int temperatures = 32;  ///< rungs from beta = 1 to 1/max_temperature, more where that is extended
   /// The ladder reaches at least this far; further where the prior's draws have ln L below the best
@@ -205,8 +207,9 @@ struct ModelEvidence {
 /// evaluations. Each axis is mapped from [0, 1] through a density that puts a t distribution
 /// around the best fit (scaled by the linearised posterior), a kernel density of `hints` (posterior
 /// draws [unit], e.g. a refused importance-sampling run's, which saw where the linearisation was
-/// wrong) and a uniform floor over the support. Posterior draws come from importance sampling
-/// with that map's density as the proposal; its estimate of ln Z cross-checks the cubature's.
+/// wrong) and a uniform floor over the support; once more with the kernel density of that map's own
+/// importance-weighted draws added. Posterior draws come from importance sampling with the final
+/// map's density as the proposal; its estimate of ln Z cross-checks the cubature's.
 /// An entry whose fallback_reason is not empty did not converge or failed the cross-check:
 /// parallel tempering computes that one.
 [[nodiscard]] std::vector<ModelEvidence> cubature_integrated_evidence(
