@@ -54,7 +54,7 @@ struct CubatureOptions {
   /// rule then looks at every part of the box before it judges where the mass is.
   int splits = 4;
   /// Likelihood evaluations allowed in all (the sub-boxes share them); reached first: not converged.
-  long max_evaluations = 300000;
+  long max_evaluations = 100000;
   int threads = 1;  ///< share each batch of points; the result does not depend on it
 };
 
