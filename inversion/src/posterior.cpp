@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -902,7 +903,7 @@ sampling::AxisMap axis_map(double lower, double upper, double centre, double sca
     if (hint.size() >= 2) {
       double kernel = 0.0;
       for (double h : hint) kernel += std::exp(-0.5 * std::pow((x - h) / bandwidth, 2));
-      g += t_share * kernel / (static_cast<double>(hint.size()) * bandwidth * std::sqrt(2.0 * M_PI));
+      g += t_share * kernel / (static_cast<double>(hint.size()) * bandwidth * std::sqrt(2.0 * std::numbers::pi));
     }
     density.push_back(g);
   }
