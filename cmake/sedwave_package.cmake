@@ -84,4 +84,5 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/sedwaveConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/package/sedwaveConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/package/sedwaveConfig.cmake
-  ${PROJECT_BINARY_DIR}/package/sedwaveConfigVersion.cmake DESTINATION ${sedwave_config_dir})
+  ${PROJECT_BINARY_DIR}/package/sedwaveConfigVersion.cmake ${PROJECT_SOURCE_DIR}/cmake/sedwave_cubature.cmake
+  DESTINATION ${sedwave_config_dir})

@@ -13,7 +13,7 @@ SEDWAVE_GENERATOR="${SEDWAVE_GENERATOR:-Ninja}"
 # Everything sedwave needs, all Debian packages. gnuplot draws the fit plot (optional at run time);
 # python3 runs the docs check (tests/docs); pybind11, Python's headers and numpy build the Python
 # module (python/), pytest runs its tests.
-SEDWAVE_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev
+SEDWAVE_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libcubature-dev
   libopenmpi-dev openmpi-bin libhdf5-dev libgtest-dev libbenchmark-dev libcli11-dev libtoml11-dev
   nlohmann-json3-dev gnuplot-nox python3 ninja-build pybind11-dev python3-dev python3-numpy python3-pytest)
 

@@ -110,9 +110,10 @@ inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
   return candidate_of(setup);
 }
 
-/// "IS" or "PT": what gave an evidence.
+/// "IS", "AC" or "PT": what gave an evidence.
 std::string method_code(const inversion::ModelEvidence& e) {
-  return e.method == "importance sampling" ? "IS" : "PT";
+  if (e.method == "importance sampling") return "IS";
+  return e.method == "adaptive cubature" ? "AC" : "PT";
 }
 
 void print_table(const inversion::Ranking& ranking) {
@@ -135,13 +136,13 @@ void print_table(const inversion::Ranking& ranking) {
                 row.evidence.predictive_p, row.widened.log_evidence, static_cast<long>(wide_rank), method.c_str(),
                 row.evaluations, row.evidence.converged ? "" : "  (NOT CONVERGED)");
   }
-  std::printf("method (ln Z / ln Z x10): IS importance sampling around the fit, PT parallel tempering; evals: the "
-              "model's evaluations in all (fit, evidence, band)\n");
+  std::printf("method (ln Z / ln Z x10): IS importance sampling around the fit, AC adaptive cubature over the priors' "
+              "support, PT parallel tempering; evals: the model's evaluations in all (fit, evidence, band)\n");
   for (std::size_t r = 0; r < order.size(); ++r) {
     const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
     for (const auto& [column, e] : {std::pair{"ln Z", &row.evidence}, std::pair{"ln Z x10", &row.widened}}) {
       if (!e->fallback_reason.empty()) {
-        std::printf("%s, %s by parallel tempering: %s\n", row.model.c_str(), column, e->fallback_reason.c_str());
+        std::printf("%s, %s by %s: %s\n", row.model.c_str(), column, e->method.c_str(), e->fallback_reason.c_str());
       }
     }
   }

@@ -53,10 +53,12 @@ ModelEvidence evidence_of(const Candidate& candidate, const ComparedModel& compa
   return model_evidence(data, *candidate.model, compared.fit, priors, kFitOptions, evidence);
 }
 
-/// Whether a column still needs parallel tempering: it was not computed by importance sampling, or
-/// importance sampling's diagnostics refused it.
+/// Whether a column still needs parallel tempering: it was not computed by importance sampling or
+/// adaptive cubature, or their diagnostics refused it (a column they served keeps importance
+/// sampling's reason for the cubature).
 bool needs_tempering(const ModelEvidence& e, const EvidenceOptions& options) {
-  return options.method == EvidenceMethod::Tempering || !e.fallback_reason.empty();
+  return options.method == EvidenceMethod::Tempering ||
+         (!e.fallback_reason.empty() && e.method != "adaptive cubature");  // Cubature: where it failed
 }
 
 /// Tempering's result for a column that importance sampling refused, saying why.
@@ -65,14 +67,44 @@ ModelEvidence fall_back(const ModelEvidence& refused, ModelEvidence tempered) {
   return tempered;
 }
 
-/// Every evaluation made for a model: the fit's, importance sampling's once (both columns share
-/// them), tempering's per column, the band's draws.
-long model_evaluations(const ComparedModel& m, long importance) {
-  long total = m.fit_evaluations + importance + m.band.draws;
+/// Every evaluation made for a model: the fit's, importance sampling's and adaptive cubature's
+/// once (both columns share them: `shared`), tempering's per column, the band's draws.
+long model_evaluations(const ComparedModel& m, long shared) {
+  long total = m.fit_evaluations + shared + m.band.draws;
   for (const ModelEvidence* e : {&m.evidence, &m.widened}) {
-    if (e->method != "importance sampling") total += e->evaluations;
+    if (e->method == "parallel tempering") total += e->evaluations;
   }
   return total;
+}
+
+/// The columns that importance sampling refused, by adaptive cubature in one pass where the model
+/// has few enough free parameters (each column still refused keeps both reasons); the cubature's
+/// evaluations are added to `shared`.
+void integrate_refused(const Candidate& candidate, ComparedModel& compared, const ObservationSet& data,
+                       const std::vector<Prior>& wide, const EvidenceOptions& evidence, const ComparisonOptions& options) {
+  std::vector<ModelEvidence*> refused;
+  std::vector<std::vector<Prior>> sets;
+  std::vector<Eigen::MatrixXd> hints;
+  for (auto [column, priors] : {std::pair{&compared.evidence, &candidate.priors}, std::pair{&compared.widened, &wide}}) {
+    if (column->fallback_reason.empty()) continue;
+    refused.push_back(column);
+    sets.push_back(*priors);
+    hints.push_back(column->samples);
+  }
+  if (refused.empty() || std::ssize(compared.fit.fitted.free_indices()) > evidence.cubature_max_parameters) return;
+  report(options, candidate.label + ": evidence by adaptive cubature ...");
+  const std::vector<ModelEvidence> integrated =
+      cubature_integrated_evidence(data, *candidate.model, compared.fit, sets, kFitOptions, evidence, hints);
+  compared.evaluations += integrated.front().evaluations;
+  for (std::size_t c = 0; c < refused.size(); ++c) {
+    const std::string reason = refused[c]->fallback_reason;
+    if (integrated[c].fallback_reason.empty()) {
+      *refused[c] = integrated[c];
+      refused[c]->fallback_reason = reason;
+    } else {
+      refused[c]->fallback_reason = reason + "; " + integrated[c].fallback_reason;
+    }
+  }
 }
 
 std::vector<int> order_by_evidence(const std::vector<ComparedModel>& models, bool widened) {
@@ -124,8 +156,9 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
   ranking.models.resize(candidates.size());
   EvidenceOptions evidence = options.evidence;
   evidence.threads = std::max(1, options.threads / (2 * static_cast<int>(candidates.size())));
-  // Per model: its fit, then both evidences by importance sampling where it applies, then parallel
-  // tempering for each it does not serve (the two side by side), then the band from the first.
+  // Per model: its fit, then both evidences by importance sampling where it applies, by adaptive
+  // cubature (both in one pass) where it does not and the model has few free parameters, then
+  // parallel tempering for each neither serves (the two side by side), then the band from the first.
   JobQueue queue;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const Candidate& candidate = candidates[i];
@@ -142,6 +175,10 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
           compared.evidence = fast[0];
           compared.widened = fast[1];
           compared.evaluations = std::max(fast[0].evaluations, fast[1].evaluations);
+          integrate_refused(candidate, compared, data, wide, evidence, options);
+        } else if (evidence.method == EvidenceMethod::Cubature) {
+          compared.evidence.fallback_reason = compared.widened.fallback_reason = "adaptive cubature asked for";
+          integrate_refused(candidate, compared, data, wide, evidence, options);
         }
         EvidenceOptions tempering = evidence;
         tempering.method = EvidenceMethod::Tempering;

@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -628,12 +629,32 @@ ModelEvidence model_evidence(const ObservationSet& data, const sediment::Sedimen
                              const std::vector<Prior>& priors, const FitOptions& fit_options,
                              const EvidenceOptions& options) {
   if (options.method == EvidenceMethod::Tempering) return tempered_evidence(data, model, best, priors, fit_options, options);
-  const ModelEvidence fast = importance_sampled_evidence(data, model, best, {priors}, fit_options, options).front();
+  ModelEvidence fast;
+  fast.fallback_reason = "adaptive cubature asked for";
+  if (options.method != EvidenceMethod::Cubature) {
+    fast = importance_sampled_evidence(data, model, best, {priors}, fit_options, options).front();
+  }
   if (fast.fallback_reason.empty()) return fast;
+  std::string reason = fast.fallback_reason;
+  int evaluations = fast.evaluations;
+  double seconds = fast.wall_seconds;
+  if (std::ssize(best.fitted.free_indices()) <= options.cubature_max_parameters) {
+    ModelEvidence integrated = cubature_integrated_evidence(data, model, best, {priors}, fit_options, options,
+                                                            {fast.samples}).front();
+    integrated.evaluations += evaluations;
+    integrated.wall_seconds += seconds;
+    if (integrated.fallback_reason.empty()) {
+      integrated.fallback_reason = reason;
+      return integrated;
+    }
+    reason += "; " + integrated.fallback_reason;
+    evaluations = integrated.evaluations;
+    seconds = integrated.wall_seconds;
+  }
   ModelEvidence e = tempered_evidence(data, model, best, priors, fit_options, options);
-  e.fallback_reason = fast.fallback_reason;
-  e.evaluations += fast.evaluations;
-  e.wall_seconds += fast.wall_seconds;
+  e.fallback_reason = reason;
+  e.evaluations += evaluations;
+  e.wall_seconds += seconds;
   return e;
 }
 
@@ -813,6 +834,204 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     if (std::isfinite(w.log_weights.maxCoeff())) {
       sampling::RandomStream random(options.seed ^ kResampleStream);
       e.samples = sampling::resample(run.draws, w.log_weights, options.posterior_draws, random).array().exp().matrix();
+    }
+  }
+  const double seconds = seconds_since(started);
+  for (ModelEvidence& e : out) e.wall_seconds = seconds;
+  return out;
+}
+
+namespace {
+
+/// The cubature's map of one axis (docs/sampling.md, "Adaptive cubature").
+/// Nodes per part of the map's piecewise-linear density.
+constexpr int kMapNodes = 256;
+/// The share of the map's density spread uniformly over the support, so that L pi / g is bounded
+/// wherever the posterior is that the other parts did not foresee.
+constexpr double kUniformShare = 0.2;
+/// The t around the best fit: its scale in linearised sd, its reach in its own scales.
+constexpr double kMapTScale = 2.0;
+constexpr double kMapTReach = 40.0;
+/// Hint draws used for the kernel density (every n-th where there are more).
+constexpr int kMaxHintDraws = 1000;
+/// The cubature's draws' own streams (its map's pilot, its map's final draws).
+constexpr std::uint64_t kCubaturePilotStream = 0x2545F4914F6CDD1DULL;
+constexpr std::uint64_t kCubatureDrawStream = 0xD1B54A32D192ED03ULL;
+/// The smallest standard error of ln Z stated for the cubature: its embedded-rule estimate says
+/// nothing of mass between its points, and against quadrature (bench_evidence_accuracy with the
+/// cubature forced) it was off by up to 0.011 where that estimate said 0.001-0.002.
+constexpr double kCubatureErrorFloor = 0.01;
+/// The cubature and its draws' own estimate disagree beyond this many combined standard errors:
+/// mass that one of them missed.
+constexpr double kCrossCheckSigmas = 3.0;
+
+double student_t4(double z) { return 0.375 * std::pow(1.0 + 0.25 * z * z, -2.5); }
+
+/// `count` evenly spaced values from a to b, both included.
+void add_nodes(std::vector<double>& nodes, double a, double b, int count) {
+  for (int i = 0; i < count; ++i) nodes.push_back(a + (b - a) * i / (count - 1));
+}
+
+/// One axis's map over [lower, upper] (ln values): uniform floor, a t around `centre` with scale
+/// `scale`, and a Gaussian kernel density of `hint` (ln values; may be empty).
+sampling::AxisMap axis_map(double lower, double upper, double centre, double scale, const std::vector<double>& hint) {
+  const double range = upper - lower;
+  std::vector<double> nodes;
+  add_nodes(nodes, lower, upper, kMapNodes);
+  add_nodes(nodes, std::max(lower, centre - kMapTReach * scale), std::min(upper, centre + kMapTReach * scale), kMapNodes);
+  double bandwidth = 0.0;
+  if (hint.size() >= 2) {
+    double mean = 0.0, square = 0.0;
+    for (double h : hint) mean += h / static_cast<double>(hint.size());
+    for (double h : hint) square += (h - mean) * (h - mean) / static_cast<double>(hint.size() - 1);
+    // Silverman's rule, twice (smoother than the draws: the map must not miss what lies between them),
+    // and never below a quarter of the t's scale.
+    bandwidth = std::max(2.0 * 1.06 * std::sqrt(square) * std::pow(static_cast<double>(hint.size()), -0.2), 0.25 * scale);
+    const auto [lo, hi] = std::minmax_element(hint.begin(), hint.end());
+    add_nodes(nodes, std::max(lower, *lo - 5.0 * bandwidth), std::min(upper, *hi + 5.0 * bandwidth), kMapNodes);
+  }
+  std::sort(nodes.begin(), nodes.end());
+  std::vector<double> kept;
+  for (double x : nodes) {
+    if (kept.empty() || x > kept.back() + 1e-9 * range) kept.push_back(x);
+  }
+  kept.back() = upper;
+  const double t_share = hint.size() >= 2 ? 0.5 * (1.0 - kUniformShare) : 1.0 - kUniformShare;
+  std::vector<double> density;
+  for (double x : kept) {
+    double g = kUniformShare / range + t_share * student_t4((x - centre) / scale) / scale;
+    if (hint.size() >= 2) {
+      double kernel = 0.0;
+      for (double h : hint) kernel += std::exp(-0.5 * std::pow((x - h) / bandwidth, 2));
+      g += t_share * kernel / (static_cast<double>(hint.size()) * bandwidth * std::sqrt(2.0 * std::numbers::pi));
+    }
+    density.push_back(g);
+  }
+  return {kept, density};
+}
+
+}  // namespace
+
+std::vector<ModelEvidence> cubature_integrated_evidence(const ObservationSet& data, const sediment::SedimentModel& model,
+                                                        const FitResult& best,
+                                                        const std::vector<std::vector<Prior>>& prior_sets,
+                                                        const FitOptions& fit_options, const EvidenceOptions& options,
+                                                        const std::vector<Eigen::MatrixXd>& hints) {
+  const auto started = std::chrono::steady_clock::now();
+  if (prior_sets.empty()) throw std::invalid_argument("cubature_integrated_evidence: no priors");
+  const Setup s = detail::make_setup(data, model, best.fitted, fit_options);
+  const Theta theta = best.fitted.log_values();
+  const auto k = static_cast<Eigen::Index>(s.free.size());
+  std::vector<sampling::LogDensity> log_priors;
+  std::vector<sampling::Support> supports;
+  sampling::LogDensity log_likelihood;
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(k, std::numeric_limits<double>::infinity());
+  Eigen::VectorXd upper = -lower;
+  for (const std::vector<Prior>& priors : prior_sets) {
+    const sampling::PriorAndLikelihood density = evidence_integrand(data, model, best, priors, fit_options);
+    log_likelihood = density.log_likelihood;
+    log_priors.push_back(density.log_prior);
+    sampling::Support support{Eigen::VectorXd(k), Eigen::VectorXd(k)};
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const auto [lo, hi] = priors[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])].support();
+      support.lower(j) = std::log(lo);
+      support.upper(j) = std::log(hi);
+    }
+    lower = lower.cwiseMin(support.lower);
+    upper = upper.cwiseMax(support.upper);
+    supports.push_back(support);
+  }
+  // The linearised posterior's sd per axis where the fit has derivatives; else a tenth of the range.
+  Eigen::VectorXd sd = (upper - lower) / 10.0;
+  try {
+    const Eigen::VectorXd linear = linearised_precision(s, theta, prior_sets).inverse().diagonal().cwiseSqrt();
+    for (Eigen::Index j = 0; j < k; ++j) {
+      if (std::isfinite(linear(j)) && linear(j) > 0.0) sd(j) = linear(j);
+    }
+  } catch (const std::runtime_error&) {
+    // no linearisation at the best fit: the map's t is a tenth of the range wide
+  }
+  // Each axis's map from hint draws (ln values, rows).
+  const auto maps_from = [&](const std::vector<Eigen::MatrixXd>& ln_hints) {
+    std::vector<sampling::AxisMap> axes;
+    for (Eigen::Index j = 0; j < k; ++j) {
+      std::vector<double> hint;
+      for (const Eigen::MatrixXd& h : ln_hints) {
+        const Eigen::Index step =
+            std::max<Eigen::Index>(1, h.rows() * static_cast<Eigen::Index>(ln_hints.size()) / kMaxHintDraws);
+        for (Eigen::Index r = 0; r < h.rows(); r += step) hint.push_back(h(r, j));
+      }
+      const double range = upper(j) - lower(j);
+      const double scale = std::clamp(kMapTScale * sd(j), 1e-6 * range, 0.25 * range);
+      axes.push_back(axis_map(lower(j), upper(j), theta[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])],
+                              scale, hint));
+    }
+    return axes;
+  };
+  std::vector<Eigen::MatrixXd> ln_hints;
+  for (const Eigen::MatrixXd& h : hints) {
+    if (h.rows() > 0) ln_hints.push_back(h.array().log().matrix());
+  }
+  // A first map from the fit and the hints; its own importance draws, resampled per prior, are
+  // hints for the second: the map adapts once to where the posterior is.
+  const sampling::MappedSample pilot =
+      sampling::mapped_importance(log_likelihood, log_priors, maps_from(ln_hints), options.cubature_pilot_draws,
+                                  options.seed ^ kCubaturePilotStream, options.threads);
+  for (const sampling::ImportanceEstimate& w : pilot.priors) {
+    if (!std::isfinite(w.log_weights.maxCoeff())) continue;
+    sampling::RandomStream random(options.seed ^ kCubaturePilotStream ^ kResampleStream);
+    ln_hints.push_back(sampling::resample(pilot.draws, w.log_weights, kMaxHintDraws, random));
+  }
+  const std::vector<sampling::AxisMap> axes = maps_from(ln_hints);
+  sampling::CubatureOptions cubature = options.cubature;
+  cubature.threads = options.threads;
+  // The map's importance draws first: their ln Z sets the cubature's absolute error target.
+  const sampling::MappedSample drawn = sampling::mapped_importance(
+      log_likelihood, log_priors, axes, options.cubature_draws, options.seed ^ kCubatureDrawStream, options.threads);
+  std::vector<double> reference;
+  for (const sampling::ImportanceEstimate& w : drawn.priors) reference.push_back(w.log_evidence);
+  const sampling::CubatureRun run =
+      sampling::cubature_evidence(log_likelihood, log_priors, axes, -0.5 * best.chi2, supports, cubature, reference);
+  const double n = static_cast<double>(s.observations.size());
+  std::vector<ModelEvidence> out(prior_sets.size());
+  for (std::size_t p = 0; p < prior_sets.size(); ++p) {
+    const sampling::CubatureEstimate& c = run.priors[p];
+    const sampling::ImportanceEstimate& w = drawn.priors[p];
+    ModelEvidence& e = out[p];
+    e.method = "adaptive cubature";
+    e.log_evidence = c.log_evidence;
+    e.uncertainty = std::max(c.uncertainty, kCubatureErrorFloor);
+    e.pareto_k = w.pareto_k;
+    e.effective_draws = w.effective_draws;
+    e.evaluations = static_cast<int>(run.evaluations) + pilot.evaluations + drawn.evaluations;
+    const double gap = std::abs(w.log_evidence - c.log_evidence);
+    const double combined = std::hypot(w.uncertainty, std::max(c.uncertainty, kCubatureErrorFloor));
+    if (!run.converged) {
+      e.fallback_reason = formatted("adaptive cubature did not reach a relative error of %.3f within %.0f evaluations",
+                                    cubature.relative_error, static_cast<double>(cubature.max_evaluations));
+    } else if (!(w.pareto_k <= kMaxParetoK)) {
+      e.fallback_reason = formatted("the importance weights of adaptive cubature's map have Pareto k-hat %.2f (above "
+                                    "0.7): the map misses part of the posterior, and the rule may too", w.pareto_k);
+    } else if (!(gap <= kCrossCheckSigmas * combined)) {
+      e.fallback_reason = formatted("adaptive cubature's ln Z %.3f and its map's importance draws' %.3f differ by "
+                                    "more than 3 combined standard errors (%.3f)",
+                                    c.log_evidence, w.log_evidence, combined);
+    }
+    e.converged = e.fallback_reason.empty();
+    e.advice = formatted("%.0f sub-boxes, %.0f cubature evaluations; %.0f draws from its map give ln Z %.3f", run.boxes,
+                         static_cast<double>(run.evaluations), static_cast<double>(drawn.draws.rows()), w.log_evidence) +
+               formatted(" +- %.3f (Pareto k-hat %.2f, %.0f effective draws)", w.uncertainty, w.pareto_k,
+                         w.effective_draws);
+    double p_sum = 0.0;
+    for (Eigen::Index i = 0; i < drawn.draws.rows(); ++i) {
+      if (std::isfinite(w.log_weights(i))) {
+        p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -drawn.log_likelihood(i));
+      }
+    }
+    e.predictive_p = p_sum;
+    if (std::isfinite(w.log_weights.maxCoeff())) {
+      sampling::RandomStream random(options.seed ^ kResampleStream);
+      e.samples = sampling::resample(drawn.draws, w.log_weights, options.posterior_draws, random).array().exp().matrix();
     }
   }
   const double seconds = seconds_since(started);

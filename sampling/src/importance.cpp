@@ -167,16 +167,9 @@ void balance(Batch& pilots, const std::vector<Mixture>& rounds) {
   }
 }
 
-/// One prior's estimate from a batch, weighted by L pi / q.
-ImportanceEstimate estimate(const Batch& b, std::size_t prior) {
-  const auto n = static_cast<Eigen::Index>(b.x.size());
-  Eigen::VectorXd log_w(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    const double lp = b.log_prior[prior][u];
-    log_w(i) = std::isfinite(lp) && std::isfinite(b.log_likelihood[u]) ? lp + b.log_likelihood[u] - b.log_proposal[u]
-                                                                       : kMinusInfinity;
-  }
+/// The estimate from draws (rows) and their log weights L pi / q (-inf: zero).
+ImportanceEstimate estimate_of_weights(const Eigen::MatrixXd& draws, const Eigen::VectorXd& log_w) {
+  const Eigen::Index n = draws.rows();
   ImportanceEstimate e;
   // k-hat from the Pareto-smoothed tail judges the weights; the estimate itself uses the raw
   // weights, whose mean is unbiased.
@@ -198,12 +191,12 @@ ImportanceEstimate estimate(const Batch& b, std::size_t prior) {
   e.effective_draws = w.sum() * w.sum() / w.square().sum();
   const Eigen::ArrayXd p = w / w.sum();
   e.log_weights = log_w.array() - peak - std::log(w.sum());
-  const auto dim = static_cast<Eigen::Index>(b.x.front().size());
+  const auto dim = static_cast<Eigen::Index>(draws.cols());
   e.mean = Eigen::VectorXd::Zero(dim);
-  for (Eigen::Index i = 0; i < n; ++i) e.mean += p(i) * b.x[static_cast<std::size_t>(i)];
+  for (Eigen::Index i = 0; i < n; ++i) e.mean += p(i) * draws.row(i).transpose();
   e.covariance = Eigen::MatrixXd::Zero(dim, dim);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::VectorXd d = b.x[static_cast<std::size_t>(i)] - e.mean;
+    const Eigen::VectorXd d = draws.row(i).transpose() - e.mean;
     e.covariance += p(i) * d * d.transpose();
   }
   // Shape: far mass and the kurtosis along each principal axis, in the posterior's own metric.
@@ -211,13 +204,28 @@ ImportanceEstimate estimate(const Batch& b, std::size_t prior) {
   const Eigen::VectorXd sd = axes.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   Eigen::VectorXd fourth = Eigen::VectorXd::Zero(dim);
   for (Eigen::Index i = 0; i < n; ++i) {
-    Eigen::VectorXd z = axes.eigenvectors().transpose() * (b.x[static_cast<std::size_t>(i)] - e.mean);
+    Eigen::VectorXd z = axes.eigenvectors().transpose() * (draws.row(i).transpose() - e.mean);
     z = z.cwiseQuotient(sd);
     if (z.norm() > kFarDistance) e.far_mass += p(i);
     fourth += p(i) * z.array().pow(4).matrix();
   }
   e.min_axis_kurtosis = fourth.minCoeff();
   return e;
+}
+
+/// One prior's estimate from a batch, weighted by L pi / q.
+ImportanceEstimate estimate(const Batch& b, std::size_t prior) {
+  const auto n = static_cast<Eigen::Index>(b.x.size());
+  Eigen::VectorXd log_w(n);
+  Eigen::MatrixXd draws(n, b.x.front().size());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const double lp = b.log_prior[prior][u];
+    log_w(i) = std::isfinite(lp) && std::isfinite(b.log_likelihood[u]) ? lp + b.log_likelihood[u] - b.log_proposal[u]
+                                                                       : kMinusInfinity;
+    draws.row(i) = b.x[u].transpose();
+  }
+  return estimate_of_weights(draws, log_w);
 }
 
 void check(const std::vector<LogDensity>& log_priors, const Eigen::VectorXd& centre, const Eigen::MatrixXd& covariance,
@@ -444,6 +452,13 @@ double end_mass(const Slab& slab, const Batch& b, const ImportanceEstimate& e) {
 }
 
 }  // namespace
+
+ImportanceEstimate weighted_estimate(const Eigen::MatrixXd& draws, const Eigen::VectorXd& log_weights) {
+  if (draws.rows() != log_weights.size() || draws.rows() < 2) {
+    throw std::invalid_argument("weighted_estimate: one log weight per draw, at least two draws");
+  }
+  return estimate_of_weights(draws, log_weights);
+}
 
 ParetoSmoothed pareto_smooth(const Eigen::VectorXd& log_weights) {
   ParetoSmoothed out{log_weights, std::numeric_limits<double>::infinity()};

@@ -134,5 +134,43 @@ TEST(EvidenceAccuracy, AgreesWithQuadratureOnRealModels) {
   }
 }
 
+
+// Adaptive cubature's two columns from one pass: EDFM with a log-uniform permeability prior whose
+// upper end lies half a linearised sd above the best fit (the posterior is cut there), and the same
+// prior widened tenfold (which the cut no longer holds), each against brute-force quadrature of its
+// own integral: within 3 stated standard errors (plus the quadrature's own error at the cut).
+TEST(EvidenceAccuracy, CubatureColumnsAgreeWithQuadratureUnderANarrowAndAWidenedPrior) {
+  const auto model = sediment::make_sediment_model("edfm");
+  const inversion::ObservationSet data = inversion::synthetic_observations(
+      *model, inversion::FitParameters(model->parameters()), {100.0, 1e5, 20, 0.05, 0.01, 201});
+  inversion::FitParameters start(model->parameters());
+  start.set_free_from_list("porosity,permeability");
+  const inversion::FitOptions options{.method = inversion::FitMethod::Global, .profile_likelihood = false};
+  const inversion::FitResult best = inversion::fit(data, *model, start, options);
+  const int i = best.fitted.free_indices()[1];
+  const double v = best.fitted.spec[static_cast<std::size_t>(i)].value *
+                   std::exp(0.5 * best.parameters[static_cast<std::size_t>(i)].log_sigma);
+  char item[128];
+  std::snprintf(item, sizeof item, "permeability=log-uniform:%.17g,%.17g", v * 1e-3, v);
+  const std::vector<inversion::Prior> narrow = inversion::make_priors(best.fitted, {item});
+  const std::vector<inversion::Prior> wide = inversion::widened(narrow, 10.0);
+  const std::vector<inversion::ModelEvidence> e =
+      inversion::cubature_integrated_evidence(data, *model, best, {narrow, wide}, options, {});
+  for (std::size_t c = 0; c < 2; ++c) {
+    const QuadratureEvidence reference = quadrature_evidence(
+        inversion::evidence_integrand(data, *model, best, c == 0 ? narrow : wide, options), best, 150);
+    SCOPED_TRACE(c == 0 ? "narrow" : "widened");
+    std::cout << "  " << (c == 0 ? "narrow" : "widened") << ": ln Z " << e[c].log_evidence << " +- " << e[c].uncertainty
+              << "; quadrature " << reference.log_evidence << " (+- " << reference.refinement << ")\n";
+    EXPECT_EQ(e[c].method, "adaptive cubature");
+    EXPECT_TRUE(e[c].fallback_reason.empty()) << e[c].fallback_reason;
+    // The midpoint rule resolves the cut only to its refinement (its change from n to 2n cells).
+    ASSERT_LT(reference.refinement, 0.05);
+    EXPECT_NEAR(e[c].log_evidence, reference.log_evidence, 3.0 * e[c].uncertainty + reference.refinement);
+  }
+  // The widened prior holds mass the cut excluded: the columns differ by far more than their errors.
+  EXPECT_GT(std::abs(e[1].log_evidence - e[0].log_evidence), 10.0 * e[0].uncertainty);
+}
+
 }  // namespace
 }  // namespace sedwave::bench

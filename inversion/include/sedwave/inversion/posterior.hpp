@@ -17,6 +17,7 @@
 
 #include "sedwave/inversion/fit.hpp"
 #include "sedwave/inversion/priors.hpp"
+#include "sedwave/sampling/cubature.hpp"
 #include "sedwave/sampling/importance.hpp"
 #include "sedwave/sampling/tempering.hpp"
 
@@ -99,9 +100,13 @@ struct PosteriorResult {
                                                const FitOptions& fit_options, const PosteriorOptions& options);
 
 /// How the evidence is computed. Automatic: importance sampling around the best fit
-/// (sampling/importance.hpp) where its own diagnostics say it applies, parallel tempering elsewhere
-/// (docs/sampling.md, "The evidence from the fit"); Tempering: parallel tempering always.
-enum class EvidenceMethod { Automatic, Tempering };
+/// (sampling/importance.hpp) where its own diagnostics say it applies; elsewhere adaptive cubature
+/// over the priors' support (sampling/cubature.hpp) for up to EvidenceOptions::cubature_max_parameters
+/// free parameters, parallel tempering beyond that or where the cubature does not converge
+/// (docs/sampling.md, "The evidence from the fit"); Cubature: adaptive cubature first (parallel
+/// tempering where it fails; e.g. to check the cubature on every posterior); Tempering: parallel
+/// tempering always.
+enum class EvidenceMethod { Automatic, Cubature, Tempering };
 
 /// The options of parallel tempering over a ladder of inverse temperatures from 1,
 /// evenly spaced in ln beta down to 1/max_temperature, and beta = 0 (the prior, sampled by
@@ -115,6 +120,14 @@ struct EvidenceOptions {
   sampling::ImportanceOptions importance = {};
   /// Equally weighted posterior draws resampled from importance-sampled ones (for bands and plots).
   int posterior_draws = 4000;
+  /// Where importance sampling is refused, models with at most this many free parameters are
+  /// integrated by adaptive cubature (cubature_integrated_evidence), others by parallel tempering.
+  int cubature_max_parameters = 3;
+  sampling::CubatureOptions cubature = {};  ///< its threads are set from `threads` below
+  /// Draws from the cubature's first map, whose weighted draws place the second; and from the
+  /// second, importance-weighted, behind its posterior draws and cross-check.
+  int cubature_pilot_draws = 2000;
+  int cubature_draws = 4000;
   int temperatures = 32;  ///< rungs from beta = 1 to 1/max_temperature, more where that is extended
   /// The ladder reaches at least this far; further where the prior's draws have ln L below the best
   /// fit's by more (beta_min (ln L_best - median ln L over the prior) <= 1 keeps the last stone's
@@ -135,7 +148,7 @@ struct EvidenceOptions {
 };
 
 struct ModelEvidence {
-  /// "importance sampling" or "parallel tempering": what gave log_evidence.
+  /// "importance sampling", "adaptive cubature" or "parallel tempering": what gave log_evidence.
   std::string method;
   /// Why importance sampling did not serve (then parallel tempering did); empty where it did.
   std::string fallback_reason;
@@ -188,6 +201,21 @@ struct ModelEvidence {
 [[nodiscard]] std::vector<ModelEvidence> importance_sampled_evidence(
     const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
     const std::vector<std::vector<Prior>>& prior_sets, const FitOptions& fit_options, const EvidenceOptions& options);
+
+/// The evidence under each of `prior_sets` by h-adaptive cubature (sampling/cubature.hpp) over the
+/// union of their supports in the free ln-parameters, every set from the same likelihood
+/// evaluations. Each axis is mapped from [0, 1] through a density that puts a t distribution
+/// around the best fit (scaled by the linearised posterior), a kernel density of `hints` (posterior
+/// draws [unit], e.g. a refused importance-sampling run's, which saw where the linearisation was
+/// wrong) and a uniform floor over the support; once more with the kernel density of that map's own
+/// importance-weighted draws added. Posterior draws come from importance sampling with the final
+/// map's density as the proposal; its estimate of ln Z cross-checks the cubature's.
+/// An entry whose fallback_reason is not empty did not converge or failed the cross-check:
+/// parallel tempering computes that one.
+[[nodiscard]] std::vector<ModelEvidence> cubature_integrated_evidence(
+    const ObservationSet& data, const sediment::SedimentModel& model, const FitResult& best,
+    const std::vector<std::vector<Prior>>& prior_sets, const FitOptions& fit_options, const EvidenceOptions& options,
+    const std::vector<Eigen::MatrixXd>& hints = {});
 
 /// The evidence's integrand over the free ln-parameters x (in the order of best.fitted's free
 /// indices, other parameters at the best fit): ln prior(x) (normalised, Prior::log_density_theta),

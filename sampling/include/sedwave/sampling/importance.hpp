@@ -124,6 +124,11 @@ inline constexpr double kFarDistance = 4.0;
                                                 const Eigen::VectorXd& centre, const Eigen::MatrixXd& covariance,
                                                 const ImportanceOptions& options = {});
 
+/// One estimate (ImportanceEstimate, every field but the slab's) from draws (rows) from any
+/// proposal q and their log weights ln(L pi / q) (-inf: zero). Throws std::invalid_argument for
+/// mismatched sizes or fewer than two draws.
+[[nodiscard]] ImportanceEstimate weighted_estimate(const Eigen::MatrixXd& draws, const Eigen::VectorXd& log_weights);
+
 /// Pareto-smoothed importance weights (Vehtari et al. 2024, section 3): the largest
 /// M = ceil(min(0.2 S, 3 sqrt(S))) of S log weights replaced by the expected order statistics of a
 /// generalized Pareto distribution fitted to them (Zhang & Stephens 2009, Technometrics 51, 316,
