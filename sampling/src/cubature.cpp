@@ -1,5 +1,7 @@
 #include "sedwave/sampling/cubature.hpp"
 
+#include "minus_infinity.hpp"
+
 #include <cubature.h>
 
 #include <algorithm>
@@ -10,8 +12,6 @@
 
 namespace sedwave::sampling {
 namespace {
-
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
 /// The cell [nodes[i], nodes[i + 1]] that holds x (x inside the nodes' span).
 std::size_t cell_of(const std::vector<double>& edges, double x) {

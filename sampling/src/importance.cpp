@@ -1,5 +1,7 @@
 #include "sedwave/sampling/importance.hpp"
 
+#include "minus_infinity.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,8 +15,6 @@
 
 namespace sedwave::sampling {
 namespace {
-
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
 /// A multivariate t distribution: location, Cholesky factor of the scale matrix, degrees of freedom.
 struct StudentT {

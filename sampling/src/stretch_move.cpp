@@ -1,5 +1,7 @@
 #include "stretch_move.hpp"
 
+#include "minus_infinity.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -14,8 +16,6 @@
 namespace sedwave::sampling::detail {
 
 namespace {
-
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
 // Smallest accepted singular value of the start walkers' standardised deviations (scaled so that it
 // is the square root of the smallest eigenvalue of their correlation matrix). Below it the walkers
