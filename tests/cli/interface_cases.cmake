@@ -4,7 +4,10 @@
 set(INTERFACE_DATA ${CLI_DATA}/interface)
 set(INTERFACE_OUT ${CLI_OUT}/interface)
 file(MAKE_DIRECTORY ${INTERFACE_OUT})
-sedwave_cli_case(interface.bad_poisson 1 [=[bad_poisson\.toml:4: key 'plate\.poisson_ratio' = 0\.6: accepted range \[0, 0\.5\)]=] interface ${INTERFACE_DATA}/bad_poisson.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.bad_poisson 1 [=[bad_poisson\.toml:4: key 'plate\.poisson_ratio' = 0\.6: accepted range \(-1, 0\.5\]]=] interface ${INTERFACE_DATA}/bad_poisson.toml --out ${INTERFACE_OUT}/never.h5)
+# Poisson's ratio and the contact keys take the DEM scenes' bounds (one declaration).
+sedwave_cli_case(interface.bad_grain_poisson 1 [=[bad_grain_poisson\.toml:11: key 'packing\.poisson_ratio' = -1: accepted range \(-1, 0\.5\]]=] interface ${INTERFACE_DATA}/bad_grain_poisson.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.negative_friction 1 [=[negative_friction\.toml:13: key 'contact\.friction' = -0\.1: accepted range \[0, inf\)]=] interface ${INTERFACE_DATA}/negative_friction.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.misspelt_key 1 [=[misspelt_key\.toml:10: key 'packing\.colums': unknown key]=] interface ${INTERFACE_DATA}/misspelt_key.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.packing_wider_than_plate 1 [=[packing_too_wide\.toml:[0-9]+: \[packing\]: 'x_offset' \(default\): the packing \(0\.1525 m wide\) must lie over the plate \(0\.024 m\)]=] interface ${INTERFACE_DATA}/packing_too_wide.toml --out ${INTERFACE_OUT}/never.h5)
 sedwave_cli_case(interface.output_over_scene 2 [=[--out: output .*would overwrite the input]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_DATA}/tiny.toml)

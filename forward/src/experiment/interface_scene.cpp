@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <toml.hpp>
 
+#include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
+#include "sedwave/forward/dem/contact/keys.hpp"
 #include "sedwave/io/toml_table.hpp"
 
 namespace sedwave::forward::experiment {
@@ -16,7 +18,6 @@ using Range = io::Range;
 // that no value reaches the solver where it would overflow or name the wrong cause. One range per
 // quantity: the plate and the beads bound a modulus or a density alike.
 const Range kModulus = Range::closed(1e3, 2e12, "Pa");        // soft gels .. diamond (1.2e12 Pa)
-const Range kPoisson{0.0, 0.5, false, true, ""};
 const Range kDensity = Range::closed(1.0, 3e4, "kg/m^3");     // aerogels .. osmium (22 590 kg/m^3)
 const Range kSize = Range::closed(1e-6, 10.0, "m");           // plate sizes and thickness, bead radius
 const Range kSpacing = Range::closed(0.0, 10.0, "m");         // gap, lift
@@ -27,6 +28,14 @@ const Range kRunTime = Range::above(0.0, 1e3, "s");
 // Shared by the keys and the command line's overrides.
 Range strike_speed_range() { return Range::above(0.0, 1e4, "m/s"); }
 Range tolerance_range() { return Range::above(0.0, 0.5); }
+/// A key the DEM's contacts declare (dem/contact/keys.hpp): the same bounds as in DEM scenes.
+Range dem_key_range(const dem::ContactKey& k) {
+  Range range = k.bounds;
+  range.unit = k.unit;
+  return range;
+}
+const Range kPoisson = dem_key_range(dem::keys::poisson_ratio);
+
 Range fixed_step_range(double duration) { return Range::closed(0.0, duration, "s (at most run.duration; 0: adaptive)"); }
 
 void check_override(double x, const std::string& option, const Range& range) {
@@ -104,9 +113,10 @@ void read_packing(Section s, InterfaceScene& scene) {
 
 void read_contact(Section s, InterfaceScene& scene) {
   auto& c = scene.contacts;
-  c.friction = s.number("friction", 0.0, Range::closed(0.0, 10.0, "(Coulomb coefficient)"));
-  c.tanh_velocity_scale = s.number("tanh_velocity_scale", c.tanh_velocity_scale, Range::above(0.0, 1e12, "s/m"));
-  c.restitution = s.number("restitution", 1.0, Range::above(0.0, 1.0));
+  c.friction = s.number("friction", 0.0, dem_key_range(dem::keys::friction));
+  c.tanh_velocity_scale = s.number("tanh_velocity_scale", c.tanh_velocity_scale,
+                                   dem_key_range(dem::CoulombTanhFriction::velocity_scale_key));
+  c.restitution = s.number("restitution", 1.0, dem_key_range(dem::keys::restitution));
   c.rotation = s.boolean("rotation", true);
   s.finish();
 }

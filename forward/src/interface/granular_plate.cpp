@@ -10,6 +10,7 @@
 
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
 #include "sedwave/forward/dem/contact/hertz.hpp"
+#include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::interface {
@@ -29,11 +30,6 @@ double reach_energy(double overlap, double normal_velocity, double effective_mas
 }
 
 }  // namespace
-
-double oscillator_limit(double omega_squared, double beta) {
-  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
-  return denominator > 0.0 ? 4.0 / denominator : inf;
-}
 
 double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate, PlateContactModel model) {
   if (model == PlateContactModel::rigid_layers)
@@ -523,13 +519,17 @@ StepLimits GranularPlate::current_limits() const {
       beta_friction = std::max(beta_friction, mu_ks * fn * inverse_mt);
     }
   }
+  // The forces see the predicted velocity (compute_forces), and the packing's collective modes
+  // outrun a pair's (dem/critical_step.hpp): one oscillator of the pair's largest rates scaled to them.
+  const bool spin = contacts_.rotation;
   if (largest > 0.0) {
     // Tangent stiffness (3/2) k delta^(1/2) at the largest overlap a collision can reach, and the
     // Hertz-Tsuji dashpot alpha sqrt(m k) delta^(1/4) there.
     const double omega2 = 1.5 * rate_scale * std::pow(largest, 0.2);
-    limits.hertz = oscillator_limit(omega2, dashpot_alpha_ * std::sqrt(omega2 / 1.5));
+    const double beta = dashpot_alpha_ * std::sqrt(omega2 / 1.5);
+    limits.hertz = dem::hexagonal_packing_critical_step(omega2, beta, 0.0, spin);
+    if (beta_friction > 0.0) limits.friction = dem::hexagonal_packing_critical_step(omega2, beta, beta_friction, spin);
   }
-  if (beta_friction > 0.0) limits.friction = oscillator_limit(0.0, beta_friction);
   double v2_max = 0.0;
   for (const auto& g : grains_) v2_max = std::max(v2_max, g.vx * g.vx + g.vy * g.vy);
   if (v2_max > 0.0) limits.travel = 0.5 * skin_ / std::sqrt(v2_max);
@@ -578,17 +578,25 @@ StepLimits GranularPlate::current_limits() const {
     }
   }
   if (newmark) {
-    if (newmark_omega2 > 0.0) limits.hertz = std::min(limits.hertz, oscillator_limit(newmark_omega2, 0.0));
-    if (plate_beta > 0.0) limits.friction = std::min(limits.friction, oscillator_limit(0.0, plate_beta));
+    // |lambda_1| < 1 and |lambda_2| < 1 are the spring's and the dashpot's half-step Verlet limits.
+    if (newmark_omega2 > 0.0)
+      limits.hertz = std::min(limits.hertz, dem::verlet_critical_step(std::sqrt(newmark_omega2), 0.0));
+    if (plate_beta > 0.0) limits.friction = std::min(limits.friction, dem::verlet_critical_step(0.0, plate_beta));
     return limits;
   }
   // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
   if (plate_largest > 0.0) {
     const double omega2 = omega_plate * omega_plate + 1.5 * plate_scale * std::pow(plate_largest, 0.2);
-    limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
+    limits.hertz = std::min(limits.hertz, dem::predicted_velocity_critical_step(std::sqrt(omega2), 0.0));
   }
-  if (plate_beta > 0.0)
-    limits.friction = std::min(limits.friction, oscillator_limit(omega_plate * omega_plate, plate_beta));
+  // A grain on the plate also rubs on its neighbours: the damping of its plate contact and of the
+  // packing's collective friction modes add (the largest eigenvalue of a sum is at most the sum's).
+  if (plate_beta > 0.0) {
+    const double collective = (spin ? dem::HexagonalCollective::friction_with_spin
+                                    : dem::HexagonalCollective::friction_without_spin) * beta_friction;
+    limits.friction =
+        std::min(limits.friction, dem::predicted_velocity_critical_step(omega_plate, plate_beta + collective));
+  }
   return limits;
 }
 

@@ -62,10 +62,11 @@ void check_grains_over_nodes(const std::vector<Grain>& grains, double element_wi
 /// point within each step; its grain-plate limits are eqs. 29a,b (docs/interface.md, "Two schemes").
 enum class Scheme { velocity_verlet, newmark_rk4 };
 
-/// dt = tolerance * min(the stability limits of the FE mesh, of every Hertz contact and of every
-/// Coulomb-tanh contact), each evaluated from the state at the start of the step.
+/// dt = tolerance * min(the stability limits of the FE mesh, of the Hertz contacts and of the
+/// Coulomb-tanh contacts), each evaluated from the state at the start of the step; the grain
+/// contacts' limits are those of a hexagonal packing's collective modes (dem/critical_step.hpp).
 struct StepControl {
-  double tolerance = 0.1;  ///< theta in (0, 0.5]: 0.5 leaves room for a packing's collective modes
+  double tolerance = 0.1;  ///< theta in (0, 0.5]
   double max_step = std::numeric_limits<double>::infinity();
   /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
   double fixed_step = 0.0;
@@ -77,11 +78,6 @@ struct StepControl {
   double reltol = 1e-10;
   int max_iterations = 100;
 };
-
-/// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
-/// omega^2 = k/m, beta = c/m, the dashpot seeing the half-step velocity (docs/dem.md, "Numerics"):
-/// h_c = 4 / (beta + sqrt(beta^2 + 4 omega^2)); infinite when both are zero.
-[[nodiscard]] double oscillator_limit(double omega_squared, double beta);
 
 /// Each limit of the last step (infinite where no such contact exists) and the step taken.
 struct StepLimits {
