@@ -109,3 +109,9 @@ foreach(empty speed csv)
   set_tests_properties(cli.interface.empty_${empty} PROPERTIES TIMEOUT 150)
 endforeach()
 sedwave_cli_case(interface.out_names_a_missing_directory 1 [=[--out .*/missing_run_dir/: names a directory. give a file name]=] interface ${INTERFACE_DATA}/tiny.toml --out ${INTERFACE_OUT}/missing_run_dir/)
+# Every contact law of the DEM between grains, with the DEM scenes' keys ([contact] law, tangential,
+# rolling and their keys); the grain-plate contact stays Hertz with Coulomb-tanh.
+sedwave_cli_case(interface.contact_laws 0 [=[largest share in the plate [0-9.]+. energy balance within [0-9.]+e-0[5-9] of the input]=] interface ${INTERFACE_DATA}/contact_laws.toml --out ${INTERFACE_OUT}/contact_laws.h5)
+sedwave_cli_case(interface.unknown_law 1 [=[unknown_law\.toml:13: key 'contact\.law': must be one of hertz, hooke]=] interface ${INTERFACE_DATA}/unknown_law.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.kn_for_hertz 1 [=[kn_for_hertz\.toml:13: key 'contact\.kn': unknown key]=] interface ${INTERFACE_DATA}/kn_for_hertz.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.history_with_newmark 1 [=[history_newmark\.toml:24: key 'run\.scheme': newmark_rk4 takes no grain contact with a tangential history]=] interface ${INTERFACE_DATA}/history_newmark.toml --out ${INTERFACE_OUT}/never.h5)

@@ -2,10 +2,17 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <set>
+#include <string_view>
 #include <toml.hpp>
 
+#include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
+#include "sedwave/forward/dem/contact/hertz.hpp"
+#include "sedwave/forward/dem/contact/hooke.hpp"
 #include "sedwave/forward/dem/contact/keys.hpp"
+#include "sedwave/forward/dem/contact/read_contact.hpp"
 #include "sedwave/io/toml_table.hpp"
 
 namespace sedwave::forward::experiment {
@@ -111,12 +118,62 @@ void read_packing(Section s, InterfaceScene& scene) {
   s.finish();
 }
 
+/// The [contact] table as a source for dem::read_contact: the DEM scenes' keys and bounds, with the
+/// interface's defaults: a Hertz law of the packing's youngs_modulus and poisson_ratio, Coulomb-tanh
+/// (k_s 1000 s/m) when there is friction, no dashpot.
+class InterfaceContactKeys final : public dem::ContactKeySource {
+ public:
+  InterfaceContactKeys(Section& s, const interface::GrainMaterial& grain) : s_(s), grain_(grain) {}
+  std::optional<std::string> choice(std::string_view selector, const std::vector<std::string>& names) override {
+    const std::string key(selector);
+    if (s_.has(key)) {
+      std::string chosen = s_.choice(key, "", std::set<std::string>(names.begin(), names.end()));
+      if (selector == "law") law_ = chosen;
+      return chosen;
+    }
+    if (selector == "law") return law_;
+    if (selector == "tangential" && friction_ > 0.0) return std::string(dem::CoulombTanhFriction::name);
+    return std::nullopt;
+  }
+  std::optional<double> number(const dem::ContactKey& k) override {
+    const std::string key(k.key);
+    if (s_.has(key)) {
+      const std::optional<double> x = s_.optional_number(key, dem_key_range(k));
+      if (key == dem::keys::friction.key) friction_ = x.value_or(0.0);
+      return x;
+    }
+    // The grains' material, unless the table gives the chosen law's stiffness itself.
+    const std::string_view stiffness =
+        law_ == dem::HookeNormal::name ? dem::HookeNormal::kn_key.key : dem::HertzNormal::modulus_key.key;
+    const bool stiffness_given = s_.has(std::string(stiffness));
+    if (key == dem::keys::youngs_modulus.key && !stiffness_given) return grain_.youngs_modulus;
+    if (key == dem::keys::poisson_ratio.key && !stiffness_given) return grain_.poisson_ratio;
+    if (key == dem::CoulombTanhFriction::velocity_scale_key.key) return kDefaultVelocityScale;
+    return std::nullopt;
+  }
+  [[noreturn]] void fail(const std::string& why) override { s_.fail_table(why); }
+
+  static constexpr double kDefaultVelocityScale = 1e3;  // [s/m]
+
+ private:
+  Section& s_;
+  const interface::GrainMaterial& grain_;
+  double friction_ = 0.0;
+  std::string law_{dem::HertzNormal::name};
+};
+
 void read_contact(Section s, InterfaceScene& scene) {
   auto& c = scene.contacts;
-  c.friction = s.number("friction", 0.0, dem_key_range(dem::keys::friction));
-  c.tanh_velocity_scale = s.number("tanh_velocity_scale", c.tanh_velocity_scale,
-                                   dem_key_range(dem::CoulombTanhFriction::velocity_scale_key));
-  c.restitution = s.number("restitution", 1.0, dem_key_range(dem::keys::restitution));
+  InterfaceContactKeys keys(s, scene.grain_material);
+  const dem::ContactSpec spec = dem::read_contact(keys);
+  c.grain_contact = spec;
+  c.friction = spec.find(dem::keys::friction.key).value_or(0.0);
+  c.restitution = spec.find(dem::keys::restitution.key).value_or(1.0);
+  // The grain-plate contact is Coulomb-tanh whatever the grains' tangential law: its k_s.
+  const std::string velocity_scale(dem::CoulombTanhFriction::velocity_scale_key.key);
+  c.tanh_velocity_scale = spec.find(velocity_scale)
+                              .value_or(s.number(velocity_scale, InterfaceContactKeys::kDefaultVelocityScale,
+                                                 dem_key_range(dem::CoulombTanhFriction::velocity_scale_key)));
   c.rotation = s.boolean("rotation", true);
   s.finish();
 }
@@ -200,6 +257,11 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.recording.scheme == interface::Scheme::newmark_rk4)
     top.sub("run").fail_key("scheme", "newmark_rk4 takes no pulse on the plate (drive.kind = \"edge_impulse\"): its load "
                                       "at the step's ends would not deliver a rectangular pulse's impulse");
+  if (scene.recording.scheme == interface::Scheme::newmark_rk4 && scene.contacts.grain_contact &&
+      dem::needs_history(dem::make_contact_model(*scene.contacts.grain_contact)))
+    top.sub("run").fail_key("scheme", "newmark_rk4 takes no grain contact with a tangential history (contact.tangential = \"" +
+                                          scene.contacts.grain_contact->tangential +
+                                          "\"): its RK4 stages would advance the history four times a step");
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
     top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
   if (scene.drive.kind != InterfaceDrive::Kind::velocity && scene.drive.duration > scene.recording.duration) {

@@ -40,24 +40,57 @@ namespace sedwave::forward::dem {
 /// equal contacts (Bloch analysis over the Brillouin zone; the test checks the rotational one):
 ///  * normal springs or dashpots, sum_bonds 2 (1 - cos q.e) e e^T: 6 k/m at the zone's edge (M)
 ///    against 2 k/m for a pair, so omega^2 and beta grow 3x;
-///  * a tangential dashpot c with rotation (solid spheres, I = 2/5 m r^2): the uniform spin, each
-///    grain's six contacts slipping at 2 r w, decays at 30 c/m against 7 c/m for a pair (30/7);
-///    without rotation, as the springs, 6 c/m against 2 c/m.
+///  * a tangential spring or dashpot with rotation (solid spheres, I = 2/5 m r^2): the uniform spin,
+///    each grain's six contacts slipping at 2 r w, at 30 c/m against 7 c/m for a pair (30/7);
+///    without rotation, as the normal springs, 6 c/m against 2 c/m;
+///  * a rolling dashpot c_r on the relative spin: at most its rows' sum, 6 contacts x 2 c_r/I,
+///    against 2 c_r/I for a pair (a bound, Gershgorin's).
 struct HexagonalCollective {
   static constexpr double normal = 3.0;                    ///< omega^2 and the normal dashpot's beta
-  static constexpr double friction_with_spin = 30.0 / 7.0;  ///< a tangential dashpot's beta, grains rotating
+  static constexpr double friction_with_spin = 30.0 / 7.0;  ///< tangential springs' and dashpots', grains rotating
   static constexpr double friction_without_spin = 3.0;      ///< and with spins held
+  static constexpr double rolling = 6.0;                   ///< a rolling dashpot's beta
 };
 
-/// h_c of a hexagonal packing's grain contacts under the predicted-velocity scheme: the pair's
-/// omega0^2, normal dashpot beta_n and tangential dashpot beta_t scaled to the collective modes and
-/// taken as one oscillator (the largest frequency with the largest damping: the springs' and
-/// dashpots' modes need not coincide, so this bounds the packing's limit from below).
+/// One pair's rates, each the largest over the pairs: the normal spring's omega^2 = k/m and dashpot's
+/// beta = c/m, a tangential spring's and dashpot's on the slip's inertia 1/m_t = 1/m_i + 1/m_j +
+/// a_i^2/I_i + a_j^2/I_j, and a rolling dashpot's on the relative spin's, 1/I_i + 1/I_j.
+struct PairRates {
+  double normal_omega_squared = 0.0;
+  double normal_beta = 0.0;
+  double tangential_omega_squared = 0.0;
+  double tangential_beta = 0.0;
+  double rolling_beta = 0.0;
+};
+
+/// The packing's largest omega^2 and beta: each operator's pair rate scaled by HexagonalCollective,
+/// the springs' and the dashpots' summed (the largest eigenvalue of a sum is at most the sum of theirs).
+struct OscillatorRates {
+  double omega_squared = 0.0;
+  double beta = 0.0;
+};
+[[nodiscard]] inline OscillatorRates hexagonal_collective(const PairRates& pair, bool rotation) {
+  const double f_t = rotation ? HexagonalCollective::friction_with_spin : HexagonalCollective::friction_without_spin;
+  return {HexagonalCollective::normal * pair.normal_omega_squared + f_t * pair.tangential_omega_squared,
+          HexagonalCollective::normal * pair.normal_beta + f_t * pair.tangential_beta +
+              HexagonalCollective::rolling * pair.rolling_beta};
+}
+
+/// h_c of a hexagonal packing's grain contacts under the predicted-velocity scheme: one oscillator of
+/// the packing's largest omega^2 with its largest beta (the springs' and dashpots' modes need not
+/// coincide, so this bounds the packing's limit from below).
+[[nodiscard]] inline double hexagonal_packing_critical_step(const PairRates& pair, bool rotation) {
+  const OscillatorRates packing = hexagonal_collective(pair, rotation);
+  return predicted_velocity_critical_step(std::sqrt(packing.omega_squared), packing.beta);
+}
+/// The same for a normal spring and dashpot and a tangential dashpot (Coulomb-tanh at small slip).
 [[nodiscard]] inline double hexagonal_packing_critical_step(double omega0_squared, double beta_normal,
                                                             double beta_tangential, bool rotation) {
-  const double f_t = rotation ? HexagonalCollective::friction_with_spin : HexagonalCollective::friction_without_spin;
-  return predicted_velocity_critical_step(std::sqrt(HexagonalCollective::normal * omega0_squared),
-                                          HexagonalCollective::normal * beta_normal + f_t * beta_tangential);
+  PairRates pair;
+  pair.normal_omega_squared = omega0_squared;
+  pair.normal_beta = beta_normal;
+  pair.tangential_beta = beta_tangential;
+  return hexagonal_packing_critical_step(pair, rotation);
 }
 
 }  // namespace sedwave::forward::dem

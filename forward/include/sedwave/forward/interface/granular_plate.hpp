@@ -5,7 +5,11 @@
 // Hertz dashpot between grains; one explicit velocity-Verlet step for grains and plate together with
 // a self-adaptive step (docs/interface.md).
 //
-// Contact laws are the DEM engine's parts (dem/contact/hertz.hpp, dem/contact/coulomb_tanh.hpp).
+// Contact laws are the DEM engine's parts: grain-grain contacts are a dem::ContactModel (any normal,
+// tangential and rolling law of dem/contact/laws.hpp, composed and evaluated by the engine's code,
+// in the plane z = 0), grain-plate contacts the Hertz and Coulomb-tanh parts
+// (dem/contact/hertz.hpp, dem/contact/coulomb_tanh.hpp); the step limits are
+// dem/critical_step.hpp's.
 // Grain-plate contact: a sphere on the deforming edge y = u_y(x), u_y interpolated with the edge's
 // linear shape functions at the grain's abscissa; the overlap is delta = r - (y_g - u_y(x_g)); the
 // force is the gradient of the Hertz energy (2/5) k delta^(5/2), k = (4/3) E*_gp sqrt(r), so it goes
@@ -23,6 +27,8 @@
 #include <optional>
 #include <vector>
 
+#include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/interface/hex_packing.hpp"
 #include "sedwave/forward/plate/elastic_plate.hpp"
 
@@ -43,7 +49,16 @@ struct InterfaceContacts {
   double restitution = 1.0;          ///< grain-grain Hertz-Tsuji dashpot from e_n (1: none)
   bool rotation = true;              ///< integrate spins (false: spins stay zero)
   PlateContactModel plate_contact = PlateContactModel::interpolated;
+  /// The grain-grain contact as a DEM contact (any law of dem/contact/laws.hpp, with its keys); empty:
+  /// grain_contact_spec's default from the fields above. The grain-plate contact stays Hertz and
+  /// Coulomb-tanh with `friction` and `tanh_velocity_scale`.
+  std::optional<dem::ContactSpec> grain_contact{};
 };
+
+/// The grain-grain contact `contacts` describes: its grain_contact, or Hertz with the grains'
+/// youngs_modulus and poisson_ratio, the Tsuji dashpot of `restitution` (none at 1) and, with
+/// friction, Coulomb-tanh (friction, tanh_velocity_scale).
+[[nodiscard]] dem::ContactSpec grain_contact_spec(const InterfaceContacts& contacts, const GrainMaterial& grain);
 
 /// The Hertz modulus E* of a grain-plate contact: 1/E* = (1 - nu_g^2)/E_g + (1 - nu_p^2)/E_p
 /// (interpolated), or E_g/(1 - nu_g^2) (rigid_layers: the layer is rigid).
@@ -176,8 +191,7 @@ class GranularPlate {
   /// Total normal force the grains exert on the plate (>= 0) and its tangential part, at the last step.
   [[nodiscard]] double plate_normal_force() const { return plate_normal_force_; }
   [[nodiscard]] double plate_tangential_force() const { return plate_tangential_force_; }
-  /// Hertz effective modulus of grain-grain and grain-plate contacts.
-  [[nodiscard]] double grain_modulus() const { return grain_modulus_; }
+  /// Hertz effective modulus of grain-plate contacts.
   [[nodiscard]] double plate_contact_modulus() const { return plate_modulus_; }
   /// Largest contact radius sqrt(R delta) seen at the plate so far (compare with the element size).
   [[nodiscard]] double max_plate_contact_radius() const { return max_plate_contact_radius_; }
@@ -217,7 +231,11 @@ class GranularPlate {
   bool pairs_stale() const;
   /// with_elastic false: the contact forces on the plate alone in f_conservative_ and f_friction_.
   void compute_forces(double half_step, bool with_elastic = true);
-  void add_grain_pair(const Pair& p);
+  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot.
+  template <class Model>
+  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear);
+  template <class Model>
+  [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
   void add_plate_contact(int g);
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
@@ -231,11 +249,14 @@ class GranularPlate {
   std::optional<plate::ElasticPlate> plate_;
   InterfaceContacts contacts_;
   StepControl control_;
-  double grain_modulus_ = 0.0;
+  dem::AnyContactModel grain_model_;
   double plate_modulus_ = 0.0;
-  double dashpot_alpha_ = 0.0;
 
   std::vector<Pair> pairs_;
+  std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
+  /// The tangential springs' energy now, and when the books were last zeroed: the friction's
+  /// dissipation is its work less their gain.
+  double tangential_energy_ = 0.0, tangential_energy_origin_ = 0.0;
   std::vector<double> x_at_build_;
   std::vector<double> y_at_build_;
   double skin_ = 0.0;
