@@ -327,7 +327,7 @@ void GranularPlate::add_plate_contact(int index) {
   // tilt of the deformed edge), on node a -F_n N_a along y.
   // With rigid layers e names one node at weight 1: no tilt, and everything acts on that node.
   const double contact_radius = std::sqrt(g.radius * overlap);
-  const double fn = (4.0 / 3.0) * plate_modulus_ * contact_radius * overlap;
+  const double fn = plate_law().spring(overlap, {g.radius, 0.0});
   const double slope = (u_[yb] - u_[ya]) / plate_->element_width();
   auto& c = conservative_[static_cast<std::size_t>(index)];
   c.fy += fn;
@@ -765,7 +765,7 @@ std::vector<double> GranularPlate::grain_energies() const {
     const double edge_y = e.shape_left * u_[static_cast<std::size_t>(2 * e.node_left + 1)] +
                           e.shape_right * u_[static_cast<std::size_t>(2 * e.node_right + 1)];
     const double overlap = g.radius - (g.y - edge_y);
-    if (overlap > 0.0) held[i] += 0.4 * (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius * overlap) * overlap * overlap;
+    if (overlap > 0.0) held[i] += 0.4 * plate_law().spring(overlap, {g.radius, 0.0}) * overlap;
   }
   return held;
 }

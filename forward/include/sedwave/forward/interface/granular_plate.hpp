@@ -237,6 +237,9 @@ class GranularPlate {
   template <class Model>
   [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
   void add_plate_contact(int g);
+  /// The grain-plate normal law: the DEM's Hertz part with R* = r (a sphere on a flat) and no dashpot
+  /// (the paper's eq. 19a, either plate contact model's modulus).
+  [[nodiscard]] dem::HertzNormal plate_law() const { return {plate_modulus_, 0.0}; }
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
   [[nodiscard]] double contact_ceiling() const;
