@@ -30,4 +30,18 @@ inline std::vector<Grain> chain(int n, double lift = 1.0) {
   return make_hex_packing(p);
 }
 
+/// 3 x 4 beads a micrometre apart and a micrometre above the plate, from x = 2 mm: the top row struck
+/// down at 1 m/s and the last bead sheared at 0.3 m/s, so that friction and rotation act.
+inline std::vector<Grain> struck_packing() {
+  HexPacking p = steel_beads(3, 4);
+  p.gap = 1e-6;
+  p.x_offset = 2e-3;
+  p.lift = 1e-6;
+  auto grains = make_hex_packing(p);
+  for (auto& g : grains)
+    if (g.y > 10e-3) g.vy = -1.0;
+  grains.back().vx = 0.3;
+  return grains;
+}
+
 }  // namespace sedwave::forward::interface::test

@@ -56,18 +56,11 @@ TEST(GrainContactLaws, AHookePairReboundsWithItsRestitutionAfterItsCollisionTime
   EXPECT_NEAR((g[0].vy - g[1].vy) / v, -e_n, 1e-4);
 }
 
-// A 3 x 4 packing on a small plate, its top row struck down and one bead sheared, with the DEM's
+// A 3 x 4 packing on a small plate (struck_packing), with the DEM's
 // history spring (kt) and constant-torque rolling resistance between grains: the springs store
 // energy that friction's work must not count as dissipated.
 TEST(GrainContactLaws, HistorySpringsAndRollingResistanceKeepTheEnergyBalance) {
-  HexPacking p = steel_beads(3, 4);
-  p.gap = 1e-6;
-  p.x_offset = 2e-3;
-  p.lift = 1e-6;
-  auto grains = make_hex_packing(p);
-  for (auto& g : grains)
-    if (g.y > 10e-3) g.vy = -1.0;
-  grains.back().vx = 0.3;
+  const auto grains = struck_packing();
   InterfaceContacts contacts;
   contacts.friction = 0.3;
   contacts.tanh_velocity_scale = 1e2;  // the grain-plate contact's
