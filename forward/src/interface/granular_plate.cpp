@@ -520,7 +520,10 @@ void GranularPlate::drift(double h) {
 
 // Each grain pair's rates for the step limit (dem/critical_step.hpp), the largest of each over the
 // pairs that touch or close. A Hertz normal law is evaluated at the largest overlap a collision can
-// reach (below); the tangential and rolling laws at the overlap and normal force now, on the slip's
+// reach (reach_energy): its omega^2 = (3/2)(k/m) delta_max^(1/2) grows with (k/m)^5 delta_max^(5/2), so
+// the loop keeps the pair with the largest of those (scaled by the first pair's k/m against overflow)
+// and takes one root, for that pair, at the end instead of a power per pair. The tangential and
+// rolling laws are evaluated at the overlap and normal force now, on the slip's
 // inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal spheres with rotation) and
 // the relative spin's 1/I_i + 1/I_j.
 template <class Model>
@@ -528,6 +531,9 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   constexpr bool hertz = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
   dem::PairRates rates;
   double rate_scale = 0.0, largest = 0.0;
+  struct {
+    double mass = 0.0, radius = 0.0, reach = 0.0;
+  } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
   for (const auto& p : pairs_) {
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
@@ -546,7 +552,11 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
       const double k = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
       if (rate_scale == 0.0) rate_scale = k / m;
       const double ratio = k / m / rate_scale;
-      largest = std::max(largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, m, k));
+      const double reach_now = reach_energy(overlap, vn, m, k);
+      if (const double x = ratio * ratio * ratio * ratio * ratio * reach_now; x > largest) {
+        largest = x;
+        stiffest = {m, r, reach_now};
+      }
     } else {
       const dem::ContactOscillator n = model.normal.oscillator(m, r, overlap);
       rates.normal_omega_squared = std::max(rates.normal_omega_squared, n.stiffness / m);
@@ -577,19 +587,18 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   }
   if constexpr (hertz) {
     if (largest > 0.0) {
-      // Tangent stiffness (3/2) k delta^(1/2) at the largest overlap a collision can reach, and the
-      // Hertz-Tsuji dashpot alpha sqrt(m k) delta^(1/4) there.
-      rates.normal_omega_squared = 1.5 * rate_scale * std::pow(largest, 0.2);
-      rates.normal_beta = model.normal.alpha * std::sqrt(rates.normal_omega_squared / 1.5);
+      // The law's tangent stiffness and dashpot at the largest overlap a collision can reach.
+      const dem::ContactOscillator n =
+          model.normal.oscillator(stiffest.mass, stiffest.radius, std::pow(stiffest.reach, 0.4));
+      rates.normal_omega_squared = n.stiffness / stiffest.mass;
+      rates.normal_beta = n.damping / stiffest.mass;
     }
   }
   return rates;
 }
 
-// Every Hertz limit is a function of omega^2 = (3/2)(k/m) delta_max^(1/2) alone (the Tsuji dashpot's
-// beta^2 = alpha^2 omega^2 / (3/2) follows it), and omega^10 is proportional to (k/m)^5 delta_max^(5/2):
-// the loop keeps the largest of those, scaled by the first pair's k/m against overflow, and takes one
-// fifth root at the end instead of a power per pair. Coulomb-tanh limits fall with their beta alone.
+// The grain pairs' rates (grain_pair_rates) and the beads on the plate, whose Hertz limits take the
+// same largest-reach trick. Coulomb-tanh limits fall with their beta alone.
 StepLimits GranularPlate::current_limits() const {
   StepLimits limits;
   const double omega_plate = plate_ ? plate_->max_frequency_bound() : 0.0;
