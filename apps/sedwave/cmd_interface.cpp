@@ -128,9 +128,13 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
     std::printf("%zu grains (%zu driven), %d x %d plate elements; %ld steps in %.2f s\n", r.final_grains.size(),
                 r.driven.size(), scene.mesh.elements_x, scene.mesh.elements_y, r.series.steps.back(), r.seconds);
   }
-  if (scene.packing_load > 0.0)
-    std::printf("precompression %.6g N on each bead of the free row: relaxed in %ld steps\n", scene.packing_load,
-                r.relaxation_steps);
+  if (scene.packing_load > 0.0) {
+    std::printf("precompression %.6g N on each bead of the free row: relaxed in %ld steps; at rest the plate carries "
+                "%.6g N", scene.packing_load, r.relaxation_steps, r.static_plate_force);
+    if (scene.walls.left || scene.walls.right)
+      std::printf(", the side walls %.6g N (left) and %.6g N (right)", r.static_left_wall_force, r.static_right_wall_force);
+    std::printf("\n");
+  }
   std::printf("input energy %.6g J; at t = %.6g s: grains %.4f (rotation %.4f), contacts %.4f, plate %.4f, "
               "friction %.4f, dashpots %.4f, absorbed by the plate's edges %.4f of it\n",
               in, r.series.time.back(), (e.grain_translation + e.grain_rotation) / in, e.grain_rotation / in,

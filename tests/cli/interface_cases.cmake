@@ -34,6 +34,20 @@ sedwave_cli_case(interface.edge_impulse_newmark 1 [=[edge_impulse_newmark\.toml:
 sedwave_cli_case(interface.newmark_rk4_run 0 [=[newmark_rk4: [0-9]+ fixed-point iterations \([0-9.]+ a step, at most [0-9]+\), [0-9]+ factorisations]=] interface ${INTERFACE_DATA}/newmark_rk4.toml --out ${INTERFACE_OUT}/newmark_rk4.h5)
 sedwave_cli_case(interface.newmark_below_roundoff 1 [=[did not converge in 100 iterations at t = .*the iteration's tolerances \(0 N, 1e-15 relative\) lie below what round-off]=] interface ${INTERFACE_DATA}/newmark_below_roundoff.toml --out ${INTERFACE_OUT}/never.h5)
 
+# Side walls: a side that does not exist, a wall key without walls, values out of range, walls off the
+# plate, walls with no beads, a static load on rows that only walls could hold; and a packing precompressed between them,
+# whose plate carries the load of its five top beads (5 x 5 N).
+sedwave_cli_case(interface.bad_wall_sides 1 [=[bad_wall_sides\.toml:14: key 'walls\.sides': must be one of both, left, none, right]=] interface ${INTERFACE_DATA}/bad_wall_sides.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.wall_key_without_walls 1 [=[wall_key_without_walls\.toml:14: key 'walls\.gap': sets the side walls, and walls\.sides is none]=] interface ${INTERFACE_DATA}/wall_key_without_walls.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_wall_gap 1 [=[huge_wall_gap\.toml:15: key 'walls\.gap' = 1e\+308: accepted range \[0, 10\] m]=] interface ${INTERFACE_DATA}/huge_wall_gap.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.wall_beyond_plate 1 [=[wall_beyond_plate\.toml:15: key 'walls\.gap': the walls \(at x = -0\.00175 m and 0\.03775 m\) must stand over the plate]=] interface ${INTERFACE_DATA}/wall_beyond_plate.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.huge_wall_modulus 1 [=[huge_wall_modulus\.toml:15: key 'walls\.youngs_modulus' = 1e\+308: accepted range \[1000, 2000000000000\] Pa]=] interface ${INTERFACE_DATA}/huge_wall_modulus.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.bad_wall_poisson 1 [=[bad_wall_poisson\.toml:15: key 'walls\.poisson_ratio' = 0\.6: accepted range \(-1, 0\.5\]]=] interface ${INTERFACE_DATA}/bad_wall_poisson.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.negative_wall_friction 1 [=[negative_wall_friction\.toml:15: key 'walls\.friction' = -0\.1: accepted range \[0, inf\)]=] interface ${INTERFACE_DATA}/negative_wall_friction.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.precompression_needs_walls 1 [=[precompression_without_walls\.toml:12: key 'packing\.precompression': a static load spreads a packing of more than one row \(chain\) sideways.*walls\.sides = "both"]=] interface ${INTERFACE_DATA}/precompression_without_walls.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.edge_impulse_walls 1 [=[edge_impulse_walls\.toml:3: key 'walls\.sides': drive\.kind = "edge_impulse" strikes the plate alone: no beads to hold]=] interface ${INTERFACE_DATA}/edge_impulse_walls.toml --out ${INTERFACE_OUT}/never.h5)
+sedwave_cli_case(interface.precompressed_between_walls 0 [=[relaxed in [0-9]+ steps. at rest the plate carries 25 N, the side walls [0-9.]+ N \(left\) and [0-9.]+ N \(right\)]=] interface ${INTERFACE_DATA}/walls.toml --out ${INTERFACE_OUT}/walls.h5)
+
 # Bad input of every kind, each refused before the run with its cause (docs/interface.md, "Limits
 # and budgets"). Outputs: none may replace the scene or another output of the same run.
 file(MAKE_DIRECTORY ${INTERFACE_OUT}/csv_scene)

@@ -97,7 +97,7 @@ struct PeakContact {
 /// `modulus` E*, `radius` R*, `inverse_mass` 1/m*, `inverse_tangential_mass` 1/m_t, and the
 /// stiffness the contact adds to (the mesh's omega_max^2 for a bead on the plate, else 0). The limits
 /// are GranularPlate's: a grain pair's those of the packing's collective modes, a bead on the plate's
-/// its own (dem/critical_step.hpp).
+/// or a wall's its own (dem/critical_step.hpp).
 PeakContact peak_contact(double modulus, double radius, double inverse_mass, double inverse_tangential_mass,
                          double omega_squared, double speed, double force, const interface::InterfaceContacts& c,
                          bool grain_pair) {
@@ -165,10 +165,19 @@ InterfaceEstimate estimate_interface_run(const InterfaceScene& scene) {
     const PeakContact grain_contact =
         peak_contact(hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, g.youngs_modulus, g.poisson_ratio),
                      0.5 * r, 2.0 / m, 2.0 / m + 2.0 * rotation, 0.0, speed, force, scene.contacts, true);
+    if (scene.walls.left || scene.walls.right) {
+      // A bead pressed on a wall by the static load, or struck at it with the strike's speed.
+      interface::InterfaceContacts along_walls = scene.contacts;
+      along_walls.friction = scene.walls.friction;
+      const PeakContact wall_contact = peak_contact(side_walls(scene).modulus, r, 1.0 / m, 1.0 / m + rotation, 0.0,
+                                                    speed, force, along_walls, false);
+      e.hertz_limit = std::min(e.hertz_limit, wall_contact.hertz_limit);
+      e.friction_limit = std::min(e.friction_limit, wall_contact.friction_limit);
+    }
     e.peak_overlap = plate_contact.overlap;
     e.contact_radius = std::sqrt(r * plate_contact.overlap);
-    e.hertz_limit = std::min(plate_contact.hertz_limit, grain_contact.hertz_limit);
-    e.friction_limit = std::min(plate_contact.friction_limit, grain_contact.friction_limit);
+    e.hertz_limit = std::min({e.hertz_limit, plate_contact.hertz_limit, grain_contact.hertz_limit});
+    e.friction_limit = std::min({e.friction_limit, plate_contact.friction_limit, grain_contact.friction_limit});
     if (speed > 0.0) travel = 0.1 * r / speed;  // half the skin of 0.2 r
   }
   const auto& rec = scene.recording;
@@ -254,12 +263,16 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
   control.reltol = scene.recording.iteration_reltol;
   control.abstol = scene.recording.iteration_abstol;
   interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts, control);
+  if (!beadless && (scene.walls.left || scene.walls.right)) run.set_side_walls(side_walls(scene));
   double static_energy = 0.0;
   if (scene.packing_load > 0.0) {
     // Static precompression: the whole free row pushed towards the plate, relaxed to rest first.
     run.set_static_load(driven_grains(run.grains(), 0, 0.5 * scene.mesh.length_x), 0.0, -scene.packing_load);
     out.relaxation_steps = run.relax(scene.relaxation_time, 1e-10, 200'000);
     static_energy = run.energies().mechanical();
+    out.static_plate_force = run.plate_normal_force();
+    out.static_left_wall_force = run.left_wall_force();
+    out.static_right_wall_force = run.right_wall_force();
   }
   if (scene.drive.direct) {
     // One speed V on the struck edge's y-components with (1/2) sum M V^2 = the strike's energy.

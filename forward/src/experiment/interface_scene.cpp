@@ -13,6 +13,7 @@
 #include "sedwave/forward/dem/contact/hooke.hpp"
 #include "sedwave/forward/dem/contact/keys.hpp"
 #include "sedwave/forward/dem/contact/read_contact.hpp"
+#include "sedwave/forward/units.hpp"
 #include "sedwave/io/toml_table.hpp"
 
 namespace sedwave::forward::experiment {
@@ -107,14 +108,34 @@ void read_packing(Section s, InterfaceScene& scene) {
   scene.grain_material.poisson_ratio =
       s.number("poisson_ratio", scene.grain_material.poisson_ratio, kPoisson);
   // Centred on the plate unless placed.
-  const double pitch = 2.0 * p.radius + p.gap;
-  const double span = p.orientation == interface::HexOrientation::rows_parallel
-                          ? (p.columns - 1) * pitch + 2.0 * p.radius + (p.rows > 1 ? 0.5 * pitch : 0.0)
-                          : (p.rows - 1) * pitch * std::sqrt(3.0) / 2.0 + 2.0 * p.radius;
+  const double span = interface::hex_packing_width(p);
   p.x_offset = s.number("x_offset", 0.5 * (scene.mesh.length_x - span), Range{});
   if (p.x_offset < 0.0 || p.x_offset + span > scene.mesh.length_x)
     s.fail_key("x_offset", "the packing (" + metres(span) + " wide) must lie over the plate (" +
                                metres(scene.mesh.length_x) + ")");
+  s.finish();
+}
+
+void read_walls(Section s, InterfaceScene& scene) {
+  auto& w = scene.walls;
+  const std::string sides = s.choice("sides", "none", {"none", "both", "left", "right"});
+  w.left = sides == "both" || sides == "left";
+  w.right = sides == "both" || sides == "right";
+  if (!w.left && !w.right) {
+    for (const char* key : {"gap", "youngs_modulus", "poisson_ratio", "friction"})
+      if (s.has(key)) s.fail_key(key, "sets the side walls, and walls.sides is none (give \"both\", \"left\" or \"right\")");
+    s.finish();
+    return;
+  }
+  w.gap = s.number("gap", 0.0, kSpacing);
+  w.youngs_modulus = s.number("youngs_modulus", scene.plate_material.youngs_modulus, kModulus);
+  w.poisson_ratio = s.number("poisson_ratio", scene.plate_material.poisson_ratio, kPoisson);
+  w.friction = s.number("friction", scene.contacts.friction, dem_key_range(dem::keys::friction));
+  const auto& p = scene.packing;
+  const double left = p.x_offset - w.gap, right = p.x_offset + interface::hex_packing_width(p) + w.gap;
+  if ((w.left && left < 0.0) || (w.right && right > scene.mesh.length_x))
+    s.fail_key("gap", "the walls (at x = " + metres(left) + " and " + metres(right) + ") must stand over the plate (0 .. " +
+                          metres(scene.mesh.length_x) + "; packing.x_offset places the packing)");
   s.finish();
 }
 
@@ -233,7 +254,7 @@ void read_recording(Section s, InterfaceScene& scene) {
 InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   InterfaceScene scene;
   Section top(root, "", origin);
-  top.allow_only({"plate", "packing", "contact", "drive", "run"});
+  top.allow_only({"plate", "packing", "contact", "walls", "drive", "run"});
   read_plate(top.sub("plate"), scene);
   read_packing(top.sub("packing"), scene);
   if (scene.contacts.plate_contact == interface::PlateContactModel::rigid_layers) {
@@ -251,6 +272,7 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
     }
   }
   read_contact(top.sub("contact"), scene);
+  read_walls(top.sub("walls"), scene);
   read_drive(top.sub("drive"), scene);
   if (!top.has("run")) top.fail_table("missing [run] (its duration is required)");
   read_recording(top.sub("run"), scene);
@@ -264,6 +286,14 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
                                           "\"): its RK4 stages would advance the history four times a step");
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
     top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
+  if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && (scene.walls.left || scene.walls.right))
+    top.sub("walls").fail_key("sides", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to hold");
+  // Coulomb-tanh has no static friction: beyond one row on the plate (or one chain standing on it),
+  // the 60-degree contacts push the packing apart under a static load, and only walls hold it.
+  if (scene.packing_load > 0.0 && scene.packing.rows > 1 && !(scene.walls.left && scene.walls.right))
+    top.sub("packing").fail_key("precompression", "a static load spreads a packing of more than one row (chain) "
+                                                  "sideways, as Coulomb-tanh has no static friction: hold it between "
+                                                  "side walls (walls.sides = \"both\")");
   if (scene.drive.kind != InterfaceDrive::Kind::velocity && scene.drive.duration > scene.recording.duration) {
     Section drive = top.sub("drive");
     drive.fail_key("duration", "the pulse (" + io::shortest(scene.drive.duration) + " s) outlasts the run (run.duration = " +
@@ -274,6 +304,15 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
 }
 
 }  // namespace
+
+interface::SideWalls side_walls(const InterfaceScene& scene) {
+  const auto& w = scene.walls;
+  const auto& g = scene.grain_material;
+  return interface::side_walls_around(scene.packing, w.gap, w.left, w.right,
+                                      hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, w.youngs_modulus,
+                                                              w.poisson_ratio),
+                                      w.friction);
+}
 
 InterfaceScene parse_interface_scene(const std::string& text, const std::string& origin) {
   InterfaceScene scene = from_value(io::parse<InterfaceSceneError>(text, origin), origin);

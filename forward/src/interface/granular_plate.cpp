@@ -31,6 +31,15 @@ double reach_energy(double overlap, double normal_velocity, double effective_mas
   return e;
 }
 
+/// The model's normal law (and its dashpot) alone: no tangential or rolling law.
+dem::AnyContactModel normal_law_only(const dem::AnyContactModel& model) {
+  return std::visit(
+      [](const auto& m) -> dem::AnyContactModel {
+        return dem::ContactModel<typename std::decay_t<decltype(m)>::NormalLaw>{m.normal};
+      },
+      model);
+}
+
 }  // namespace
 
 double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate, PlateContactModel model) {
@@ -163,6 +172,16 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     const Energies e = energies_without_strain();
     return e.grain_translation + e.grain_rotation + e.plate_kinetic;
   };
+  // Frictionless while relaxing (the header says why): the grains' normal law alone, no friction at
+  // the plate or the walls; the books of the edge's x velocities follow. Tangential springs start
+  // from the static state unloaded.
+  const dem::AnyContactModel grain_model = grain_model_;
+  const double friction = contacts_.friction, wall_friction = walls_.friction;
+  grain_model_ = normal_law_only(grain_model);
+  contacts_.friction = walls_.friction = 0.0;
+  std::fill(shear_.begin(), shear_.end(), dem::Vec3{});
+  book_plate_dofs();
+  refresh_forces();
   double largest = 0.0;
   long n = 0;
   for (; n < max_steps; ++n) {
@@ -175,10 +194,14 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     largest = std::max(largest, now);
     if (n > 10 && now < tolerance * largest) break;
   }
+  grain_model_ = grain_model;
+  contacts_.friction = friction;
+  walls_.friction = wall_friction;
+  book_plate_dofs();
   if (n == max_steps)
     throw std::runtime_error("interface: the loaded packing did not come to rest in " + std::to_string(max_steps) +
                              " steps (Coulomb-tanh has no static friction: a packing free to spread creeps under a "
-                             "static load)");
+                             "static load unless side walls hold it)");
   for (auto& g : grains_) g.vx = g.vy = g.spin = 0.0;
   std::fill(v_.begin(), v_.end(), 0.0);
   time_ = 0.0;
@@ -406,6 +429,7 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   std::fill(drive_.begin(), drive_.end(), Parts{});
   contact_energy_ = 0.0;
   plate_normal_force_ = plate_tangential_force_ = 0.0;
+  wall_force_[0] = wall_force_[1] = 0.0;
   tangential_energy_ = 0.0;
   std::visit(
       [&](const auto& model) {
@@ -420,6 +444,8 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
     for (std::size_t g = 0; g < grains_.size(); ++g)
       if (!(grains_[g].y - grains_[g].radius > ceiling)) add_plate_contact(static_cast<int>(g));
   }
+  if (walls_.left || walls_.right)
+    for (std::size_t g = 0; g < grains_.size(); ++g) add_wall_contacts(static_cast<int>(g));
   for (const int g : loaded_) {
     drive_[static_cast<std::size_t>(g)].fx += load_x_;
     drive_[static_cast<std::size_t>(g)].fy += load_y_;
@@ -616,6 +642,12 @@ StepLimits GranularPlate::current_limits() const {
     limits.hertz = dem::hexagonal_packing_critical_step(normal_rates, spin);
   if (pair_rates.tangential_omega_squared > 0.0 || pair_rates.tangential_beta > 0.0 || pair_rates.rolling_beta > 0.0)
     limits.friction = dem::hexagonal_packing_critical_step(pair_rates, spin);
+  // The packing's collective friction damping: a bead rubbing on its neighbours and on a wall or the
+  // plate feels both, and the largest eigenvalue of a sum is at most the sum of theirs.
+  dem::PairRates rubbing = pair_rates;
+  rubbing.normal_omega_squared = rubbing.normal_beta = rubbing.tangential_omega_squared = 0.0;
+  const double collective_friction = dem::hexagonal_collective(rubbing, spin).beta;
+  const double wall_beta = tighten_with_walls(limits, collective_friction);
   double v2_max = 0.0;
   for (const auto& g : grains_) v2_max = std::max(v2_max, g.vx * g.vx + g.vy * g.vy);
   if (v2_max > 0.0) limits.travel = 0.5 * skin_ / std::sqrt(v2_max);
@@ -675,16 +707,41 @@ StepLimits GranularPlate::current_limits() const {
     const double omega2 = omega_plate * omega_plate + 1.5 * plate_scale * std::pow(plate_largest, 0.2);
     limits.hertz = std::min(limits.hertz, dem::predicted_velocity_critical_step(std::sqrt(omega2), 0.0));
   }
-  // A grain on the plate also rubs on its neighbours: the damping of its plate contact and of the
-  // packing's collective friction modes add (the largest eigenvalue of a sum is at most the sum's).
-  if (plate_beta > 0.0) {
-    dem::PairRates rubbing = pair_rates;
-    rubbing.normal_omega_squared = rubbing.normal_beta = rubbing.tangential_omega_squared = 0.0;
-    const double collective = dem::hexagonal_collective(rubbing, spin).beta;
-    limits.friction =
-        std::min(limits.friction, dem::predicted_velocity_critical_step(omega_plate, plate_beta + collective));
-  }
+  // A grain on the plate also rubs on its neighbours and may rub on a wall: their dampings add.
+  if (plate_beta > 0.0)
+    limits.friction = std::min(limits.friction, dem::predicted_velocity_critical_step(
+                                                    omega_plate, plate_beta + wall_beta + collective_friction));
   return limits;
+}
+
+// A bead on a wall is one oscillator against a fixed body: the wall couples no two beads, so the
+// walls' operators are diagonal and their largest rate is the largest bead's, with no collective
+// factor of their own. Its forces see the predicted velocity like every other (compute_forces), so
+// its limits are predicted_velocity_critical_step's: the Hertz spring (3/2) k delta_max^(1/2) / m at
+// the largest overlap the bead can reach, 2/omega; Coulomb-tanh a dashpot mu k_s |F_n| on the slip's
+// inertia 1/m + r^2/I (the wall does not move), whose damping adds to the packing's collective
+// friction (`collective_friction`): 1/(beta_wall + collective). Returns beta_wall (0 without
+// friction) for the plate's limit, where a bead may rub on the plate, a wall and its neighbours.
+double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_friction) const {
+  if (!walls_.left && !walls_.right) return 0.0;
+  const double mu_ks = walls_.friction * contacts_.tanh_velocity_scale;
+  double omega2 = 0.0, beta = 0.0;
+  for (const auto& g : grains_)
+    for (const auto& [face, normal] : {std::pair{walls_.left, 1.0}, std::pair{walls_.right, -1.0}}) {
+      if (!face) continue;
+      const double overlap = g.radius - normal * (g.x - *face);
+      const double vn = normal * g.vx;  // > 0: leaving the wall
+      if (overlap < -skin_ || (overlap <= 0.0 && vn >= 0.0)) continue;
+      const double k = (4.0 / 3.0) * walls_.modulus * std::sqrt(g.radius);
+      omega2 = std::max(omega2, 1.5 * k * std::pow(reach_energy(overlap, vn, g.mass, k), 0.2) / g.mass);
+      if (mu_ks > 0.0 && overlap > 0.0)
+        beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * (1.0 / g.mass + g.radius * g.radius / g.inertia));
+    }
+  if (omega2 > 0.0)
+    limits.hertz = std::min(limits.hertz, dem::predicted_velocity_critical_step(std::sqrt(omega2), 0.0));
+  if (beta > 0.0)
+    limits.friction = std::min(limits.friction, dem::predicted_velocity_critical_step(0.0, beta + collective_friction));
+  return beta;
 }
 
 double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
@@ -766,6 +823,7 @@ std::vector<double> GranularPlate::grain_energies() const {
     held[static_cast<std::size_t>(p.i)] += half;
     held[static_cast<std::size_t>(p.j)] += half;
   }
+  add_wall_energies(held);
   if (!plate_) return held;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];

@@ -41,4 +41,11 @@ std::vector<Grain> make_hex_packing(const HexPacking& p) {
   return grains;
 }
 
+double hex_packing_width(const HexPacking& p) {
+  const double pitch = 2.0 * p.radius + p.gap;
+  return p.orientation == HexOrientation::rows_parallel
+             ? (p.columns - 1) * pitch + 2.0 * p.radius + (p.rows > 1 ? 0.5 * pitch : 0.0)
+             : (p.rows - 1) * pitch * std::sqrt(3.0) / 2.0 + 2.0 * p.radius;
+}
+
 }  // namespace sedwave::forward::interface

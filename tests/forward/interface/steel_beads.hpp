@@ -44,4 +44,18 @@ inline std::vector<Grain> struck_packing() {
   return grains;
 }
 
+/// `contacts`' default grain contact (Hertz of steel, friction's mu) with the DEM's history spring
+/// (kt = 2e6 N/m) for Coulomb-tanh and constant-torque rolling resistance (mu_r = 0.05,
+/// omega_reg = 10 1/s).
+inline dem::ContactSpec history_and_rolling(const InterfaceContacts& contacts) {
+  dem::ContactSpec spec = grain_contact_spec(contacts, steel);
+  spec.tangential = "spring_history";
+  spec.erase("tanh_velocity_scale");
+  spec["kt"] = 2e6;
+  spec.rolling = "constant_torque";
+  spec["rolling_friction"] = 0.05;
+  spec["rolling_regularisation"] = 10.0;
+  return spec;
+}
+
 }  // namespace sedwave::forward::interface::test

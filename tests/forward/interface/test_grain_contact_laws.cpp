@@ -64,14 +64,7 @@ TEST(GrainContactLaws, HistorySpringsAndRollingResistanceKeepTheEnergyBalance) {
   InterfaceContacts contacts;
   contacts.friction = 0.3;
   contacts.tanh_velocity_scale = 1e2;  // the grain-plate contact's
-  ContactSpec spec = grain_contact_spec(contacts, steel);
-  spec.tangential = "spring_history";
-  spec.erase("tanh_velocity_scale");
-  spec["kt"] = 2e6;
-  spec.rolling = "constant_torque";
-  spec["rolling_friction"] = 0.05;
-  spec["rolling_regularisation"] = 10.0;
-  contacts.grain_contact = spec;
+  contacts.grain_contact = history_and_rolling(contacts);
   ElasticPlate plate(aluminium, {8, 3, 24e-3, 9e-3},
                      PlateEdges{EdgeCondition::free, EdgeCondition::clamped, EdgeCondition::free, EdgeCondition::free});
   GranularPlate run(grains, steel, plate, contacts, StepControl{0.05});

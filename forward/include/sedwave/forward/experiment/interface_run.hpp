@@ -29,8 +29,10 @@ struct InterfaceRun {
   /// [J] the strike's kinetic energy (velocity drive) or the pulse's work, plus the static load's work
   /// during the run; the precompressed static state's own energy is not counted
   double input_energy = 0.0;
-  long relaxation_steps = 0;
-  double direct_from = 0.0, direct_to = 0.0;  ///< [m] the edge struck by a direct strike  ///< steps taken to bring a precompressed packing to rest
+  long relaxation_steps = 0;  ///< steps taken to bring a precompressed packing to rest
+  /// [N] at rest under the precompression: the normal force on the plate, on the left and right walls
+  double static_plate_force = 0.0, static_left_wall_force = 0.0, static_right_wall_force = 0.0;
+  double direct_from = 0.0, direct_to = 0.0;  ///< [m] the edge struck by a direct strike
   std::vector<int> driven;    ///< indices of the driven grains
   std::vector<int> probe_nodes;
   std::vector<std::vector<double>> probe_velocity;  ///< [probe][sample] |v| [m/s]

@@ -49,6 +49,16 @@ struct InterfaceRecording {
   double iteration_abstol = 1e-9;   ///< newmark_rk4: and its absolute one [N]
 };
 
+/// Rigid side walls at `gap` from the packing's outermost beads (docs/interface.md, "Side walls").
+struct InterfaceWalls {
+  bool left = false;
+  bool right = false;
+  double gap = 0.0;             ///< [m] from the packing's boundary to each wall's face
+  double youngs_modulus = 0.0;  ///< [Pa] the walls' material (default: the plate's)
+  double poisson_ratio = 0.0;
+  double friction = 0.0;        ///< Coulomb coefficient along the walls (default: contact.friction)
+};
+
 struct InterfaceScene {
   std::filesystem::path path;
   std::string text;  ///< verbatim, kept in the run file
@@ -60,9 +70,13 @@ struct InterfaceScene {
   double relaxation_time = 2e-5;   ///< damping time [s] of the relaxation under that load
   interface::GrainMaterial grain_material{200e9, 0.3};
   interface::InterfaceContacts contacts;
+  InterfaceWalls walls;
   InterfaceDrive drive;
   InterfaceRecording recording;
 };
+
+/// The walls' contact with the beads (side_walls.hpp): placed about the packing, E* of bead and wall.
+[[nodiscard]] interface::SideWalls side_walls(const InterfaceScene& scene);
 
 InterfaceScene parse_interface_scene(const std::string& text, const std::string& origin);
 InterfaceScene read_interface_scene(const std::filesystem::path& path);

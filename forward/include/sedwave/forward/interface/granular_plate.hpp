@@ -30,6 +30,7 @@
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/interface/hex_packing.hpp"
+#include "sedwave/forward/interface/side_walls.hpp"
 #include "sedwave/forward/plate/elastic_plate.hpp"
 
 namespace sedwave::forward::interface {
@@ -166,10 +167,17 @@ class GranularPlate {
   /// A constant force (force_x, force_y) on each of `grains`, held for the whole run: a static
   /// precompression of the packing against the plate. Its work counts as the drive's.
   void set_static_load(std::vector<int> grains, double force_x, double force_y);
+  /// Rigid side walls beside the packing (side_walls.hpp); their contacts count in the forces, the
+  /// contact energy and the Hertz and Coulomb-tanh step limits.
+  void set_side_walls(const SideWalls& walls);
   /// Brings the loaded packing and plate to rest: steps with every velocity scaled by
   /// exp(-dt/damping_time) after each step until the kinetic energy falls below `tolerance` times
   /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step and
-  /// iteration counts and the energy books, so that the run starts from the static state. Returns the steps taken;
+  /// iteration counts and the energy books, so that the run starts from the static state. Friction
+  /// is off while relaxing (the grains' normal law alone; no Coulomb-tanh at the plate or the
+  /// walls): Coulomb-tanh and a regularised rolling torque carry no force at rest, so the static
+  /// state is the same, a tangential history spring starts from it unloaded, and the steps are not
+  /// held to friction's limits. Returns the steps taken;
   /// throws std::runtime_error when the packing is not at rest after max_steps.
   long relax(double damping_time, double tolerance, long max_steps);
   /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
@@ -191,6 +199,9 @@ class GranularPlate {
   /// Total normal force the grains exert on the plate (>= 0) and its tangential part, at the last step.
   [[nodiscard]] double plate_normal_force() const { return plate_normal_force_; }
   [[nodiscard]] double plate_tangential_force() const { return plate_tangential_force_; }
+  /// Total normal force the grains exert on the left and on the right side wall (>= 0), at the last step.
+  [[nodiscard]] double left_wall_force() const { return wall_force_[0]; }
+  [[nodiscard]] double right_wall_force() const { return wall_force_[1]; }
   /// Hertz effective modulus of grain-plate contacts.
   [[nodiscard]] double plate_contact_modulus() const { return plate_modulus_; }
   /// Largest contact radius sqrt(R delta) seen at the plate so far (compare with the element size).
@@ -240,6 +251,10 @@ class GranularPlate {
   /// The grain-plate normal law: the DEM's Hertz part with R* = r (a sphere on a flat) and no dashpot
   /// (the paper's eq. 19a, either plate contact model's modulus).
   [[nodiscard]] dem::HertzNormal plate_law() const { return {plate_modulus_, 0.0}; }
+  void add_wall_contacts(int g);                           // side_walls.cpp
+  void add_wall_energies(std::vector<double>& held) const;  // side_walls.cpp
+  /// The walls' Hertz and Coulomb-tanh limits into `limits`; returns the walls' largest friction rate.
+  double tighten_with_walls(StepLimits& limits, double collective_friction) const;
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
   [[nodiscard]] double contact_ceiling() const;
@@ -289,6 +304,8 @@ class GranularPlate {
   double friction_work_ = 0.0, dashpot_work_ = 0.0, boundary_work_ = 0.0, drive_work_ = 0.0;
   double plate_normal_force_ = 0.0, plate_tangential_force_ = 0.0;
   double max_plate_contact_radius_ = 0.0;
+  SideWalls walls_;
+  double wall_force_[2] = {0.0, 0.0};
 
   std::vector<Motion> stage_velocity_[4];  // newmark_rk4: each RK4 stage's grain velocities
   // newmark_rk4: K and the factorisations, which depend on the plate and the step alone (copies

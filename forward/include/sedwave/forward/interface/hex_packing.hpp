@@ -37,4 +37,8 @@ struct HexPacking {
 /// by chain from the left (rows_perpendicular).
 [[nodiscard]] std::vector<Grain> make_hex_packing(const HexPacking& p);
 
+/// The packing's width along x, from its left boundary x_offset to its rightmost bead's edge
+/// (rows_parallel: the odd rows' half-pitch shift included when there are two rows or more).
+[[nodiscard]] double hex_packing_width(const HexPacking& p);
+
 }  // namespace sedwave::forward::interface
