@@ -168,11 +168,11 @@ TEST(SideWalls, ZigZagColumnCarriesTheStaticallyDeterminateForces) {
 // Bead `bead` of a relaxed packing struck at (0.2, -0.5) m/s and run for `duration`: the share of the
 // strike friction took, and the largest drift of the balance over the run against the strike (the
 // static state and the load's work included).
-struct Struck {
+struct StruckRun {
   double friction_share;
   double worst_balance;
 };
-Struck strike(GranularPlate& run, int bead, double duration) {
+StruckRun strike_and_run(GranularPlate& run, int bead, double duration) {
   run.grains_mutable()[static_cast<std::size_t>(bead)].vy = -0.5;
   run.grains_mutable()[static_cast<std::size_t>(bead)].vx = 0.2;
   run.refresh_forces();
@@ -183,7 +183,7 @@ Struck strike(GranularPlate& run, int bead, double duration) {
     run.step(end - run.time());
     worst = std::max(worst, std::abs(run.energies().balance() - before));
   }
-  const Struck result{run.energies().friction_work / struck, worst / struck};
+  const StruckRun result{run.energies().friction_work / struck, worst / struck};
   if (verbose)
     std::printf("struck: friction took %.3g of the strike, balance within %.3g of it in %ld steps\n",
                 result.friction_share, result.worst_balance, run.steps());
@@ -225,7 +225,7 @@ TEST(SideWalls, HexagonalPackingCarriesItsLoadRowByRow) {
   expect_at_rest(run);
   // Struck, with friction along the walls and between beads: the balance closes (the static state
   // and the load's work included).
-  const Struck struck = strike(run, rows * columns - 3, 3e-5);
+  const StruckRun struck = strike_and_run(run, rows * columns - 3, 3e-5);
   EXPECT_GT(struck.friction_share, 0.1);
   EXPECT_LT(struck.worst_balance, 1e-5);
 }
@@ -258,7 +258,7 @@ TEST(SideWalls, HoldALoadedPackingWithEveryGrainContactLaw) {
     EXPECT_NEAR(run.left_wall_force() / run.right_wall_force(), 1.0, 1e-4) << spec.tangential;
     EXPECT_GT(run.left_wall_force(), 0.1 * load) << spec.tangential;
     expect_at_rest(run);
-    const Struck struck = strike(run, rows * columns - 2, 2e-5);
+    const StruckRun struck = strike_and_run(run, rows * columns - 2, 2e-5);
     EXPECT_GT(struck.friction_share, 1e-3) << spec.tangential;
     EXPECT_LT(struck.worst_balance, 1e-5) << spec.tangential;
   }
