@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sedwave/io/hdf5.hpp"
+#include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/experiment/interface_spectrum.hpp"
 #include "sedwave/io/atomic_file.hpp"
 #include "sedwave/forward/units.hpp"
@@ -94,9 +95,12 @@ struct PeakContact {
 };
 
 /// `modulus` E*, `radius` R*, `inverse_mass` 1/m*, `inverse_tangential_mass` 1/m_t, and the
-/// stiffness the contact adds to (the mesh's omega_max^2 for a bead on the plate, else 0).
+/// stiffness the contact adds to (the mesh's omega_max^2 for a bead on the plate, else 0). The limits
+/// are GranularPlate's: a grain pair's those of the packing's collective modes, a bead on the plate's
+/// or a wall's its own (dem/critical_step.hpp).
 PeakContact peak_contact(double modulus, double radius, double inverse_mass, double inverse_tangential_mass,
-                         double omega_squared, double speed, double force, const interface::InterfaceContacts& c) {
+                         double omega_squared, double speed, double force, const interface::InterfaceContacts& c,
+                         bool grain_pair) {
   PeakContact p;
   const double k = (4.0 / 3.0) * modulus * std::sqrt(radius);
   // (2/5) k delta^(5/2) = m* v^2 / 2 for a strike; F = k delta^(3/2) for a static force.
@@ -104,12 +108,17 @@ PeakContact peak_contact(double modulus, double radius, double inverse_mass, dou
   const double loaded = std::pow(force / k, 2.0 / 3.0);
   p.overlap = std::max(struck, loaded);
   if (!(p.overlap > 0.0)) return p;
-  p.hertz_limit = interface::oscillator_limit(omega_squared + 1.5 * k * std::sqrt(p.overlap) * inverse_mass, 0.0);
+  const double contact_omega2 = 1.5 * k * std::sqrt(p.overlap) * inverse_mass;
   const double normal_force = k * p.overlap * std::sqrt(p.overlap);
-  if (c.friction > 0.0) {
-    const double beta = c.friction * c.tanh_velocity_scale * normal_force * inverse_tangential_mass;
-    p.friction_limit = interface::oscillator_limit(omega_squared, beta);
+  const double beta =
+      c.friction > 0.0 ? c.friction * c.tanh_velocity_scale * normal_force * inverse_tangential_mass : 0.0;
+  if (grain_pair) {
+    p.hertz_limit = dem::hexagonal_packing_critical_step(contact_omega2, 0.0, 0.0, c.rotation);
+    if (beta > 0.0) p.friction_limit = dem::hexagonal_packing_critical_step(contact_omega2, 0.0, beta, c.rotation);
+    return p;
   }
+  p.hertz_limit = dem::predicted_velocity_critical_step(std::sqrt(omega_squared + contact_omega2), 0.0);
+  if (beta > 0.0) p.friction_limit = dem::predicted_velocity_critical_step(std::sqrt(omega_squared), beta);
   return p;
 }
 
@@ -152,16 +161,16 @@ InterfaceEstimate estimate_interface_run(const InterfaceScene& scene) {
     const PeakContact plate_contact =
         peak_contact(interface::grain_plate_modulus(g, pm, scene.contacts.plate_contact), r,
                      1.0 / m + 1.0 / edge_mass, 1.0 / m + 1.0 / edge_mass + rotation, omega2, speed, force,
-                     scene.contacts);
+                     scene.contacts, false);
     const PeakContact grain_contact =
         peak_contact(hertz_effective_modulus(g.youngs_modulus, g.poisson_ratio, g.youngs_modulus, g.poisson_ratio),
-                     0.5 * r, 2.0 / m, 2.0 / m + 2.0 * rotation, 0.0, speed, force, scene.contacts);
+                     0.5 * r, 2.0 / m, 2.0 / m + 2.0 * rotation, 0.0, speed, force, scene.contacts, true);
     if (scene.walls.left || scene.walls.right) {
       // A bead pressed on a wall by the static load, or struck at it with the strike's speed.
       interface::InterfaceContacts along_walls = scene.contacts;
       along_walls.friction = scene.walls.friction;
       const PeakContact wall_contact = peak_contact(side_walls(scene).modulus, r, 1.0 / m, 1.0 / m + rotation, 0.0,
-                                                    speed, force, along_walls);
+                                                    speed, force, along_walls, false);
       e.hertz_limit = std::min(e.hertz_limit, wall_contact.hertz_limit);
       e.friction_limit = std::min(e.friction_limit, wall_contact.friction_limit);
     }

@@ -2,8 +2,17 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <set>
+#include <string_view>
 #include <toml.hpp>
 
+#include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
+#include "sedwave/forward/dem/contact/hertz.hpp"
+#include "sedwave/forward/dem/contact/hooke.hpp"
+#include "sedwave/forward/dem/contact/keys.hpp"
+#include "sedwave/forward/dem/contact/read_contact.hpp"
 #include "sedwave/forward/units.hpp"
 #include "sedwave/io/toml_table.hpp"
 
@@ -17,18 +26,24 @@ using Range = io::Range;
 // that no value reaches the solver where it would overflow or name the wrong cause. One range per
 // quantity: the plate and the beads bound a modulus or a density alike.
 const Range kModulus = Range::closed(1e3, 2e12, "Pa");        // soft gels .. diamond (1.2e12 Pa)
-const Range kPoisson{0.0, 0.5, false, true, ""};
 const Range kDensity = Range::closed(1.0, 3e4, "kg/m^3");     // aerogels .. osmium (22 590 kg/m^3)
 const Range kSize = Range::closed(1e-6, 10.0, "m");           // plate sizes and thickness, bead radius
 const Range kSpacing = Range::closed(0.0, 10.0, "m");         // gap, lift
 const Range kCount = Range::closed(1, 1e5);                   // elements and grains along one side
 const Range kForce = Range::closed(0.0, 1e6, "N");
 const Range kRunTime = Range::above(0.0, 1e3, "s");
-const Range kFriction = Range::closed(0.0, 10.0, "(Coulomb coefficient)");
 
 // Shared by the keys and the command line's overrides.
 Range strike_speed_range() { return Range::above(0.0, 1e4, "m/s"); }
 Range tolerance_range() { return Range::above(0.0, 0.5); }
+/// A key the DEM's contacts declare (dem/contact/keys.hpp): the same bounds as in DEM scenes.
+Range dem_key_range(const dem::ContactKey& k) {
+  Range range = k.bounds;
+  range.unit = k.unit;
+  return range;
+}
+const Range kPoisson = dem_key_range(dem::keys::poisson_ratio);
+
 Range fixed_step_range(double duration) { return Range::closed(0.0, duration, "s (at most run.duration; 0: adaptive)"); }
 
 void check_override(double x, const std::string& option, const Range& range) {
@@ -115,7 +130,7 @@ void read_walls(Section s, InterfaceScene& scene) {
   w.gap = s.number("gap", 0.0, kSpacing);
   w.youngs_modulus = s.number("youngs_modulus", scene.plate_material.youngs_modulus, kModulus);
   w.poisson_ratio = s.number("poisson_ratio", scene.plate_material.poisson_ratio, kPoisson);
-  w.friction = s.number("friction", scene.contacts.friction, kFriction);
+  w.friction = s.number("friction", scene.contacts.friction, dem_key_range(dem::keys::friction));
   const auto& p = scene.packing;
   const double left = p.x_offset - w.gap, right = p.x_offset + interface::hex_packing_width(p) + w.gap;
   if ((w.left && left < 0.0) || (w.right && right > scene.mesh.length_x))
@@ -124,11 +139,62 @@ void read_walls(Section s, InterfaceScene& scene) {
   s.finish();
 }
 
+/// The [contact] table as a source for dem::read_contact: the DEM scenes' keys and bounds, with the
+/// interface's defaults: a Hertz law of the packing's youngs_modulus and poisson_ratio, Coulomb-tanh
+/// (k_s 1000 s/m) when there is friction, no dashpot.
+class InterfaceContactKeys final : public dem::ContactKeySource {
+ public:
+  InterfaceContactKeys(Section& s, const interface::GrainMaterial& grain) : s_(s), grain_(grain) {}
+  std::optional<std::string> choice(std::string_view selector, const std::vector<std::string>& names) override {
+    const std::string key(selector);
+    if (s_.has(key)) {
+      std::string chosen = s_.choice(key, "", std::set<std::string>(names.begin(), names.end()));
+      if (selector == "law") law_ = chosen;
+      return chosen;
+    }
+    if (selector == "law") return law_;
+    if (selector == "tangential" && friction_ > 0.0) return std::string(dem::CoulombTanhFriction::name);
+    return std::nullopt;
+  }
+  std::optional<double> number(const dem::ContactKey& k) override {
+    const std::string key(k.key);
+    if (s_.has(key)) {
+      const std::optional<double> x = s_.optional_number(key, dem_key_range(k));
+      if (key == dem::keys::friction.key) friction_ = x.value_or(0.0);
+      return x;
+    }
+    // The grains' material, unless the table gives the chosen law's stiffness itself.
+    const std::string_view stiffness =
+        law_ == dem::HookeNormal::name ? dem::HookeNormal::kn_key.key : dem::HertzNormal::modulus_key.key;
+    const bool stiffness_given = s_.has(std::string(stiffness));
+    if (key == dem::keys::youngs_modulus.key && !stiffness_given) return grain_.youngs_modulus;
+    if (key == dem::keys::poisson_ratio.key && !stiffness_given) return grain_.poisson_ratio;
+    if (key == dem::CoulombTanhFriction::velocity_scale_key.key) return kDefaultVelocityScale;
+    return std::nullopt;
+  }
+  [[noreturn]] void fail(const std::string& why) override { s_.fail_table(why); }
+
+  static constexpr double kDefaultVelocityScale = 1e3;  // [s/m]
+
+ private:
+  Section& s_;
+  const interface::GrainMaterial& grain_;
+  double friction_ = 0.0;
+  std::string law_{dem::HertzNormal::name};
+};
+
 void read_contact(Section s, InterfaceScene& scene) {
   auto& c = scene.contacts;
-  c.friction = s.number("friction", 0.0, kFriction);
-  c.tanh_velocity_scale = s.number("tanh_velocity_scale", c.tanh_velocity_scale, Range::above(0.0, 1e12, "s/m"));
-  c.restitution = s.number("restitution", 1.0, Range::above(0.0, 1.0));
+  InterfaceContactKeys keys(s, scene.grain_material);
+  const dem::ContactSpec spec = dem::read_contact(keys);
+  c.grain_contact = spec;
+  c.friction = spec.find(dem::keys::friction.key).value_or(0.0);
+  c.restitution = spec.find(dem::keys::restitution.key).value_or(1.0);
+  // The grain-plate contact is Coulomb-tanh whatever the grains' tangential law: its k_s.
+  const std::string velocity_scale(dem::CoulombTanhFriction::velocity_scale_key.key);
+  c.tanh_velocity_scale = spec.find(velocity_scale)
+                              .value_or(s.number(velocity_scale, InterfaceContactKeys::kDefaultVelocityScale,
+                                                 dem_key_range(dem::CoulombTanhFriction::velocity_scale_key)));
   c.rotation = s.boolean("rotation", true);
   s.finish();
 }
@@ -213,6 +279,11 @@ InterfaceScene from_value(const toml::value& root, const std::string& origin) {
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.recording.scheme == interface::Scheme::newmark_rk4)
     top.sub("run").fail_key("scheme", "newmark_rk4 takes no pulse on the plate (drive.kind = \"edge_impulse\"): its load "
                                       "at the step's ends would not deliver a rectangular pulse's impulse");
+  if (scene.recording.scheme == interface::Scheme::newmark_rk4 && scene.contacts.grain_contact &&
+      dem::needs_history(dem::make_contact_model(*scene.contacts.grain_contact)))
+    top.sub("run").fail_key("scheme", "newmark_rk4 takes no grain contact with a tangential history (contact.tangential = \"" +
+                                          scene.contacts.grain_contact->tangential +
+                                          "\"): its RK4 stages would advance the history four times a step");
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && scene.packing_load > 0.0)
     top.sub("packing").fail_key("precompression", "drive.kind = \"edge_impulse\" strikes the plate alone: no beads to load");
   if (scene.drive.kind == InterfaceDrive::Kind::edge_impulse && (scene.walls.left || scene.walls.right))

@@ -6,10 +6,13 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <unordered_map>
 #include <utility>
 
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
 #include "sedwave/forward/dem/contact/hertz.hpp"
+#include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/units.hpp"
 
 namespace sedwave::forward::interface {
@@ -28,17 +31,36 @@ double reach_energy(double overlap, double normal_velocity, double effective_mas
   return e;
 }
 
-}  // namespace
-
-double oscillator_limit(double omega_squared, double beta) {
-  const double denominator = beta + std::sqrt(beta * beta + 4.0 * omega_squared);
-  return denominator > 0.0 ? 4.0 / denominator : inf;
+/// The model's normal law (and its dashpot) alone: no tangential or rolling law.
+dem::AnyContactModel normal_law_only(const dem::AnyContactModel& model) {
+  return std::visit(
+      [](const auto& m) -> dem::AnyContactModel {
+        return dem::ContactModel<typename std::decay_t<decltype(m)>::NormalLaw>{m.normal};
+      },
+      model);
 }
+
+}  // namespace
 
 double grain_plate_modulus(const GrainMaterial& grain, const plate::PlateMaterial& plate, PlateContactModel model) {
   if (model == PlateContactModel::rigid_layers)
     return grain.youngs_modulus / (1.0 - grain.poisson_ratio * grain.poisson_ratio);
   return hertz_effective_modulus(grain.youngs_modulus, grain.poisson_ratio, plate.youngs_modulus, plate.poisson_ratio);
+}
+
+dem::ContactSpec grain_contact_spec(const InterfaceContacts& contacts, const GrainMaterial& grain) {
+  if (contacts.grain_contact) return *contacts.grain_contact;
+  dem::ContactSpec spec;
+  spec.normal = std::string(dem::HertzNormal::name);
+  spec[std::string(dem::keys::youngs_modulus.key)] = grain.youngs_modulus;
+  spec[std::string(dem::keys::poisson_ratio.key)] = grain.poisson_ratio;
+  if (contacts.restitution < 1.0) spec[std::string(dem::keys::restitution.key)] = contacts.restitution;
+  if (contacts.friction > 0.0) {
+    spec.tangential = std::string(dem::CoulombTanhFriction::name);
+    spec[std::string(dem::keys::friction.key)] = contacts.friction;
+    spec[std::string(dem::CoulombTanhFriction::velocity_scale_key.key)] = contacts.tanh_velocity_scale;
+  }
+  return spec;
 }
 
 void check_grains_over_nodes(const std::vector<Grain>& grains, double element_width, double length_x, double reach) {
@@ -63,21 +85,22 @@ double StepLimits::tightest() const { return std::min({plate, hertz, friction});
 GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& grain_material,
                              std::optional<plate::ElasticPlate> plate, const InterfaceContacts& contacts,
                              const StepControl& control)
-    : grains_(std::move(grains)), plate_(std::move(plate)), contacts_(contacts), control_(control) {
+    : grains_(std::move(grains)),
+      plate_(std::move(plate)),
+      contacts_(contacts),
+      control_(control),
+      grain_model_(dem::make_contact_model(grain_contact_spec(contacts, grain_material))) {
   if (!(control.tolerance > 0.0 && control.tolerance <= 0.5))
     throw std::invalid_argument("interface: step tolerance must lie in (0, 0.5]");
   if (!(contacts.friction >= 0.0)) throw std::invalid_argument("interface: friction must be >= 0");
   if (contacts.friction > 0.0 && !(contacts.tanh_velocity_scale > 0.0))
     throw std::invalid_argument("interface: tanh_velocity_scale must be > 0");
-  grain_modulus_ = hertz_effective_modulus(grain_material.youngs_modulus, grain_material.poisson_ratio,
-                                           grain_material.youngs_modulus, grain_material.poisson_ratio);
   if (plate_) {
     const auto& pm = plate_->material();
     plate_modulus_ = grain_plate_modulus(grain_material, pm, contacts.plate_contact);
     u_.assign(static_cast<std::size_t>(plate_->dof_count()), 0.0);
     v_ = u_;
   }
-  dashpot_alpha_ = contacts.restitution < 1.0 ? dem::hertz_alpha_from_restitution(contacts.restitution) : 0.0;
   double mean_radius = 0.0;
   for (const auto& g : grains_) {
     if (!(g.radius > 0.0 && g.mass > 0.0 && g.inertia > 0.0))
@@ -98,6 +121,9 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
   compute_forces(0.0);
   if (control.scheme == Scheme::newmark_rk4) {
     if (!plate_) throw std::invalid_argument("interface: the newmark_rk4 scheme needs a plate");
+    if (dem::needs_history(grain_model_))
+      throw std::invalid_argument("interface: the newmark_rk4 scheme takes no grain contact with a tangential history "
+                                  "(its RK4 stages would advance the history four times a step)");
     if (!(control.reltol > 0.0 && control.abstol >= 0.0 && control.max_iterations >= 1))
       throw std::invalid_argument("interface: newmark_rk4 needs reltol > 0, abstol >= 0 and max_iterations >= 1");
     make_newmark();
@@ -146,9 +172,14 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     const Energies e = energies_without_strain();
     return e.grain_translation + e.grain_rotation + e.plate_kinetic;
   };
-  // Frictionless while relaxing (the header says why); the books of the edge's x velocities follow.
+  // Frictionless while relaxing (the header says why): the grains' normal law alone, no friction at
+  // the plate or the walls; the books of the edge's x velocities follow. Tangential springs start
+  // from the static state unloaded.
+  const dem::AnyContactModel grain_model = grain_model_;
   const double friction = contacts_.friction, wall_friction = walls_.friction;
+  grain_model_ = normal_law_only(grain_model);
   contacts_.friction = walls_.friction = 0.0;
+  std::fill(shear_.begin(), shear_.end(), dem::Vec3{});
   book_plate_dofs();
   refresh_forces();
   double largest = 0.0;
@@ -163,6 +194,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     largest = std::max(largest, now);
     if (n > 10 && now < tolerance * largest) break;
   }
+  grain_model_ = grain_model;
   contacts_.friction = friction;
   walls_.friction = wall_friction;
   book_plate_dofs();
@@ -179,6 +211,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
   friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
   max_plate_contact_radius_ = 0.0;
   refresh_forces();
+  tangential_energy_origin_ = tangential_energy_;
   return n;
 }
 
@@ -191,7 +224,13 @@ void GranularPlate::refresh_forces() {
 // Cell list over the packing's bounding box; a pair is listed while |x_i - x_j| < r_i + r_j + skin
 // and the list is rebuilt once any grain has moved skin/2 (as the DEM engine does, docs/dem.md).
 void GranularPlate::build_pairs() {
+  // A touching pair stays listed (it is within the skin), so its history moves to its new slot.
+  std::unordered_map<long long, dem::Vec3> history;
+  const auto key = [n = static_cast<long long>(grains_.size())](const Pair& p) { return p.i * n + p.j; };
+  for (std::size_t k = 0; k < shear_.size(); ++k)
+    if (dem::norm2(shear_[k]) > 0.0) history.emplace(key(pairs_[k]), shear_[k]);
   pairs_.clear();
+  shear_.clear();
   x_at_build_.resize(grains_.size());
   y_at_build_.resize(grains_.size());
   if (grains_.empty()) return;
@@ -232,6 +271,10 @@ void GranularPlate::build_pairs() {
           if (dx * dx + dy * dy < reach * reach) pairs_.push_back({static_cast<int>(i), j});
         }
   }
+  shear_.assign(pairs_.size(), dem::Vec3{});
+  if (history.empty()) return;
+  for (std::size_t k = 0; k < pairs_.size(); ++k)
+    if (const auto it = history.find(key(pairs_[k])); it != history.end()) shear_[k] = it->second;
 }
 
 bool GranularPlate::pairs_stale() const {
@@ -243,50 +286,54 @@ bool GranularPlate::pairs_stale() const {
   return false;
 }
 
-void GranularPlate::add_grain_pair(const Pair& p) {
+// The DEM engine's contact model in the plane (dem/contact/contact_model.hpp): its slip, lever arms
+// and torques. The books split its force: the normal law's spring is conservative, the rest of the
+// normal force is its dashpot, the tangential force and the torques go to friction (with a
+// tangential spring's energy taken back out of it in energies()).
+template <class Model>
+void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
   const double reach = gi.radius + gj.radius;
   const double d2 = dx * dx + dy * dy;
-  if (d2 >= reach * reach) return;
+  if (d2 >= reach * reach) {
+    if constexpr (Model::needs_history) shear = Vec3{};  // an open contact forgets its history
+    return;
+  }
   const double d = std::sqrt(d2);
   const double overlap = reach - d;
   const double nx = dx / d, ny = dy / d;
   const double effective_mass = gi.mass * gj.mass / (gi.mass + gj.mass);
-  const dem::HertzNormal law{grain_modulus_, dashpot_alpha_};
-  const auto pair = law.pair(effective_mass, gi.radius, gj.radius);
+  const auto pair = model.pair(effective_mass, gi.radius, gj.radius);
   const auto& si = seen_[static_cast<std::size_t>(p.i)];
   const auto& sj = seen_[static_cast<std::size_t>(p.j)];
-  const double vrx = si.vx - sj.vx, vry = si.vy - sj.vy;
-  const double vn = vrx * nx + vry * ny;
-  const double spring = law.spring(overlap, pair);
-  const double dashpot = -law.dashpot_at(overlap, pair) * vn;
+  const Vec3 relative{si.vx - sj.vx, si.vy - sj.vy, 0.0};
+  const double vn = relative.x * nx + relative.y * ny;
+  const dem::ContactPoint point{{nx, ny, 0.0}, overlap, vn, gi.radius, gj.radius};
+  const dem::PairResult r = model.evaluate(point, pair, relative, {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
+  const double spring = model.normal.spring(overlap, pair.normal);
+  const double dashpot = r.normal_force - spring;
   auto& ci = conservative_[static_cast<std::size_t>(p.i)];
   auto& cj = conservative_[static_cast<std::size_t>(p.j)];
   ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
   auto& di = dashpot_[static_cast<std::size_t>(p.i)];
   auto& dj = dashpot_[static_cast<std::size_t>(p.j)];
   di.fx += dashpot * nx, di.fy += dashpot * ny, dj.fx -= dashpot * nx, dj.fy -= dashpot * ny;
-  contact_energy_ += law.energy(overlap, gi.radius, gj.radius);
-  if (contacts_.friction <= 0.0) return;
-
-  // Slip of the contact point (docs/dem.md): v_t = v_rel - v_n n - (a_i w_i + a_j w_j) t, t = z x n,
-  // lever arms a = r - delta/2; torques -a n x F_t on both grains.
-  const double arm_i = gi.radius - 0.5 * overlap, arm_j = gj.radius - 0.5 * overlap;
-  const double tx = -ny, ty = nx;
-  const double roll = arm_i * si.spin + arm_j * sj.spin;
-  const Vec3 slip{vrx - vn * nx - roll * tx, vry - vn * ny - roll * ty, 0.0};
-  const dem::CoulombTanhFriction friction{contacts_.friction, contacts_.tanh_velocity_scale};
-  const dem::ContactPoint point{{nx, ny, 0.0}, overlap, vn, gi.radius, gj.radius};
-  Vec3 unused;
-  const Vec3 ft = friction.force(point, {}, slip, spring + dashpot, 0.0, unused);
-  const double n_cross_f = nx * ft.y - ny * ft.x;
-  auto& fi = friction_[static_cast<std::size_t>(p.i)];
-  auto& fj = friction_[static_cast<std::size_t>(p.j)];
-  fi.fx += ft.x, fi.fy += ft.y, fj.fx -= ft.x, fj.fy -= ft.y;
-  fi.torque -= arm_i * n_cross_f;
-  fj.torque -= arm_j * n_cross_f;
+  contact_energy_ += model.normal.energy(overlap, gi.radius, gj.radius);
+  if constexpr (Model::rotates) {
+    const double fx = r.force.x - r.normal_force * nx, fy = r.force.y - r.normal_force * ny;
+    auto& fi = friction_[static_cast<std::size_t>(p.i)];
+    auto& fj = friction_[static_cast<std::size_t>(p.j)];
+    fi.fx += fx, fi.fy += fy, fj.fx -= fx, fj.fy -= fy;
+    fi.torque += r.torque_i.z;
+    fj.torque += r.torque_j.z;
+    if constexpr (Model::has_tangential) {
+      const double stored = model.tangential.energy(overlap, gi.radius, gj.radius, shear);
+      contact_energy_ += stored;
+      tangential_energy_ += stored;
+    }
+  }
 }
 
 void GranularPlate::add_plate_contact(int index) {
@@ -303,7 +350,7 @@ void GranularPlate::add_plate_contact(int index) {
   // tilt of the deformed edge), on node a -F_n N_a along y.
   // With rigid layers e names one node at weight 1: no tilt, and everything acts on that node.
   const double contact_radius = std::sqrt(g.radius * overlap);
-  const double fn = (4.0 / 3.0) * plate_modulus_ * contact_radius * overlap;
+  const double fn = plate_law().spring(overlap, {g.radius, 0.0});
   const double slope = (u_[yb] - u_[ya]) / plate_->element_width();
   auto& c = conservative_[static_cast<std::size_t>(index)];
   c.fy += fn;
@@ -389,7 +436,12 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   contact_energy_ = 0.0;
   plate_normal_force_ = plate_tangential_force_ = 0.0;
   wall_force_[0] = wall_force_[1] = 0.0;
-  for (const auto& p : pairs_) add_grain_pair(p);
+  tangential_energy_ = 0.0;
+  std::visit(
+      [&](const auto& model) {
+        for (std::size_t k = 0; k < pairs_.size(); ++k) add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k]);
+      },
+      grain_model_);
   if (plate_) {
     // The elastic forces overwrite f_conservative_; friction acts on the top edge's x components
     // alone, so only that row of f_friction_ is cleared once it has been sized.
@@ -524,16 +576,22 @@ void GranularPlate::drift_grains(double h) {
   }
 }
 
-// Every Hertz limit is a function of omega^2 = (3/2)(k/m) delta_max^(1/2) alone (the Tsuji dashpot's
-// beta^2 = alpha^2 omega^2 / (3/2) follows it), and omega^10 is proportional to (k/m)^5 delta_max^(5/2):
-// the loop keeps the largest of those, scaled by the first pair's k/m against overflow, and takes one
-// fifth root at the end instead of a power per pair. Coulomb-tanh limits fall with their beta alone.
-StepLimits GranularPlate::current_limits() const {
-  StepLimits limits;
-  const double omega_plate = plate_ ? plate_->max_frequency_bound() : 0.0;
-  if (plate_) limits.plate = plate_->stable_time_step();
-  const double mu_ks = contacts_.friction * contacts_.tanh_velocity_scale;
-  double rate_scale = 0.0, largest = 0.0, beta_friction = 0.0;
+// Each grain pair's rates for the step limit (dem/critical_step.hpp), the largest of each over the
+// pairs that touch or close. A Hertz normal law is evaluated at the largest overlap a collision can
+// reach (reach_energy): its omega^2 = (3/2)(k/m) delta_max^(1/2) grows with (k/m)^5 delta_max^(5/2), so
+// the loop keeps the pair with the largest of those (scaled by the first pair's k/m against overflow)
+// and takes one root, for that pair, at the end instead of a power per pair. The tangential and
+// rolling laws are evaluated at the overlap and normal force now, on the slip's
+// inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal spheres with rotation) and
+// the relative spin's 1/I_i + 1/I_j.
+template <class Model>
+dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
+  constexpr bool hertz = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
+  dem::PairRates rates;
+  double rate_scale = 0.0, largest = 0.0;
+  struct {
+    double mass = 0.0, radius = 0.0, reach = 0.0;
+  } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
   for (const auto& p : pairs_) {
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
@@ -548,32 +606,80 @@ StepLimits GranularPlate::current_limits() const {
     if (overlap <= 0.0 && vn >= 0.0) continue;
     const double m = gi.mass * gj.mass / (gi.mass + gj.mass);
     const double r = gi.radius * gj.radius / (gi.radius + gj.radius);
-    const double k = (4.0 / 3.0) * grain_modulus_ * std::sqrt(r);
-    if (rate_scale == 0.0) rate_scale = k / m;
-    const double ratio = k / m / rate_scale;
-    largest = std::max(largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, m, k));
-    if (mu_ks > 0.0 && overlap > 0.0) {
-      // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b);
-      // against the tangential effective mass 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for
-      // two equal spheres with rotation).
-      const double fn = std::abs(k * overlap * std::sqrt(overlap) -
-                                 dashpot_alpha_ * std::sqrt(m * k) * std::sqrt(std::sqrt(overlap)) * vn);
-      double inverse_mt = 1.0 / gi.mass + 1.0 / gj.mass;
-      if (contacts_.rotation) {
-        const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
-        inverse_mt += ai * ai / gi.inertia + aj * aj / gj.inertia;
+    if constexpr (hertz) {
+      const double k = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
+      if (rate_scale == 0.0) rate_scale = k / m;
+      const double ratio = k / m / rate_scale;
+      const double reach_now = reach_energy(overlap, vn, m, k);
+      if (const double x = ratio * ratio * ratio * ratio * ratio * reach_now; x > largest) {
+        largest = x;
+        stiffest = {m, r, reach_now};
       }
-      beta_friction = std::max(beta_friction, mu_ks * fn * inverse_mt);
+    } else {
+      const dem::ContactOscillator n = model.normal.oscillator(m, r, overlap);
+      rates.normal_omega_squared = std::max(rates.normal_omega_squared, n.stiffness / m);
+      rates.normal_beta = std::max(rates.normal_beta, n.damping / m);
+    }
+    if constexpr (Model::rotates) {
+      if (overlap <= 0.0) continue;
+      const auto pair = model.pair(m, gi.radius, gj.radius);
+      const double fn = std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, pair.normal));
+      if constexpr (Model::has_tangential) {
+        double inverse_mt = 1.0 / gi.mass + 1.0 / gj.mass;
+        if (contacts_.rotation) {
+          const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
+          inverse_mt += ai * ai / gi.inertia + aj * aj / gj.inertia;
+        }
+        // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
+        const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, fn);
+        rates.tangential_omega_squared = std::max(rates.tangential_omega_squared, t.stiffness * inverse_mt);
+        rates.tangential_beta = std::max(rates.tangential_beta, t.damping * inverse_mt);
+      }
+      if constexpr (Model::has_rolling) {
+        // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
+        if (contacts_.rotation)
+          rates.rolling_beta = std::max(rates.rolling_beta, pair.rolling.lever * fn / model.rolling.regularising_spin_rate *
+                                                                (1.0 / gi.inertia + 1.0 / gj.inertia));
+      }
     }
   }
-  if (largest > 0.0) {
-    // Tangent stiffness (3/2) k delta^(1/2) at the largest overlap a collision can reach, and the
-    // Hertz-Tsuji dashpot alpha sqrt(m k) delta^(1/4) there.
-    const double omega2 = 1.5 * rate_scale * std::pow(largest, 0.2);
-    limits.hertz = oscillator_limit(omega2, dashpot_alpha_ * std::sqrt(omega2 / 1.5));
+  if constexpr (hertz) {
+    if (largest > 0.0) {
+      // The law's tangent stiffness and dashpot at the largest overlap a collision can reach.
+      const dem::ContactOscillator n =
+          model.normal.oscillator(stiffest.mass, stiffest.radius, std::pow(stiffest.reach, 0.4));
+      rates.normal_omega_squared = n.stiffness / stiffest.mass;
+      rates.normal_beta = n.damping / stiffest.mass;
+    }
   }
-  if (beta_friction > 0.0) limits.friction = oscillator_limit(0.0, beta_friction);
-  tighten_with_walls(limits);
+  return rates;
+}
+
+// The grain pairs' rates (grain_pair_rates) and the beads on the plate, whose Hertz limits take the
+// same largest-reach trick. Coulomb-tanh limits fall with their beta alone.
+StepLimits GranularPlate::current_limits() const {
+  StepLimits limits;
+  const double omega_plate = plate_ ? plate_->max_frequency_bound() : 0.0;
+  if (plate_) limits.plate = plate_->stable_time_step();
+  const double mu_ks = contacts_.friction * contacts_.tanh_velocity_scale;
+  // The forces see the predicted velocity (compute_forces), and the packing's collective modes
+  // outrun a pair's (dem/critical_step.hpp): one oscillator of the pairs' largest rates scaled to them.
+  const bool spin = contacts_.rotation;
+  const dem::PairRates pair_rates =
+      std::visit([&](const auto& model) { return grain_pair_rates(model); }, grain_model_);
+  dem::PairRates normal_rates;
+  normal_rates.normal_omega_squared = pair_rates.normal_omega_squared;
+  normal_rates.normal_beta = pair_rates.normal_beta;
+  if (normal_rates.normal_omega_squared > 0.0 || normal_rates.normal_beta > 0.0)
+    limits.hertz = dem::hexagonal_packing_critical_step(normal_rates, spin);
+  if (pair_rates.tangential_omega_squared > 0.0 || pair_rates.tangential_beta > 0.0 || pair_rates.rolling_beta > 0.0)
+    limits.friction = dem::hexagonal_packing_critical_step(pair_rates, spin);
+  // The packing's collective friction damping: a bead rubbing on its neighbours and on a wall or the
+  // plate feels both, and the largest eigenvalue of a sum is at most the sum of theirs.
+  dem::PairRates rubbing = pair_rates;
+  rubbing.normal_omega_squared = rubbing.normal_beta = rubbing.tangential_omega_squared = 0.0;
+  const double collective_friction = dem::hexagonal_collective(rubbing, spin).beta;
+  const double wall_beta = tighten_with_walls(limits, collective_friction);
   double v2_max = 0.0;
   for (const auto& g : grains_) v2_max = std::max(v2_max, g.vx * g.vx + g.vy * g.vy);
   if (v2_max > 0.0) limits.travel = 0.5 * skin_ / std::sqrt(v2_max);
@@ -622,24 +728,34 @@ StepLimits GranularPlate::current_limits() const {
     }
   }
   if (newmark) {
-    if (newmark_omega2 > 0.0) limits.hertz = std::min(limits.hertz, oscillator_limit(newmark_omega2, 0.0));
-    if (plate_beta > 0.0) limits.friction = std::min(limits.friction, oscillator_limit(0.0, plate_beta));
+    // |lambda_1| < 1 and |lambda_2| < 1 are the spring's and the dashpot's half-step Verlet limits.
+    if (newmark_omega2 > 0.0)
+      limits.hertz = std::min(limits.hertz, dem::verlet_critical_step(std::sqrt(newmark_omega2), 0.0));
+    if (plate_beta > 0.0) limits.friction = std::min(limits.friction, dem::verlet_critical_step(0.0, plate_beta));
     return limits;
   }
   // The contact spring adds to the nodes' own stiffness: omega^2 <= omega_FE^2 + k_t / m_eff.
   if (plate_largest > 0.0) {
     const double omega2 = omega_plate * omega_plate + 1.5 * plate_scale * std::pow(plate_largest, 0.2);
-    limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
+    limits.hertz = std::min(limits.hertz, dem::predicted_velocity_critical_step(std::sqrt(omega2), 0.0));
   }
+  // A grain on the plate also rubs on its neighbours and may rub on a wall: their dampings add.
   if (plate_beta > 0.0)
-    limits.friction = std::min(limits.friction, oscillator_limit(omega_plate * omega_plate, plate_beta));
+    limits.friction = std::min(limits.friction, dem::predicted_velocity_critical_step(
+                                                    omega_plate, plate_beta + wall_beta + collective_friction));
   return limits;
 }
 
-// A bead on a wall: the Hertz limit at the largest overlap it can reach, against the bead's mass (the
-// wall is fixed), and Coulomb-tanh's dashpot against 1/m + r^2/I, as for the plate's contact.
-void GranularPlate::tighten_with_walls(StepLimits& limits) const {
-  if (!walls_.left && !walls_.right) return;
+// A bead on a wall is one oscillator against a fixed body: the wall couples no two beads, so the
+// walls' operators are diagonal and their largest rate is the largest bead's, with no collective
+// factor of their own. Its forces see the predicted velocity like every other (compute_forces), so
+// its limits are predicted_velocity_critical_step's: the Hertz spring (3/2) k delta_max^(1/2) / m at
+// the largest overlap the bead can reach, 2/omega; Coulomb-tanh a dashpot mu k_s |F_n| on the slip's
+// inertia 1/m + r^2/I (the wall does not move), whose damping adds to the packing's collective
+// friction (`collective_friction`): 1/(beta_wall + collective). Returns beta_wall (0 without
+// friction) for the plate's limit, where a bead may rub on the plate, a wall and its neighbours.
+double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_friction) const {
+  if (!walls_.left && !walls_.right) return 0.0;
   const double mu_ks = walls_.friction * contacts_.tanh_velocity_scale;
   double omega2 = 0.0, beta = 0.0;
   for (const auto& g : grains_)
@@ -653,8 +769,11 @@ void GranularPlate::tighten_with_walls(StepLimits& limits) const {
       if (mu_ks > 0.0 && overlap > 0.0)
         beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * (1.0 / g.mass + g.radius * g.radius / g.inertia));
     }
-  if (omega2 > 0.0) limits.hertz = std::min(limits.hertz, oscillator_limit(omega2, 0.0));
-  if (beta > 0.0) limits.friction = std::min(limits.friction, oscillator_limit(0.0, beta));
+  if (omega2 > 0.0)
+    limits.hertz = std::min(limits.hertz, dem::predicted_velocity_critical_step(std::sqrt(omega2), 0.0));
+  if (beta > 0.0)
+    limits.friction = std::min(limits.friction, dem::predicted_velocity_critical_step(0.0, beta + collective_friction));
+  return beta;
 }
 
 double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
@@ -724,13 +843,15 @@ std::vector<double> GranularPlate::grain_energies() const {
     held[i] = 0.5 * g.mass * (g.vx * g.vx + g.vy * g.vy);
     if (contacts_.rotation) held[i] += 0.5 * g.inertia * g.spin * g.spin;
   }
-  const dem::HertzNormal law{grain_modulus_, dashpot_alpha_};
-  for (const auto& p : pairs_) {
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const auto& p = pairs_[k];
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
     const double overlap = gi.radius + gj.radius - std::hypot(gi.x - gj.x, gi.y - gj.y);
     if (overlap <= 0.0) continue;
-    const double half = 0.5 * law.energy(overlap, gi.radius, gj.radius);
+    const double half =
+        0.5 * std::visit([&](const auto& model) { return model.energy(overlap, gi.radius, gj.radius, shear_[k]); },
+                         grain_model_);
     held[static_cast<std::size_t>(p.i)] += half;
     held[static_cast<std::size_t>(p.j)] += half;
   }
@@ -743,7 +864,7 @@ std::vector<double> GranularPlate::grain_energies() const {
     const double edge_y = e.shape_left * u_[static_cast<std::size_t>(2 * e.node_left + 1)] +
                           e.shape_right * u_[static_cast<std::size_t>(2 * e.node_right + 1)];
     const double overlap = g.radius - (g.y - edge_y);
-    if (overlap > 0.0) held[i] += 0.4 * (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius * overlap) * overlap * overlap;
+    if (overlap > 0.0) held[i] += 0.4 * plate_law().spring(overlap, {g.radius, 0.0}) * overlap;
   }
   return held;
 }
@@ -760,7 +881,7 @@ Energies GranularPlate::energies() const {
     for (std::size_t d = 0; d < v_.size(); ++d) e.plate_kinetic += 0.5 * mass[d] * v_[d] * v_[d];
     e.plate_strain = plate_->strain_energy(u_);
   }
-  e.friction_work = friction_work_;
+  e.friction_work = friction_work_ - (tangential_energy_ - tangential_energy_origin_);
   e.dashpot_work = dashpot_work_;
   e.boundary_work = boundary_work_;
   e.drive_work = drive_work_;

@@ -30,4 +30,32 @@ inline std::vector<Grain> chain(int n, double lift = 1.0) {
   return make_hex_packing(p);
 }
 
+/// 3 x 4 beads a micrometre apart and a micrometre above the plate, from x = 2 mm: the top row struck
+/// down at 1 m/s and the last bead sheared at 0.3 m/s, so that friction and rotation act.
+inline std::vector<Grain> struck_packing() {
+  HexPacking p = steel_beads(3, 4);
+  p.gap = 1e-6;
+  p.x_offset = 2e-3;
+  p.lift = 1e-6;
+  auto grains = make_hex_packing(p);
+  for (auto& g : grains)
+    if (g.y > 10e-3) g.vy = -1.0;
+  grains.back().vx = 0.3;
+  return grains;
+}
+
+/// `contacts`' default grain contact (Hertz of steel, friction's mu) with the DEM's history spring
+/// (kt = 2e6 N/m) for Coulomb-tanh and constant-torque rolling resistance (mu_r = 0.05,
+/// omega_reg = 10 1/s).
+inline dem::ContactSpec history_and_rolling(const InterfaceContacts& contacts) {
+  dem::ContactSpec spec = grain_contact_spec(contacts, steel);
+  spec.tangential = "spring_history";
+  spec.erase("tanh_velocity_scale");
+  spec["kt"] = 2e6;
+  spec.rolling = "constant_torque";
+  spec["rolling_friction"] = 0.05;
+  spec["rolling_regularisation"] = 10.0;
+  return spec;
+}
+
 }  // namespace sedwave::forward::interface::test

@@ -128,14 +128,7 @@ struct Scene {
   double input;
 };
 Scene small_scene(const InterfaceContacts& contacts, double tolerance, EdgeCondition sides) {
-  HexPacking p = steel_beads(3, 4);
-  p.gap = 1e-6;
-  p.x_offset = 2e-3;
-  p.lift = 1e-6;
-  auto grains = make_hex_packing(p);
-  for (auto& g : grains)
-    if (g.y > 10e-3) g.vy = -1.0;
-  grains.back().vx = 0.3;  // some shear, so that friction and rotation act
+  const auto grains = struck_packing();
   ElasticPlate plate(aluminium, {8, 3, 24e-3, 9e-3}, PlateEdges{EdgeCondition::free, EdgeCondition::clamped, sides, sides});
   GranularPlate run(grains, steel, plate, contacts, StepControl{tolerance});
   const double input = run.energies().mechanical();

@@ -1,7 +1,7 @@
 // Side walls and the static precompression of a hexagonal packing between them: a bead's bounce
 // on a wall against Hertz's rigid-wall closed forms and Coulomb's impulse ratio, a zig-zag column
 // between walls against its statically determinate forces, a wide packing against force balance
-// row by row, and a loaded packing whose contacts stick, stable at the interface's step and growing
+// row by row, and a loaded packing whose contacts stick, stable at the largest tolerance and growing
 // beyond the collective friction mode's limit.
 #include <gtest/gtest.h>
 
@@ -165,6 +165,31 @@ TEST(SideWalls, ZigZagColumnCarriesTheStaticallyDeterminateForces) {
   expect_at_rest(run);
 }
 
+// Bead `bead` of a relaxed packing struck at (0.2, -0.5) m/s and run for `duration`: the share of the
+// strike friction took, and the largest drift of the balance over the run against the strike (the
+// static state and the load's work included).
+struct StruckRun {
+  double friction_share;
+  double worst_balance;
+};
+StruckRun strike_and_run(GranularPlate& run, int bead, double duration) {
+  run.grains_mutable()[static_cast<std::size_t>(bead)].vy = -0.5;
+  run.grains_mutable()[static_cast<std::size_t>(bead)].vx = 0.2;
+  run.refresh_forces();
+  const double before = run.energies().balance(), struck = kinetic(run);
+  double worst = 0.0;
+  const double end = run.time() + duration;
+  while (run.time() < end) {
+    run.step(end - run.time());
+    worst = std::max(worst, std::abs(run.energies().balance() - before));
+  }
+  const StruckRun result{run.energies().friction_work / struck, worst / struck};
+  if (verbose)
+    std::printf("struck: friction took %.3g of the strike, balance within %.3g of it in %ld steps\n",
+                result.friction_share, result.worst_balance, run.steps());
+  return result;
+}
+
 // A hexagonal packing between walls under P on each bead of its top row: with the walls carrying no
 // vertical load at rest, the bonds between any two rows carry N P vertically, and so does the plate;
 // the walls push equally. A top-row bead on two beads (its row's contacts open) splits its load
@@ -200,21 +225,43 @@ TEST(SideWalls, HexagonalPackingCarriesItsLoadRowByRow) {
   expect_at_rest(run);
   // Struck, with friction along the walls and between beads: the balance closes (the static state
   // and the load's work included).
-  run.grains_mutable()[rows * columns - 3].vy = -0.5;
-  run.grains_mutable()[rows * columns - 3].vx = 0.2;
-  run.refresh_forces();
-  const double before = run.energies().balance(), struck = kinetic(run);
-  double worst = 0.0;
-  const double end = run.time() + 3e-5;
-  while (run.time() < end) {
-    run.step(end - run.time());
-    worst = std::max(worst, std::abs(run.energies().balance() - before));
+  const StruckRun struck = strike_and_run(run, rows * columns - 3, 3e-5);
+  EXPECT_GT(struck.friction_share, 0.1);
+  EXPECT_LT(struck.worst_balance, 1e-5);
+}
+
+// Walls hold a loaded packing whatever the grains' contact law (a DEM law, any tangential and
+// rolling part; the walls' own contact stays Hertz with Coulomb-tanh): the relaxation runs on the
+// normal law alone, so at rest the plate carries the load and the walls push equally, a history
+// spring starts unloaded and the packing stays at rest; struck, friction acts and the balance closes
+// with the springs' energy in the contacts' books.
+TEST(SideWalls, HoldALoadedPackingWithEveryGrainContactLaw) {
+  constexpr int rows = 3, columns = 3;
+  constexpr double load = 5.0, mu = 0.3;
+  const InterfaceContacts coulomb_tanh{mu, 1e3, 1.0, true};
+  using sedwave::forward::dem::ContactSpec;
+  ContactSpec hooke;
+  hooke.normal = "hooke";
+  hooke["kn"] = 1e7;
+  hooke.tangential = "coulomb_tanh";
+  hooke["friction"] = mu;
+  hooke["tanh_velocity_scale"] = 1e3;
+  const ContactSpec history = history_and_rolling(coulomb_tanh);
+  ContactSpec mindlin = grain_contact_spec(coulomb_tanh, steel);
+  mindlin.tangential = "mindlin";
+  mindlin.erase("tanh_velocity_scale");
+  for (const ContactSpec& spec : {hooke, history, mindlin}) {
+    InterfaceContacts contacts = coulomb_tanh;
+    contacts.grain_contact = spec;
+    auto [p, run] = loaded_packing(rows, columns, load, contacts, mu);
+    EXPECT_NEAR(run.plate_normal_force() / (columns * load), 1.0, 1e-4) << spec.normal << "+" << spec.tangential;
+    EXPECT_NEAR(run.left_wall_force() / run.right_wall_force(), 1.0, 1e-4) << spec.tangential;
+    EXPECT_GT(run.left_wall_force(), 0.1 * load) << spec.tangential;
+    expect_at_rest(run);
+    const StruckRun struck = strike_and_run(run, rows * columns - 2, 2e-5);
+    EXPECT_GT(struck.friction_share, 1e-3) << spec.tangential;
+    EXPECT_LT(struck.worst_balance, 1e-5) << spec.tangential;
   }
-  if (verbose)
-    std::printf("struck: friction took %.3g of the strike, balance within %.3g of it\n",
-                run.energies().friction_work / struck, worst / struck);
-  EXPECT_GT(run.energies().friction_work, 0.1 * struck);
-  EXPECT_LT(worst / struck, 1e-5);
 }
 
 // The loaded packing with friction, rebuilt from a relaxed one under `control`.
@@ -258,21 +305,20 @@ double growth(GranularPlate& run, int steps) {
   return most / given;
 }
 
-// The interface's step: its tolerance theta times its step limits (granular_plate.hpp, StepControl).
-// The one constant of the stable run: where a limit derived for the packing's collective modes
-// replaces the pair's in GranularPlate::current_limits, this test steps at it unchanged.
-constexpr double kStepFactor = 0.1;
+// The largest tolerance a scene accepts (granular_plate.hpp, StepControl): the step theta times the
+// interface's limits, those of the packing's collective modes under this scheme (dem/critical_step.hpp).
+constexpr double kLargestTolerance = 0.5;
 
 // A loaded packing whose contacts stick: Coulomb-tanh is then a dashpot c = mu k_s |F_n| at each
-// contact, and it binds the step (mu k_s F_n / m is about 2000 times the Hertz frequency here). The
+// contact, and it binds the step (mu k_s F_n / m is about 100 times the Hertz frequency here). The
 // forces see v_(n+1/2) + (h/2) a_n, for which a dashpot mode of rate lambda (an eigenvalue of
 // M^-1 C) is stable only for h < 1/lambda (the amplification matrix of v' = -lambda v has
 // determinant -h lambda / 2 and trace 1 - 3 h lambda / 2). The uniform spin, every bead turning alike,
 // slips each bead-bead contact at (a_i + a_j) w: its Rayleigh quotient R = sum c (a_i + a_j)^2 / sum I
 // bounds lambda_max from below (a hexagon's interior: 30/7 times a pair's rate), so h = 2/R grows
-// whatever the other modes do. At the interface's step the packing's kinetic energy never exceeds
+// whatever the other modes do. At the largest tolerance the packing's kinetic energy never exceeds
 // what it was given (friction only takes energy).
-TEST(StickingPacking, StableAtTheInterfacesStepAndGrowingBeyondTheUniformSpinsLimit) {
+TEST(StickingPacking, StableAtTheLargestToleranceAndGrowingBeyondTheUniformSpinsLimit) {
   constexpr int rows = 4, columns = 5;
   constexpr double load = 5.0, mu = 0.5, ks = 1e3;
   const InterfaceContacts sticky{mu, ks, 1.0, true};
@@ -287,23 +333,26 @@ TEST(StickingPacking, StableAtTheInterfacesStepAndGrowingBeyondTheUniformSpinsLi
     }
   }
   rate /= inertia;
-  GranularPlate stable = rebuilt(relaxed, sticky, mu, load, StepControl{kStepFactor});
-  const double step = kStepFactor * stable.current_limits().tightest();
+  GranularPlate stable = rebuilt(relaxed, sticky, mu, load, StepControl{kLargestTolerance});
+  const StepLimits limits = stable.current_limits();
+  const double step = kLargestTolerance * limits.tightest();
   const double stable_growth = growth(stable, 3000);
-  StepControl beyond{kStepFactor};
+  StepControl beyond{kLargestTolerance};
   beyond.fixed_step = 2.0 / rate;
   GranularPlate unstable = rebuilt(relaxed, sticky, mu, load, beyond);
   const double unstable_growth = growth(unstable, 300);
   if (verbose) {
-    std::printf("interface's step %.4g s = %.3f / R, friction limit %.4g s; growth %.3g there, %.3g at 2/R = %.4g s\n",
-                step, step * rate, stable.current_limits().friction, stable_growth, unstable_growth, 2.0 / rate);
-    // Fixed steps of theta times the interface's limit here, beyond the tolerances a scene accepts too.
-    for (const double theta : {0.45, 0.48, 0.49, 0.5, 0.55, 0.7, 1.0}) {
-      StepControl fixed{kStepFactor};
-      fixed.fixed_step = theta * stable.current_limits().tightest();
+    std::printf("step at theta = %.1f: %.4g s = %.4f / R (friction limit %.4g s = %.4f / R, Hertz %.4g s); growth "
+                "%.3g there, %.3g at 2/R = %.4g s\n",
+                kLargestTolerance, step, step * rate, limits.friction, limits.friction * rate, limits.hertz,
+                stable_growth, unstable_growth, 2.0 / rate);
+    // Fixed steps in multiples of 1/R, up to and beyond where the packing's fastest mode grows.
+    for (const double x : {0.3, 0.5, 0.6, 0.65, 0.7, 0.72, 0.75, 1.0}) {
+      StepControl fixed{kLargestTolerance};
+      fixed.fixed_step = x / rate;
       GranularPlate scan = rebuilt(relaxed, sticky, mu, load, fixed);
-      std::printf("step %.2f times the interface's limit = %.3f / R: kinetic energy %.3g times the given after 5000 "
-                  "steps\n", theta, fixed.fixed_step * rate, growth(scan, 5000));
+      std::printf("step %.2f / R = %.2f times the interface's limit: kinetic energy %.3g times the given after 5000 "
+                  "steps\n", x, fixed.fixed_step / limits.tightest(), growth(scan, 5000));
     }
   }
   EXPECT_LT(stable_growth, 1.01);

@@ -24,12 +24,9 @@
 #include <string>
 
 #include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/dem/critical_step.hpp"
 
 namespace sedwave::forward::dem {
-
-/// Critical step of velocity Verlet for an oscillator of natural frequency omega0 and damping rate
-/// beta = c/m (beta alone when omega0 = 0: a pure dashpot, h_c = 2/beta).
-[[nodiscard]] double verlet_critical_step(double omega0, double beta);
 
 struct TimeStepInputs {
   double lightest_mass;             ///< smallest free-grain mass

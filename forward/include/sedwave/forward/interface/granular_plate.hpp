@@ -5,7 +5,11 @@
 // Hertz dashpot between grains; one explicit velocity-Verlet step for grains and plate together with
 // a self-adaptive step (docs/interface.md).
 //
-// Contact laws are the DEM engine's parts (dem/contact/hertz.hpp, dem/contact/coulomb_tanh.hpp).
+// Contact laws are the DEM engine's parts: grain-grain contacts are a dem::ContactModel (any normal,
+// tangential and rolling law of dem/contact/laws.hpp, composed and evaluated by the engine's code,
+// in the plane z = 0), grain-plate contacts the Hertz and Coulomb-tanh parts
+// (dem/contact/hertz.hpp, dem/contact/coulomb_tanh.hpp); the step limits are
+// dem/critical_step.hpp's.
 // Grain-plate contact: a sphere on the deforming edge y = u_y(x), u_y interpolated with the edge's
 // linear shape functions at the grain's abscissa; the overlap is delta = r - (y_g - u_y(x_g)); the
 // force is the gradient of the Hertz energy (2/5) k delta^(5/2), k = (4/3) E*_gp sqrt(r), so it goes
@@ -23,6 +27,8 @@
 #include <optional>
 #include <vector>
 
+#include "sedwave/forward/dem/contact/contact_model.hpp"
+#include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/interface/hex_packing.hpp"
 #include "sedwave/forward/interface/side_walls.hpp"
 #include "sedwave/forward/plate/elastic_plate.hpp"
@@ -44,7 +50,16 @@ struct InterfaceContacts {
   double restitution = 1.0;          ///< grain-grain Hertz-Tsuji dashpot from e_n (1: none)
   bool rotation = true;              ///< integrate spins (false: spins stay zero)
   PlateContactModel plate_contact = PlateContactModel::interpolated;
+  /// The grain-grain contact as a DEM contact (any law of dem/contact/laws.hpp, with its keys); empty:
+  /// grain_contact_spec's default from the fields above. The grain-plate contact stays Hertz and
+  /// Coulomb-tanh with `friction` and `tanh_velocity_scale`.
+  std::optional<dem::ContactSpec> grain_contact{};
 };
+
+/// The grain-grain contact `contacts` describes: its grain_contact, or Hertz with the grains'
+/// youngs_modulus and poisson_ratio, the Tsuji dashpot of `restitution` (none at 1) and, with
+/// friction, Coulomb-tanh (friction, tanh_velocity_scale).
+[[nodiscard]] dem::ContactSpec grain_contact_spec(const InterfaceContacts& contacts, const GrainMaterial& grain);
 
 /// The Hertz modulus E* of a grain-plate contact: 1/E* = (1 - nu_g^2)/E_g + (1 - nu_p^2)/E_p
 /// (interpolated), or E_g/(1 - nu_g^2) (rigid_layers: the layer is rigid).
@@ -63,10 +78,11 @@ void check_grains_over_nodes(const std::vector<Grain>& grains, double element_wi
 /// point within each step; its grain-plate limits are eqs. 29a,b (docs/interface.md, "Two schemes").
 enum class Scheme { velocity_verlet, newmark_rk4 };
 
-/// dt = tolerance * min(the stability limits of the FE mesh, of every Hertz contact and of every
-/// Coulomb-tanh contact), each evaluated from the state at the start of the step.
+/// dt = tolerance * min(the stability limits of the FE mesh, of the Hertz contacts and of the
+/// Coulomb-tanh contacts), each evaluated from the state at the start of the step; the grain
+/// contacts' limits are those of a hexagonal packing's collective modes (dem/critical_step.hpp).
 struct StepControl {
-  double tolerance = 0.1;  ///< theta in (0, 0.5]: 0.5 leaves room for a packing's collective modes
+  double tolerance = 0.1;  ///< theta in (0, 0.5]
   double max_step = std::numeric_limits<double>::infinity();
   /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
   double fixed_step = 0.0;
@@ -78,11 +94,6 @@ struct StepControl {
   double reltol = 1e-10;
   int max_iterations = 100;
 };
-
-/// Velocity-Verlet (central-difference) limit of one oscillator m x'' = -k x - c x' with
-/// omega^2 = k/m, beta = c/m, the dashpot seeing the half-step velocity (docs/dem.md, "Numerics"):
-/// h_c = 4 / (beta + sqrt(beta^2 + 4 omega^2)); infinite when both are zero.
-[[nodiscard]] double oscillator_limit(double omega_squared, double beta);
 
 /// Each limit of the last step (infinite where no such contact exists) and the step taken.
 struct StepLimits {
@@ -163,8 +174,10 @@ class GranularPlate {
   /// exp(-dt/damping_time) after each step until the kinetic energy falls below `tolerance` times
   /// its largest value (or max_steps pass), then zeroes the velocities, the clock, the step and
   /// iteration counts and the energy books, so that the run starts from the static state. Friction
-  /// is off while relaxing: Coulomb-tanh carries no force at rest, so the static state is the same,
-  /// and the steps are not held to friction's limit. Returns the steps taken;
+  /// is off while relaxing (the grains' normal law alone; no Coulomb-tanh at the plate or the
+  /// walls): Coulomb-tanh and a regularised rolling torque carry no force at rest, so the static
+  /// state is the same, a tangential history spring starts from it unloaded, and the steps are not
+  /// held to friction's limits. Returns the steps taken;
   /// throws std::runtime_error when the packing is not at rest after max_steps.
   long relax(double damping_time, double tolerance, long max_steps);
   /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
@@ -189,8 +202,7 @@ class GranularPlate {
   /// Total normal force the grains exert on the left and on the right side wall (>= 0), at the last step.
   [[nodiscard]] double left_wall_force() const { return wall_force_[0]; }
   [[nodiscard]] double right_wall_force() const { return wall_force_[1]; }
-  /// Hertz effective modulus of grain-grain and grain-plate contacts.
-  [[nodiscard]] double grain_modulus() const { return grain_modulus_; }
+  /// Hertz effective modulus of grain-plate contacts.
   [[nodiscard]] double plate_contact_modulus() const { return plate_modulus_; }
   /// Largest contact radius sqrt(R delta) seen at the plate so far (compare with the element size).
   [[nodiscard]] double max_plate_contact_radius() const { return max_plate_contact_radius_; }
@@ -230,11 +242,19 @@ class GranularPlate {
   bool pairs_stale() const;
   /// with_elastic false: the contact forces on the plate alone in f_conservative_ and f_friction_.
   void compute_forces(double half_step, bool with_elastic = true);
-  void add_grain_pair(const Pair& p);
+  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot.
+  template <class Model>
+  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear);
+  template <class Model>
+  [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
   void add_plate_contact(int g);
+  /// The grain-plate normal law: the DEM's Hertz part with R* = r (a sphere on a flat) and no dashpot
+  /// (the paper's eq. 19a, either plate contact model's modulus).
+  [[nodiscard]] dem::HertzNormal plate_law() const { return {plate_modulus_, 0.0}; }
   void add_wall_contacts(int g);                           // side_walls.cpp
   void add_wall_energies(std::vector<double>& held) const;  // side_walls.cpp
-  void tighten_with_walls(StepLimits& limits) const;
+  /// The walls' Hertz and Coulomb-tanh limits into `limits`; returns the walls' largest friction rate.
+  double tighten_with_walls(StepLimits& limits, double collective_friction) const;
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
   [[nodiscard]] double contact_ceiling() const;
@@ -248,11 +268,14 @@ class GranularPlate {
   std::optional<plate::ElasticPlate> plate_;
   InterfaceContacts contacts_;
   StepControl control_;
-  double grain_modulus_ = 0.0;
+  dem::AnyContactModel grain_model_;
   double plate_modulus_ = 0.0;
-  double dashpot_alpha_ = 0.0;
 
   std::vector<Pair> pairs_;
+  std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
+  /// The tangential springs' energy now, and when the books were last zeroed: the friction's
+  /// dissipation is its work less their gain.
+  double tangential_energy_ = 0.0, tangential_energy_origin_ = 0.0;
   std::vector<double> x_at_build_;
   std::vector<double> y_at_build_;
   double skin_ = 0.0;
