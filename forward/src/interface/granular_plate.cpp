@@ -405,7 +405,7 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // Without friction or dashpots nothing reads them but a dashpot of zero: they are the velocities.
 void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   seen_.resize(grains_.size());
-  const bool velocity_forces = contacts_.friction > 0.0 || walls_.friction > 0.0 || dashpot_alpha_ > 0.0;
+  const bool velocity_forces = rubbing() || damped();
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
     if (!velocity_forces) {
@@ -472,6 +472,19 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   }
 }
 
+bool GranularPlate::rubbing() const {
+  const bool grain_law_rubs = std::visit([](const auto& model) { return std::decay_t<decltype(model)>::rotates; },
+                                         grain_model_);
+  return grain_law_rubs || contacts_.friction > 0.0 || walls_.friction > 0.0;
+}
+
+// The plate's and the walls' contacts have no dashpot; the grains' normal law has one where its
+// damping is positive at any overlap.
+bool GranularPlate::damped() const {
+  return std::visit([](const auto& model) { return model.normal.oscillator(1.0, 1.0, 1e-6).damping > 0.0; },
+                    grain_model_);
+}
+
 // Half a kick (h = dt/2). The kinetic energy changes by exactly h F . (v + v')/2 in a kick, so the
 // work of each non-conservative force is summed the same way and the energy balance closes to the
 // conservative forces' integration error alone.
@@ -480,8 +493,7 @@ void GranularPlate::kick(double h, bool second_half, double plate_drift) {
   // A kind of force that the scene does not have is exactly zero on every grain, and so is its work:
   // its sum is left out (three serial additions a grain that bound the loop).
   double friction_work = friction_work_, dashpot_work = dashpot_work_, drive_work = drive_work_;
-  const bool rubbing = contacts_.friction > 0.0 || walls_.friction > 0.0;
-  const bool damped = dashpot_alpha_ > 0.0;
+  const bool rubs = rubbing(), damps = damped();
   const bool driven = !loaded_.empty() || pulse_.has_value();
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     auto& g = grains_[i];
@@ -490,12 +502,12 @@ void GranularPlate::kick(double h, bool second_half, double plate_drift) {
     g.vx += h * (c.fx + f.fx + d.fx + w.fx) / g.mass;
     g.vy += h * (c.fy + f.fy + d.fy + w.fy) / g.mass;
     const double mx = 0.5 * (vx + g.vx), my = 0.5 * (vy + g.vy);
-    if (rubbing) friction_work -= h * (f.fx * mx + f.fy * my);
-    if (damped) dashpot_work -= h * (d.fx * mx + d.fy * my);
+    if (rubs) friction_work -= h * (f.fx * mx + f.fy * my);
+    if (damps) dashpot_work -= h * (d.fx * mx + d.fy * my);
     if (driven) drive_work += h * (w.fx * mx + w.fy * my);
     if (contacts_.rotation) {
       g.spin += h * (c.torque + f.torque) / g.inertia;
-      if (rubbing) friction_work -= h * f.torque * 0.5 * (spin + g.spin);
+      if (rubs) friction_work -= h * f.torque * 0.5 * (spin + g.spin);
     }
   }
   friction_work_ = friction_work, dashpot_work_ = dashpot_work, drive_work_ = drive_work;

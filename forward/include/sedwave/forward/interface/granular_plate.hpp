@@ -260,6 +260,10 @@ class GranularPlate {
   [[nodiscard]] double contact_ceiling() const;
   /// Half a kick of grains and plate; plate_drift > 0 then moves the plate by that step (kick_plate).
   void kick(double h, bool second_half, double plate_drift = 0.0);
+  /// Whether any force acting now can rub (friction, a tangential or rolling law) or damp (a dashpot in
+  /// the grains' normal law): without either no force reads the seen velocities and their works are 0.
+  [[nodiscard]] bool rubbing() const;
+  [[nodiscard]] bool damped() const;
   void kick_plate(double h, bool second_half, double drift);
   void book_plate_dofs();
   void drift_grains(double h);
