@@ -148,7 +148,8 @@ struct EvidenceOptions {
 };
 
 struct ModelEvidence {
-  /// "importance sampling", "adaptive cubature" or "parallel tempering": what gave log_evidence.
+  /// "importance sampling", "adaptive cubature" or "parallel tempering": what gave log_evidence; in a
+  /// comparison also "upper bound" (comparison.hpp, kUpperBoundMethod): log_evidence is then a bound.
   std::string method;
   /// Why importance sampling did not serve (then parallel tempering did); empty where it did.
   std::string fallback_reason;
