@@ -103,9 +103,7 @@ void integrate_refused(const Candidate& candidate, ComparedModel& compared, cons
       refused[c]->fallback_reason = reason;
     } else {
       refused[c]->fallback_reason = reason + "; " + integrated[c].fallback_reason;
-      // Its map's draws, weighted, stay as the column's samples: the band and the corner plot of a
-      // column that ends as a bound (upper_bounded) come from them.
-      refused[c]->samples = integrated[c].samples;
+      refused[c]->highest_drawn_log_likelihood = integrated[c].highest_drawn_log_likelihood;
     }
   }
 }
@@ -119,11 +117,11 @@ JobQueue::Job band_of(const Candidate& candidate, ComparedModel& compared, const
 }
 
 std::string formatted_bound(double bound, double reference) {
-  char text[256];
+  char text[512];
   std::snprintf(text, sizeof text,
                 "ln Z <= %.2f (the best fit's ln L: the prior integrates to 1), at least %.0f below the best "
                 "model's ln Z %.2f less 3 sd: no value below the bound changes the ranking, so tempering was not "
-                "run; the samples are adaptive cubature's map draws, weighted",
+                "run; the band and the samples are the best fit alone",
                 bound, reference - bound, reference);
   return text;
 }
@@ -144,11 +142,19 @@ double best_fast(const std::vector<ComparedModel>& models, bool widened) {
   return best;
 }
 
-/// The bound in place of tempering where it decides the ranking; false where tempering must run
-/// (no reference far enough above, or no draws for the band and the corner plot).
+/// The bound in place of tempering where it decides the ranking; false where tempering must run:
+/// no reference far enough above, no cubature's draws (more than its free parameters), or one of
+/// them above the best fit (then the fit is not the global maximum, and no bound). The band is the
+/// best fit's curve alone (one draw): there is no posterior to draw from.
 bool upper_bounded(ModelEvidence& e, const ComparedModel& m, double reference) {
   const double bound = -0.5 * m.fit.chi2;
-  if (!(bound < reference - kDecisiveGap) || e.samples.rows() == 0) return false;
+  if (!(bound < reference - kDecisiveGap) || !std::isfinite(e.highest_drawn_log_likelihood)) return false;
+  if (!(e.highest_drawn_log_likelihood <= bound + 1e-9 * std::abs(bound))) return false;
+  const std::vector<int> free = m.fit.fitted.free_indices();
+  e.samples.resize(1, std::ssize(free));
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    e.samples(0, static_cast<Eigen::Index>(j)) = m.fit.fitted.spec[static_cast<std::size_t>(free[j])].value;
+  }
   e.method = kUpperBoundMethod;
   e.log_evidence = bound;
   e.uncertainty = 0.0;

@@ -88,11 +88,13 @@ TEST(CompareModels, StatesABoundForAModelFarBelowAnother) {
     EXPECT_EQ(e->log_evidence, -0.5 * lattice.fit.chi2);
     EXPECT_FALSE(e->converged);  // a bound, never an estimate
     EXPECT_EQ(e->steps, 0);      // no tempering ran
+    EXPECT_LE(e->highest_drawn_log_likelihood, e->log_evidence);  // the cubature's draws: none above the fit
   }
   EXPECT_LT(lattice.evidence.log_evidence, edfm.evidence.log_evidence - 100.0);
   EXPECT_TRUE(ranking.converged());  // the ranking is decided
   EXPECT_EQ(ranking.best().model, "edfm");
-  EXPECT_EQ(lattice.band.frequency_hz.size(), curve_frequencies(data).size());  // from the cubature's draws
+  EXPECT_EQ(lattice.evidence.samples.rows(), 1);  // the band: the best fit's curve alone
+  EXPECT_EQ(lattice.band.frequency_hz.size(), curve_frequencies(data).size());
 
   const Ranking threaded = compare_models(data, candidates, quick(2));
   for (std::size_t i = 0; i < ranking.models.size(); ++i) {
