@@ -6,19 +6,24 @@
 # and evidence method from compare.json, then the machine's load (uptime).
 # Usage (repository root): bench/compare_builds.sh OLD_SEDWAVE NEW_SEDWAVE [RUNS=5]
 #   MODELS  the models compared (default the demo's lattice,edfm,biot-stoll)
+#   DATA    the observations (default the demo's data/field/zhou2009_regression.csv)
+#   SITE    the site file (default the demo's data/sites/medium_sand.toml; empty: the default priors)
 set -euo pipefail
 OLD="$1"
 NEW="$2"
 RUNS="${3:-5}"
 MODELS="${MODELS:-lattice,edfm,biot-stoll}"
+DATA="${DATA:-data/field/zhou2009_regression.csv}"
+SITE="${SITE-data/sites/medium_sand.toml}"
+SITE_OPTION=()
+[ -n "$SITE" ] && SITE_OPTION=(--site "$SITE")
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 
 run_once() {  # BUILD NAME RUN -> seconds on stdout
   local dir="$OUT/$2_r$3" code=0 start end
   start=$(date +%s.%N)
-  "$1" compare data/field/zhou2009_regression.csv --models "$MODELS" --site data/sites/medium_sand.toml \
-    --out "$dir" > "$dir.log" 2>&1 || code=$?
+  "$1" compare "$DATA" --models "$MODELS" "${SITE_OPTION[@]}" --out "$dir" > "$dir.log" 2>&1 || code=$?
   end=$(date +%s.%N)
   if [ "$code" -ne 0 ] && [ "$code" -ne 3 ]; then
     echo "$1 compare failed (exit $code):" >&2; cat "$dir.log" >&2; exit 1

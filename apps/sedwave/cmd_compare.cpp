@@ -113,6 +113,7 @@ inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
 /// "IS", "AC" or "PT": what gave an evidence.
 std::string method_code(const inversion::ModelEvidence& e) {
   if (e.method == "importance sampling") return "IS";
+  if (e.method == inversion::kUpperBoundMethod) return "UB";
   return e.method == "adaptive cubature" ? "AC" : "PT";
 }
 
@@ -129,15 +130,33 @@ void print_table(const inversion::Ranking& ranking) {
     const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
     const auto wide_rank = std::find(wide.begin(), wide.end(), order[r]) - wide.begin() + 1;
     const std::string method = method_code(row.evidence) + "/" + method_code(row.widened);
-    std::printf("%-4zu %-*s %3zu %9.4g %7.3g %9.4g %9.4g %10.2f +- %4.2f %8.2f %8.2g %10.2f %5ld %7s %8ld%s\n",
+    // A bound is printed as one ("<= value"), never as an estimate with an error.
+    char ln_z[400], bound[360];
+    if (row.evidence.method == inversion::kUpperBoundMethod) {
+      std::snprintf(bound, sizeof bound, "<= %.2f", row.evidence.log_evidence);
+      std::snprintf(ln_z, sizeof ln_z, "%18s", bound);
+    } else {
+      std::snprintf(ln_z, sizeof ln_z, "%10.2f +- %4.2f", row.evidence.log_evidence, row.evidence.uncertainty);
+    }
+    std::printf("%-4zu %-*s %3zu %9.4g %7.3g %9.4g %9.4g %s %8.2f %8.2g %10.2f %5ld %7s %8ld%s\n",
                 r + 1, name_width, row.model.c_str(), row.fit.fitted.free_indices().size(), row.fit.chi2,
-                row.fit.dof > 0 ? row.fit.chi2 / row.fit.dof : NAN, row.fit.aic, row.fit.bic,
-                row.evidence.log_evidence, row.evidence.uncertainty, row.evidence.log_evidence - best,
+                row.fit.dof > 0 ? row.fit.chi2 / row.fit.dof : NAN, row.fit.aic, row.fit.bic, ln_z,
+                row.evidence.log_evidence - best,
                 row.evidence.predictive_p, row.widened.log_evidence, static_cast<long>(wide_rank), method.c_str(),
-                row.evaluations, row.evidence.converged ? "" : "  (NOT CONVERGED)");
+                row.evaluations,
+                row.evidence.converged                                   ? ""
+                : row.evidence.method == inversion::kUpperBoundMethod ? "  (ln Z: an upper bound)"
+                                                                        : "  (NOT CONVERGED)");
   }
   std::printf("method (ln Z / ln Z x10): IS importance sampling around the fit, AC adaptive cubature over the priors' "
               "support, PT parallel tempering; evals: the model's evaluations in all (fit, evidence, band)\n");
+  const auto bounded = [](const inversion::ComparedModel& m) {
+    return m.evidence.method == inversion::kUpperBoundMethod || m.widened.method == inversion::kUpperBoundMethod;
+  };
+  if (std::any_of(rows.begin(), rows.end(), bounded)) {
+    std::printf("UB: an upper bound, ln Z <= the best fit's ln L (no estimate), stated where it lies over %.0f below "
+                "the best ln Z, so that no value below it changes the ranking\n", inversion::kDecisiveGap);
+  }
   for (std::size_t r = 0; r < order.size(); ++r) {
     const inversion::ComparedModel& row = rows[static_cast<std::size_t>(order[r])];
     for (const auto& [column, e] : {std::pair{"ln Z", &row.evidence}, std::pair{"ln Z x10", &row.widened}}) {
@@ -155,8 +174,9 @@ void print_table(const inversion::Ranking& ranking) {
       std::printf("the first two differ by %.2f in ln Z (uncertainty %.2f): these data cannot tell them apart\n", gap,
                   noise);
     } else {
-      std::printf("%s is preferred over %s by a factor e^%.1f in evidence\n", first.model.c_str(),
-                  second.model.c_str(), gap);
+      std::printf("%s is preferred over %s by a factor %se^%.1f in evidence\n", first.model.c_str(),
+                  second.model.c_str(), second.evidence.method == inversion::kUpperBoundMethod ? "of at least " : "",
+                  gap);
     }
   }
 }

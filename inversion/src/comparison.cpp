@@ -103,8 +103,64 @@ void integrate_refused(const Candidate& candidate, ComparedModel& compared, cons
       refused[c]->fallback_reason = reason;
     } else {
       refused[c]->fallback_reason = reason + "; " + integrated[c].fallback_reason;
+      refused[c]->highest_drawn_log_likelihood = integrated[c].highest_drawn_log_likelihood;
     }
   }
+}
+
+/// The posterior band of a model from its first column's draws.
+JobQueue::Job band_of(const Candidate& candidate, ComparedModel& compared, const ObservationSet& data) {
+  return [&candidate, &compared, &data](JobQueue&) {
+    compared.band = predictive_band(compared.model, *candidate.model, compared.fit, compared.evidence.samples,
+                                    curve_frequencies(data));
+  };
+}
+
+std::string formatted_bound(double bound, double reference) {
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "ln Z <= %.2f (the best fit's ln L: the prior integrates to 1), at least %.0f below the best "
+                "model's ln Z %.2f less 3 sd: no value below the bound changes the ranking, so tempering was not "
+                "run; the band and the samples are the best fit alone",
+                bound, reference - bound, reference);
+  return text;
+}
+
+/// Where ln Z needs no tempering because another model's is far above it: ln Z <= ln L_max (the
+/// prior integrates to 1 and L <= L_max everywhere, L_max the global search's best fit), and where
+/// that bound lies kDecisiveGap below the best ln Z that importance sampling or the cubature
+/// computed for the same column (less 3 of its standard errors), no value of this ln Z could change
+/// the ranking. The column then states the bound, labelled as such, not an estimate.
+
+/// The largest ln Z - 3 sd among the columns the fast paths served (-inf where none).
+double best_fast(const std::vector<ComparedModel>& models, bool widened) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const ComparedModel& m : models) {
+    const ModelEvidence& e = widened ? m.widened : m.evidence;
+    if (e.converged && e.method != "parallel tempering") best = std::max(best, e.log_evidence - 3.0 * e.uncertainty);
+  }
+  return best;
+}
+
+/// The bound in place of tempering where it decides the ranking; false where tempering must run:
+/// no reference far enough above, no cubature's draws (more than its free parameters), or one of
+/// them above the best fit (then the fit is not the global maximum, and no bound). The band is the
+/// best fit's curve alone (one draw): there is no posterior to draw from.
+bool upper_bounded(ModelEvidence& e, const ComparedModel& m, double reference) {
+  const double bound = -0.5 * m.fit.chi2;
+  if (!(bound < reference - kDecisiveGap) || !std::isfinite(e.highest_drawn_log_likelihood)) return false;
+  if (!(e.highest_drawn_log_likelihood <= bound + 1e-9 * std::abs(bound))) return false;
+  const std::vector<int> free = m.fit.fitted.free_indices();
+  e.samples.resize(1, std::ssize(free));
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    e.samples(0, static_cast<Eigen::Index>(j)) = m.fit.fitted.spec[static_cast<std::size_t>(free[j])].value;
+  }
+  e.method = kUpperBoundMethod;
+  e.log_evidence = bound;
+  e.uncertainty = 0.0;
+  e.converged = false;
+  e.advice = formatted_bound(bound, reference);
+  return true;
 }
 
 std::vector<int> order_by_evidence(const std::vector<ComparedModel>& models, bool widened) {
@@ -139,8 +195,11 @@ std::pair<std::vector<std::string>, std::vector<std::string>> sample_columns(con
 }
 
 bool Ranking::converged() const {
+  // A bound decides its model's rank (compare_models states it only where it lies far below another
+  // model's converged ln Z).
+  const auto decided = [](const ModelEvidence& e) { return e.converged || e.method == kUpperBoundMethod; };
   return std::all_of(models.begin(), models.end(),
-                     [](const ComparedModel& m) { return m.evidence.converged && m.widened.converged; });
+                     [&](const ComparedModel& m) { return decided(m.evidence) && decided(m.widened); });
 }
 
 Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>& candidates,
@@ -157,8 +216,9 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
   EvidenceOptions evidence = options.evidence;
   evidence.threads = std::max(1, options.threads / (2 * static_cast<int>(candidates.size())));
   // Per model: its fit, then both evidences by importance sampling where it applies, by adaptive
-  // cubature (both in one pass) where it does not and the model has few free parameters, then
-  // parallel tempering for each neither serves (the two side by side), then the band from the first.
+  // cubature (both in one pass) where it does not and the model has few free parameters; once every
+  // model is there, parallel tempering for each column neither serves (the two side by side) unless
+  // the bound ln Z <= ln L_max decides its rank; then the band from the first.
   JobQueue queue;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const Candidate& candidate = candidates[i];
@@ -180,31 +240,39 @@ Ranking compare_models(const ObservationSet& data, const std::vector<Candidate>&
           compared.evidence.fallback_reason = compared.widened.fallback_reason = "adaptive cubature asked for";
           integrate_refused(candidate, compared, data, wide, evidence, options);
         }
-        EvidenceOptions tempering = evidence;
-        tempering.method = EvidenceMethod::Tempering;
-        const auto band = [&candidate, &compared, &data](JobQueue&) {
-          compared.band = predictive_band(compared.model, *candidate.model, compared.fit, compared.evidence.samples,
-                                          curve_frequencies(data));
-        };
-        if (needs_tempering(compared.widened, evidence)) {
-          after.add([&candidate, &compared, &data, &options, tempering, wide](JobQueue&) {
-            compared.widened = fall_back(compared.widened, evidence_of(candidate, compared, data, wide, tempering,
-                                                                       options, widened_stage()));
-          });
-        }
-        if (needs_tempering(compared.evidence, evidence)) {
-          after.add([&candidate, &compared, &data, &options, tempering, band](JobQueue& then) {
-            compared.evidence = fall_back(compared.evidence, evidence_of(candidate, compared, data, candidate.priors,
-                                                                         tempering, options, "evidence"));
-            then.add(band);
-          });
-        } else {
-          after.add(band);
-        }
+        if (!needs_tempering(compared.evidence, evidence)) after.add(band_of(candidate, compared, data));
       });
     });
   }
   queue.run(options.threads);
+  // Then tempering for the columns neither fast path served, unless a bound decides their rank.
+  // This waits for every model's fast paths, so that what decides is the same for any thread count.
+  EvidenceOptions tempering = evidence;
+  tempering.method = EvidenceMethod::Tempering;
+  const double reference[2] = {best_fast(ranking.models, false), best_fast(ranking.models, true)};
+  JobQueue fallbacks;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const Candidate& candidate = candidates[i];
+    ComparedModel& compared = ranking.models[i];
+    if (needs_tempering(compared.widened, evidence) && !upper_bounded(compared.widened, compared, reference[1])) {
+      fallbacks.add([&candidate, &compared, &data, &options, tempering](JobQueue&) {
+        const std::vector<Prior> wide = widened(candidate.priors, kPriorWidening);
+        compared.widened = fall_back(compared.widened, evidence_of(candidate, compared, data, wide, tempering,
+                                                                   options, widened_stage()));
+      });
+    }
+    if (!needs_tempering(compared.evidence, evidence)) continue;
+    if (upper_bounded(compared.evidence, compared, reference[0])) {
+      fallbacks.add(band_of(candidate, compared, data));
+      continue;
+    }
+    fallbacks.add([&candidate, &compared, &data, &options, tempering](JobQueue& then) {
+      compared.evidence = fall_back(compared.evidence, evidence_of(candidate, compared, data, candidate.priors,
+                                                                   tempering, options, "evidence"));
+      then.add(band_of(candidate, compared, data));
+    });
+  }
+  fallbacks.run(options.threads);
   for (ComparedModel& m : ranking.models) m.evaluations = model_evaluations(m, m.evaluations);
   ranking.order = order_by_evidence(ranking.models, false);
   ranking.order_widened = order_by_evidence(ranking.models, true);

@@ -1004,6 +1004,7 @@ std::vector<ModelEvidence> cubature_integrated_evidence(const ObservationSet& da
     e.pareto_k = w.pareto_k;
     e.effective_draws = w.effective_draws;
     e.evaluations = static_cast<int>(run.evaluations) + pilot.evaluations + drawn.evaluations;
+    e.highest_drawn_log_likelihood = std::max(pilot.log_likelihood.maxCoeff(), drawn.log_likelihood.maxCoeff());
     const double gap = std::abs(w.log_evidence - c.log_evidence);
     const double combined = std::hypot(w.uncertainty, std::max(c.uncertainty, kCubatureErrorFloor));
     if (!run.converged) {

@@ -120,6 +120,9 @@ sedwave_cli_case(compare.threads_must_be_a_count 2 "--threads: Value -1 not in r
 # The same two runs check the ranking line, the posterior bands and the plots.
 add_test(NAME cli.compare.threads_give_the_same_results
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/compare_threads_agree.sh $<TARGET_FILE:sedwave> ${OBS} ${CLI_OUT}/compare_threads)
+# A model far below another (the lattice on EDFM's data) gets its ln Z as a labelled upper bound.
+add_test(NAME cli.compare.states_a_bound_far_below
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/compare_states_a_bound.sh $<TARGET_FILE:sedwave> ${CLI_OUT}/compare_bound)
 # A combination made of fixed parameters only (c0 with d from --phi and kappa from --depth) is known
 # exactly, and checked for plausibility like a fitted value.
 sedwave_cli_case(invert.fixed_combination_is_checked 3 "! c0 = 409.3 is below the physical range"

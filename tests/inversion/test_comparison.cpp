@@ -71,6 +71,39 @@ TEST(CompareModels, RanksTheModelThatMadeTheDataFirstWithOneCall) {
   EXPECT_EQ(threaded.order, ranking.order);
 }
 
+// A model that does not describe the data at all (the lattice's chi^2 on EDFM's data is in the
+// thousands) has ln Z <= ln L_max = -chi^2_min / 2, since the prior integrates to 1. Where that bound
+// lies far below a model's converged ln Z it decides the ranking, and the comparison states it,
+// labelled as a bound, instead of running tempering; the same on 1 and on 2 threads.
+TEST(CompareModels, StatesABoundForAModelFarBelowAnother) {
+  const ObservationSet data = edfm_data();
+  const std::vector<Candidate> candidates{make_candidate("lattice"), make_candidate("edfm")};
+  const Ranking ranking = compare_models(data, candidates, quick(1));
+  const ComparedModel& lattice = ranking.models[0];
+  const ComparedModel& edfm = ranking.models[1];
+  ASSERT_GT(lattice.fit.chi2, 1000.0);
+  ASSERT_TRUE(edfm.evidence.converged);
+  for (const ModelEvidence* e : {&lattice.evidence, &lattice.widened}) {
+    EXPECT_EQ(e->method, kUpperBoundMethod);
+    EXPECT_EQ(e->log_evidence, -0.5 * lattice.fit.chi2);
+    EXPECT_FALSE(e->converged);  // a bound, never an estimate
+    EXPECT_EQ(e->steps, 0);      // no tempering ran
+    EXPECT_LE(e->highest_drawn_log_likelihood, e->log_evidence);  // the cubature's draws: none above the fit
+  }
+  EXPECT_LT(lattice.evidence.log_evidence, edfm.evidence.log_evidence - 100.0);
+  EXPECT_TRUE(ranking.converged());  // the ranking is decided
+  EXPECT_EQ(ranking.best().model, "edfm");
+  EXPECT_EQ(lattice.evidence.samples.rows(), 1);  // the band: the best fit's curve alone
+  EXPECT_EQ(lattice.band.frequency_hz.size(), curve_frequencies(data).size());
+
+  const Ranking threaded = compare_models(data, candidates, quick(2));
+  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
+    EXPECT_EQ(threaded.models[i].evidence.log_evidence, ranking.models[i].evidence.log_evidence);
+    EXPECT_EQ(threaded.models[i].widened.log_evidence, ranking.models[i].widened.log_evidence);
+    EXPECT_EQ(threaded.models[i].evidence.method, ranking.models[i].evidence.method);
+  }
+}
+
 TEST(CompareModels, RefusesNoModelsAndPriorsThatDoNotMatch) {
   EXPECT_THROW((void)compare_models(edfm_data(), {}), std::invalid_argument);
   Candidate broken = make_candidate("edfm");

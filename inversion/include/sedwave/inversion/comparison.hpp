@@ -12,7 +12,9 @@
 //   ranking.best().model  // the name of the model ranked first
 //
 // Both evidences come from one importance-sampling pass around the fit where its diagnostics
-// allow, from parallel tempering where they do not (posterior.hpp, importance_sampled_evidence).
+// allow, from adaptive cubature or parallel tempering where they do not (posterior.hpp,
+// importance_sampled_evidence). A model whose ln Z cannot reach another's (its best fit's ln L lies
+// kDecisiveGap below it) gets that bound instead of tempering, labelled as a bound (kUpperBoundMethod).
 // The work runs as jobs on `threads` threads; each job writes only its own results and each
 // sampler has its own seeded random stream, so the ranking is the same, bit for bit, for any
 // thread count.
@@ -44,6 +46,13 @@ struct ComparisonOptions {
 
 /// How much wider the priors of the second ranking are.
 inline constexpr double kPriorWidening = 10.0;
+
+/// ModelEvidence::method of a column that states an upper bound on ln Z (the best fit's ln L) in
+/// place of an estimate: only where it lies far below another model's ln Z (docs/inversion.md).
+inline constexpr const char* kUpperBoundMethod = "upper bound";
+/// How far (in ln Z) below the best ln Z less 3 of its sd, among those importance sampling or
+/// adaptive cubature computed, the bound must lie to be stated.
+inline constexpr double kDecisiveGap = 100.0;
 
 struct ComparedModel {
   std::string label;                ///< the candidate's

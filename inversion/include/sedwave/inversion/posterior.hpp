@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -148,7 +149,8 @@ struct EvidenceOptions {
 };
 
 struct ModelEvidence {
-  /// "importance sampling", "adaptive cubature" or "parallel tempering": what gave log_evidence.
+  /// "importance sampling", "adaptive cubature" or "parallel tempering": what gave log_evidence; in a
+  /// comparison also "upper bound" (comparison.hpp, kUpperBoundMethod): log_evidence is then a bound.
   std::string method;
   /// Why importance sampling did not serve (then parallel tempering did); empty where it did.
   std::string fallback_reason;
@@ -178,6 +180,9 @@ struct ModelEvidence {
   /// Likelihood evaluations: importance sampling's (shared by every prior set it integrated at
   /// once) plus parallel tempering's where it ran.
   int evaluations = 0;
+  /// The largest ln L among adaptive cubature's map draws (-inf where it did not run): above the
+  /// best fit's -chi^2/2, the fit missed the global maximum.
+  double highest_drawn_log_likelihood = -std::numeric_limits<double>::infinity();
   double wall_seconds = 0.0;
   /// Equally weighted posterior draws: resampled from the importance draws, or the beta = 1
   /// ensemble's pooled kept draws x free parameters, values [unit] (as
