@@ -7,7 +7,10 @@
 // cells, whose difference is printed as the reference's own error. Beside it, model_evidence's
 // default (importance sampling where its diagnostics allow) with its seed.
 //
-//   build/bin/bench_field_evidence_quadrature [MODELS=biot-stoll,edfm] [n=120]
+//   build/bin/bench_field_evidence_quadrature [MODELS=biot-stoll,edfm] [n=120] [SITE=data/sites/medium_sand.toml]
+//
+// SITE "none" integrates under the default priors (log-uniform over physical ranges), as
+// examples/12-own-model and `compare` without --site do.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -75,10 +78,10 @@ double log_integral(const sampling::PriorAndLikelihood& f, const Grid& box, int 
   return peak + std::log(sum * volume);
 }
 
-void run(const std::string& spec, const inversion::ObservationSet& data, int n) {
+void run(const std::string& spec, const inversion::ObservationSet& data, int n, const std::string& site) {
   inversion::ModelSetup setup;
   setup.model = spec;
-  setup.site_file = "data/sites/medium_sand.toml";
+  if (site != "none") setup.site_file = site;
   setup.shared = true;
   const inversion::Candidate candidate = inversion::make_candidate(setup);
   const inversion::FitResult best = inversion::fit(data, *candidate.model, candidate.parameters, kFitOptions);
@@ -130,8 +133,9 @@ void run(const std::string& spec, const inversion::ObservationSet& data, int n) 
 int main(int argc, char** argv) {
   const std::string models = argc > 1 ? argv[1] : "biot-stoll,edfm";
   const int n = argc > 2 ? std::atoi(argv[2]) : 120;
+  const std::string site = argc > 3 ? argv[3] : "data/sites/medium_sand.toml";
   const inversion::ObservationSet data = inversion::read_observation_csv("data/field/zhou2009_regression.csv");
   std::stringstream list(models);
-  for (std::string spec; std::getline(list, spec, ',');) run(spec, data, n);
+  for (std::string spec; std::getline(list, spec, ',');) run(spec, data, n, site);
   return 0;
 }

@@ -106,12 +106,12 @@ int main(int argc, char** argv) {
   check("constant-q chi2", own.fit.chi2, 4121.0, 2.0);
   check("biot-stoll chi2", biot.fit.chi2, 43.82, 0.05);
   check("biot-stoll wood_speed [m/s]", inversion::by_name(biot.fit.derived, "wood_speed").value, 1577.8, 0.5);
-  // Monte Carlo evidences with a fixed seed: this build repeats them exactly, another compiler or
-  // library draws other samples. The difference of two runs has sqrt(2) standard errors, so 4 of
-  // those: a correct run fails about once in 10^4.
+  // Evidences within 4 of their stated errors (sqrt(2) of them: the expected values carry errors of
+  // their own): constant-q's from an earlier run, Biot-Stoll's from brute-force quadrature
+  // (bench_field_evidence_quadrature biot-stoll 100 none: -34.0918).
   const double four_sigma = 4.0 * std::numbers::sqrt2;
   check("constant-q ln Z", own.evidence.log_evidence, -2071.07, four_sigma * own.evidence.uncertainty);
-  check("biot-stoll ln Z", biot.evidence.log_evidence, -34.34, four_sigma * biot.evidence.uncertainty);
+  check("biot-stoll ln Z", biot.evidence.log_evidence, -34.09, four_sigma * biot.evidence.uncertainty);
   check("biot-stoll ranked first", ranking.best().model == "biot-stoll" ? 1.0 : 0.0, 1.0, 0.0);
   check("every evidence converged", ranking.converged() ? 1.0 : 0.0, 1.0, 0.0);
   std::printf("%s\n", failures == 0 ? "all checks passed" : "SOME CHECKS FAILED");
