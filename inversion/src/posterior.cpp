@@ -684,6 +684,21 @@ constexpr double kMaxAcrossSpread = 2.0;
 /// The resampled posterior draws' own stream.
 constexpr std::uint64_t kResampleStream = 0x9E3779B97F4A7C15ULL;
 
+/// From importance-weighted draws (ln-parameters, normalised ln weights): the predictive p (the
+/// weighted chance of a chi^2 above each draw's) and the posterior draws [SI], resampled.
+void finish_from_weighted_draws(ModelEvidence& e, const Eigen::MatrixXd& draws, const Eigen::VectorXd& log_likelihood,
+                                const Eigen::VectorXd& log_weights, double n, const EvidenceOptions& options) {
+  double p_sum = 0.0;
+  for (Eigen::Index i = 0; i < draws.rows(); ++i) {
+    if (std::isfinite(log_weights(i))) p_sum += std::exp(log_weights(i)) * upper_incomplete_gamma(0.5 * n, -log_likelihood(i));
+  }
+  e.predictive_p = p_sum;
+  if (std::isfinite(log_weights.maxCoeff())) {
+    sampling::RandomStream random(options.seed ^ kResampleStream);
+    e.samples = sampling::resample(draws, log_weights, options.posterior_draws, random).array().exp().matrix();
+  }
+}
+
 /// Why the linearisation at the fit cannot centre the proposal for these priors ("" where it can).
 std::string linearisation_refusal(const Setup& s, const FitResult& best, const Eigen::MatrixXd& precision,
                                   const std::vector<Prior>& priors) {
@@ -826,15 +841,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
                 : w.slab_axis == sampling::kSlabAlongCombination ? std::string(" (one along a combination of parameters)")
                                                                  : std::string()) +
                formatted(", Pareto k-hat %.2f, %.0f effective draws", w.pareto_k, w.effective_draws);
-    double p_sum = 0.0;
-    for (Eigen::Index i = 0; i < run.draws.rows(); ++i) {
-      if (std::isfinite(w.log_weights(i))) p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -run.log_likelihood(i));
-    }
-    e.predictive_p = p_sum;
-    if (std::isfinite(w.log_weights.maxCoeff())) {
-      sampling::RandomStream random(options.seed ^ kResampleStream);
-      e.samples = sampling::resample(run.draws, w.log_weights, options.posterior_draws, random).array().exp().matrix();
-    }
+    finish_from_weighted_draws(e, run.draws, run.log_likelihood, w.log_weights, n, options);
   }
   const double seconds = seconds_since(started);
   for (ModelEvidence& e : out) e.wall_seconds = seconds;
@@ -1023,17 +1030,7 @@ std::vector<ModelEvidence> cubature_integrated_evidence(const ObservationSet& da
                          static_cast<double>(run.evaluations), static_cast<double>(drawn.draws.rows()), w.log_evidence) +
                formatted(" +- %.3f (Pareto k-hat %.2f, %.0f effective draws)", w.uncertainty, w.pareto_k,
                          w.effective_draws);
-    double p_sum = 0.0;
-    for (Eigen::Index i = 0; i < drawn.draws.rows(); ++i) {
-      if (std::isfinite(w.log_weights(i))) {
-        p_sum += std::exp(w.log_weights(i)) * upper_incomplete_gamma(0.5 * n, -drawn.log_likelihood(i));
-      }
-    }
-    e.predictive_p = p_sum;
-    if (std::isfinite(w.log_weights.maxCoeff())) {
-      sampling::RandomStream random(options.seed ^ kResampleStream);
-      e.samples = sampling::resample(drawn.draws, w.log_weights, options.posterior_draws, random).array().exp().matrix();
-    }
+    finish_from_weighted_draws(e, drawn.draws, drawn.log_likelihood, w.log_weights, n, options);
   }
   const double seconds = seconds_since(started);
   for (ModelEvidence& e : out) e.wall_seconds = seconds;
