@@ -54,8 +54,8 @@ struct Tally {
     const double d = e.log_evidence - q.log_evidence;
     ++sets;
     within += std::abs(d) <= 2.0 * e.uncertainty;
-    importance += e.method == "importance sampling";
-    cubature += e.method == "adaptive cubature";
+    importance += e.method == inversion::kImportanceSamplingMethod;
+    cubature += e.method == inversion::kCubatureMethod;
     sum += d;
     sum_squares += d * d;
     stated += e.uncertainty;

@@ -79,7 +79,7 @@ inline CalibrationResult run_calibration_set(unsigned seed, int index, int steps
     options.seed = seed + static_cast<unsigned>(index);
     const inversion::ModelEvidence e = inversion::model_evidence(data, *frame, best, priors, fit_options, options);
     r.converged = e.converged;
-    r.importance = e.method == "importance sampling";
+    r.importance = e.method == inversion::kImportanceSamplingMethod;
     samples = e.samples;
   } else {
     const inversion::PosteriorResult posterior = inversion::sample_posterior(

@@ -112,9 +112,9 @@ inversion::Candidate prepare(const std::string& spec, const CompareOptions& o) {
 
 /// "IS", "AC" or "PT": what gave an evidence.
 std::string method_code(const inversion::ModelEvidence& e) {
-  if (e.method == "importance sampling") return "IS";
+  if (e.method == inversion::kImportanceSamplingMethod) return "IS";
   if (e.method == inversion::kUpperBoundMethod) return "UB";
-  return e.method == "adaptive cubature" ? "AC" : "PT";
+  return e.method == inversion::kCubatureMethod ? "AC" : "PT";
 }
 
 void print_table(const inversion::Ranking& ranking) {

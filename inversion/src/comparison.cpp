@@ -58,7 +58,7 @@ ModelEvidence evidence_of(const Candidate& candidate, const ComparedModel& compa
 /// sampling's reason for the cubature).
 bool needs_tempering(const ModelEvidence& e, const EvidenceOptions& options) {
   return options.method == EvidenceMethod::Tempering ||
-         (!e.fallback_reason.empty() && e.method != "adaptive cubature");  // Cubature: where it failed
+         (!e.fallback_reason.empty() && e.method != kCubatureMethod);  // Cubature: where it failed
 }
 
 /// Tempering's result for a column that importance sampling refused, saying why.
@@ -72,7 +72,7 @@ ModelEvidence fall_back(const ModelEvidence& refused, ModelEvidence tempered) {
 long model_evaluations(const ComparedModel& m, long shared) {
   long total = m.fit_evaluations + shared + m.band.draws;
   for (const ModelEvidence* e : {&m.evidence, &m.widened}) {
-    if (e->method == "parallel tempering") total += e->evaluations;
+    if (e->method == kTemperingMethod) total += e->evaluations;
   }
   return total;
 }
@@ -126,22 +126,21 @@ std::string formatted_bound(double bound, double reference) {
   return text;
 }
 
-/// Where ln Z needs no tempering because another model's is far above it: ln Z <= ln L_max (the
-/// prior integrates to 1 and L <= L_max everywhere, L_max the global search's best fit), and where
-/// that bound lies kDecisiveGap below the best ln Z that importance sampling or the cubature
-/// computed for the same column (less 3 of its standard errors), no value of this ln Z could change
-/// the ranking. The column then states the bound, labelled as such, not an estimate.
-
 /// The largest ln Z - 3 sd among the columns the fast paths served (-inf where none).
 double best_fast(const std::vector<ComparedModel>& models, bool widened) {
   double best = -std::numeric_limits<double>::infinity();
   for (const ComparedModel& m : models) {
     const ModelEvidence& e = widened ? m.widened : m.evidence;
-    if (e.converged && e.method != "parallel tempering") best = std::max(best, e.log_evidence - 3.0 * e.uncertainty);
+    if (e.converged && e.method != kTemperingMethod) best = std::max(best, e.log_evidence - 3.0 * e.uncertainty);
   }
   return best;
 }
 
+/// Where ln Z needs no tempering because another model's is far above it: ln Z <= ln L_max (the
+/// prior integrates to 1 and L <= L_max everywhere, L_max the global search's best fit), and where
+/// that bound lies kDecisiveGap below the best ln Z that importance sampling or the cubature
+/// computed for the same column (less 3 of its standard errors), no value of this ln Z could change
+/// the ranking. The column then states the bound, labelled as such, not an estimate.
 /// The bound in place of tempering where it decides the ranking; false where tempering must run:
 /// no reference far enough above, no cubature's draws (more than its free parameters), or one of
 /// them above the best fit (then the fit is not the global maximum, and no bound). The band is the

@@ -619,7 +619,7 @@ ModelEvidence tempered_evidence(const ObservationSet& data, const sediment::Sedi
   e.evaluations = run.evaluations + kPilotDraws;
   e.samples = sampling::pooled_samples(run.levels[0].chains).array().exp().matrix();
   e.wall_seconds = seconds_since(started);
-  e.method = "parallel tempering";
+  e.method = kTemperingMethod;
   return e;
 }
 
@@ -802,7 +802,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     log_likelihood = density.log_likelihood;
     out[p].fallback_reason =
         no_jacobian.empty() ? linearisation_refusal(s, best, precision, prior_sets[p]) : no_jacobian;
-    out[p].method = "importance sampling";
+    out[p].method = kImportanceSamplingMethod;
     if (!out[p].fallback_reason.empty()) continue;
     log_priors.push_back(density.log_prior);
     sampled.push_back(p);
@@ -1005,7 +1005,7 @@ std::vector<ModelEvidence> cubature_integrated_evidence(const ObservationSet& da
     const sampling::CubatureEstimate& c = run.priors[p];
     const sampling::ImportanceEstimate& w = drawn.priors[p];
     ModelEvidence& e = out[p];
-    e.method = "adaptive cubature";
+    e.method = kCubatureMethod;
     e.log_evidence = c.log_evidence;
     e.uncertainty = std::max(c.uncertainty, kCubatureErrorFloor);
     e.pareto_k = w.pareto_k;

@@ -148,9 +148,14 @@ struct EvidenceOptions {
   std::function<void(const std::string&)> progress = nullptr;  ///< as PosteriorOptions::progress
 };
 
+/// ModelEvidence::method: what gave log_evidence.
+inline constexpr const char* kImportanceSamplingMethod = "importance sampling";
+inline constexpr const char* kCubatureMethod = "adaptive cubature";
+inline constexpr const char* kTemperingMethod = "parallel tempering";
+
 struct ModelEvidence {
-  /// "importance sampling", "adaptive cubature" or "parallel tempering": what gave log_evidence; in a
-  /// comparison also "upper bound" (comparison.hpp, kUpperBoundMethod): log_evidence is then a bound.
+  /// kImportanceSamplingMethod, kCubatureMethod or kTemperingMethod; in a comparison also
+  /// kUpperBoundMethod (comparison.hpp): log_evidence is then a bound.
   std::string method;
   /// Why importance sampling did not serve (then parallel tempering did); empty where it did.
   std::string fallback_reason;
