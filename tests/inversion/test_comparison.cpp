@@ -35,6 +35,18 @@ ComparisonOptions quick(int threads) {
   return options;
 }
 
+/// The same ranking, bit for bit, from another thread count (the jobs finish in another order).
+void expect_the_same_ranking(const Ranking& threaded, const Ranking& ranking) {
+  ASSERT_EQ(threaded.models.size(), ranking.models.size());
+  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
+    EXPECT_EQ(threaded.models[i].evidence.log_evidence, ranking.models[i].evidence.log_evidence);
+    EXPECT_EQ(threaded.models[i].widened.log_evidence, ranking.models[i].widened.log_evidence);
+    EXPECT_EQ(threaded.models[i].evidence.method, ranking.models[i].evidence.method);
+    EXPECT_EQ(threaded.models[i].fit.chi2, ranking.models[i].fit.chi2);
+  }
+  EXPECT_EQ(threaded.order, ranking.order);
+}
+
 TEST(CompareModels, RanksTheModelThatMadeTheDataFirstWithOneCall) {
   const ObservationSet data = edfm_data();
   Site site;  // what a site file would give: porosity 0.42 +- 0.03
@@ -61,14 +73,7 @@ TEST(CompareModels, RanksTheModelThatMadeTheDataFirstWithOneCall) {
   EXPECT_NE(edfm.priors.front().find("(site file site.toml)"), std::string::npos);
   EXPECT_EQ(edfm.band.frequency_hz.size(), curve_frequencies(data).size());
 
-  // The same ranking, bit for bit, when three threads share the jobs (they finish in another order).
-  const Ranking threaded = compare_models(data, candidates, quick(3));
-  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
-    EXPECT_EQ(threaded.models[i].evidence.log_evidence, ranking.models[i].evidence.log_evidence);
-    EXPECT_EQ(threaded.models[i].widened.log_evidence, ranking.models[i].widened.log_evidence);
-    EXPECT_EQ(threaded.models[i].fit.chi2, ranking.models[i].fit.chi2);
-  }
-  EXPECT_EQ(threaded.order, ranking.order);
+  expect_the_same_ranking(compare_models(data, candidates, quick(3)), ranking);
 }
 
 // A model that does not describe the data at all (the lattice's chi^2 on EDFM's data is in the
@@ -96,12 +101,7 @@ TEST(CompareModels, StatesABoundForAModelFarBelowAnother) {
   EXPECT_EQ(lattice.evidence.samples.rows(), 1);  // the band: the best fit's curve alone
   EXPECT_EQ(lattice.band.frequency_hz.size(), curve_frequencies(data).size());
 
-  const Ranking threaded = compare_models(data, candidates, quick(2));
-  for (std::size_t i = 0; i < ranking.models.size(); ++i) {
-    EXPECT_EQ(threaded.models[i].evidence.log_evidence, ranking.models[i].evidence.log_evidence);
-    EXPECT_EQ(threaded.models[i].widened.log_evidence, ranking.models[i].widened.log_evidence);
-    EXPECT_EQ(threaded.models[i].evidence.method, ranking.models[i].evidence.method);
-  }
+  expect_the_same_ranking(compare_models(data, candidates, quick(2)), ranking);
 }
 
 TEST(CompareModels, RefusesNoModelsAndPriorsThatDoNotMatch) {
