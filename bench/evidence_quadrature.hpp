@@ -22,9 +22,10 @@ struct Box {
 };
 
 // ln of the integral of exp(f) over the box by the midpoint rule on n x n cells; with `keep`, also
-// the box of cells within `window` of the largest value (widened by two cells).
+// the box of cells within `window` of the largest value (widened by two cells); with `marginals`,
+// the integrand summed over the other axis, per cell of each axis (relative to the largest cell).
 inline double log_integral(const sampling::PriorAndLikelihood& f, const Box& box, int n, Box* keep = nullptr,
-                    double window = 60.0) {
+                    double window = 60.0, std::vector<double>* marginals = nullptr) {
   const double h0 = (box.hi[0] - box.lo[0]) / n, h1 = (box.hi[1] - box.lo[1]) / n;
   std::vector<double> values(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
   double peak = -std::numeric_limits<double>::infinity();
@@ -40,10 +41,15 @@ inline double log_integral(const sampling::PriorAndLikelihood& f, const Box& box
   }
   double sum = 0.0;
   int lo_i = n, hi_i = -1, lo_j = n, hi_j = -1;
+  if (marginals) marginals[0].assign(static_cast<std::size_t>(n), 0.0), marginals[1].assign(static_cast<std::size_t>(n), 0.0);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double v = values[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
       sum += std::exp(v - peak);
+      if (marginals) {
+        marginals[0][static_cast<std::size_t>(i)] += std::exp(v - peak);
+        marginals[1][static_cast<std::size_t>(j)] += std::exp(v - peak);
+      }
       if (v >= peak - window) {
         lo_i = std::min(lo_i, i), hi_i = std::max(hi_i, i), lo_j = std::min(lo_j, j), hi_j = std::max(hi_j, j);
       }
@@ -58,6 +64,45 @@ inline double log_integral(const sampling::PriorAndLikelihood& f, const Box& box
   return peak + std::log(sum * h0 * h1);
 }
 
+// The shares of the mass of separated modes of a marginal (cells in order): a local maximum is a
+// mode of its own where the marginal between it and every higher mode falls below half its
+// height; the modes are divided at the lowest cell between neighbours. One mode: {1}.
+inline std::vector<double> mode_shares(const std::vector<double>& m) {
+  const auto n = static_cast<std::ptrdiff_t>(m.size());
+  std::vector<std::ptrdiff_t> peaks;
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    if ((i == 0 || m[static_cast<std::size_t>(i)] > m[static_cast<std::size_t>(i - 1)]) &&
+        (i == n - 1 || m[static_cast<std::size_t>(i)] >= m[static_cast<std::size_t>(i + 1)])) {
+      peaks.push_back(i);
+    }
+  }
+  std::sort(peaks.begin(), peaks.end(), [&](auto a, auto b) { return m[static_cast<std::size_t>(a)] > m[static_cast<std::size_t>(b)]; });
+  const auto lowest_between = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
+    if (a > b) std::swap(a, b);
+    return std::min_element(m.begin() + a, m.begin() + b + 1) - m.begin();
+  };
+  std::vector<std::ptrdiff_t> modes;
+  for (const std::ptrdiff_t p : peaks) {
+    const bool separate = std::all_of(modes.begin(), modes.end(), [&](std::ptrdiff_t q) {
+      return m[static_cast<std::size_t>(lowest_between(p, q))] < 0.5 * m[static_cast<std::size_t>(p)];
+    });
+    if (separate) modes.push_back(p);
+  }
+  std::sort(modes.begin(), modes.end());
+  double total = 0.0;
+  for (double v : m) total += v;
+  std::vector<double> shares;
+  std::ptrdiff_t from = 0;
+  for (std::size_t k = 0; k < modes.size(); ++k) {
+    const std::ptrdiff_t to = k + 1 < modes.size() ? lowest_between(modes[k], modes[k + 1]) : n;
+    double part = 0.0;
+    for (std::ptrdiff_t i = from; i < to; ++i) part += m[static_cast<std::size_t>(i)];
+    shares.push_back(part / total);
+    from = to;
+  }
+  return shares;
+}
+
 inline Box hull(Box a, const Box& b) {
   for (int k = 0; k < 2; ++k) a.lo[k] = std::min(a.lo[k], b.lo[k]), a.hi[k] = std::max(a.hi[k], b.hi[k]);
   return a;
@@ -68,6 +113,9 @@ inline Box hull(Box a, const Box& b) {
 struct QuadratureEvidence {
   double log_evidence = 0.0;  ///< on the 2n x 2n grid
   double refinement = 0.0;    ///< |2n x 2n - n x n|: the reference's own error
+  /// Per free parameter, the mass shares of the separated modes of its marginal (2n x 2n grid), in
+  /// the order of the parameter's values; {1} for a single mode.
+  std::vector<double> mode_shares[2];
 };
 
 /// `f` over the two free parameters of `best` (their search bounds are the prior's support).
@@ -94,8 +142,9 @@ inline QuadratureEvidence quadrature_evidence(const sampling::PriorAndLikelihood
     zoom = detail::hull(next, around_best);
   }
   const double coarse = detail::log_integral(f, zoom, n);
-  const double fine = detail::log_integral(f, zoom, 2 * n);
-  return {fine, std::abs(fine - coarse)};
+  std::vector<double> marginals[2];
+  const double fine = detail::log_integral(f, zoom, 2 * n, nullptr, 60.0, marginals);
+  return {fine, std::abs(fine - coarse), {detail::mode_shares(marginals[0]), detail::mode_shares(marginals[1])}};
 }
 
 }  // namespace sedwave::bench

@@ -68,7 +68,37 @@ struct GlobalFit {
   Theta theta;
   int evaluations;
   double chi2;
+  /// The lowest search points of separate regions other than the best's (search_candidates).
+  std::vector<Theta> candidates;
 };
+
+/// The search's points (free ln-parameters scaled to [0, 1] over the bounds) with no lower point
+/// within this distance (per coordinate) stand for a region of their own.
+constexpr double kCandidateRadius = 0.05;
+/// At most this many such regions besides the best's are polished.
+constexpr std::size_t kMaxCandidates = 4;
+
+/// Of the search's points (theta, chi^2), the lowest of each region that no lower point lies within
+/// kCandidateRadius of, the best's region left out; at most kMaxCandidates, lowest first.
+std::vector<Theta> search_candidates(std::vector<std::pair<Theta, double>> points, const Setup& s,
+                                     const std::vector<double>& lower, const std::vector<double>& upper) {
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  const auto near = [&](const Theta& a, const Theta& b) {
+    for (std::size_t k = 0; k < s.free.size(); ++k) {
+      const auto i = static_cast<std::size_t>(s.free[k]);
+      if (std::abs(a[i] - b[i]) > kCandidateRadius * (upper[k] - lower[k])) return false;
+    }
+    return true;
+  };
+  std::vector<Theta> out;
+  for (std::size_t i = 1; i < points.size() && out.size() < kMaxCandidates; ++i) {
+    if (!std::isfinite(points[i].second)) break;
+    bool lowest = true;
+    for (std::size_t j = 0; j < i && lowest; ++j) lowest = !near(points[i].first, points[j].first);
+    if (lowest) out.push_back(points[i].first);
+  }
+  return out;
+}
 
 nlopt::algorithm nlopt_algorithm(const std::string& name) {
   if (name == "direct-l") return nlopt::GN_DIRECT_L;
@@ -115,12 +145,14 @@ GlobalFit solve_global(const Setup& full, const Theta& start, const FitOptions& 
     int evaluations = 0;
     double best = std::numeric_limits<double>::infinity();
     Theta best_theta;
-  } context{&s, start, 0, std::numeric_limits<double>::infinity(), start};
+    std::vector<std::pair<Theta, double>> points;
+  } context{&s, start, 0, std::numeric_limits<double>::infinity(), start, {}};
   auto objective = [](const std::vector<double>& xs, std::vector<double>&, void* data) {
     auto* c = static_cast<Context*>(data);
     for (size_t k = 0; k < xs.size(); ++k) c->theta[c->setup->free[k]] = xs[k];
     ++c->evaluations;
     const double chi2 = chi2_at(*c->setup, c->theta);
+    c->points.emplace_back(c->theta, std::isfinite(chi2) ? chi2 : std::numeric_limits<double>::infinity());
     if (chi2 < c->best) {
       c->best = chi2;
       c->best_theta = c->theta;
@@ -134,7 +166,43 @@ GlobalFit solve_global(const Setup& full, const Theta& start, const FitOptions& 
   } catch (const std::exception&) {
     // NLopt signals roundoff-limited or forced stops by throwing; the best point seen still stands.
   }
-  return {context.best_theta, context.evaluations, chi2_at(full, context.best_theta)};
+  return {context.best_theta, context.evaluations, chi2_at(full, context.best_theta),
+          search_candidates(std::move(context.points), s, lower, upper)};
+}
+
+/// chi^2 rises by more than this above both ends somewhere on the straight line between two minima
+/// (in the ln-parameters): separate modes, not two points of one flat valley or ridge.
+constexpr double kBarrierChi2 = 2.0;
+
+bool barrier_between(const Setup& s, const Theta& a, double chi2_a, const Theta& b, double chi2_b) {
+  const double top = std::max(chi2_a, chi2_b) + kBarrierChi2;
+  for (const double t : {0.25, 0.5, 0.75}) {
+    Theta x = a;
+    for (int i : s.free) x[static_cast<std::size_t>(i)] += t * (b[static_cast<std::size_t>(i)] - a[static_cast<std::size_t>(i)]);
+    if (!(chi2_at(s, x) <= top)) return true;
+  }
+  return false;
+}
+
+/// The local minima among `found` (polished fits) that a barrier separates from the fit (`result`)
+/// and from each other, within kOtherMinimaChi2 of its chi^2, lowest first.
+std::vector<LocalMinimum> other_minima(const Setup& s, const FitResult& result, std::vector<LocalFit> found) {
+  std::sort(found.begin(), found.end(), [](const LocalFit& a, const LocalFit& b) { return a.chi2 < b.chi2; });
+  const Theta best = result.fitted.log_values();
+  std::vector<std::pair<Theta, double>> kept{{best, result.chi2}};
+  std::vector<LocalMinimum> out;
+  for (const LocalFit& f : found) {
+    if (!(f.chi2 <= result.chi2 + kOtherMinimaChi2)) continue;
+    const bool separate = std::all_of(kept.begin(), kept.end(), [&](const auto& k) {
+      return barrier_between(s, k.first, k.second, f.theta, f.chi2);
+    });
+    if (!separate) continue;
+    kept.emplace_back(f.theta, f.chi2);
+    LocalMinimum m{{}, f.chi2};
+    for (const double t : f.theta) m.values.push_back(std::exp(t));
+    out.push_back(std::move(m));
+  }
+  return out;
 }
 
 // ---- The analysis at the solution.
@@ -394,6 +462,7 @@ FitResult fit(const ObservationSet& data, const sediment::SedimentModel& model, 
   result.fitted = parameters;
 
   Theta theta = start;
+  std::vector<LocalFit> found;
   if (options.method == FitMethod::Ceres) {
     const LocalFit local = solve_local(s, start, options.max_iterations);
     theta = local.theta;
@@ -421,10 +490,15 @@ FitResult fit(const ObservationSet& data, const sediment::SedimentModel& model, 
       theta = best.theta;
       result.converged = best.converged;
       result.solver_message = best.message;
+      // The other polished fits, and the search's best points in other regions polished: where
+      // they end apart from the fit, the posterior has several modes.
+      found.push_back(from_start.chi2 < polished.chi2 ? polished : from_start);
+      for (const Theta& candidate : global.candidates) found.push_back(solve_local(s, candidate, options.max_iterations));
     }
     result.global = report;
   }
   analyze_with_restarts(s, theta, options, result);
+  if (!found.empty()) result.other_minima = other_minima(s, result, std::move(found));
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }

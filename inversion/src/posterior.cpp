@@ -723,6 +723,73 @@ std::string linearisation_refusal(const Setup& s, const FitResult& best, const E
   return "";
 }
 
+/// A second mode counts where the Laplace approximation gives it at least this share of the
+/// posterior (missing it would bias ln Z by about as much).
+constexpr double kMinModeShare = 1e-3;
+
+/// A mode of the posterior at a local minimum of chi^2 that the fit found (the fit itself or one of
+/// FitResult::other_minima), with its linearised precision in the free ln-parameters (empty: no
+/// Jacobian there) and its share of the posterior by the Laplace approximation, L pi (2 pi)^(k/2)
+/// det(precision)^(-1/2) over the sum of the modes' (a direction unseen there: share 1).
+struct FitMode {
+  Theta theta;
+  Eigen::MatrixXd precision;
+  double share = 1.0;
+};
+
+/// The fit's modes inside the priors' support (the fit first), each with its share under the
+/// widest of `prior_sets`.
+std::vector<FitMode> fit_modes(const Setup& s, const FitResult& best, const std::vector<std::vector<Prior>>& prior_sets) {
+  std::vector<std::pair<Theta, double>> minima{{best.fitted.log_values(), best.chi2}};
+  for (const LocalMinimum& m : best.other_minima) {
+    Theta theta;
+    for (const double v : m.values) theta.push_back(std::log(v));
+    minima.emplace_back(theta, m.chi2);
+  }
+  std::vector<FitMode> modes;
+  std::vector<double> log_mass;
+  for (const auto& [theta, chi2] : minima) {
+    double lp = -std::numeric_limits<double>::infinity();
+    for (const std::vector<Prior>& priors : prior_sets) lp = std::max(lp, log_prior(s.parameters, priors, theta));
+    if (!std::isfinite(lp)) continue;
+    FitMode mode{theta, {}, 1.0};
+    double log_volume = std::numeric_limits<double>::infinity();
+    try {
+      mode.precision = linearised_precision(s, theta, prior_sets);
+      const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(mode.precision).eigenvalues();
+      if (lambda.minCoeff() > 1e-14 * lambda.cwiseAbs().maxCoeff()) log_volume = -0.5 * lambda.array().log().sum();
+    } catch (const std::runtime_error&) {
+      mode.precision.resize(0, 0);
+    }
+    modes.push_back(std::move(mode));
+    log_mass.push_back(-0.5 * chi2 + lp + log_volume);
+  }
+  const double top = *std::max_element(log_mass.begin(), log_mass.end());
+  double sum = 0.0;
+  for (const double m : log_mass) sum += std::isinf(top) ? (m == top) : std::exp(m - top);
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    modes[j].share = (std::isinf(top) ? (log_mass[j] == top) : std::exp(log_mass[j] - top)) / sum;
+  }
+  return modes;
+}
+
+/// Why a proposal around the fit alone misses posterior mass ("" where it does not): the fit found
+/// another local minimum with a share of the posterior of kMinModeShare or more.
+std::string other_mode_refusal(const Setup& s, const FitResult& best, const std::vector<Prior>& priors) {
+  const std::vector<FitMode> modes = fit_modes(s, best, {priors});
+  for (std::size_t j = 1; j < modes.size(); ++j) {
+    if (modes[j].share < kMinModeShare) continue;
+    std::string at;
+    for (const int i : s.free) {
+      at += (at.empty() ? "" : ", ") + s.parameters.spec[i].name +
+            formatted(" %.3g", std::exp(modes[j].theta[static_cast<std::size_t>(i)]));
+    }
+    return "the fit found another local minimum of chi^2 (at " + at +
+           formatted("), a second mode with %.1f %% of the posterior by the Laplace approximation", 100.0 * modes[j].share);
+  }
+  return "";
+}
+
 /// Why the stated error is too large to accept ("" where it is not).
 std::string error_refusal(const sampling::ImportanceEstimate& e) {
   if (e.uncertainty <= kMaxStatedError) return "";
@@ -802,6 +869,7 @@ std::vector<ModelEvidence> importance_sampled_evidence(const ObservationSet& dat
     log_likelihood = density.log_likelihood;
     out[p].fallback_reason =
         no_jacobian.empty() ? linearisation_refusal(s, best, precision, prior_sets[p]) : no_jacobian;
+    if (out[p].fallback_reason.empty()) out[p].fallback_reason = other_mode_refusal(s, best, prior_sets[p]);
     out[p].method = kImportanceSamplingMethod;
     if (!out[p].fallback_reason.empty()) continue;
     log_priors.push_back(density.log_prior);
@@ -879,21 +947,32 @@ void add_nodes(std::vector<double>& nodes, double a, double b, int count) {
   for (int i = 0; i < count; ++i) nodes.push_back(a + (b - a) * i / (count - 1));
 }
 
-/// One axis's map over [lower, upper] (ln values): uniform floor, a t around `centre` with scale
-/// `scale`, and a Gaussian kernel density of `hint` (ln values; may be empty).
-sampling::AxisMap axis_map(double lower, double upper, double centre, double scale, const std::vector<double>& hint) {
+/// A t in the cubature's map: its centre and scale on one axis (ln values).
+struct MapPeak {
+  double centre, scale;
+};
+
+/// One axis's map over [lower, upper] (ln values): uniform floor, a t around each of `peaks` (equal
+/// shares), and a Gaussian kernel density of `hint` (ln values; may be empty).
+sampling::AxisMap axis_map(double lower, double upper, const std::vector<MapPeak>& peaks, const std::vector<double>& hint) {
   const double range = upper - lower;
   std::vector<double> nodes;
   add_nodes(nodes, lower, upper, kMapNodes);
-  add_nodes(nodes, std::max(lower, centre - kMapTReach * scale), std::min(upper, centre + kMapTReach * scale), kMapNodes);
+  for (const MapPeak& t : peaks) {
+    add_nodes(nodes, std::max(lower, t.centre - kMapTReach * t.scale), std::min(upper, t.centre + kMapTReach * t.scale),
+              kMapNodes);
+  }
   double bandwidth = 0.0;
+  const double min_scale = std::min_element(peaks.begin(), peaks.end(), [](const MapPeak& a, const MapPeak& b) {
+                             return a.scale < b.scale;
+                           })->scale;
   if (hint.size() >= 2) {
     double mean = 0.0, square = 0.0;
     for (double h : hint) mean += h / static_cast<double>(hint.size());
     for (double h : hint) square += (h - mean) * (h - mean) / static_cast<double>(hint.size() - 1);
     // Silverman's rule, twice (smoother than the draws: the map must not miss what lies between them),
-    // and never below a quarter of the t's scale.
-    bandwidth = std::max(2.0 * 1.06 * std::sqrt(square) * std::pow(static_cast<double>(hint.size()), -0.2), 0.25 * scale);
+    // and never below a quarter of the narrowest t's scale.
+    bandwidth = std::max(2.0 * 1.06 * std::sqrt(square) * std::pow(static_cast<double>(hint.size()), -0.2), 0.25 * min_scale);
     const auto [lo, hi] = std::minmax_element(hint.begin(), hint.end());
     add_nodes(nodes, std::max(lower, *lo - 5.0 * bandwidth), std::min(upper, *hi + 5.0 * bandwidth), kMapNodes);
   }
@@ -906,7 +985,10 @@ sampling::AxisMap axis_map(double lower, double upper, double centre, double sca
   const double t_share = hint.size() >= 2 ? 0.5 * (1.0 - kUniformShare) : 1.0 - kUniformShare;
   std::vector<double> density;
   for (double x : kept) {
-    double g = kUniformShare / range + t_share * student_t4((x - centre) / scale) / scale;
+    double g = kUniformShare / range;
+    for (const MapPeak& t : peaks) {
+      g += t_share / static_cast<double>(peaks.size()) * student_t4((x - t.centre) / t.scale) / t.scale;
+    }
     if (hint.size() >= 2) {
       double kernel = 0.0;
       for (double h : hint) kernel += std::exp(-0.5 * std::pow((x - h) / bandwidth, 2));
@@ -948,15 +1030,23 @@ std::vector<ModelEvidence> cubature_integrated_evidence(const ObservationSet& da
     upper = upper.cwiseMax(support.upper);
     supports.push_back(support);
   }
-  // The linearised posterior's sd per axis where the fit has derivatives; else a tenth of the range.
-  Eigen::VectorXd sd = (upper - lower) / 10.0;
-  try {
-    const Eigen::VectorXd linear = linearised_precision(s, theta, prior_sets).inverse().diagonal().cwiseSqrt();
-    for (Eigen::Index j = 0; j < k; ++j) {
-      if (std::isfinite(linear(j)) && linear(j) > 0.0) sd(j) = linear(j);
+  // A t per mode of the fit's (the fit, and each other local minimum with kMinModeShare or more of
+  // the posterior), scaled by the linearised posterior's sd per axis where it has derivatives;
+  // else a tenth of the range.
+  std::vector<FitMode> modes;
+  for (FitMode& m : fit_modes(s, best, prior_sets)) {
+    if (modes.empty() || m.share >= kMinModeShare) modes.push_back(std::move(m));
+  }
+  std::vector<Eigen::VectorXd> sds;
+  for (const FitMode& m : modes) {
+    Eigen::VectorXd sd = (upper - lower) / 10.0;
+    if (m.precision.size() > 0) {
+      const Eigen::VectorXd linear = m.precision.inverse().diagonal().cwiseSqrt();
+      for (Eigen::Index j = 0; j < k; ++j) {
+        if (std::isfinite(linear(j)) && linear(j) > 0.0) sd(j) = linear(j);
+      }
     }
-  } catch (const std::runtime_error&) {
-    // no linearisation at the best fit: the map's t is a tenth of the range wide
+    sds.push_back(sd);
   }
   // Each axis's map from hint draws (ln values, rows).
   const auto maps_from = [&](const std::vector<Eigen::MatrixXd>& ln_hints) {
@@ -969,9 +1059,12 @@ std::vector<ModelEvidence> cubature_integrated_evidence(const ObservationSet& da
         for (Eigen::Index r = 0; r < h.rows(); r += step) hint.push_back(h(r, j));
       }
       const double range = upper(j) - lower(j);
-      const double scale = std::clamp(kMapTScale * sd(j), 1e-6 * range, 0.25 * range);
-      axes.push_back(axis_map(lower(j), upper(j), theta[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])],
-                              scale, hint));
+      std::vector<MapPeak> peaks;
+      for (std::size_t m = 0; m < modes.size(); ++m) {
+        peaks.push_back({modes[m].theta[static_cast<std::size_t>(s.free[static_cast<std::size_t>(j)])],
+                         std::clamp(kMapTScale * sds[m](j), 1e-6 * range, 0.25 * range)});
+      }
+      axes.push_back(axis_map(lower(j), upper(j), peaks, hint));
     }
     return axes;
   };

@@ -235,9 +235,11 @@ void check(const std::vector<LogDensity>& log_priors, const Eigen::VectorXd& cen
     throw std::invalid_argument("importance_evidence: centre and covariance must have the same dimension");
   }
   if (o.pilot_draws < 100 || o.draws < 100 || o.max_draws < o.draws || o.degrees_of_freedom < 1 ||
-      !(o.pilot_scale > 0.0) || !(o.adapted_scale > 0.0) || !(o.target_uncertainty > 0.0)) {
+      !(o.pilot_scale > 0.0) || !(o.adapted_scale > 0.0) || !(o.target_uncertainty > 0.0) ||
+      std::isnan(o.draw_on_below_pareto_k)) {
     throw std::invalid_argument("importance_evidence: pilot_draws and draws must be >= 100, max_draws >= draws, "
-                                "degrees_of_freedom >= 1, the scales and the target positive");
+                                "degrees_of_freedom >= 1, the scales and the target positive, "
+                                "draw_on_below_pareto_k a number");
   }
 }
 
@@ -551,12 +553,13 @@ ImportanceRun importance_evidence(const LogDensity& log_likelihood, const std::v
         run.priors.back().slab_end_mass = end_mass(components.slabs[slab_of[p]], all, run.priors.back());
         run.priors.back().slab_across_spread = across_spread(components.slabs[slab_of[p]], run.priors.back(), covariance);
       }
-      worst = std::max(worst, run.priors.back().uncertainty);
+      if (run.priors.back().pareto_k <= options.draw_on_below_pareto_k) worst = std::max(worst, run.priors.back().uncertainty);
     }
     return worst;
   };
-  // More draws from the same mixture while some prior's error exceeds the target: as many as the
-  // error says are needed (it falls as 1/sqrt(N)), at least another `draws`.
+  // More draws from the same mixture while the error of some prior whose k-hat allows an estimate
+  // exceeds the target: as many as the error says are needed (it falls as 1/sqrt(N)), at least
+  // another `draws`.
   for (double worst = largest_error();
        worst > options.target_uncertainty && static_cast<int>(all.x.size()) < options.max_draws;
        worst = largest_error()) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "sampling_test_support.hpp"
@@ -103,6 +104,23 @@ TEST(Importance, ARidgeTheProposalDoesNotKnowOfIsFlagged) {
   const ImportanceEstimate& e = run.priors[0];
   EXPECT_TRUE(e.pareto_k > 0.7 || e.far_mass > 0.01 || e.min_axis_kurtosis < 2.0)
       << "k " << e.pareto_k << ", far mass " << e.far_mass << ", kurtosis " << e.min_axis_kurtosis;
+}
+
+// A proposal far narrower than the posterior (a unit Gaussian, proposal sd 0.05): k-hat far above
+// 0.7, so no draws beyond the first block are spent on an estimate that will be refused; with the
+// cut-off lifted, the same run draws on to max_draws towards its target error.
+TEST(Importance, NoMoreDrawsWhereKHatRefusesTheEstimate) {
+  const LogDensity gaussian = [](const Eigen::VectorXd& x) { return -0.5 * x.squaredNorm(); };
+  ImportanceOptions options;
+  options.target_uncertainty = 1e-4;
+  const ImportanceRun refused =
+      importance_evidence(gaussian, {box_prior(10.0)}, Eigen::Vector2d::Zero(), 0.0025 * Eigen::Matrix2d::Identity(), options);
+  ASSERT_GT(refused.priors[0].pareto_k, 0.7);
+  EXPECT_EQ(refused.draws.rows(), options.draws);
+  options.draw_on_below_pareto_k = std::numeric_limits<double>::infinity();
+  const ImportanceRun drawn_on =
+      importance_evidence(gaussian, {box_prior(10.0)}, Eigen::Vector2d::Zero(), 0.0025 * Eigen::Matrix2d::Identity(), options);
+  EXPECT_EQ(drawn_on.draws.rows(), options.max_draws);
 }
 
 // Two equal modes 8 sigma apart, the proposal centred on one: the adapted mixture covers both, and

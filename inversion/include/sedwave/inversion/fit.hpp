@@ -98,6 +98,17 @@ struct GlobalSearchReport {
   bool local_and_global_agree = false;  ///< the two local fits' chi^2 within max(0.01, 1e-6 chi^2)
 };
 
+/// A local minimum of chi^2 other than the fit's, with a barrier between the two (chi^2 along the
+/// straight line between them, in the ln-parameters, rises above both): a second mode.
+struct LocalMinimum {
+  std::vector<double> values;  ///< every parameter, in the order of FitParameters::spec [unit]
+  double chi2 = 0.0;
+};
+
+/// FitResult::other_minima keeps minima whose chi^2 lies at most this far above the fit's (their
+/// likelihood e^-20 of its: beyond that no width of a mode makes its mass matter).
+inline constexpr double kOtherMinimaChi2 = 40.0;
+
 struct FitResult {
   std::string model;
   std::string method;
@@ -121,6 +132,10 @@ struct FitResult {
   bool converged = false;
   std::string solver_message;
   std::optional<GlobalSearchReport> global;
+  /// Method global: the other local minima that polishing the global search's best points in
+  /// separate regions led to (and the local fit from the start values), within kOtherMinimaChi2 of
+  /// the fit's chi^2, lowest first. The fit itself is not among them.
+  std::vector<LocalMinimum> other_minima;
   /// Times a likelihood profile found a lower chi^2 than the solver's minimum, so the fit moved there.
   int profile_restarts = 0;
   /// Results outside physical ranges, parameters at search bounds: each with its likely cause.

@@ -50,6 +50,10 @@ struct ImportanceOptions {
   int draws = 2400;        ///< from the final mixture: the estimate
   int max_draws = 9600;    ///< more draws from the same mixture while an error exceeds the target
   double target_uncertainty = 0.025;  ///< the standard error of ln Z sought for every prior
+  /// More draws are made only for a prior whose weights' Pareto k-hat is at most this: above it the
+  /// estimate is not to be trusted at any practical number of draws (Vehtari et al. 2024, section
+  /// 3.2), so drawing on towards the target error would be spent on an estimate that is refused.
+  double draw_on_below_pareto_k = 0.7;
   int degrees_of_freedom = 4;         ///< of every t component (heavier tails than any Gaussian posterior)
   double pilot_scale = 1.5;    ///< the pilot t's scale matrix is pilot_scale^2 x covariance
   double adapted_scale = 1.3;  ///< an adapted t's scale matrix is adapted_scale^2 x the weighted covariance
