@@ -92,6 +92,10 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
       grain_model_(dem::make_contact_model(grain_contact_spec(contacts, grain_material))) {
   if (!(control.tolerance > 0.0 && control.tolerance <= 0.5))
     throw std::invalid_argument("interface: step tolerance must lie in (0, 0.5]");
+  if (!(control.plate_tolerance >= 0.0 && control.plate_tolerance <= 0.5))
+    throw std::invalid_argument("interface: the plate's step tolerance must lie in (0, 0.5] (0: the tolerance)");
+  if (control.scheme == Scheme::multirate && control.fixed_step > 0.0)
+    throw std::invalid_argument("interface: the multirate scheme chooses its own steps: it takes no fixed step");
   if (!(contacts.friction >= 0.0)) throw std::invalid_argument("interface: friction must be >= 0");
   if (contacts.friction > 0.0 && !(contacts.tanh_velocity_scale > 0.0))
     throw std::invalid_argument("interface: tanh_velocity_scale must be > 0");
@@ -205,7 +209,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
   for (auto& g : grains_) g.vx = g.vy = g.spin = 0.0;
   std::fill(v_.begin(), v_.end(), 0.0);
   time_ = 0.0;
-  steps_ = 0;
+  steps_ = plate_steps_ = 0;
   iterations_ = factorisations_ = 0;
   most_iterations_ = 0;
   friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
@@ -403,7 +407,7 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
 // frictional run (measured: order 1.2 in the tolerance instead of 2).
 // Without friction or dashpots nothing reads them but a dashpot of zero: they are the velocities.
-void GranularPlate::compute_forces(double half_step, bool with_elastic) {
+void GranularPlate::compute_forces(double half_step, bool with_elastic, double slow_half_step) {
   seen_.resize(grains_.size());
   const bool velocity_forces = rubbing() || damped();
   for (std::size_t i = 0; i < grains_.size(); ++i) {
@@ -423,10 +427,16 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
     const auto& inverse_mass = plate_->inverse_mass();
     const auto& damping = plate_->damping();
     const int top = plate_->node(0, plate_->mesh().elements_y);
+    const bool split = multirate() && !f_elastic_.empty();
     for (int i = 0; i < plate_->nodes_x(); ++i) {
       const auto d = static_cast<std::size_t>(2 * (top + i));
       const double force = f_conservative_.empty() ? 0.0 : f_conservative_[d] + f_friction_[d];
-      plate_seen_[d] = plate_->fixed()[d] ? 0.0 : v_[d] + half_step * (force - damping[d] * v_[d]) * inverse_mass[d];
+      // multirate: the contacts' substep, and the outer half kick of the internal forces and the
+      // dashpot where it ends the outer step.
+      plate_seen_[d] = plate_->fixed()[d] ? 0.0
+                       : split ? v_[d] + (half_step * force + slow_half_step * (f_elastic_[d] - damping[d] * v_[d])) *
+                                             inverse_mass[d]
+                               : v_[d] + half_step * (force - damping[d] * v_[d]) * inverse_mass[d];
     }
   }
   std::fill(conservative_.begin(), conservative_.end(), Parts{});
@@ -444,11 +454,20 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
       grain_model_);
   if (plate_) {
     // The elastic forces overwrite f_conservative_; friction acts on the top edge's x components
-    // alone, so only that row of f_friction_ is cleared once it has been sized.
-    if (with_elastic)
+    // alone, so only that row of f_friction_ is cleared once it has been sized. multirate: the
+    // elastic forces have their own array, and the contacts act on the top edge alone.
+    if (multirate()) {
+      if (with_elastic) slow_forces();
+      if (f_conservative_.size() != u_.size())
+        f_conservative_.assign(u_.size(), 0.0);
+      else
+        std::fill(f_conservative_.begin() + static_cast<std::ptrdiff_t>(subcycled_dof()), f_conservative_.end(), 0.0);
+      plate_->add_top_row_forces(u_, f_conservative_);
+    } else if (with_elastic) {
       plate_->elastic_forces(u_, f_conservative_);
-    else
+    } else {
       f_conservative_.assign(u_.size(), 0.0);
+    }
     if (f_friction_.size() != u_.size())
       f_friction_.assign(u_.size(), 0.0);
     else
@@ -489,6 +508,11 @@ bool GranularPlate::damped() const {
 // work of each non-conservative force is summed the same way and the energy balance closes to the
 // conservative forces' integration error alone.
 void GranularPlate::kick(double h, bool second_half, double plate_drift) {
+  kick_grains(h);
+  if (plate_) kick_plate(h, second_half, plate_drift, f_conservative_, f_friction_.data(), v_.size());
+}
+
+void GranularPlate::kick_grains(double h) {
   // The works are summed in locals (in the same order): stores through g could alias the members.
   // A kind of force that the scene does not have is exactly zero on every grain, and so is its work:
   // its sum is left out (three serial additions a grain that bound the loop).
@@ -511,7 +535,6 @@ void GranularPlate::kick(double h, bool second_half, double plate_drift) {
     }
   }
   friction_work_ = friction_work, dashpot_work_ = dashpot_work, drive_work_ = drive_work;
-  if (plate_) kick_plate(h, second_half, plate_drift);
 }
 
 void GranularPlate::book_plate_dofs() {
@@ -531,28 +554,27 @@ void GranularPlate::book_plate_dofs() {
 // the edges) takes v += h f / m in one pass without books, between the booked ones; those take their
 // dashpot and their work after it. Held ones have inverse mass 0 and stay put. With drift > 0 the
 // same pass moves the plate, u += drift v, on the velocity just kicked.
-void GranularPlate::kick_plate(double h, bool second_half, double drift) {
+void GranularPlate::kick_plate(double h, bool second_half, double drift, const std::vector<double>& forces,
+                               const double* friction, std::size_t drift_end) {
   const auto& inverse_mass = plate_->inverse_mass();
   const auto& damping = plate_->damping();
   // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
   const double on = second_half ? plate_pulse_time(time_ - h, time_) : plate_pulse_time(time_, time_ + h);
   const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
   const double pulse_share = on / h;  // the pulse's mean force over the half kick, per unit force
-  const double* fc = f_conservative_.data();
-  const double* ff = f_friction_.data();
+  const double* fc = forces.data();
   const double* im = inverse_mass.data();
   double* v = v_.data();
   double* u = u_.data();
   // Friction and pulses act on booked degrees of freedom alone: the pass has the elastic and
   // contact forces only.
   const auto pass = [&](std::size_t from, std::size_t to) {
-    if (drift > 0.0)
-      for (std::size_t d = from; d < to; ++d) {
-        v[d] += h * fc[d] * im[d];
-        u[d] += drift * v[d];
-      }
-    else
-      for (std::size_t d = from; d < to; ++d) v[d] += h * fc[d] * im[d];
+    const std::size_t drifting = drift > 0.0 ? std::clamp(drift_end, from, to) : from;
+    for (std::size_t d = from; d < drifting; ++d) {
+      v[d] += h * fc[d] * im[d];
+      u[d] += drift * v[d];
+    }
+    for (std::size_t d = drifting; d < to; ++d) v[d] += h * fc[d] * im[d];
   };
   std::size_t from = 0;
   for (const std::size_t d : booked_) pass(from, d), from = d + 1;
@@ -562,7 +584,8 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift) {
   for (const std::size_t d : booked_) {
     const double before = v[d];
     const double load = pulse ? pulse[d] * pulse_share : 0.0;
-    const double force = fc[d] + ff[d] + load;
+    const double rub = friction ? friction[d] : 0.0;
+    const double force = fc[d] + rub + load;
     // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
     // full step multiplies a free dashpot's velocity by (1 - h c/m)/(1 + h c/m), stable for any c.
     double dashpot_velocity = before;
@@ -572,10 +595,10 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift) {
     } else {
       v[d] = before + h * (force - damping[d] * before) * im[d];
     }
-    if (drift > 0.0) u[d] += drift * v[d];
+    if (drift > 0.0 && d < drift_end) u[d] += drift * v[d];
     const double mean = 0.5 * (before + v[d]);
     boundary_work += h * damping[d] * dashpot_velocity * mean;
-    friction_work -= h * ff[d] * mean;
+    friction_work -= h * rub * mean;
     drive_work += h * load * mean;
   }
   boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
@@ -790,13 +813,27 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
 
 double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
 
+double GranularPlate::free_step(const StepLimits& limits) const {
+  if (control_.fixed_step > 0.0) return control_.fixed_step;
+  if (!multirate()) return substep_free(limits);
+  // The outer step holds a whole number of the substeps the grains can take now, so that a substep
+  // cut short to land on its end is rare.
+  const double theta = control_.plate_tolerance > 0.0 ? control_.plate_tolerance : control_.tolerance;
+  const double outer = std::min(theta * limits.plate, control_.max_step), inner = substep_free(limits);
+  return inner < outer ? inner * std::floor(outer / inner) : outer;
+}
+
+double GranularPlate::substep_free(const StepLimits& limits) const {
+  return std::min({control_.tolerance * limits.tightest(), limits.travel, control_.max_step});
+}
+
 double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
   limits_ = limits;
-  const double dt = control_.fixed_step > 0.0
-                        ? std::min(control_.fixed_step, max_dt)
-                        : std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
+  const double dt = std::min(free_step(limits), max_dt);
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
+  if (multirate()) return step_multirate(limits, dt);
+  substep_min_ = substep_max_ = dt;
   if (control_.scheme == Scheme::newmark_rk4) {
     // On a ladder of steps theta T_FE 2^-k (unless fixed or cut to land on a time), so that the
     // factorisation of M + C dt/2 + K dt^2/4 serves many steps.
@@ -811,16 +848,83 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
   compute_forces(0.5 * dt);
   kick(0.5 * dt, true);
   ++steps_;
+  ++plate_steps_;
   return dt;
+}
+
+// The plate's internal forces but those of its top row of elements (and its edge dashpots and
+// pulses) are the slow part, kicked at the outer step's ends; the contacts and the top row of
+// elements are the fast part, integrated in substeps by the grains and the two top rows of nodes,
+// each the step the single-rate scheme would take. The other nodes keep their velocity through the
+// substeps and drift once, in the first outer kick's pass. The outer step is a fraction of the
+// plate's own limit, so it resolves every oscillation of the slow part and resonates with no
+// substep. With one substep this is the velocity-Verlet step.
+double GranularPlate::step_multirate(const StepLimits& limits, double dt) {
+  const std::size_t fast = subcycled_dof();
+  kick_plate(0.5 * dt, false, dt, f_elastic_, nullptr, fast);
+  const double end = time_ + dt;
+  substep_min_ = inf, substep_max_ = 0.0;
+  StepLimits now = limits;
+  for (bool first = true; time_ < end; first = false) {
+    if (!first) now = current_limits();
+    const double h = substep(now, end, dt);
+    substep_min_ = std::min(substep_min_, h), substep_max_ = std::max(substep_max_, h);
+  }
+  slow_forces();
+  kick_plate(0.5 * dt, true, 0.0, f_elastic_, nullptr, fast);
+  ++plate_steps_;
+  return dt;
+}
+
+void GranularPlate::slow_forces() {
+  plate_->elastic_forces(u_, f_elastic_);
+  plate_->add_top_row_forces(u_, f_elastic_, -1.0);
+}
+
+double GranularPlate::substep(const StepLimits& limits, double end, double outer) {
+  const double left = end - time_;
+  const double free = substep_free(limits);
+  // Land on the outer step's end without a sliver: the last two substeps share what is left (a
+  // substep within round-off of what is left is the last).
+  const bool last = !(left > free * (1.0 + 1e-12));
+  const double h = last ? left : left < 2.0 * free ? 0.5 * left : free;
+  if (!(h > 0.0)) throw std::logic_error("interface: a multirate substep of no length");
+  kick_grains(0.5 * h);
+  kick_edge(0.5 * h, h);
+  drift_grains(h);
+  time_ = last ? end : time_ + h;
+  if (pairs_stale()) build_pairs();
+  compute_forces(0.5 * h, false, last ? 0.5 * outer : 0.0);
+  kick_grains(0.5 * h);
+  kick_edge(0.5 * h, 0.0);
+  ++steps_;
+  return h;
+}
+
+// The two top rows of nodes under the contacts' forces and the top row of elements': no dashpot or
+// pulse (those are the outer kick's), the friction's work booked as in kick_plate.
+void GranularPlate::kick_edge(double h, double drift) {
+  const auto& inverse_mass = plate_->inverse_mass();
+  double friction_work = friction_work_;
+  const bool rubs = contacts_.friction > 0.0;
+  for (std::size_t d = subcycled_dof(); d < v_.size(); ++d) {
+    const double before = v_[d];
+    v_[d] += h * (f_conservative_[d] + f_friction_[d]) * inverse_mass[d];
+    if (rubs) friction_work -= h * f_friction_[d] * 0.5 * (before + v_[d]);
+    u_[d] += drift * v_[d];
+  }
+  friction_work_ = friction_work;
+}
+
+std::size_t GranularPlate::subcycled_dof() const {
+  return static_cast<std::size_t>(2 * plate_->node(0, plate_->mesh().elements_y - 1));
 }
 
 double GranularPlate::step_towards(double t_end) {
   const double left = t_end - time_;
   const StepLimits limits = current_limits();
-  const double free_step =
-      control_.fixed_step > 0.0 ? control_.fixed_step
-                                : std::min({control_.tolerance * limits.tightest(), limits.travel, control_.max_step});
-  const double dt = step_with(limits, (left > free_step && left < 2.0 * free_step) ? 0.5 * left : left);
+  const double free = free_step(limits);
+  const double dt = step_with(limits, (left > free && left < 2.0 * free) ? 0.5 * left : left);
   if (t_end - time_ < 1e-9 * dt) time_ = t_end;  // round-off, not a step
   return dt;
 }
