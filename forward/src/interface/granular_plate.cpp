@@ -235,6 +235,7 @@ void GranularPlate::build_pairs() {
     if (dem::norm2(shear_[k]) > 0.0) history.emplace(key(pairs_[k]), shear_[k]);
   pairs_.clear();
   shear_.clear();
+  pair_facts_.clear();
   x_at_build_.resize(grains_.size());
   y_at_build_.resize(grains_.size());
   if (grains_.empty()) return;
@@ -276,6 +277,7 @@ void GranularPlate::build_pairs() {
         }
   }
   shear_.assign(pairs_.size(), dem::Vec3{});
+  pair_facts_.assign(pairs_.size(), PairFacts{});
   if (history.empty()) return;
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (const auto it = history.find(key(pairs_[k])); it != history.end()) shear_[k] = it->second;
@@ -295,7 +297,7 @@ bool GranularPlate::pairs_stale() const {
 // normal force is its dashpot, the tangential force and the torques go to friction (with a
 // tangential spring's energy taken back out of it in energies()).
 template <class Model>
-void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear) {
+void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear, PairFacts& facts) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
@@ -318,6 +320,12 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt,
   const dem::PairResult r = model.evaluate(point, pair, relative, {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
   const double spring = model.normal.spring(overlap, pair.normal);
   const double dashpot = r.normal_force - spring;
+  facts.d2 = d2, facts.d = d, facts.mass = effective_mass, facts.spring = spring;
+  facts.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
+  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
+    facts.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(facts.radius);
+  facts.dashpot = model.normal.dashpot_at(overlap, pair.normal);
+  if constexpr (Model::rotates && Model::has_tangential) facts.inverse_slip_mass = inverse_slip_mass(gi, gj, overlap);
   auto& ci = conservative_[static_cast<std::size_t>(p.i)];
   auto& cj = conservative_[static_cast<std::size_t>(p.j)];
   ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
@@ -449,7 +457,8 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
   tangential_energy_ = 0.0;
   std::visit(
       [&](const auto& model) {
-        for (std::size_t k = 0; k < pairs_.size(); ++k) add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k]);
+        for (std::size_t k = 0; k < pairs_.size(); ++k)
+          add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k], pair_facts_[k]);
       },
       grain_model_);
   if (plate_) {
@@ -604,6 +613,15 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift, const s
   boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
 }
 
+double GranularPlate::inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const {
+  double inverse = 1.0 / gi.mass + 1.0 / gj.mass;
+  if (contacts_.rotation) {
+    const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
+    inverse += ai * ai / gi.inertia + aj * aj / gj.inertia;
+  }
+  return inverse;
+}
+
 void GranularPlate::drift_grains(double h) {
   for (auto& g : grains_) {
     g.x += h * g.vx;
@@ -627,7 +645,8 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   struct {
     double mass = 0.0, radius = 0.0, reach = 0.0;
   } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
-  for (const auto& p : pairs_) {
+  for (std::size_t listed = 0; listed < pairs_.size(); ++listed) {
+    const auto& p = pairs_[listed];
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
     const double dx = gi.x - gj.x, dy = gi.y - gj.y;
@@ -635,14 +654,17 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     const double reach = gi.radius + gj.radius;
     const double approach = (gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy;
     if (d2 >= reach * reach && approach >= 0.0) continue;  // apart and not closing: no root, no division
-    const double d = std::sqrt(d2);
+    // A pair that touched at the last force evaluation at this very distance: what it computed then.
+    const PairFacts& facts = pair_facts_[listed];
+    const bool known = facts.d2 == d2;
+    const double d = known ? facts.d : std::sqrt(d2);
     const double overlap = reach - d;
     const double vn = approach / d;
     if (overlap <= 0.0 && vn >= 0.0) continue;
-    const double m = gi.mass * gj.mass / (gi.mass + gj.mass);
-    const double r = gi.radius * gj.radius / (gi.radius + gj.radius);
+    const double m = known ? facts.mass : gi.mass * gj.mass / (gi.mass + gj.mass);
+    const double r = known ? facts.radius : gi.radius * gj.radius / (gi.radius + gj.radius);
     if constexpr (hertz) {
-      const double k = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
+      const double k = known ? facts.stiffness : (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
       if (rate_scale == 0.0) rate_scale = k / m;
       const double ratio = k / m / rate_scale;
       const double reach_now = reach_energy(overlap, vn, m, k);
@@ -657,14 +679,12 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     }
     if constexpr (Model::rotates) {
       if (overlap <= 0.0) continue;
-      const auto pair = model.pair(m, gi.radius, gj.radius);
-      const double fn = std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, pair.normal));
+      // The normal law's force is its spring less its dashpot times v_n (hertz.hpp, hooke.hpp).
+      const double fn =
+          known ? std::abs(facts.spring - facts.dashpot * vn)
+                : std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, model.pair(m, gi.radius, gj.radius).normal));
       if constexpr (Model::has_tangential) {
-        double inverse_mt = 1.0 / gi.mass + 1.0 / gj.mass;
-        if (contacts_.rotation) {
-          const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
-          inverse_mt += ai * ai / gi.inertia + aj * aj / gj.inertia;
-        }
+        const double inverse_mt = known ? facts.inverse_slip_mass : inverse_slip_mass(gi, gj, overlap);
         // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
         const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, fn);
         rates.tangential_omega_squared = std::max(rates.tangential_omega_squared, t.stiffness * inverse_mt);
@@ -672,6 +692,7 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
       }
       if constexpr (Model::has_rolling) {
         // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
+        const auto pair = model.pair(m, gi.radius, gj.radius);
         if (contacts_.rotation)
           rates.rolling_beta = std::max(rates.rolling_beta, pair.rolling.lever * fn / model.rolling.regularising_spin_rate *
                                                                 (1.0 / gi.inertia + 1.0 / gj.inertia));

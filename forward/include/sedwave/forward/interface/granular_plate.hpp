@@ -270,9 +270,20 @@ class GranularPlate {
   /// and the top edge's predicted velocity adds slow_half_step of the slow forces and the edge
   /// dashpots (the outer half kick that ends the step; 0 within it).
   void compute_forces(double half_step, bool with_elastic = true, double slow_half_step = 0.0);
+  /// What a touching pair's force evaluation computed that depends on its distance alone (d2 names
+  /// it; -1: none): the step limit reads it back at the same distance instead of computing it again.
+  struct PairFacts {
+    double d2 = -1.0;
+    double d = 0.0, mass = 0.0, radius = 0.0, stiffness = 0.0;  ///< effective mass and radius; Hertz's k
+    double spring = 0.0, dashpot = 0.0;  ///< the normal law's spring force and dashpot coefficient
+    double inverse_slip_mass = 0.0;      ///< inverse_slip_mass at that overlap (a tangential law only)
+  };
   /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot.
   template <class Model>
-  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear);
+  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear, PairFacts& facts);
+  /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
+  /// slip's inverse mass.
+  [[nodiscard]] double inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const;
   template <class Model>
   [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
   void add_plate_contact(int g);
@@ -314,6 +325,7 @@ class GranularPlate {
 
   std::vector<Pair> pairs_;
   std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
+  std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
   /// The tangential springs' energy now, and when the books were last zeroed: the friction's
   /// dissipation is its work less their gain.
   double tangential_energy_ = 0.0, tangential_energy_origin_ = 0.0;
