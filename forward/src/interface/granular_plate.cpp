@@ -564,7 +564,7 @@ void GranularPlate::book_plate_dofs() {
 // dashpot and their work after it. Held ones have inverse mass 0 and stay put. With drift > 0 the
 // same pass moves the plate, u += drift v, on the velocity just kicked.
 void GranularPlate::kick_plate(double h, bool second_half, double drift, const std::vector<double>& forces,
-                               const double* friction, std::size_t drift_end) {
+                               const double* friction, std::size_t end) {
   const auto& inverse_mass = plate_->inverse_mass();
   const auto& damping = plate_->damping();
   // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
@@ -578,19 +578,22 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift, const s
   // Friction and pulses act on booked degrees of freedom alone: the pass has the elastic and
   // contact forces only.
   const auto pass = [&](std::size_t from, std::size_t to) {
-    const std::size_t drifting = drift > 0.0 ? std::clamp(drift_end, from, to) : from;
-    for (std::size_t d = from; d < drifting; ++d) {
-      v[d] += h * fc[d] * im[d];
-      u[d] += drift * v[d];
-    }
-    for (std::size_t d = drifting; d < to; ++d) v[d] += h * fc[d] * im[d];
+    if (drift > 0.0)
+      for (std::size_t d = from; d < to; ++d) {
+        v[d] += h * fc[d] * im[d];
+        u[d] += drift * v[d];
+      }
+    else
+      for (std::size_t d = from; d < to; ++d) v[d] += h * fc[d] * im[d];
   };
+  const auto booked_end = std::lower_bound(booked_.begin(), booked_.end(), end);
   std::size_t from = 0;
-  for (const std::size_t d : booked_) pass(from, d), from = d + 1;
-  pass(from, v_.size());
+  for (auto d = booked_.begin(); d != booked_end; ++d) pass(from, *d), from = *d + 1;
+  pass(from, end);
   // The works are summed in locals (in the same order): stores through v could alias the members.
   double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
-  for (const std::size_t d : booked_) {
+  for (auto booked = booked_.begin(); booked != booked_end; ++booked) {
+    const std::size_t d = *booked;
     const double before = v[d];
     const double load = pulse ? pulse[d] * pulse_share : 0.0;
     const double rub = friction ? friction[d] : 0.0;
@@ -604,7 +607,7 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift, const s
     } else {
       v[d] = before + h * (force - damping[d] * before) * im[d];
     }
-    if (drift > 0.0 && d < drift_end) u[d] += drift * v[d];
+    if (drift > 0.0) u[d] += drift * v[d];
     const double mean = 0.5 * (before + v[d]);
     boundary_work += h * damping[d] * dashpot_velocity * mean;
     friction_work -= h * rub * mean;
@@ -877,9 +880,10 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
 // pulses) are the slow part, kicked at the outer step's ends; the contacts and the top row of
 // elements are the fast part, integrated in substeps by the grains and the two top rows of nodes,
 // each the step the single-rate scheme would take. The other nodes keep their velocity through the
-// substeps and drift once, in the first outer kick's pass. The outer step is a fraction of the
-// plate's own limit, so it resolves every oscillation of the slow part and resonates with no
-// substep. With one substep this is the velocity-Verlet step.
+// substeps and drift once, in the first outer kick's pass; the two top rows take their slow kicks
+// with the first and the last substep's. The outer step is a fraction of the plate's own limit, so
+// it resolves every oscillation of the slow part and resonates with no substep. With one substep
+// this is the velocity-Verlet step.
 double GranularPlate::step_multirate(const StepLimits& limits, double dt) {
   const std::size_t fast = subcycled_dof();
   kick_plate(0.5 * dt, false, dt, f_elastic_, nullptr, fast);
@@ -888,10 +892,9 @@ double GranularPlate::step_multirate(const StepLimits& limits, double dt) {
   StepLimits now = limits;
   for (bool first = true; time_ < end; first = false) {
     if (!first) now = current_limits();
-    const double h = substep(now, end, dt);
+    const double h = substep(now, end, first ? dt : 0.0, dt);
     substep_min_ = std::min(substep_min_, h), substep_max_ = std::max(substep_max_, h);
   }
-  slow_forces();
   kick_plate(0.5 * dt, true, 0.0, f_elastic_, nullptr, fast);
   ++plate_steps_;
   return dt;
@@ -902,7 +905,7 @@ void GranularPlate::slow_forces() {
   plate_->add_top_row_forces(u_, f_elastic_, -1.0);
 }
 
-double GranularPlate::substep(const StepLimits& limits, double end, double outer) {
+double GranularPlate::substep(const StepLimits& limits, double end, double opening, double outer) {
   const double left = end - time_;
   const double free = substep_free(limits);
   // Land on the outer step's end without a sliver: the last two substeps share what is left (a
@@ -911,30 +914,58 @@ double GranularPlate::substep(const StepLimits& limits, double end, double outer
   const double h = last ? left : left < 2.0 * free ? 0.5 * left : free;
   if (!(h > 0.0)) throw std::logic_error("interface: a multirate substep of no length");
   kick_grains(0.5 * h);
-  kick_edge(0.5 * h, h);
+  kick_edge(0.5 * h, h, 0.5 * opening, false);
   drift_grains(h);
   time_ = last ? end : time_ + h;
   if (pairs_stale()) build_pairs();
   compute_forces(0.5 * h, false, last ? 0.5 * outer : 0.0);
+  if (last) slow_forces();
   kick_grains(0.5 * h);
-  kick_edge(0.5 * h, 0.0);
+  kick_edge(0.5 * h, 0.0, last ? 0.5 * outer : 0.0, true);
   ++steps_;
   return h;
 }
 
-// The two top rows of nodes under the contacts' forces and the top row of elements': no dashpot or
-// pulse (those are the outer kick's), the friction's work booked as in kick_plate.
-void GranularPlate::kick_edge(double h, double drift) {
+// The two top rows of nodes: the fast forces over h, and where the substep opens or closes the outer
+// step the slow forces, a pulse on the plate and the edge dashpots over slow_h in the same kick
+// (the dashpot explicit before the drift, implicit after it, as kick_plate), so that one substep is
+// the velocity-Verlet step, books included. The booked degrees of freedom book their works.
+void GranularPlate::kick_edge(double h, double drift, double slow_h, bool second_half) {
   const auto& inverse_mass = plate_->inverse_mass();
-  double friction_work = friction_work_;
-  const bool rubs = contacts_.friction > 0.0;
-  for (std::size_t d = subcycled_dof(); d < v_.size(); ++d) {
-    const double before = v_[d];
-    v_[d] += h * (f_conservative_[d] + f_friction_[d]) * inverse_mass[d];
-    if (rubs) friction_work -= h * f_friction_[d] * 0.5 * (before + v_[d]);
+  const auto& damping = plate_->damping();
+  const double on = slow_h <= 0.0 ? 0.0
+                    : second_half ? plate_pulse_time(time_ - slow_h, time_)
+                                  : plate_pulse_time(time_, time_ + slow_h);
+  const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
+  const double pulse_share = on > 0.0 ? on / slow_h : 0.0;
+  double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
+  const std::size_t fast = subcycled_dof();
+  auto booked = std::lower_bound(booked_.begin(), booked_.end(), fast);
+  for (std::size_t d = fast; d < v_.size(); ++d) {
+    const double impulse = h * f_conservative_[d] + slow_h * f_elastic_[d];
+    if (booked == booked_.end() || *booked != d) {
+      v_[d] += impulse * inverse_mass[d];
+      u_[d] += drift * v_[d];
+      continue;
+    }
+    ++booked;
+    const double before = v_[d], rub = f_friction_[d];
+    const double load = pulse ? pulse[d] * pulse_share : 0.0;
+    const double pushed = impulse + h * rub + slow_h * load;
+    double dashpot_velocity = before;
+    if (second_half) {
+      v_[d] = (before + pushed * inverse_mass[d]) / (1.0 + slow_h * damping[d] * inverse_mass[d]);
+      dashpot_velocity = v_[d];
+    } else {
+      v_[d] = before + (pushed - slow_h * damping[d] * before) * inverse_mass[d];
+    }
     u_[d] += drift * v_[d];
+    const double mean = 0.5 * (before + v_[d]);
+    boundary_work += slow_h * damping[d] * dashpot_velocity * mean;
+    friction_work -= h * rub * mean;
+    drive_work += slow_h * load * mean;
   }
-  friction_work_ = friction_work;
+  boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
 }
 
 std::size_t GranularPlate::subcycled_dof() const {

@@ -70,11 +70,12 @@ TEST(Multirate, IsTheVelocityVerletStepWhereNothingIsSubcycled) {
   double scale = 0.0, diff = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) scale = std::max(scale, std::abs(a[i])), diff = std::max(diff, std::abs(a[i] - b[i]));
   EXPECT_LT(diff, 1e-12 * scale);
-  // The books differ a little more: the absorbing edges' top nodes take their dashpot in the outer
-  // kick and the contacts' force in the substep's, and the dashpot's work is summed over the outer
-  // kick alone (measured 3e-10 of the input; each closes to its scheme's integration error).
+  // The books too: the top rows take their slow kick, dashpot and works with the substep's.
   const double input = single.energies().mechanical();
-  EXPECT_LT(std::abs(multi.energies().balance() - single.energies().balance()), 1e-8 * input);
+  if (std::getenv("SEDWAVE_VERBOSE"))
+    std::printf("state %.3e of its largest value; balances %.3e of the input apart\n", diff / scale,
+                std::abs(multi.energies().balance() - single.energies().balance()) / input);
+  EXPECT_LT(std::abs(multi.energies().balance() - single.energies().balance()), 1e-12 * input);
 }
 
 TEST(Multirate, ConvergesToTheSingleRateSolutionAtSecondOrder) {

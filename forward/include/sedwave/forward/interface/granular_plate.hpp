@@ -246,12 +246,14 @@ class GranularPlate {
   /// The grains' step from `limits` (the single-rate step; multirate: the substep).
   [[nodiscard]] double substep_free(const StepLimits& limits) const;
   double step_multirate(const StepLimits& limits, double dt);
-  /// multirate: one velocity-Verlet substep of the contact forces on grains and top edge towards the
-  /// outer step's `end` (the last one lands on it, and the outer step's closing half kick, of
-  /// `outer` / 2, is in the velocities its forces see). Returns its length.
-  double substep(const StepLimits& limits, double end, double outer);
-  /// multirate: half a kick of the two top rows of nodes by the fast forces, then their drift by `drift`.
-  void kick_edge(double h, double drift);
+  /// multirate: one velocity-Verlet substep of the fast forces on grains and the two top rows of
+  /// nodes towards the outer step's `end` (the last one lands on it and takes the outer step's
+  /// closing half kick, of `outer` / 2, on those rows; the first, with `opening` = the outer step,
+  /// its opening one). Returns its length.
+  double substep(const StepLimits& limits, double end, double opening, double outer);
+  /// multirate: half a kick of the two top rows of nodes, the fast forces over h and the slow ones
+  /// (with the edge dashpots and a pulse) over slow_h, then their drift by `drift`.
+  void kick_edge(double h, double drift, double slow_h, bool second_half);
   double step_newmark_rk4(double dt);  // newmark_rk4.cpp
   void make_newmark();                 // K assembled once
   void restart_newmark();              // the state was changed by hand: start_newmark at the next step
@@ -304,10 +306,10 @@ class GranularPlate {
   /// the grains' normal law): without either no force reads the seen velocities and their works are 0.
   [[nodiscard]] bool rubbing() const;
   [[nodiscard]] bool damped() const;
-  /// Half a kick of the plate by `forces` (and `friction` on the booked degrees of freedom unless
-  /// null), then the drift of the degrees of freedom below drift_end.
+  /// Half a kick of the plate's degrees of freedom below `end` by `forces` (and `friction` on the
+  /// booked ones unless null), then their drift by `drift`.
   void kick_plate(double h, bool second_half, double drift, const std::vector<double>& forces,
-                  const double* friction, std::size_t drift_end);
+                  const double* friction, std::size_t end);
   [[nodiscard]] bool multirate() const { return control_.scheme == Scheme::multirate && plate_.has_value(); }
   /// multirate: the first degree of freedom of the two top rows of nodes, which take the substeps.
   [[nodiscard]] std::size_t subcycled_dof() const;
