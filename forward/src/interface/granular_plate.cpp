@@ -297,7 +297,8 @@ bool GranularPlate::pairs_stale() const {
 // normal force is its dashpot, the tangential force and the torques go to friction (with a
 // tangential spring's energy taken back out of it in energies()).
 template <class Model>
-void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear, PairFacts& facts) {
+void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear, PairFacts& facts,
+                                   bool damps) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
@@ -324,7 +325,7 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt,
   facts.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
   if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
     facts.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(facts.radius);
-  facts.dashpot = model.normal.dashpot_at(overlap, pair.normal);
+  facts.dashpot = damps ? model.normal.dashpot_at(overlap, pair.normal) : 0.0;  // exactly 0 without a dashpot
   if constexpr (Model::rotates && Model::has_tangential) facts.inverse_slip_mass = inverse_slip_mass(gi, gj, overlap);
   auto& ci = conservative_[static_cast<std::size_t>(p.i)];
   auto& cj = conservative_[static_cast<std::size_t>(p.j)];
@@ -455,10 +456,11 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
   plate_normal_force_ = plate_tangential_force_ = 0.0;
   wall_force_[0] = wall_force_[1] = 0.0;
   tangential_energy_ = 0.0;
+  const bool damps = damped();
   std::visit(
       [&](const auto& model) {
         for (std::size_t k = 0; k < pairs_.size(); ++k)
-          add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k], pair_facts_[k]);
+          add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k], pair_facts_[k], damps);
       },
       grain_model_);
   if (plate_) {

@@ -280,9 +280,10 @@ class GranularPlate {
     double spring = 0.0, dashpot = 0.0;  ///< the normal law's spring force and dashpot coefficient
     double inverse_slip_mass = 0.0;      ///< inverse_slip_mass at that overlap (a tangential law only)
   };
-  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot.
+  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot;
+  /// `damps`: damped().
   template <class Model>
-  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear, PairFacts& facts);
+  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear, PairFacts& facts, bool damps);
   /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
   /// slip's inverse mass.
   [[nodiscard]] double inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const;
