@@ -934,14 +934,24 @@ double GranularPlate::substep(const StepLimits& limits, double end, double openi
 // the velocity-Verlet step, books included. The booked degrees of freedom book their works.
 void GranularPlate::kick_edge(double h, double drift, double slow_h, bool second_half) {
   const auto& inverse_mass = plate_->inverse_mass();
-  const auto& damping = plate_->damping();
-  const double on = slow_h <= 0.0 ? 0.0
-                    : second_half ? plate_pulse_time(time_ - slow_h, time_)
-                                  : plate_pulse_time(time_, time_ + slow_h);
-  const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
-  const double pulse_share = on > 0.0 ? on / slow_h : 0.0;
-  double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
   const std::size_t fast = subcycled_dof();
+  if (slow_h <= 0.0) {  // within the outer step: the fast forces alone, friction's work booked
+    double friction_work = friction_work_;
+    const bool rubs = contacts_.friction > 0.0;
+    for (std::size_t d = fast; d < v_.size(); ++d) {
+      const double before = v_[d];
+      v_[d] += h * (f_conservative_[d] + f_friction_[d]) * inverse_mass[d];
+      if (rubs) friction_work -= h * f_friction_[d] * 0.5 * (before + v_[d]);
+      u_[d] += drift * v_[d];
+    }
+    friction_work_ = friction_work;
+    return;
+  }
+  const auto& damping = plate_->damping();
+  const double on = second_half ? plate_pulse_time(time_ - slow_h, time_) : plate_pulse_time(time_, time_ + slow_h);
+  const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
+  const double pulse_share = on / slow_h;
+  double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
   auto booked = std::lower_bound(booked_.begin(), booked_.end(), fast);
   for (std::size_t d = fast; d < v_.size(); ++d) {
     const double impulse = h * f_conservative_[d] + slow_h * f_elastic_[d];
