@@ -859,14 +859,17 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
   if (multirate()) return step_multirate(limits, dt);
-  substep_min_ = substep_max_ = dt;
+  ++plate_steps_;
   if (control_.scheme == Scheme::newmark_rk4) {
     // On a ladder of steps theta T_FE 2^-k (unless fixed or cut to land on a time), so that the
     // factorisation of M + C dt/2 + K dt^2/4 serves many steps.
     const double ladder = control_.tolerance * limits_.plate;
-    const bool free_step = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
-    return step_newmark_rk4(free_step ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
+    const bool on_ladder = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
+    const double taken = step_newmark_rk4(on_ladder ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
+    substep_min_ = substep_max_ = taken;
+    return taken;
   }
+  substep_min_ = substep_max_ = dt;
   kick(0.5 * dt, false, dt);  // and the plate's drift
   drift_grains(dt);
   time_ += dt;
@@ -874,7 +877,6 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
   compute_forces(0.5 * dt);
   kick(0.5 * dt, true);
   ++steps_;
-  ++plate_steps_;
   return dt;
 }
 
