@@ -137,6 +137,41 @@ TEST(Multirate, BalanceClosesWithFrictionDashpotsAndAbsorbingEdges) {
   EXPECT_GT(e.boundary_work, 0.0);
 }
 
+TEST(Multirate, DeliversAPlatePulseAndBooksItAsSingleRate) {
+  // test_paper_interface.cpp's pulse on a free plate's top edge (the rows the substeps kick), no
+  // beads: every outer step is one substep, the pulse's impulse is delivered whole (momentum =
+  // sum F tau) and its work and the balance are velocity Verlet's.
+  const PlateEdges free{EdgeCondition::free, EdgeCondition::free, EdgeCondition::free, EdgeCondition::free};
+  const ElasticPlate plate(aluminium, {6, 2, 30e-3, 10e-3}, free);
+  PlatePulse pulse;
+  pulse.forces.assign(static_cast<std::size_t>(plate.dof_count()), 0.0);
+  double total = 0.0;
+  for (int i = 1; i <= 4; ++i) {
+    const double f = -100.0 * i;  // [N], into the plate, unequal so that the plate also deforms
+    pulse.forces[static_cast<std::size_t>(2 * plate.node(i, 2) + 1)] = f;
+    total += f;
+  }
+  const double tau = 1e-6;
+  pulse.duration = tau;
+  Energies books[2];
+  for (const Scheme scheme : {Scheme::velocity_verlet, Scheme::multirate}) {
+    StepControl control{0.1};
+    control.scheme = scheme;
+    GranularPlate run({}, steel, plate, InterfaceContacts{}, control);
+    run.set_plate_pulse(pulse);
+    run.advance_to(2.0 * tau);
+    EXPECT_EQ(run.steps(), run.plate_steps());
+    double momentum = 0.0;
+    for (int n = 0; n < plate.node_count(); ++n)
+      momentum += plate.mass()[static_cast<std::size_t>(2 * n + 1)] * run.plate_velocity()[static_cast<std::size_t>(2 * n + 1)];
+    EXPECT_NEAR(momentum / (total * tau), 1.0, 1e-12);
+    books[scheme == Scheme::multirate ? 1 : 0] = run.energies();
+  }
+  EXPECT_GT(books[0].drive_work, 0.0);
+  EXPECT_NEAR(books[1].drive_work / books[0].drive_work, 1.0, 1e-12);
+  EXPECT_NEAR((books[1].balance() - books[0].balance()) / books[0].drive_work, 0.0, 1e-12);
+}
+
 TEST(Multirate, RefusesAFixedStepAndABadPlateTolerance) {
   ElasticPlate plate(aluminium, {8, 3, 24e-3, 9e-3}, PlateEdges{});
   StepControl control{0.1};
