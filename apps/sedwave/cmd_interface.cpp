@@ -168,6 +168,9 @@ void print_summary(const experiment::InterfaceScene& scene, const experiment::In
   }
   std::printf("largest grain-plate contact radius %.3g m against element size %.3g m\n", r.max_contact_radius,
               r.element_size);
+  if (scene.recording.scheme == forward::interface::Scheme::multirate)
+    std::printf("multirate: %ld plate steps, %.3g grain steps each\n", r.plate_steps,
+                static_cast<double>(r.series.steps.back()) / static_cast<double>(std::max(r.plate_steps, 1L)));
   if (scene.recording.scheme == forward::interface::Scheme::newmark_rk4)
     std::printf("newmark_rk4: %ld fixed-point iterations (%.3g a step, at most %d), %ld factorisations\n",
                 r.iterations, static_cast<double>(r.iterations) / static_cast<double>(r.series.steps.back()),

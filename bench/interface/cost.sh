@@ -8,36 +8,50 @@
 # Prints a table; every run also leaves its log under OUT.
 #
 #   bench/interface/cost.sh [SEDWAVE [OUT]]
-#   bench/interface/cost.sh --compare OLD_SEDWAVE NEW_SEDWAVE [RUNS=5]
+#   bench/interface/cost.sh --compare OLD_SEDWAVE NEW_SEDWAVE [RUNS=5 [NEW_RUN_KEYS]]
 # The second form runs example 11 as shipped by two builds, alternating so that a change in the
 # machine's load falls on both alike, and prints each build's median wall and CPU time, its ns per
-# grain-step (CPU time over steps times grains) and the machine's load.
+# grain-step (CPU time over steps times grains), the machine's load, and what each run reported
+# (plate share, energy balance, arrival at the middle probe). NEW_RUN_KEYS, e.g.
+# 'scheme = "multirate"', are appended to the scene's [run] table for the new build alone.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 if [ "${1:-}" = --compare ]; then
   OUT=$(mktemp -d)
   trap 'rm -rf "$OUT"' EXIT
-  python3 - "$ROOT/examples/11-granular-plate/scene.toml" "$OUT" "$2" "$3" "${4:-5}" <<'PY'
+  python3 - "$ROOT/examples/11-granular-plate/scene.toml" "$OUT" "$2" "$3" "${4:-5}" "${5:-}" <<'PY'
 import os, re, resource, statistics, subprocess, sys, time
-scene, out, old, new, runs = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5])
+scene, out, old, new, runs, keys = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), sys.argv[6]
+scenes = {"old": scene, "new": scene}
+if keys:  # [run] is the scene's last table
+    scenes["new"] = f"{out}/new_scene.toml"
+    with open(scenes["new"], "w") as f:
+        f.write(open(scene).read() + "\n" + keys + "\n")
 times = {"old": [], "new": []}
+reported = {}
 for r in range(runs):
     for name, exe in (("old", old), ("new", new)):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
-        log = subprocess.run([exe, "interface", scene, "--out", f"{out}/{name}{r}.h5"], check=True,
+        log = subprocess.run([exe, "interface", scenes[name], "--out", f"{out}/{name}{r}.h5"], check=True,
                              capture_output=True, text=True).stdout
         wall = time.perf_counter() - start
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
         grains, steps = re.search(r"(\d+) grains .*; (\d+) steps in", log).groups()
         times[name].append((wall, cpu, int(grains) * int(steps)))
+        reported[name] = (steps, re.search(r"largest share in the plate (\S+); energy balance within (\S+) of", log).groups(),
+                          re.search(r"x = 0.06 m.*arrival (\S+) s", log).group(1))
 print(f"{'build':6} {'wall s':>8} {'CPU s':>8} {'ns/grain-step (CPU)':>20}   (median of {runs}, alternating)")
 for name in ("old", "new"):
     wall = statistics.median(t[0] for t in times[name]); cpu = statistics.median(t[1] for t in times[name])
     print(f"{name:6} {wall:8.3f} {cpu:8.3f} {cpu / times[name][0][2] * 1e9:20.0f}")
 w = [statistics.median(t[i] for t in times[n]) for n in ("old", "new") for i in (0, 1)]
 print(f"old / new: wall {w[0] / w[2]:.2f}x, CPU {w[1] / w[3]:.2f}x; load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+for name in ("old", "new"):
+    steps, (share, balance), arrival = reported[name]
+    print(f"{name}: {steps} steps, plate share {share}, energy balance within {balance}, arrival at x = 0.06 m {arrival} s"
+          + (f" ({keys})" if keys and name == "new" else ""))
 PY
   exit 0
 fi

@@ -217,6 +217,9 @@ void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimat
                                 text(0.5 * t) + " m): the plane-stress plate cannot carry such a contact "
                                 "(docs/interface.md, \"The coupling\")");
   }
+  if (scene.recording.scheme == interface::Scheme::multirate && scene.recording.fixed_step > 0.0)
+    throw std::invalid_argument("interface: the multirate scheme (run.scheme) chooses its own steps: it takes no fixed "
+                                "step (run.fixed_step, --fixed-step)");
   // Average-acceleration Newmark is unconditionally stable: only the explicit plate has this limit.
   if (scene.recording.scheme == interface::Scheme::velocity_verlet && scene.recording.fixed_step > e.plate_limit) {
     throw std::invalid_argument("interface: the fixed step " + text(scene.recording.fixed_step) +
@@ -260,6 +263,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
   interface::StepControl control{scene.recording.tolerance, std::numeric_limits<double>::infinity(),
                                  scene.recording.fixed_step};
   control.scheme = scene.recording.scheme;
+  control.plate_tolerance = scene.recording.plate_tolerance;
   control.reltol = scene.recording.iteration_reltol;
   control.abstol = scene.recording.iteration_abstol;
   interface::GranularPlate run(std::move(grains), scene.grain_material, std::move(plate), scene.contacts, control);
@@ -367,13 +371,14 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
               << std::lround(done > 0.0 ? spent * (1.0 - done) / done : 0.0) << " s left" << std::endl;
   };
   int next_snapshot = 1;
+  long calls = 0;
   for (long k = 1; k <= samples; ++k) {
     const double target = rec.duration * static_cast<double>(k) / static_cast<double>(samples);
     while (run.time() < target) {
       last_step = run.step_towards(target);
-      interval_min = std::min(interval_min, last_step);
-      interval_max = std::max(interval_max, last_step);
-      if (run.steps() % 256 == 0) report_if_due();
+      interval_min = std::min(interval_min, run.last_substep_min());  // the grains' steps
+      interval_max = std::max(interval_max, run.last_substep_max());
+      if (++calls % 256 == 0) report_if_due();
     }
     sample();
     stop_if_unstable(out.series.energies.back());
@@ -400,6 +405,7 @@ InterfaceRun run_interface(const InterfaceScene& scene, std::ostream* progress, 
   out.iterations = run.iterations();
   out.most_iterations = run.most_iterations();
   out.factorisations = run.factorisations();
+  out.plate_steps = run.plate_steps();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -442,6 +448,7 @@ void write_interface_run_file(const std::filesystem::path& path, const Interface
     io::write_attribute(file, "fixed_point_iterations", static_cast<double>(r.iterations));
     io::write_attribute(file, "most_fixed_point_iterations_in_a_step", static_cast<double>(r.most_iterations));
     io::write_attribute(file, "factorisations", static_cast<double>(r.factorisations));
+    io::write_attribute(file, "plate_steps", static_cast<double>(r.plate_steps));  // multirate: the outer steps
     const auto& s = r.series;
     io::Handle ts = io::create_group(file, "time_series");
     write_with_unit(ts, "time", s.time, "s");

@@ -238,16 +238,23 @@ void read_recording(Section s, InterfaceScene& scene) {
   r.probe_depth = s.number("probe_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
   r.line_depth = s.number("line_depth", 0.0, Range::closed(0.0, scene.mesh.length_y, "m"));
   r.arrival_fraction = s.number("arrival_fraction", r.arrival_fraction, Range::open(0.0, 1.0));
-  r.scheme = s.choice("scheme", "velocity_verlet", {"velocity_verlet", "newmark_rk4"}) == "newmark_rk4"
-                 ? interface::Scheme::newmark_rk4
-                 : interface::Scheme::velocity_verlet;
+  const std::string scheme = s.choice("scheme", "velocity_verlet", {"velocity_verlet", "newmark_rk4", "multirate"});
+  r.scheme = scheme == "newmark_rk4" ? interface::Scheme::newmark_rk4
+             : scheme == "multirate" ? interface::Scheme::multirate
+                                     : interface::Scheme::velocity_verlet;
+  r.plate_tolerance = s.number("plate_tolerance", r.tolerance, tolerance_range());
+  if (r.scheme != interface::Scheme::multirate && s.has("plate_tolerance"))
+    s.fail_key("plate_tolerance", "sets the multirate scheme's outer step, and run.scheme is " + scheme);
+  if (r.scheme == interface::Scheme::multirate && r.fixed_step > 0.0)
+    s.fail_key("fixed_step", "the multirate scheme (run.scheme) chooses its own outer steps and substeps: it takes "
+                             "no fixed step");
   // Tolerances of the fixed point: below round-off's 1e-16 the iteration cannot stop, above 1e-2 it
   // is no iteration; a force of 1e6 N is the largest drive a scene takes.
   r.iteration_reltol = s.number("iteration_reltol", r.iteration_reltol, Range::closed(1e-15, 1e-2));
   r.iteration_abstol = s.number("iteration_abstol", r.iteration_abstol, Range::closed(0.0, 1e6, "N"));
   if (r.scheme != interface::Scheme::newmark_rk4 && (s.has("iteration_reltol") || s.has("iteration_abstol")))
     s.fail_key(s.has("iteration_reltol") ? "iteration_reltol" : "iteration_abstol",
-               "sets the newmark_rk4 scheme's iteration, and run.scheme is velocity_verlet");
+               "sets the newmark_rk4 scheme's iteration, and run.scheme is " + scheme);
   s.finish();
 }
 

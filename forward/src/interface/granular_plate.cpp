@@ -92,6 +92,10 @@ GranularPlate::GranularPlate(std::vector<Grain> grains, const GrainMaterial& gra
       grain_model_(dem::make_contact_model(grain_contact_spec(contacts, grain_material))) {
   if (!(control.tolerance > 0.0 && control.tolerance <= 0.5))
     throw std::invalid_argument("interface: step tolerance must lie in (0, 0.5]");
+  if (!(control.plate_tolerance >= 0.0 && control.plate_tolerance <= 0.5))
+    throw std::invalid_argument("interface: the plate's step tolerance must lie in (0, 0.5] (0: the tolerance)");
+  if (control.scheme == Scheme::multirate && control.fixed_step > 0.0)
+    throw std::invalid_argument("interface: the multirate scheme chooses its own steps: it takes no fixed step");
   if (!(contacts.friction >= 0.0)) throw std::invalid_argument("interface: friction must be >= 0");
   if (contacts.friction > 0.0 && !(contacts.tanh_velocity_scale > 0.0))
     throw std::invalid_argument("interface: tanh_velocity_scale must be > 0");
@@ -205,7 +209,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
   for (auto& g : grains_) g.vx = g.vy = g.spin = 0.0;
   std::fill(v_.begin(), v_.end(), 0.0);
   time_ = 0.0;
-  steps_ = 0;
+  steps_ = plate_steps_ = 0;
   iterations_ = factorisations_ = 0;
   most_iterations_ = 0;
   friction_work_ = dashpot_work_ = boundary_work_ = drive_work_ = 0.0;
@@ -231,6 +235,7 @@ void GranularPlate::build_pairs() {
     if (dem::norm2(shear_[k]) > 0.0) history.emplace(key(pairs_[k]), shear_[k]);
   pairs_.clear();
   shear_.clear();
+  pair_facts_.clear();
   x_at_build_.resize(grains_.size());
   y_at_build_.resize(grains_.size());
   if (grains_.empty()) return;
@@ -272,6 +277,7 @@ void GranularPlate::build_pairs() {
         }
   }
   shear_.assign(pairs_.size(), dem::Vec3{});
+  pair_facts_.assign(pairs_.size(), PairFacts{});
   if (history.empty()) return;
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (const auto it = history.find(key(pairs_[k])); it != history.end()) shear_[k] = it->second;
@@ -291,7 +297,8 @@ bool GranularPlate::pairs_stale() const {
 // normal force is its dashpot, the tangential force and the torques go to friction (with a
 // tangential spring's energy taken back out of it in energies()).
 template <class Model>
-void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear) {
+void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear, PairFacts& facts,
+                                   bool damps) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
@@ -314,6 +321,12 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt,
   const dem::PairResult r = model.evaluate(point, pair, relative, {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
   const double spring = model.normal.spring(overlap, pair.normal);
   const double dashpot = r.normal_force - spring;
+  facts.d2 = d2, facts.d = d, facts.mass = effective_mass, facts.spring = spring;
+  facts.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
+  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
+    facts.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(facts.radius);
+  facts.dashpot = damps ? model.normal.dashpot_at(overlap, pair.normal) : 0.0;  // exactly 0 without a dashpot
+  if constexpr (Model::rotates && Model::has_tangential) facts.inverse_slip_mass = inverse_slip_mass(gi, gj, overlap);
   auto& ci = conservative_[static_cast<std::size_t>(p.i)];
   auto& cj = conservative_[static_cast<std::size_t>(p.j)];
   ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
@@ -403,7 +416,7 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // velocity itself (as LAMMPS and the DEM engine do) they are first order, and so is the whole
 // frictional run (measured: order 1.2 in the tolerance instead of 2).
 // Without friction or dashpots nothing reads them but a dashpot of zero: they are the velocities.
-void GranularPlate::compute_forces(double half_step, bool with_elastic) {
+void GranularPlate::compute_forces(double half_step, bool with_elastic, double slow_half_step) {
   seen_.resize(grains_.size());
   const bool velocity_forces = rubbing() || damped();
   for (std::size_t i = 0; i < grains_.size(); ++i) {
@@ -423,10 +436,16 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
     const auto& inverse_mass = plate_->inverse_mass();
     const auto& damping = plate_->damping();
     const int top = plate_->node(0, plate_->mesh().elements_y);
+    const bool split = multirate() && !f_elastic_.empty();
     for (int i = 0; i < plate_->nodes_x(); ++i) {
       const auto d = static_cast<std::size_t>(2 * (top + i));
       const double force = f_conservative_.empty() ? 0.0 : f_conservative_[d] + f_friction_[d];
-      plate_seen_[d] = plate_->fixed()[d] ? 0.0 : v_[d] + half_step * (force - damping[d] * v_[d]) * inverse_mass[d];
+      // multirate: the contacts' substep, and the outer half kick of the internal forces and the
+      // dashpot where it ends the outer step.
+      plate_seen_[d] = plate_->fixed()[d] ? 0.0
+                       : split ? v_[d] + (half_step * force + slow_half_step * (f_elastic_[d] - damping[d] * v_[d])) *
+                                             inverse_mass[d]
+                               : v_[d] + half_step * (force - damping[d] * v_[d]) * inverse_mass[d];
     }
   }
   std::fill(conservative_.begin(), conservative_.end(), Parts{});
@@ -437,18 +456,29 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic) {
   plate_normal_force_ = plate_tangential_force_ = 0.0;
   wall_force_[0] = wall_force_[1] = 0.0;
   tangential_energy_ = 0.0;
+  const bool damps = damped();
   std::visit(
       [&](const auto& model) {
-        for (std::size_t k = 0; k < pairs_.size(); ++k) add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k]);
+        for (std::size_t k = 0; k < pairs_.size(); ++k)
+          add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k], pair_facts_[k], damps);
       },
       grain_model_);
   if (plate_) {
     // The elastic forces overwrite f_conservative_; friction acts on the top edge's x components
-    // alone, so only that row of f_friction_ is cleared once it has been sized.
-    if (with_elastic)
+    // alone, so only that row of f_friction_ is cleared once it has been sized. multirate: the
+    // elastic forces have their own array, and the contacts act on the top edge alone.
+    if (multirate()) {
+      if (with_elastic) slow_forces();
+      if (f_conservative_.size() != u_.size())
+        f_conservative_.assign(u_.size(), 0.0);
+      else
+        std::fill(f_conservative_.begin() + static_cast<std::ptrdiff_t>(subcycled_dof()), f_conservative_.end(), 0.0);
+      plate_->add_top_row_forces(u_, f_conservative_);
+    } else if (with_elastic) {
       plate_->elastic_forces(u_, f_conservative_);
-    else
+    } else {
       f_conservative_.assign(u_.size(), 0.0);
+    }
     if (f_friction_.size() != u_.size())
       f_friction_.assign(u_.size(), 0.0);
     else
@@ -489,6 +519,11 @@ bool GranularPlate::damped() const {
 // work of each non-conservative force is summed the same way and the energy balance closes to the
 // conservative forces' integration error alone.
 void GranularPlate::kick(double h, bool second_half, double plate_drift) {
+  kick_grains(h);
+  if (plate_) kick_plate(h, second_half, plate_drift, f_conservative_, f_friction_.data(), v_.size());
+}
+
+void GranularPlate::kick_grains(double h) {
   // The works are summed in locals (in the same order): stores through g could alias the members.
   // A kind of force that the scene does not have is exactly zero on every grain, and so is its work:
   // its sum is left out (three serial additions a grain that bound the loop).
@@ -511,7 +546,6 @@ void GranularPlate::kick(double h, bool second_half, double plate_drift) {
     }
   }
   friction_work_ = friction_work, dashpot_work_ = dashpot_work, drive_work_ = drive_work;
-  if (plate_) kick_plate(h, second_half, plate_drift);
 }
 
 void GranularPlate::book_plate_dofs() {
@@ -531,15 +565,15 @@ void GranularPlate::book_plate_dofs() {
 // the edges) takes v += h f / m in one pass without books, between the booked ones; those take their
 // dashpot and their work after it. Held ones have inverse mass 0 and stay put. With drift > 0 the
 // same pass moves the plate, u += drift v, on the velocity just kicked.
-void GranularPlate::kick_plate(double h, bool second_half, double drift) {
+void GranularPlate::kick_plate(double h, bool second_half, double drift, const std::vector<double>& forces,
+                               const double* friction, std::size_t end) {
   const auto& inverse_mass = plate_->inverse_mass();
   const auto& damping = plate_->damping();
   // The half kick spans [t, t + h] before the drift, [t - h, t] after it (time_ has moved on).
   const double on = second_half ? plate_pulse_time(time_ - h, time_) : plate_pulse_time(time_, time_ + h);
   const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
   const double pulse_share = on / h;  // the pulse's mean force over the half kick, per unit force
-  const double* fc = f_conservative_.data();
-  const double* ff = f_friction_.data();
+  const double* fc = forces.data();
   const double* im = inverse_mass.data();
   double* v = v_.data();
   double* u = u_.data();
@@ -554,15 +588,18 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift) {
     else
       for (std::size_t d = from; d < to; ++d) v[d] += h * fc[d] * im[d];
   };
+  const auto booked_end = std::lower_bound(booked_.begin(), booked_.end(), end);
   std::size_t from = 0;
-  for (const std::size_t d : booked_) pass(from, d), from = d + 1;
-  pass(from, v_.size());
+  for (auto d = booked_.begin(); d != booked_end; ++d) pass(from, *d), from = *d + 1;
+  pass(from, end);
   // The works are summed in locals (in the same order): stores through v could alias the members.
   double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
-  for (const std::size_t d : booked_) {
+  for (auto booked = booked_.begin(); booked != booked_end; ++booked) {
+    const std::size_t d = *booked;
     const double before = v[d];
     const double load = pulse ? pulse[d] * pulse_share : 0.0;
-    const double force = fc[d] + ff[d] + load;
+    const double rub = friction ? friction[d] : 0.0;
+    const double force = fc[d] + rub + load;
     // The edge dashpots are diagonal: explicit in the first half kick, implicit in the second, so a
     // full step multiplies a free dashpot's velocity by (1 - h c/m)/(1 + h c/m), stable for any c.
     double dashpot_velocity = before;
@@ -575,10 +612,19 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift) {
     if (drift > 0.0) u[d] += drift * v[d];
     const double mean = 0.5 * (before + v[d]);
     boundary_work += h * damping[d] * dashpot_velocity * mean;
-    friction_work -= h * ff[d] * mean;
+    friction_work -= h * rub * mean;
     drive_work += h * load * mean;
   }
   boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
+}
+
+double GranularPlate::inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const {
+  double inverse = 1.0 / gi.mass + 1.0 / gj.mass;
+  if (contacts_.rotation) {
+    const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
+    inverse += ai * ai / gi.inertia + aj * aj / gj.inertia;
+  }
+  return inverse;
 }
 
 void GranularPlate::drift_grains(double h) {
@@ -604,7 +650,8 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   struct {
     double mass = 0.0, radius = 0.0, reach = 0.0;
   } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
-  for (const auto& p : pairs_) {
+  for (std::size_t listed = 0; listed < pairs_.size(); ++listed) {
+    const auto& p = pairs_[listed];
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
     const double dx = gi.x - gj.x, dy = gi.y - gj.y;
@@ -612,14 +659,17 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     const double reach = gi.radius + gj.radius;
     const double approach = (gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy;
     if (d2 >= reach * reach && approach >= 0.0) continue;  // apart and not closing: no root, no division
-    const double d = std::sqrt(d2);
+    // A pair that touched at the last force evaluation at this very distance: what it computed then.
+    const PairFacts& facts = pair_facts_[listed];
+    const bool known = facts.d2 == d2;
+    const double d = known ? facts.d : std::sqrt(d2);
     const double overlap = reach - d;
     const double vn = approach / d;
     if (overlap <= 0.0 && vn >= 0.0) continue;
-    const double m = gi.mass * gj.mass / (gi.mass + gj.mass);
-    const double r = gi.radius * gj.radius / (gi.radius + gj.radius);
+    const double m = known ? facts.mass : gi.mass * gj.mass / (gi.mass + gj.mass);
+    const double r = known ? facts.radius : gi.radius * gj.radius / (gi.radius + gj.radius);
     if constexpr (hertz) {
-      const double k = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
+      const double k = known ? facts.stiffness : (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
       if (rate_scale == 0.0) rate_scale = k / m;
       const double ratio = k / m / rate_scale;
       const double reach_now = reach_energy(overlap, vn, m, k);
@@ -634,14 +684,12 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     }
     if constexpr (Model::rotates) {
       if (overlap <= 0.0) continue;
-      const auto pair = model.pair(m, gi.radius, gj.radius);
-      const double fn = std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, pair.normal));
+      // The normal law's force is its spring less its dashpot times v_n (hertz.hpp, hooke.hpp).
+      const double fn =
+          known ? std::abs(facts.spring - facts.dashpot * vn)
+                : std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, model.pair(m, gi.radius, gj.radius).normal));
       if constexpr (Model::has_tangential) {
-        double inverse_mt = 1.0 / gi.mass + 1.0 / gj.mass;
-        if (contacts_.rotation) {
-          const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
-          inverse_mt += ai * ai / gi.inertia + aj * aj / gj.inertia;
-        }
+        const double inverse_mt = known ? facts.inverse_slip_mass : inverse_slip_mass(gi, gj, overlap);
         // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
         const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, fn);
         rates.tangential_omega_squared = std::max(rates.tangential_omega_squared, t.stiffness * inverse_mt);
@@ -649,6 +697,7 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
       }
       if constexpr (Model::has_rolling) {
         // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
+        const auto pair = model.pair(m, gi.radius, gj.radius);
         if (contacts_.rotation)
           rates.rolling_beta = std::max(rates.rolling_beta, pair.rolling.lever * fn / model.rolling.regularising_spin_rate *
                                                                 (1.0 / gi.inertia + 1.0 / gj.inertia));
@@ -790,20 +839,37 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
 
 double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
 
+double GranularPlate::free_step(const StepLimits& limits) const {
+  if (control_.fixed_step > 0.0) return control_.fixed_step;
+  if (!multirate()) return substep_free(limits);
+  // The outer step holds a whole number of the substeps the grains can take now, so that a substep
+  // cut short to land on its end is rare.
+  const double theta = control_.plate_tolerance > 0.0 ? control_.plate_tolerance : control_.tolerance;
+  const double outer = std::min(theta * limits.plate, control_.max_step), inner = substep_free(limits);
+  return inner < outer ? inner * std::floor(outer / inner) : outer;
+}
+
+double GranularPlate::substep_free(const StepLimits& limits) const {
+  return std::min({control_.tolerance * limits.tightest(), limits.travel, control_.max_step});
+}
+
 double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
   limits_ = limits;
-  const double dt = control_.fixed_step > 0.0
-                        ? std::min(control_.fixed_step, max_dt)
-                        : std::min({control_.tolerance * limits_.tightest(), limits_.travel, control_.max_step, max_dt});
+  const double dt = std::min(free_step(limits), max_dt);
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::logic_error("interface: no time scale bounds the step (no plate, no contacts, no motion)");
+  if (multirate()) return step_multirate(limits, dt);
+  ++plate_steps_;
   if (control_.scheme == Scheme::newmark_rk4) {
     // On a ladder of steps theta T_FE 2^-k (unless fixed or cut to land on a time), so that the
     // factorisation of M + C dt/2 + K dt^2/4 serves many steps.
     const double ladder = control_.tolerance * limits_.plate;
-    const bool free_step = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
-    return step_newmark_rk4(free_step ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
+    const bool on_ladder = control_.fixed_step <= 0.0 && dt < max_dt && dt < ladder;
+    const double taken = step_newmark_rk4(on_ladder ? ladder * std::exp2(-std::ceil(std::log2(ladder / dt))) : dt);
+    substep_min_ = substep_max_ = taken;
+    return taken;
   }
+  substep_min_ = substep_max_ = dt;
   kick(0.5 * dt, false, dt);  // and the plate's drift
   drift_grains(dt);
   time_ += dt;
@@ -814,13 +880,117 @@ double GranularPlate::step_with(const StepLimits& limits, double max_dt) {
   return dt;
 }
 
+// The plate's internal forces but those of its top row of elements (and its edge dashpots and
+// pulses) are the slow part, kicked at the outer step's ends; the contacts and the top row of
+// elements are the fast part, integrated in substeps by the grains and the two top rows of nodes,
+// each the step the single-rate scheme would take. The other nodes keep their velocity through the
+// substeps and drift once, in the first outer kick's pass; the two top rows take their slow kicks
+// with the first and the last substep's. The outer step is a fraction of the plate's own limit, so
+// it resolves every oscillation of the slow part and resonates with no substep. With one substep
+// this is the velocity-Verlet step.
+double GranularPlate::step_multirate(const StepLimits& limits, double dt) {
+  const std::size_t fast = subcycled_dof();
+  kick_plate(0.5 * dt, false, dt, f_elastic_, nullptr, fast);
+  const double end = time_ + dt;
+  substep_min_ = inf, substep_max_ = 0.0;
+  StepLimits now = limits;
+  for (bool first = true; time_ < end; first = false) {
+    if (!first) now = current_limits();
+    const double h = substep(now, end, first ? dt : 0.0, dt);
+    substep_min_ = std::min(substep_min_, h), substep_max_ = std::max(substep_max_, h);
+  }
+  kick_plate(0.5 * dt, true, 0.0, f_elastic_, nullptr, fast);
+  ++plate_steps_;
+  return dt;
+}
+
+void GranularPlate::slow_forces() {
+  plate_->elastic_forces(u_, f_elastic_);
+  plate_->add_top_row_forces(u_, f_elastic_, -1.0);
+}
+
+double GranularPlate::substep(const StepLimits& limits, double end, double opening, double outer) {
+  const double left = end - time_;
+  const double free = substep_free(limits);
+  // Land on the outer step's end without a sliver: the last two substeps share what is left (a
+  // substep within round-off of what is left is the last).
+  const bool last = !(left > free * (1.0 + 1e-12));
+  const double h = last ? left : left < 2.0 * free ? 0.5 * left : free;
+  if (!(h > 0.0)) throw std::logic_error("interface: a multirate substep of no length");
+  kick_grains(0.5 * h);
+  kick_edge(0.5 * h, h, 0.5 * opening, false);
+  drift_grains(h);
+  time_ = last ? end : time_ + h;
+  if (pairs_stale()) build_pairs();
+  compute_forces(0.5 * h, false, last ? 0.5 * outer : 0.0);
+  if (last) slow_forces();
+  kick_grains(0.5 * h);
+  kick_edge(0.5 * h, 0.0, last ? 0.5 * outer : 0.0, true);
+  ++steps_;
+  return h;
+}
+
+// The two top rows of nodes: the fast forces over h, and where the substep opens or closes the outer
+// step the slow forces, a pulse on the plate and the edge dashpots over slow_h in the same kick
+// (the dashpot explicit before the drift, implicit after it, as kick_plate), so that one substep is
+// the velocity-Verlet step, books included. The booked degrees of freedom book their works.
+void GranularPlate::kick_edge(double h, double drift, double slow_h, bool second_half) {
+  const auto& inverse_mass = plate_->inverse_mass();
+  const std::size_t fast = subcycled_dof();
+  if (slow_h <= 0.0) {  // within the outer step: the fast forces alone, friction's work booked
+    double friction_work = friction_work_;
+    const bool rubs = contacts_.friction > 0.0;
+    for (std::size_t d = fast; d < v_.size(); ++d) {
+      const double before = v_[d];
+      v_[d] += h * (f_conservative_[d] + f_friction_[d]) * inverse_mass[d];
+      if (rubs) friction_work -= h * f_friction_[d] * 0.5 * (before + v_[d]);
+      u_[d] += drift * v_[d];
+    }
+    friction_work_ = friction_work;
+    return;
+  }
+  const auto& damping = plate_->damping();
+  const double on = second_half ? plate_pulse_time(time_ - slow_h, time_) : plate_pulse_time(time_, time_ + slow_h);
+  const double* pulse = on > 0.0 ? plate_pulse_->forces.data() : nullptr;
+  const double pulse_share = on / slow_h;
+  double boundary_work = boundary_work_, friction_work = friction_work_, drive_work = drive_work_;
+  auto booked = std::lower_bound(booked_.begin(), booked_.end(), fast);
+  for (std::size_t d = fast; d < v_.size(); ++d) {
+    const double impulse = h * f_conservative_[d] + slow_h * f_elastic_[d];
+    if (booked == booked_.end() || *booked != d) {
+      v_[d] += impulse * inverse_mass[d];
+      u_[d] += drift * v_[d];
+      continue;
+    }
+    ++booked;
+    const double before = v_[d], rub = f_friction_[d];
+    const double load = pulse ? pulse[d] * pulse_share : 0.0;
+    const double pushed = impulse + h * rub + slow_h * load;
+    double dashpot_velocity = before;
+    if (second_half) {
+      v_[d] = (before + pushed * inverse_mass[d]) / (1.0 + slow_h * damping[d] * inverse_mass[d]);
+      dashpot_velocity = v_[d];
+    } else {
+      v_[d] = before + (pushed - slow_h * damping[d] * before) * inverse_mass[d];
+    }
+    u_[d] += drift * v_[d];
+    const double mean = 0.5 * (before + v_[d]);
+    boundary_work += slow_h * damping[d] * dashpot_velocity * mean;
+    friction_work -= h * rub * mean;
+    drive_work += slow_h * load * mean;
+  }
+  boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
+}
+
+std::size_t GranularPlate::subcycled_dof() const {
+  return static_cast<std::size_t>(2 * plate_->node(0, plate_->mesh().elements_y - 1));
+}
+
 double GranularPlate::step_towards(double t_end) {
   const double left = t_end - time_;
   const StepLimits limits = current_limits();
-  const double free_step =
-      control_.fixed_step > 0.0 ? control_.fixed_step
-                                : std::min({control_.tolerance * limits.tightest(), limits.travel, control_.max_step});
-  const double dt = step_with(limits, (left > free_step && left < 2.0 * free_step) ? 0.5 * left : left);
+  const double free = free_step(limits);
+  const double dt = step_with(limits, (left > free && left < 2.0 * free) ? 0.5 * left : left);
   if (t_end - time_ < 1e-9 * dt) time_ = t_end;  // round-off, not a step
   return dt;
 }

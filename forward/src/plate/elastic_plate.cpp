@@ -276,6 +276,22 @@ void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<dou
     for (const int i : {0, nx}) corner_node(i, j);
 }
 
+void ElasticPlate::add_top_row_forces(const std::vector<double>& u, std::vector<double>& f, double sign) const {
+  // Element by element in row order: an element's unknowns are 4 consecutive values in each of its
+  // two node rows (row_stiffness_).
+  using Vec4 = Eigen::Matrix<double, 4, 1>;
+  const auto row = static_cast<std::size_t>(2 * nodes_x());
+  const std::size_t base = static_cast<std::size_t>(mesh_.elements_y - 1) * row;
+  for (int i = 0; i < mesh_.elements_x; ++i) {
+    const std::size_t lower = base + static_cast<std::size_t>(2 * i);
+    Eigen::Matrix<double, 8, 1> ue;
+    ue << Eigen::Map<const Vec4>(u.data() + lower), Eigen::Map<const Vec4>(u.data() + lower + row);
+    const Eigen::Matrix<double, 8, 1> fe = sign * row_stiffness_.lazyProduct(ue);
+    Eigen::Map<Vec4>(f.data() + lower) -= fe.head<4>();
+    Eigen::Map<Vec4>(f.data() + lower + row) -= fe.tail<4>();
+  }
+}
+
 void ElasticPlate::add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {
   apply_stiffness<false>(u, f);
 }

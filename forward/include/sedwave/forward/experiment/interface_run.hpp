@@ -50,6 +50,7 @@ struct InterfaceRun {
   long iterations = 0;       ///< newmark_rk4: fixed-point iterations in all (0: velocity_verlet)
   int most_iterations = 0;   ///< newmark_rk4: the most in one step
   long factorisations = 0;   ///< newmark_rk4: factorisations of M + C dt/2 + K dt^2/4
+  long plate_steps = 0;      ///< the plate's steps (multirate: the outer steps; the grains' steps otherwise)
 };
 
 /// What a run will cost and how hard it strikes, from closed forms before anything is allocated

@@ -47,6 +47,7 @@ struct InterfaceRecording {
   interface::Scheme scheme = interface::Scheme::velocity_verlet;
   double iteration_reltol = 1e-10;  ///< newmark_rk4: the fixed point's relative tolerance
   double iteration_abstol = 1e-9;   ///< newmark_rk4: and its absolute one [N]
+  double plate_tolerance = 0.1;     ///< multirate: the outer step's theta (default: tolerance)
 };
 
 /// Rigid side walls at `gap` from the packing's outermost beads (docs/interface.md, "Side walls").

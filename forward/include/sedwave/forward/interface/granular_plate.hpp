@@ -76,7 +76,13 @@ void check_grains_over_nodes(const std::vector<Grain>& grains, double element_wi
 /// (M + C dt/2 + K dt^2/4 factorised by a sparse LDL^T), its motion interpolated over the step
 /// (eq. 16), the grains by RK4 against that motion, and the forces on the plate iterated to a fixed
 /// point within each step; its grain-plate limits are eqs. 29a,b (docs/interface.md, "Two schemes").
-enum class Scheme { velocity_verlet, newmark_rk4 };
+/// multirate: velocity Verlet split by impulse (r-RESPA; Tuckerman, Berne & Martyna 1992): an outer
+/// step of plate_tolerance * the plate's limit kicks the plate with the internal forces of all its
+/// elements but the top row (and its edge dashpots and pulses) at its ends; in between, the grains
+/// and the two top rows of nodes take velocity-Verlet substeps (the single-rate scheme's steps) of
+/// the contacts and the top row of elements, and the plate's other nodes drift once
+/// (docs/interface.md, "Multirate step").
+enum class Scheme { velocity_verlet, newmark_rk4, multirate };
 
 /// dt = tolerance * min(the stability limits of the FE mesh, of the Hertz contacts and of the
 /// Coulomb-tanh contacts), each evaluated from the state at the start of the step; the grain
@@ -87,6 +93,8 @@ struct StepControl {
   /// > 0: every step this long (no adaptation; for comparing against the adaptive step).
   double fixed_step = 0.0;
   Scheme scheme = Scheme::velocity_verlet;
+  /// multirate: the outer step is plate_tolerance * the plate's limit; 0: `tolerance`.
+  double plate_tolerance = 0.0;
   /// newmark_rk4: a force on the plate has converged when its change in one iteration is below
   /// abstol [force] or below reltol times itself (eqs. 18a,b), every one of them; at most
   /// max_iterations, else the step throws std::runtime_error.
@@ -183,7 +191,13 @@ class GranularPlate {
   /// Recomputes the neighbour list and the forces after initial conditions were set by hand.
   void refresh_forces();
   [[nodiscard]] double time() const { return time_; }
+  /// The grains' steps (multirate: the substeps) and the plate's (the outer steps; = steps() otherwise).
   [[nodiscard]] long steps() const { return steps_; }
+  [[nodiscard]] long plate_steps() const { return plate_steps_; }
+  /// The shortest and the longest step the grains took in the last call to step (multirate: its
+  /// substeps; otherwise both are that step).
+  [[nodiscard]] double last_substep_min() const { return substep_min_; }
+  [[nodiscard]] double last_substep_max() const { return substep_max_; }
   [[nodiscard]] const std::vector<Grain>& grains() const { return grains_; }
   std::vector<Grain>& grains_mutable() { return grains_; }  ///< set initial velocities before the first step
   [[nodiscard]] const std::optional<plate::ElasticPlate>& plate() const { return plate_; }
@@ -227,6 +241,19 @@ class GranularPlate {
     double fx = 0.0, fy = 0.0, torque = 0.0;
   };
   double step_with(const StepLimits& limits, double max_dt);
+  /// The step the scheme takes from `limits` when nothing cuts it (multirate: the outer step).
+  [[nodiscard]] double free_step(const StepLimits& limits) const;
+  /// The grains' step from `limits` (the single-rate step; multirate: the substep).
+  [[nodiscard]] double substep_free(const StepLimits& limits) const;
+  double step_multirate(const StepLimits& limits, double dt);
+  /// multirate: one velocity-Verlet substep of the fast forces on grains and the two top rows of
+  /// nodes towards the outer step's `end` (the last one lands on it and takes the outer step's
+  /// closing half kick, of `outer` / 2, on those rows; the first, with `opening` = the outer step,
+  /// its opening one). Returns its length.
+  double substep(const StepLimits& limits, double end, double opening, double outer);
+  /// multirate: half a kick of the two top rows of nodes, the fast forces over h and the slow ones
+  /// (with the edge dashpots and a pulse) over slow_h, then their drift by `drift`.
+  void kick_edge(double h, double drift, double slow_h, bool second_half);
   double step_newmark_rk4(double dt);  // newmark_rk4.cpp
   void make_newmark();                 // K assembled once
   void restart_newmark();              // the state was changed by hand: start_newmark at the next step
@@ -241,10 +268,25 @@ class GranularPlate {
   void build_pairs();
   bool pairs_stale() const;
   /// with_elastic false: the contact forces on the plate alone in f_conservative_ and f_friction_.
-  void compute_forces(double half_step, bool with_elastic = true);
-  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot.
+  /// multirate: the slow forces go to f_elastic_ (with_elastic), f_conservative_ holds the fast ones,
+  /// and the top edge's predicted velocity adds slow_half_step of the slow forces and the edge
+  /// dashpots (the outer half kick that ends the step; 0 within it).
+  void compute_forces(double half_step, bool with_elastic = true, double slow_half_step = 0.0);
+  /// What a touching pair's force evaluation computed that depends on its distance alone (d2 names
+  /// it; -1: none): the step limit reads it back at the same distance instead of computing it again.
+  struct PairFacts {
+    double d2 = -1.0;
+    double d = 0.0, mass = 0.0, radius = 0.0, stiffness = 0.0;  ///< effective mass and radius; Hertz's k
+    double spring = 0.0, dashpot = 0.0;  ///< the normal law's spring force and dashpot coefficient
+    double inverse_slip_mass = 0.0;      ///< inverse_slip_mass at that overlap (a tangential law only)
+  };
+  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot;
+  /// `damps`: damped().
   template <class Model>
-  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear);
+  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear, PairFacts& facts, bool damps);
+  /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
+  /// slip's inverse mass.
+  [[nodiscard]] double inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const;
   template <class Model>
   [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
   void add_plate_contact(int g);
@@ -260,11 +302,20 @@ class GranularPlate {
   [[nodiscard]] double contact_ceiling() const;
   /// Half a kick of grains and plate; plate_drift > 0 then moves the plate by that step (kick_plate).
   void kick(double h, bool second_half, double plate_drift = 0.0);
+  void kick_grains(double h);
   /// Whether any force acting now can rub (friction, a tangential or rolling law) or damp (a dashpot in
   /// the grains' normal law): without either no force reads the seen velocities and their works are 0.
   [[nodiscard]] bool rubbing() const;
   [[nodiscard]] bool damped() const;
-  void kick_plate(double h, bool second_half, double drift);
+  /// Half a kick of the plate's degrees of freedom below `end` by `forces` (and `friction` on the
+  /// booked ones unless null), then their drift by `drift`.
+  void kick_plate(double h, bool second_half, double drift, const std::vector<double>& forces,
+                  const double* friction, std::size_t end);
+  [[nodiscard]] bool multirate() const { return control_.scheme == Scheme::multirate && plate_.has_value(); }
+  /// multirate: the first degree of freedom of the two top rows of nodes, which take the substeps.
+  [[nodiscard]] std::size_t subcycled_dof() const;
+  /// multirate: f_elastic_ = the internal forces of every element but the top row's.
+  void slow_forces();
   void book_plate_dofs();
   void drift_grains(double h);
 
@@ -277,6 +328,7 @@ class GranularPlate {
 
   std::vector<Pair> pairs_;
   std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
+  std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
   /// The tangential springs' energy now, and when the books were last zeroed: the friction's
   /// dissipation is its work less their gain.
   double tangential_energy_ = 0.0, tangential_energy_origin_ = 0.0;
@@ -294,6 +346,9 @@ class GranularPlate {
   /// under friction, a pulse's loads), ascending.
   std::vector<std::size_t> booked_;
   std::vector<double> u_, v_, f_conservative_, f_friction_;
+  /// multirate: the slow forces (slow_forces) at the last outer step's end; f_conservative_ then holds
+  /// the fast ones on the two top rows of nodes (the top row of elements' and the contacts').
+  std::vector<double> f_elastic_;
   std::optional<ForcePulse> pulse_;
   std::optional<PlatePulse> plate_pulse_;
   /// The plate pulse's force times the part of [t0, t1] it is on: its impulse over that interval per unit force.
@@ -302,7 +357,8 @@ class GranularPlate {
   double load_x_ = 0.0, load_y_ = 0.0;
 
   double time_ = 0.0;
-  long steps_ = 0;
+  long steps_ = 0, plate_steps_ = 0;
+  double substep_min_ = 0.0, substep_max_ = 0.0;
   StepLimits limits_;
   double contact_energy_ = 0.0;
   double friction_work_ = 0.0, dashpot_work_ = 0.0, boundary_work_ = 0.0, drive_work_ = 0.0;

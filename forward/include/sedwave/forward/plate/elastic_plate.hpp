@@ -77,6 +77,10 @@ class ElasticPlate {
   /// f = -K u: the elastic forces of displacement u written over f (sized to u), without a pass that
   /// clears f first. The same arithmetic as add_elastic_forces on a zeroed f.
   void elastic_forces(const std::vector<double>& u, std::vector<double>& f) const;
+  /// f -= sign K_top u, K_top the stiffness of the top row of elements alone (under the top edge):
+  /// it touches the two top rows of nodes' entries of f and no other. (multirate integration,
+  /// interface/granular_plate.hpp: the top row of elements is integrated with the contacts.)
+  void add_top_row_forces(const std::vector<double>& u, std::vector<double>& f, double sign = 1.0) const;
   /// (1/2) u^T K u.
   [[nodiscard]] double strain_energy(const std::vector<double>& u) const;
   /// Largest undamped circular frequency of M^-1 K, bounded from above by the element eigenvalue

@@ -89,9 +89,9 @@ struct HertzNormal {
   }
   /// A Hertz contact has no stiffness at zero overlap (its energy has no kink there).
   [[nodiscard]] double stiffness_at_contact() const { return 0.0; }
+  /// (2/5) k_h delta^(5/2): (2/5) the spring's force times delta, with its one root and no power.
   [[nodiscard]] double energy(double overlap, double r_i, double r_j) const {
-    const double r_eff = r_i * r_j / (r_i + r_j);
-    return 0.4 * (4.0 / 3.0) * effective_modulus * std::sqrt(r_eff) * std::pow(overlap, 2.5);
+    return 0.4 * spring(overlap, {r_i * r_j / (r_i + r_j), 0.0}) * overlap;
   }
 };
 
