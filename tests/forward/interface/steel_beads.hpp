@@ -21,6 +21,28 @@ inline HexPacking steel_beads(int rows, int columns) {
   return p;
 }
 
+/// A free 6 x 2-element plate (every edge free: it may move as a whole), 30 x 10 mm of aluminium.
+inline plate::ElasticPlate free_plate() {
+  const plate::PlateEdges free{plate::EdgeCondition::free, plate::EdgeCondition::free, plate::EdgeCondition::free,
+                               plate::EdgeCondition::free};
+  return plate::ElasticPlate(aluminium, {6, 2, 30e-3, 10e-3}, free);
+}
+
+/// A rectangular pulse of duration tau [s] on free_plate()'s inner top-edge nodes, into the plate,
+/// unequal (-100 i N on node i) so that the plate also deforms; its total force goes to `total` [N].
+inline PlatePulse top_edge_pulse(const plate::ElasticPlate& plate, double tau, double& total) {
+  PlatePulse pulse;
+  pulse.forces.assign(static_cast<std::size_t>(plate.dof_count()), 0.0);
+  total = 0.0;
+  for (int i = 1; i <= 4; ++i) {
+    const double f = -100.0 * i;
+    pulse.forces[static_cast<std::size_t>(2 * plate.node(i, 2) + 1)] = f;
+    total += f;
+  }
+  pulse.duration = tau;
+  return pulse;
+}
+
 /// A straight chain of n touching beads along y (the first at the bottom), at rest, `lift` above
 /// the plate.
 inline std::vector<Grain> chain(int n, double lift = 1.0) {

@@ -141,18 +141,10 @@ TEST(Multirate, DeliversAPlatePulseAndBooksItAsSingleRate) {
   // test_paper_interface.cpp's pulse on a free plate's top edge (the rows the substeps kick), no
   // beads: every outer step is one substep, the pulse's impulse is delivered whole (momentum =
   // sum F tau) and its work and the balance are velocity Verlet's.
-  const PlateEdges free{EdgeCondition::free, EdgeCondition::free, EdgeCondition::free, EdgeCondition::free};
-  const ElasticPlate plate(aluminium, {6, 2, 30e-3, 10e-3}, free);
-  PlatePulse pulse;
-  pulse.forces.assign(static_cast<std::size_t>(plate.dof_count()), 0.0);
-  double total = 0.0;
-  for (int i = 1; i <= 4; ++i) {
-    const double f = -100.0 * i;  // [N], into the plate, unequal so that the plate also deforms
-    pulse.forces[static_cast<std::size_t>(2 * plate.node(i, 2) + 1)] = f;
-    total += f;
-  }
+  const ElasticPlate plate = free_plate();
   const double tau = 1e-6;
-  pulse.duration = tau;
+  double total = 0.0;
+  const PlatePulse pulse = top_edge_pulse(plate, tau, total);
   Energies books[2];
   for (const Scheme scheme : {Scheme::velocity_verlet, Scheme::multirate}) {
     StepControl control{0.1};

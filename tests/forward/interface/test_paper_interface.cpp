@@ -157,18 +157,10 @@ TEST(RigidLayers, RefusesAGrainBetweenNodes) {
 // pulse's impulse, sum F tau, to round-off, and the energy books close (the pulse's work is the
 // plate's energy).
 TEST(PlatePulse, DeliversItsImpulseWhateverTheStep) {
-  const PlateEdges free{EdgeCondition::free, EdgeCondition::free, EdgeCondition::free, EdgeCondition::free};
-  ElasticPlate plate(aluminium, {6, 2, 30e-3, 10e-3}, free);
-  PlatePulse pulse;
-  pulse.forces.assign(static_cast<std::size_t>(plate.dof_count()), 0.0);
-  double total = 0.0;
-  for (int i = 1; i <= 4; ++i) {
-    const double f = -100.0 * i;  // [N], into the plate, unequal so that the plate also deforms
-    pulse.forces[static_cast<std::size_t>(2 * plate.node(i, 2) + 1)] = f;
-    total += f;
-  }
+  const ElasticPlate plate = free_plate();
   const double tau = 1e-6;
-  pulse.duration = tau;
+  double total = 0.0;
+  const PlatePulse pulse = top_edge_pulse(plate, tau, total);
   GranularPlate run({}, steel, plate, InterfaceContacts{}, StepControl{0.1, 1.0, tau / 37.3});
   run.set_plate_pulse(pulse);
   run.advance_to(2.0 * tau);
