@@ -109,6 +109,34 @@ void print_quantity(const std::string& name, const std::string& unit, double val
   }
 }
 
+/// A second solution within this chi^2 of the fit's (a likelihood ratio above e^-2) is about as good.
+constexpr double kComparableChi2 = 4.0;
+
+/// The global search's other local minima (fit.json "other_minima"): another solution of the data,
+/// which the fit's sigmas, taken at one minimum, do not describe.
+void print_other_minima(const inversion::FitResult& r) {
+  for (const inversion::LocalMinimum& m : r.other_minima) {
+    std::string at;
+    for (std::size_t i = 0; i < m.values.size() && i < r.fitted.spec.size(); ++i) {
+      const auto& spec = r.fitted.spec[i];
+      if (!spec.free) continue;
+      if (!at.empty()) at += ", ";
+      char value[32];
+      std::snprintf(value, sizeof value, " %.4g", m.values[i]);
+      at += spec.name;
+      at += value;
+      if (!spec.unit.empty() && spec.unit != "1") at += " " + spec.unit;
+    }
+    const double above = m.chi2 - r.chi2;
+    std::printf("another local minimum of chi2 (a barrier between it and the fit): %s; chi2 %.6g, %.3g above the "
+                "fit's%s\n",
+                at.c_str(), m.chi2, above,
+                above < kComparableChi2 ? ": the data hardly choose between the two solutions, and the sigmas above "
+                                          "describe the fit's alone"
+                                        : "");
+  }
+}
+
 void print_summary(const inversion::FitResult& r, const plot::PlotOutcome& plot, const std::string& out,
                    bool profiled) {
   std::printf("sedwave invert: model %s, method %s, %d observations, %.1f ms\n", r.model.c_str(), r.method.c_str(),
@@ -151,6 +179,7 @@ void print_summary(const inversion::FitResult& r, const plot::PlotOutcome& plot,
                 r.global->local_and_global_agree ? "agree" : "DISAGREE", r.global->chi2_polished,
                 r.global->chi2_local_from_start);
   }
+  print_other_minima(r);
   if (!r.flags.empty()) {
     std::printf("\nWARNING: %zu result%s outside physical ranges or at search bounds (fit.json \"flags\"):\n",
                 r.flags.size(), r.flags.size() > 1 ? "s" : "");

@@ -93,6 +93,15 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
                           {"chi2_local_from_start", r.global->chi2_local_from_start},
                           {"local_and_global_agree", r.global->local_and_global_agree}};
   }
+  // Other local minima of chi^2 that a barrier separates from the fit: other solutions the data allow.
+  j["other_minima"] = nlohmann::json::array();
+  for (const LocalMinimum& m : r.other_minima) {
+    nlohmann::json at = nlohmann::json::object();
+    for (std::size_t i = 0; i < m.values.size() && i < r.fitted.spec.size(); ++i) {
+      if (r.fitted.spec[i].free) at[r.fitted.spec[i].name] = m.values[i];
+    }
+    j["other_minima"].push_back({{"chi2", m.chi2}, {"free_parameters", at}, {"units", "as in \"parameters\""}});
+  }
   int defaulted = 0;
   for (const PointResidual& p : r.residuals) {
     defaulted += p.default_sigma ? 1 : 0;

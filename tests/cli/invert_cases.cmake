@@ -91,3 +91,12 @@ sedwave_cli_case(invert.file_water_density_huge 1 "water_density_huge\\.csv:2:28
   invert ${INV}/water_density_huge.csv --model edfm --fit porosity ${FAST})
 sedwave_cli_case(invert.file_water_speed_huge 1 "water_speed_huge\\.csv:1:30: field 'water_sound_speed_m_per_s': sound speed 1e308 m/s is outside \\[100, 10000\\]"
   invert ${INV}/water_speed_huge.csv --model edfm --fit porosity ${FAST})
+
+# Two solutions: Biot-Stoll's permeability either side of Biot's attenuation peak fits these four
+# points over 200-210 Hz (made by `sedwave synthesize --model biot-stoll --set permeability=1e-9
+# --from 200 --to 210 --points 4 --alpha-noise 0.05 --speed-noise 0.01 --seed 301`): the fit names
+# the other local minimum and says the data hardly choose between them.
+sedwave_cli_case(invert.second_solution_is_told 0
+  "another local minimum of chi2 .*permeability [0-9.e+-]+ m\\^2.*hardly choose between the two solutions"
+  invert ${CLI_DATA}/bimodal_biot_stoll.csv --model biot-stoll --fit porosity,permeability
+  --out ${CLI_OUT}/second_solution --no-plot)
