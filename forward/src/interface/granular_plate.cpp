@@ -349,14 +349,20 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt,
   }
 }
 
+// How far grain g presses into the deformed top edge at its contact point e [m] (> 0: touching).
+double GranularPlate::plate_overlap(const Grain& g, const plate::ElasticPlate::EdgePoint& e) const {
+  const double edge_y = e.shape_left * u_[static_cast<std::size_t>(2 * e.node_left + 1)] +
+                        e.shape_right * u_[static_cast<std::size_t>(2 * e.node_right + 1)];
+  return g.radius - (g.y - edge_y);
+}
+
 void GranularPlate::add_plate_contact(int index) {
   auto& g = grains_[static_cast<std::size_t>(index)];
   const auto& mesh = plate_->mesh();
   if (g.x < 0.0 || g.x > mesh.length_x) return;  // beyond the plate's ends
   const auto e = contact_point(g.x);
   const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
-  const double edge_y = e.shape_left * u_[ya] + e.shape_right * u_[yb];
-  const double overlap = g.radius - (g.y - edge_y);
+  const double overlap = plate_overlap(g, e);
   if (overlap <= 0.0) return;
   // Hertz sphere on a flat: R* = r. Force = -grad of (2/5) k delta^(5/2) with
   // delta = r - y_g + sum_a N_a(x_g) u_a: on the grain +F_n along y and -F_n du_y/dx along x (the
@@ -370,7 +376,7 @@ void GranularPlate::add_plate_contact(int index) {
   c.fx -= fn * slope;
   f_conservative_[ya] -= fn * e.shape_left;
   f_conservative_[yb] -= fn * e.shape_right;
-  contact_energy_ += 0.4 * fn * overlap;
+  contact_energy_ += dem::HertzNormal::energy_of_force(fn, overlap);
   plate_normal_force_ += fn;
   max_plate_contact_radius_ = std::max(max_plate_contact_radius_, contact_radius);
   if (contacts_.friction <= 0.0) return;
@@ -1042,11 +1048,8 @@ std::vector<double> GranularPlate::grain_energies() const {
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
     if (g.x < 0.0 || g.x > plate_->mesh().length_x) continue;  // beyond the plate's ends (add_plate_contact)
-    const auto e = contact_point(g.x);
-    const double edge_y = e.shape_left * u_[static_cast<std::size_t>(2 * e.node_left + 1)] +
-                          e.shape_right * u_[static_cast<std::size_t>(2 * e.node_right + 1)];
-    const double overlap = g.radius - (g.y - edge_y);
-    if (overlap > 0.0) held[i] += 0.4 * plate_law().spring(overlap, {g.radius, 0.0}) * overlap;
+    const double overlap = plate_overlap(g, contact_point(g.x));
+    if (overlap > 0.0) held[i] += plate_law().energy(overlap, {g.radius, 0.0});
   }
   return held;
 }

@@ -10,6 +10,13 @@
 #include "sedwave/forward/interface/granular_plate.hpp"
 
 namespace sedwave::forward::interface {
+namespace {
+
+/// How far grain g presses into the wall at x = face whose normal (+1 left, -1 right) points into the
+/// packing [m] (> 0: touching).
+double wall_overlap(const Grain& g, double face, double normal) { return g.radius - normal * (g.x - face); }
+
+}  // namespace
 
 SideWalls side_walls_around(const HexPacking& p, double gap, bool left, bool right, double modulus, double friction) {
   SideWalls walls;
@@ -43,12 +50,12 @@ void GranularPlate::add_wall_contacts(int index) {
     const auto& face = side == 0 ? walls_.left : walls_.right;
     if (!face) continue;
     const double normal = side == 0 ? 1.0 : -1.0;
-    const double overlap = g.radius - normal * (g.x - *face);
+    const double overlap = wall_overlap(g, *face, normal);
     if (overlap <= 0.0) continue;
     const dem::HertzNormal law{walls_.modulus, 0.0};
     const double fn = law.spring(overlap, {g.radius, 0.0});
     conservative_[i].fx += normal * fn;
-    contact_energy_ += 0.4 * fn * overlap;  // (2/5) k delta^(5/2)
+    contact_energy_ += dem::HertzNormal::energy_of_force(fn, overlap);
     wall_force_[side] += fn;
     if (walls_.friction <= 0.0) continue;
     const auto& seen = seen_[i];
@@ -66,8 +73,8 @@ void GranularPlate::add_wall_energies(std::vector<double>& held) const {
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
     for (const auto& [face, normal] : {std::pair{walls_.left, 1.0}, std::pair{walls_.right, -1.0}}) {
-      const double overlap = face ? g.radius - normal * (g.x - *face) : 0.0;
-      if (overlap > 0.0) held[i] += 0.4 * dem::HertzNormal{walls_.modulus, 0.0}.spring(overlap, {g.radius, 0.0}) * overlap;
+      const double overlap = face ? wall_overlap(g, *face, normal) : 0.0;
+      if (overlap > 0.0) held[i] += dem::HertzNormal{walls_.modulus, 0.0}.energy(overlap, {g.radius, 0.0});
     }
   }
 }

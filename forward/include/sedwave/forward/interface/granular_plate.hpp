@@ -299,6 +299,7 @@ class GranularPlate {
   double tighten_with_walls(StepLimits& limits, double collective_friction) const;
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
   [[nodiscard]] plate::ElasticPlate::EdgePoint contact_point(double x) const;
+  [[nodiscard]] double plate_overlap(const Grain& g, const plate::ElasticPlate::EdgePoint& e) const;
   [[nodiscard]] double contact_ceiling() const;
   /// Half a kick of grains and plate; plate_drift > 0 then moves the plate by that step (kick_plate).
   void kick(double h, bool second_half, double plate_drift = 0.0);

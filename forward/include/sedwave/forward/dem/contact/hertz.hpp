@@ -91,8 +91,12 @@ struct HertzNormal {
   [[nodiscard]] double stiffness_at_contact() const { return 0.0; }
   /// (2/5) k_h delta^(5/2): (2/5) the spring's force times delta, with its one root and no power.
   [[nodiscard]] double energy(double overlap, double r_i, double r_j) const {
-    return 0.4 * spring(overlap, {r_i * r_j / (r_i + r_j), 0.0}) * overlap;
+    return energy(overlap, Pair{r_i * r_j / (r_i + r_j), 0.0});
   }
+  /// The same for a pair's effective radius (a sphere on a flat: R_eff = r).
+  [[nodiscard]] double energy(double overlap, const Pair& p) const { return energy_of_force(spring(overlap, p), overlap); }
+  /// The spring's energy where its force at `overlap` is `force` (already computed): (2/5) F delta.
+  [[nodiscard]] static double energy_of_force(double force, double overlap) { return 0.4 * force * overlap; }
 };
 
 }  // namespace sedwave::forward::dem
