@@ -278,9 +278,34 @@ void GranularPlate::build_pairs() {
   }
   shear_.assign(pairs_.size(), dem::Vec3{});
   pair_facts_.assign(pairs_.size(), PairFacts{});
+  tabulate_pairs();
   if (history.empty()) return;
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (const auto it = history.find(key(pairs_[k])); it != history.end()) shear_[k] = it->second;
+}
+
+void GranularPlate::tabulate_pairs() {
+  std::visit(
+      [&]<class Model>(const Model& model) {
+        if (!std::holds_alternative<dem::PairTable<Model>>(pair_table_)) pair_table_.emplace<dem::PairTable<Model>>();
+        auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;
+        table.clear();
+        pair_constants_.clear();
+        for (const auto& p : pairs_) {
+          const auto& gi = grains_[static_cast<std::size_t>(p.i)];
+          const auto& gj = grains_[static_cast<std::size_t>(p.j)];
+          PairConstants c;
+          c.reach = gi.radius + gj.radius;
+          c.mass = gi.mass * gj.mass / (gi.mass + gj.mass);
+          c.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
+          if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
+            c.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(c.radius);
+          c.inverse_mass = 1.0 / gi.mass + 1.0 / gj.mass;
+          pair_constants_.push_back(c);
+          table.push_back(model.pair(c.mass, gi.radius, gj.radius));
+        }
+      },
+      grain_model_);
 }
 
 bool GranularPlate::pairs_stale() const {
@@ -297,12 +322,13 @@ bool GranularPlate::pairs_stale() const {
 // normal force is its dashpot, the tangential force and the torques go to friction (with a
 // tangential spring's energy taken back out of it in energies()).
 template <class Model>
-void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt, Vec3& shear, PairFacts& facts,
+void GranularPlate::add_grain_pair(const Model& model, const Pair& p, const PairConstants& constants,
+                                   const typename Model::Pair& pair, double dt, Vec3& shear, PairFacts& facts,
                                    bool damps) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
-  const double reach = gi.radius + gj.radius;
+  const double reach = constants.reach;
   const double d2 = dx * dx + dy * dy;
   if (d2 >= reach * reach) {
     if constexpr (Model::needs_history) shear = Vec3{};  // an open contact forgets its history
@@ -311,29 +337,30 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double dt,
   const double d = std::sqrt(d2);
   const double overlap = reach - d;
   const double nx = dx / d, ny = dy / d;
-  const double effective_mass = gi.mass * gj.mass / (gi.mass + gj.mass);
-  const auto pair = model.pair(effective_mass, gi.radius, gj.radius);
   const auto& si = seen_[static_cast<std::size_t>(p.i)];
   const auto& sj = seen_[static_cast<std::size_t>(p.j)];
   const Vec3 relative{si.vx - sj.vx, si.vy - sj.vy, 0.0};
   const double vn = relative.x * nx + relative.y * ny;
   const dem::ContactPoint point{{nx, ny, 0.0}, overlap, vn, gi.radius, gj.radius};
-  const dem::PairResult r = model.evaluate(point, pair, relative, {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
+  // The normal law's spring and dashpot apart (the books need both); its force is spring - dashpot v_n.
   const double spring = model.normal.spring(overlap, pair.normal);
+  const double dashpot_rate = damps ? model.normal.dashpot_at(overlap, pair.normal) : 0.0;  // exactly 0 without one
+  const dem::PairResult r = model.evaluate_with_normal_force(spring - dashpot_rate * vn, point, pair, relative,
+                                                             {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
   const double dashpot = r.normal_force - spring;
-  facts.d2 = d2, facts.d = d, facts.mass = effective_mass, facts.spring = spring;
-  facts.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
-  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
-    facts.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(facts.radius);
-  facts.dashpot = damps ? model.normal.dashpot_at(overlap, pair.normal) : 0.0;  // exactly 0 without a dashpot
-  if constexpr (Model::rotates && Model::has_tangential) facts.inverse_slip_mass = inverse_slip_mass(gi, gj, overlap);
+  facts.d2 = d2, facts.d = d, facts.spring = spring, facts.dashpot = dashpot_rate;
+  if constexpr (Model::rotates && Model::has_tangential)
+    facts.inverse_slip_mass = inverse_slip_mass(constants, gi, gj, overlap);
   auto& ci = conservative_[static_cast<std::size_t>(p.i)];
   auto& cj = conservative_[static_cast<std::size_t>(p.j)];
   ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
   auto& di = dashpot_[static_cast<std::size_t>(p.i)];
   auto& dj = dashpot_[static_cast<std::size_t>(p.j)];
   di.fx += dashpot * nx, di.fy += dashpot * ny, dj.fx -= dashpot * nx, dj.fy -= dashpot * ny;
-  contact_energy_ += model.normal.energy(overlap, gi.radius, gj.radius);
+  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
+    contact_energy_ += dem::HertzNormal::energy_of_force(spring, overlap);
+  else
+    contact_energy_ += model.normal.energy(overlap, gi.radius, gj.radius);
   if constexpr (Model::rotates) {
     const double fx = r.force.x - r.normal_force * nx, fy = r.force.y - r.normal_force * ny;
     auto& fi = friction_[static_cast<std::size_t>(p.i)];
@@ -464,9 +491,13 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
   tangential_energy_ = 0.0;
   const bool damps = damped();
   std::visit(
-      [&](const auto& model) {
+      [&]<class Model>(const Model& model) {
+        if (!std::holds_alternative<dem::PairTable<Model>>(pair_table_) || pair_constants_.size() != pairs_.size())
+          tabulate_pairs();  // the model was swapped (relax) since the list was built
+        const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;
         for (std::size_t k = 0; k < pairs_.size(); ++k)
-          add_grain_pair(model, pairs_[k], 2.0 * half_step, shear_[k], pair_facts_[k], damps);
+          add_grain_pair(model, pairs_[k], pair_constants_[k], table[k], 2.0 * half_step, shear_[k], pair_facts_[k],
+                         damps);
       },
       grain_model_);
   if (plate_) {
@@ -624,8 +655,9 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift, const s
   boundary_work_ = boundary_work, friction_work_ = friction_work, drive_work_ = drive_work;
 }
 
-double GranularPlate::inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const {
-  double inverse = 1.0 / gi.mass + 1.0 / gj.mass;
+double GranularPlate::inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
+                                        double overlap) const {
+  double inverse = constants.inverse_mass;
   if (contacts_.rotation) {
     const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
     inverse += ai * ai / gi.inertia + aj * aj / gj.inertia;
@@ -656,13 +688,15 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   struct {
     double mass = 0.0, radius = 0.0, reach = 0.0;
   } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
+  const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;  // tabulated by compute_forces
   for (std::size_t listed = 0; listed < pairs_.size(); ++listed) {
     const auto& p = pairs_[listed];
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];
     const auto& gj = grains_[static_cast<std::size_t>(p.j)];
     const double dx = gi.x - gj.x, dy = gi.y - gj.y;
     const double d2 = dx * dx + dy * dy;
-    const double reach = gi.radius + gj.radius;
+    const PairConstants& constants = pair_constants_[listed];
+    const double reach = constants.reach;
     const double approach = (gi.vx - gj.vx) * dx + (gi.vy - gj.vy) * dy;
     if (d2 >= reach * reach && approach >= 0.0) continue;  // apart and not closing: no root, no division
     // A pair that touched at the last force evaluation at this very distance: what it computed then.
@@ -672,10 +706,9 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     const double overlap = reach - d;
     const double vn = approach / d;
     if (overlap <= 0.0 && vn >= 0.0) continue;
-    const double m = known ? facts.mass : gi.mass * gj.mass / (gi.mass + gj.mass);
-    const double r = known ? facts.radius : gi.radius * gj.radius / (gi.radius + gj.radius);
+    const double m = constants.mass, r = constants.radius;
     if constexpr (hertz) {
-      const double k = known ? facts.stiffness : (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(r);
+      const double k = constants.stiffness;
       if (rate_scale == 0.0) rate_scale = k / m;
       const double ratio = k / m / rate_scale;
       const double reach_now = reach_energy(overlap, vn, m, k);
@@ -693,9 +726,9 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
       // The normal law's force is its spring less its dashpot times v_n (hertz.hpp, hooke.hpp).
       const double fn =
           known ? std::abs(facts.spring - facts.dashpot * vn)
-                : std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, model.pair(m, gi.radius, gj.radius).normal));
+                : std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, table[listed].normal));
       if constexpr (Model::has_tangential) {
-        const double inverse_mt = known ? facts.inverse_slip_mass : inverse_slip_mass(gi, gj, overlap);
+        const double inverse_mt = known ? facts.inverse_slip_mass : inverse_slip_mass(constants, gi, gj, overlap);
         // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
         const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, fn);
         rates.tangential_omega_squared = std::max(rates.tangential_omega_squared, t.stiffness * inverse_mt);
@@ -703,9 +736,8 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
       }
       if constexpr (Model::has_rolling) {
         // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
-        const auto pair = model.pair(m, gi.radius, gj.radius);
         if (contacts_.rotation)
-          rates.rolling_beta = std::max(rates.rolling_beta, pair.rolling.lever * fn / model.rolling.regularising_spin_rate *
+          rates.rolling_beta = std::max(rates.rolling_beta, table[listed].rolling.lever * fn / model.rolling.regularising_spin_rate *
                                                                 (1.0 / gi.inertia + 1.0 / gj.inertia));
       }
     }

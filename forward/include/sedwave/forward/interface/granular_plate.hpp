@@ -276,17 +276,27 @@ class GranularPlate {
   /// it; -1: none): the step limit reads it back at the same distance instead of computing it again.
   struct PairFacts {
     double d2 = -1.0;
-    double d = 0.0, mass = 0.0, radius = 0.0, stiffness = 0.0;  ///< effective mass and radius; Hertz's k
+    double d = 0.0;
     double spring = 0.0, dashpot = 0.0;  ///< the normal law's spring force and dashpot coefficient
     double inverse_slip_mass = 0.0;      ///< inverse_slip_mass at that overlap (a tangential law only)
   };
+  /// What a listed pair's two grains fix, set when the list is built: r_i + r_j, the effective mass
+  /// and radius, Hertz's k = (4/3) E* sqrt(R) (0 for another normal law) and 1/m_i + 1/m_j.
+  struct PairConstants {
+    double reach = 0.0, mass = 0.0, radius = 0.0, stiffness = 0.0, inverse_mass = 0.0;
+  };
+  /// The listed pairs' constants: this class's and the contact model's (dem::PairTable, as the DEM
+  /// engine keeps them), so that no step divides by masses or takes their roots.
+  void tabulate_pairs();
   /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot;
   /// `damps`: damped().
   template <class Model>
-  void add_grain_pair(const Model& model, const Pair& p, double dt, dem::Vec3& shear, PairFacts& facts, bool damps);
+  void add_grain_pair(const Model& model, const Pair& p, const PairConstants& constants,
+                      const typename Model::Pair& pair, double dt, dem::Vec3& shear, PairFacts& facts, bool damps);
   /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
   /// slip's inverse mass.
-  [[nodiscard]] double inverse_slip_mass(const Grain& gi, const Grain& gj, double overlap) const;
+  [[nodiscard]] double inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
+                                         double overlap) const;
   template <class Model>
   [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
   void add_plate_contact(int g);
@@ -330,6 +340,8 @@ class GranularPlate {
   std::vector<Pair> pairs_;
   std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
   std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
+  std::vector<PairConstants> pair_constants_;
+  dem::AnyPairTable pair_table_;  ///< grain_model_'s constants of each listed pair
   /// The tangential springs' energy now, and when the books were last zeroed: the friction's
   /// dissipation is its work less their gain.
   double tangential_energy_ = 0.0, tangential_energy_origin_ = 0.0;

@@ -61,8 +61,14 @@ struct ContactModel {
   /// pair's history slot (ignored unless needs_history). `p` is this pair's pair(...).
   [[nodiscard]] PairResult evaluate(const ContactPoint& c, const Pair& p, const Vec3& v_rel,
                                     const Vec3& spin_i, const Vec3& spin_j, double dt, Vec3& shear) const {
+    return evaluate_with_normal_force(normal.force(c, p.normal), c, p, v_rel, spin_i, spin_j, dt, shear);
+  }
+  /// The same where the caller has already evaluated the normal law (its spring and dashpot apart).
+  [[nodiscard]] PairResult evaluate_with_normal_force(double normal_force, const ContactPoint& c, const Pair& p,
+                                                      const Vec3& v_rel, const Vec3& spin_i, const Vec3& spin_j,
+                                                      double dt, Vec3& shear) const {
     PairResult r;
-    r.normal_force = normal.force(c, p.normal);
+    r.normal_force = normal_force;
     r.force = r.normal_force * c.normal;
     if constexpr (has_tangential) {
       // Lever arms to the middle of the overlap: arm_i + arm_j = |x_i - x_j|, so the contact

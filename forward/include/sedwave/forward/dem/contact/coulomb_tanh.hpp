@@ -10,6 +10,7 @@
 
 #include "sedwave/forward/dem/contact/contact_point.hpp"
 #include "sedwave/forward/dem/contact/keys.hpp"
+#include "sedwave/forward/dem/contact/tanh_over_x.hpp"
 
 namespace sedwave::forward::dem {
 
@@ -36,10 +37,8 @@ struct CoulombTanhFriction {
   [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
   [[nodiscard]] Vec3 force(const ContactPoint& /*c*/, const Pair& /*p*/, const Vec3& tangential_velocity,
                            double normal_force, double /*dt*/, Vec3& /*unused*/) const {
-    const double speed = norm(tangential_velocity);
-    const double x = velocity_scale * speed;
-    // tanh(x)/speed, continued to k_s at zero slip (no division by zero, no branch in the result).
-    const double tanh_over_speed = x > 1e-8 ? std::tanh(x) / speed : velocity_scale;
+    // tanh(k_s |v|)/|v| = k_s tanh(x)/x, continued to k_s at zero slip (no division by zero).
+    const double tanh_over_speed = velocity_scale * tanh_over_x(velocity_scale * norm(tangential_velocity));
     return -(friction * std::abs(normal_force) * tanh_over_speed) * tangential_velocity;
   }
   [[nodiscard]] ContactOscillator oscillator(double /*effective_mass*/, double /*radius*/, double /*overlap*/,
