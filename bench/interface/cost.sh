@@ -8,25 +8,28 @@
 # Prints a table; every run also leaves its log under OUT.
 #
 #   bench/interface/cost.sh [SEDWAVE [OUT]]
-#   bench/interface/cost.sh --compare OLD_SEDWAVE NEW_SEDWAVE [RUNS=5 [NEW_RUN_KEYS]]
+#   bench/interface/cost.sh --compare OLD_SEDWAVE NEW_SEDWAVE [RUNS=5 [NEW_RUN_KEYS [OLD_RUN_KEYS]]]
 # The second form runs example 11 as shipped by two builds, alternating so that a change in the
 # machine's load falls on both alike, and prints each build's median wall and CPU time, its ns per
 # grain-step (CPU time over steps times grains), the machine's load, and what each run reported
 # (plate share, energy balance, arrival at the middle probe). NEW_RUN_KEYS, e.g.
-# 'scheme = "multirate"', are appended to the scene's [run] table for the new build alone.
+# 'scheme = "multirate"', are appended to the scene's [run] table for the new build, OLD_RUN_KEYS for
+# the old one (the same keys on both: one scheme by two builds).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 if [ "${1:-}" = --compare ]; then
   OUT=$(mktemp -d)
   trap 'rm -rf "$OUT"' EXIT
-  python3 - "$ROOT/examples/11-granular-plate/scene.toml" "$OUT" "$2" "$3" "${4:-5}" "${5:-}" <<'PY'
+  python3 - "$ROOT/examples/11-granular-plate/scene.toml" "$OUT" "$2" "$3" "${4:-5}" "${5:-}" "${6:-}" <<'PY'
 import os, re, resource, statistics, subprocess, sys, time
-scene, out, old, new, runs, keys = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), sys.argv[6]
+scene, out, old, new = sys.argv[1:5]
+runs, keys, old_keys = int(sys.argv[5]), sys.argv[6], sys.argv[7]
 scenes = {"old": scene, "new": scene}
-if keys:  # [run] is the scene's last table
-    scenes["new"] = f"{out}/new_scene.toml"
-    with open(scenes["new"], "w") as f:
-        f.write(open(scene).read() + "\n" + keys + "\n")
+for name, extra in (("new", keys), ("old", old_keys)):
+    if extra:  # [run] is the scene's last table
+        scenes[name] = f"{out}/{name}_scene.toml"
+        with open(scenes[name], "w") as f:
+            f.write(open(scene).read() + "\n" + extra + "\n")
 times = {"old": [], "new": []}
 reported = {}
 for r in range(runs):
@@ -51,7 +54,7 @@ print(f"old / new: wall {w[0] / w[2]:.2f}x, CPU {w[1] / w[3]:.2f}x; load {os.get
 for name in ("old", "new"):
     steps, (share, balance), arrival = reported[name]
     print(f"{name}: {steps} steps, plate share {share}, energy balance within {balance}, arrival at x = 0.06 m {arrival} s"
-          + (f" ({keys})" if keys and name == "new" else ""))
+          + (f" ({keys})" if keys and name == "new" else "") + (f" ({old_keys})" if old_keys and name == "old" else ""))
 PY
   exit 0
 fi
