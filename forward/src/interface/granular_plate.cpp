@@ -23,11 +23,12 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 /// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
 /// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
-/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing.
-double reach_energy(double overlap, double normal_velocity, double effective_mass, double k_hertz) {
+/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing. `approach` is the
+/// pair's (5/4) m / k.
+double reach_energy(double overlap, double normal_velocity, double approach) {
   const double touching = std::max(overlap, 0.0);
   double e = touching * touching * std::sqrt(touching);
-  if (normal_velocity < 0.0) e += 1.25 * effective_mass * normal_velocity * normal_velocity / k_hertz;
+  if (normal_velocity < 0.0) e += approach * normal_velocity * normal_velocity;
   return e;
 }
 
@@ -298,8 +299,13 @@ void GranularPlate::tabulate_pairs() {
           c.reach = gi.radius + gj.radius;
           c.mass = gi.mass * gj.mass / (gi.mass + gj.mass);
           c.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
-          if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
+          if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
             c.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(c.radius);
+            c.approach_reach = 1.25 * c.mass / c.stiffness;
+            if (pair_constants_.empty()) rate_scale_ = c.stiffness / c.mass;
+            const double ratio = c.stiffness / c.mass / rate_scale_;
+            c.rate_weight = ratio * ratio * ratio * ratio * ratio;
+          }
           c.inverse_mass = 1.0 / gi.mass + 1.0 / gj.mass;
           pair_constants_.push_back(c);
           table.push_back(model.pair(c.mass, gi.radius, gj.radius));
@@ -675,8 +681,9 @@ void GranularPlate::drift_grains(double h) {
 // Each grain pair's rates for the step limit (dem/critical_step.hpp), the largest of each over the
 // pairs that touch or close. A Hertz normal law is evaluated at the largest overlap a collision can
 // reach (reach_energy): its omega^2 = (3/2)(k/m) delta_max^(1/2) grows with (k/m)^5 delta_max^(5/2), so
-// the loop keeps the pair with the largest of those (scaled by the first pair's k/m against overflow)
-// and takes one root, for that pair, at the end instead of a power per pair. The tangential and
+// the loop keeps the pair with the largest of those ((k/m)^5 against the first listed pair's, so that
+// nothing overflows, tabulated with the list) and takes one root, for that pair, at the end instead of
+// a power per pair. The tangential and
 // rolling laws are evaluated at the overlap and normal force now, on the slip's
 // inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal spheres with rotation) and
 // the relative spin's 1/I_i + 1/I_j.
@@ -684,7 +691,7 @@ template <class Model>
 dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   constexpr bool hertz = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
   dem::PairRates rates;
-  double rate_scale = 0.0, largest = 0.0;
+  double largest = 0.0;
   struct {
     double mass = 0.0, radius = 0.0, reach = 0.0;
   } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
@@ -708,11 +715,8 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     if (overlap <= 0.0 && vn >= 0.0) continue;
     const double m = constants.mass, r = constants.radius;
     if constexpr (hertz) {
-      const double k = constants.stiffness;
-      if (rate_scale == 0.0) rate_scale = k / m;
-      const double ratio = k / m / rate_scale;
-      const double reach_now = reach_energy(overlap, vn, m, k);
-      if (const double x = ratio * ratio * ratio * ratio * ratio * reach_now; x > largest) {
+      const double reach_now = reach_energy(overlap, vn, constants.approach_reach);
+      if (const double x = constants.rate_weight * reach_now; x > largest) {
         largest = x;
         stiffest = {m, r, reach_now};
       }
@@ -808,7 +812,7 @@ StepLimits GranularPlate::current_limits() const {
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
     const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
     if (newmark) {
-      const double reach = std::pow(reach_energy(overlap, vn, 1.0 / inverse_m, k), 0.2);  // delta_max^(1/2)
+      const double reach = std::pow(reach_energy(overlap, vn, 1.25 / (inverse_m * k)), 0.2);  // delta_max^(1/2)
       newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * inverse_m);
       const double inverse_mt = inverse_m + (contacts_.rotation ? g.radius * g.radius / g.inertia : 0.0);
       if (mu_ks > 0.0 && overlap > 0.0)
@@ -818,7 +822,7 @@ StepLimits GranularPlate::current_limits() const {
     if (plate_scale == 0.0) plate_scale = k * inverse_m;
     const double ratio = k * inverse_m / plate_scale;
     plate_largest =
-        std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, 1.0 / inverse_m, k));
+        std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, 1.25 / (inverse_m * k)));
     if (mu_ks > 0.0 && overlap > 0.0) {
       const double fn = k * overlap * std::sqrt(overlap);
       double inverse_mt = 1.0 / g.mass + edge_inverse_mass;  // x and y masses of a node are equal
@@ -864,7 +868,7 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
       const double vn = normal * g.vx;  // > 0: leaving the wall
       if (overlap < -skin_ || (overlap <= 0.0 && vn >= 0.0)) continue;
       const double k = (4.0 / 3.0) * walls_.modulus * std::sqrt(g.radius);
-      omega2 = std::max(omega2, 1.5 * k * std::pow(reach_energy(overlap, vn, g.mass, k), 0.2) / g.mass);
+      omega2 = std::max(omega2, 1.5 * k * std::pow(reach_energy(overlap, vn, 1.25 * g.mass / k), 0.2) / g.mass);
       if (mu_ks > 0.0 && overlap > 0.0)
         beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * (1.0 / g.mass + g.radius * g.radius / g.inertia));
     }

@@ -281,9 +281,11 @@ class GranularPlate {
     double inverse_slip_mass = 0.0;      ///< inverse_slip_mass at that overlap (a tangential law only)
   };
   /// What a listed pair's two grains fix, set when the list is built: r_i + r_j, the effective mass
-  /// and radius, Hertz's k = (4/3) E* sqrt(R) (0 for another normal law) and 1/m_i + 1/m_j.
+  /// and radius, Hertz's k = (4/3) E* sqrt(R) (0 for another normal law) and 1/m_i + 1/m_j; for the
+  /// step limit (grain_pair_rates) reach_energy's (5/4) m/k and the weight (k/m)^5 that ranks pairs.
   struct PairConstants {
     double reach = 0.0, mass = 0.0, radius = 0.0, stiffness = 0.0, inverse_mass = 0.0;
+    double approach_reach = 0.0, rate_weight = 0.0;  ///< Hertz: (5/4) m/k; ((k/m) / rate_scale_)^5
   };
   /// The listed pairs' constants: this class's and the contact model's (dem::PairTable, as the DEM
   /// engine keeps them), so that no step divides by masses or takes their roots.
@@ -342,6 +344,7 @@ class GranularPlate {
   std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
   std::vector<PairConstants> pair_constants_;
   dem::AnyPairTable pair_table_;  ///< grain_model_'s constants of each listed pair
+  double rate_scale_ = 0.0;       ///< the first listed pair's k/m: rate_weight's scale, against overflow
   /// The tangential springs' energy now, and when the books were last zeroed: the friction's
   /// dissipation is its work less their gain.
   double tangential_energy_ = 0.0, tangential_energy_origin_ = 0.0;
