@@ -335,11 +335,7 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, const Pair
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
   const double reach = constants.reach;
-  const double d2 = dx * dx + dy * dy;
-  if (d2 >= reach * reach) {
-    if constexpr (Model::needs_history) shear = Vec3{};  // an open contact forgets its history
-    return;
-  }
+  const double d2 = dx * dx + dy * dy;  // < reach^2: compute_forces lists the touching pairs alone
   const double d = std::sqrt(d2);
   const double overlap = reach - d;
   const double nx = dx / d, ny = dy / d;
@@ -501,9 +497,26 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
         if (!std::holds_alternative<dem::PairTable<Model>>(pair_table_) || pair_constants_.size() != pairs_.size())
           tabulate_pairs();  // the model was swapped (relax) since the list was built
         const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;
-        for (std::size_t k = 0; k < pairs_.size(); ++k)
+        // The touching pairs first, packed without a branch, so that the force loop takes no branch on
+        // a pair's state and the roots of successive contacts overlap; an open contact forgets its
+        // history.
+        touching_.resize(pairs_.size());
+        std::size_t touching = 0;
+        for (std::size_t k = 0; k < pairs_.size(); ++k) {
+          const auto& gi = grains_[static_cast<std::size_t>(pairs_[k].i)];
+          const auto& gj = grains_[static_cast<std::size_t>(pairs_[k].j)];
+          const double dx = gi.x - gj.x, dy = gi.y - gj.y, reach = pair_constants_[k].reach;
+          const bool touches = dx * dx + dy * dy < reach * reach;
+          touching_[touching] = k;
+          touching += touches ? 1 : 0;
+          if constexpr (Model::needs_history)
+            if (!touches) shear_[k] = Vec3{};
+        }
+        for (std::size_t c = 0; c < touching; ++c) {
+          const std::size_t k = touching_[c];
           add_grain_pair(model, pairs_[k], pair_constants_[k], table[k], 2.0 * half_step, shear_[k], pair_facts_[k],
                          damps);
+        }
       },
       grain_model_);
   if (plate_) {

@@ -290,8 +290,8 @@ class GranularPlate {
   /// The listed pairs' constants: this class's and the contact model's (dem::PairTable, as the DEM
   /// engine keeps them), so that no step divides by masses or takes their roots.
   void tabulate_pairs();
-  /// One grain pair's forces, its torques and its elastic energy; `shear` is its history slot;
-  /// `damps`: damped().
+  /// One touching grain pair's forces, its torques and its elastic energy; `shear` is its history
+  /// slot; `damps`: damped().
   template <class Model>
   void add_grain_pair(const Model& model, const Pair& p, const PairConstants& constants,
                       const typename Model::Pair& pair, double dt, dem::Vec3& shear, PairFacts& facts, bool damps);
@@ -340,6 +340,7 @@ class GranularPlate {
   double plate_modulus_ = 0.0;
 
   std::vector<Pair> pairs_;
+  std::vector<std::size_t> touching_;  ///< compute_forces' scratch: the listed pairs that touch
   std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
   std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
   std::vector<PairConstants> pair_constants_;
