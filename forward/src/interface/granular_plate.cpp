@@ -182,7 +182,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
   // from the static state unloaded.
   const dem::AnyContactModel grain_model = grain_model_;
   const double friction = contacts_.friction, wall_friction = walls_.friction;
-  grain_model_ = normal_law_only(grain_model);
+  set_grain_model(normal_law_only(grain_model));
   contacts_.friction = walls_.friction = 0.0;
   std::fill(shear_.begin(), shear_.end(), dem::Vec3{});
   book_plate_dofs();
@@ -199,7 +199,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     largest = std::max(largest, now);
     if (n > 10 && now < tolerance * largest) break;
   }
-  grain_model_ = grain_model;
+  set_grain_model(grain_model);
   contacts_.friction = friction;
   walls_.friction = wall_friction;
   book_plate_dofs();
@@ -239,7 +239,10 @@ void GranularPlate::build_pairs() {
   pair_facts_.clear();
   x_at_build_.resize(grains_.size());
   y_at_build_.resize(grains_.size());
-  if (grains_.empty()) return;
+  if (grains_.empty()) {
+    tabulate_pairs();  // an empty table of the model's type
+    return;
+  }
   double x0 = inf, y0 = inf, x1 = -inf, y1 = -inf, r_max = 0.0;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
@@ -283,6 +286,11 @@ void GranularPlate::build_pairs() {
   if (history.empty()) return;
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (const auto it = history.find(key(pairs_[k])); it != history.end()) shear_[k] = it->second;
+}
+
+void GranularPlate::set_grain_model(const dem::AnyContactModel& model) {
+  grain_model_ = model;
+  tabulate_pairs();
 }
 
 void GranularPlate::tabulate_pairs() {
@@ -494,8 +502,6 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
   const bool damps = damped();
   std::visit(
       [&]<class Model>(const Model& model) {
-        if (!std::holds_alternative<dem::PairTable<Model>>(pair_table_) || pair_constants_.size() != pairs_.size())
-          tabulate_pairs();  // the model was swapped (relax) since the list was built
         const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;
         // The touching pairs first, packed without a branch, so that the force loop takes no branch on
         // a pair's state and the roots of successive contacts overlap; an open contact forgets its
@@ -708,7 +714,7 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   struct {
     double mass = 0.0, radius = 0.0, reach = 0.0;
   } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
-  const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;  // tabulated by compute_forces
+  const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;  // the model's (set_grain_model)
   for (std::size_t listed = 0; listed < pairs_.size(); ++listed) {
     const auto& p = pairs_[listed];
     const auto& gi = grains_[static_cast<std::size_t>(p.i)];

@@ -290,6 +290,8 @@ class GranularPlate {
   /// The listed pairs' constants: this class's and the contact model's (dem::PairTable, as the DEM
   /// engine keeps them), so that no step divides by masses or takes their roots.
   void tabulate_pairs();
+  /// The grain contact model and its pair table together, so that the table always is the model's.
+  void set_grain_model(const dem::AnyContactModel& model);
   /// One touching grain pair's forces, its torques and its elastic energy; `shear` is its history
   /// slot; `damps`: damped().
   template <class Model>
