@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -35,7 +36,7 @@ constexpr double kModulus = 200e9 / (2.0 * (1.0 - 0.09)), kFriction = 0.3, kScal
 
 Contacts make(std::size_t n) {
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> overlap(1e-8, 3e-6), angle(0.0, 2.0 * M_PI);
+  std::uniform_real_distribution<double> overlap(1e-8, 3e-6), angle(0.0, 2.0 * std::numbers::pi);
   std::normal_distribution<double> speed(0.0, 0.05), spin(0.0, 20.0);
   std::bernoulli_distribution sticking(0.3);
   Contacts c;
@@ -150,19 +151,24 @@ int main() {
   const Contacts c = make(256);
   Out reference(256), o(256);
   engine(c, reference);
+  // The largest difference from the engine's forces and torques, over the largest force (times r).
+  double scale = 0.0;
+  for (std::size_t k = 0; k < c.dx.size(); ++k)
+    scale = std::max({scale, std::abs(reference.fx[k]), std::abs(reference.fy[k])});
   const auto worst = [&](const Out& a) {
-    double w = 0.0, scale = 0.0;
-    for (std::size_t k = 0; k < c.dx.size(); ++k) scale = std::max({scale, std::abs(reference.fx[k]), std::abs(reference.fy[k])});
+    double w = 0.0;
     for (std::size_t k = 0; k < c.dx.size(); ++k)
       w = std::max({w, std::abs(a.fx[k] - reference.fx[k]) / scale, std::abs(a.fy[k] - reference.fy[k]) / scale,
-                    std::abs(a.ti[k] - reference.ti[k]) / (scale * c.radius), std::abs(a.tj[k] - reference.tj[k]) / (scale * c.radius)});
+                    std::abs(a.ti[k] - reference.ti[k]) / (scale * c.radius),
+                    std::abs(a.tj[k] - reference.tj[k]) / (scale * c.radius)});
     return w;
   };
   std::printf("%-8s %16s %30s\n", "form", "ns per contact", "largest difference / largest force");
   std::printf("%-8s %16.2f %30s\n", "engine", ns_per_contact(engine, c, o), "(reference)");
   int status = 0;
   using Form = void (*)(const Contacts&, Out&);
-  for (const auto& [name, form] : {std::pair<const char*, Form>{"planar", planar}, std::pair<const char*, Form>{"lanes", lanes}}) {
+  const std::pair<const char*, Form> forms[] = {{"planar", planar}, {"lanes", lanes}};
+  for (const auto& [name, form] : forms) {
     const double t = ns_per_contact(form, c, o), w = worst(o);
     std::printf("%-8s %16.2f %30.2g\n", name, t, w);
     if (!(w < 1e-12)) status = 1;  // a form that computes another contact is not a faster one

@@ -9,12 +9,14 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 # The lanes need sqrt without errno and selects without trapping divisions to vectorise.
-FLAGS=(-std=c++20 -O3 -DNDEBUG -fopenmp-simd -fno-math-errno -fno-trapping-math -I"$ROOT/forward/include" -I"$ROOT/io/include")
-"${CXX:-c++}" "${FLAGS[@]}" "$ROOT/bench/interface/contact_lanes.cpp" -o "$OUT/baseline"
-"${CXX:-c++}" "${FLAGS[@]}" -mavx2 -mfma "$ROOT/bench/interface/contact_lanes.cpp" -o "$OUT/avx2"
-echo "baseline x86-64 (SSE2, 2 lanes)"
+FLAGS=(-std=c++20 -O3 -DNDEBUG -fopenmp-simd -fno-math-errno -fno-trapping-math
+       -I"$ROOT/forward/include" -I"$ROOT/io/include")
+SOURCE=$ROOT/bench/interface/contact_lanes.cpp
+"${CXX:-c++}" "${FLAGS[@]}" "$SOURCE" -o "$OUT/baseline"
+echo "the compiler's default instruction set (x86-64: SSE2, 2 lanes)"
 "$OUT/baseline"
-if grep -q avx2 /proc/cpuinfo 2>/dev/null; then
+if grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo; then
+  "${CXX:-c++}" "${FLAGS[@]}" -mavx2 -mfma "$SOURCE" -o "$OUT/avx2"
   echo "AVX2 + FMA (4 lanes)"
   "$OUT/avx2"
 fi

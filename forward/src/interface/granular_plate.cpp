@@ -23,12 +23,12 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 /// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
 /// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
-/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing. `approach` is the
-/// pair's (5/4) m / k.
-double reach_energy(double overlap, double normal_velocity, double approach) {
+/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing. `closing_factor`
+/// is the pair's (5/4) m / k.
+double reach_energy(double overlap, double normal_velocity, double closing_factor) {
   const double touching = std::max(overlap, 0.0);
   double e = touching * touching * std::sqrt(touching);
-  if (normal_velocity < 0.0) e += approach * normal_velocity * normal_velocity;
+  if (normal_velocity < 0.0) e += closing_factor * normal_velocity * normal_velocity;
   return e;
 }
 
@@ -308,10 +308,10 @@ void GranularPlate::tabulate_pairs() {
           c.mass = gi.mass * gj.mass / (gi.mass + gj.mass);
           c.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
           if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
-            c.stiffness = (4.0 / 3.0) * model.normal.effective_modulus * std::sqrt(c.radius);
-            c.approach_reach = 1.25 * c.mass / c.stiffness;
-            if (pair_constants_.empty()) rate_scale_ = c.stiffness / c.mass;
-            const double ratio = c.stiffness / c.mass / rate_scale_;
+            const double k = dem::HertzNormal::stiffness(model.normal.effective_modulus, c.radius);
+            c.closing_factor = 1.25 * c.mass / k;
+            if (pair_constants_.empty()) rate_scale_ = k / c.mass;
+            const double ratio = k / c.mass / rate_scale_;
             c.rate_weight = ratio * ratio * ratio * ratio * ratio;
           }
           c.inverse_mass = 1.0 / gi.mass + 1.0 / gj.mass;
@@ -336,16 +336,14 @@ bool GranularPlate::pairs_stale() const {
 // normal force is its dashpot, the tangential force and the torques go to friction (with a
 // tangential spring's energy taken back out of it in energies()).
 template <class Model>
-void GranularPlate::add_grain_pair(const Model& model, const Pair& p, const PairConstants& constants,
-                                   const typename Model::Pair& pair, double dt, Vec3& shear, PairFacts& facts,
+void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double d2, const PairConstants& constants,
+                                   const typename Model::Pair& law_pair, double dt, Vec3& shear, PairFacts& facts,
                                    bool damps) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
-  const double reach = constants.reach;
-  const double d2 = dx * dx + dy * dy;  // < reach^2: compute_forces lists the touching pairs alone
   const double d = std::sqrt(d2);
-  const double overlap = reach - d;
+  const double overlap = constants.reach - d;
   const double nx = dx / d, ny = dy / d;
   const auto& si = seen_[static_cast<std::size_t>(p.i)];
   const auto& sj = seen_[static_cast<std::size_t>(p.j)];
@@ -353,12 +351,13 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, const Pair
   const double vn = relative.x * nx + relative.y * ny;
   const dem::ContactPoint point{{nx, ny, 0.0}, overlap, vn, gi.radius, gj.radius};
   // The normal law's spring and dashpot apart (the books need both); its force is spring - dashpot v_n.
-  const double spring = model.normal.spring(overlap, pair.normal);
-  const double dashpot_rate = damps ? model.normal.dashpot_at(overlap, pair.normal) : 0.0;  // exactly 0 without one
-  const dem::PairResult r = model.evaluate_with_normal_force(spring - dashpot_rate * vn, point, pair, relative,
-                                                             {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
-  const double dashpot = r.normal_force - spring;
-  facts.d2 = d2, facts.d = d, facts.spring = spring, facts.dashpot = dashpot_rate;
+  const double spring = model.normal.spring(overlap, law_pair.normal);
+  const double dashpot_coefficient = damps ? model.normal.dashpot_at(overlap, law_pair.normal) : 0.0;  // 0 without
+  const dem::PairResult r =
+      model.evaluate_with_normal_force(spring - dashpot_coefficient * vn, point, law_pair, relative,
+                                       {0.0, 0.0, si.spin}, {0.0, 0.0, sj.spin}, dt, shear);
+  const double dashpot_force = r.normal_force - spring;
+  facts.d2 = d2, facts.d = d, facts.spring = spring, facts.dashpot = dashpot_coefficient;
   if constexpr (Model::rotates && Model::has_tangential)
     facts.inverse_slip_mass = inverse_slip_mass(constants, gi, gj, overlap);
   auto& ci = conservative_[static_cast<std::size_t>(p.i)];
@@ -366,7 +365,7 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, const Pair
   ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
   auto& di = dashpot_[static_cast<std::size_t>(p.i)];
   auto& dj = dashpot_[static_cast<std::size_t>(p.j)];
-  di.fx += dashpot * nx, di.fy += dashpot * ny, dj.fx -= dashpot * nx, dj.fy -= dashpot * ny;
+  di.fx += dashpot_force * nx, di.fy += dashpot_force * ny, dj.fx -= dashpot_force * nx, dj.fy -= dashpot_force * ny;
   if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
     contact_energy_ += dem::HertzNormal::energy_of_force(spring, overlap);
   else
@@ -512,16 +511,17 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
           const auto& gi = grains_[static_cast<std::size_t>(pairs_[k].i)];
           const auto& gj = grains_[static_cast<std::size_t>(pairs_[k].j)];
           const double dx = gi.x - gj.x, dy = gi.y - gj.y, reach = pair_constants_[k].reach;
-          const bool touches = dx * dx + dy * dy < reach * reach;
-          touching_[touching] = k;
+          const double d2 = dx * dx + dy * dy;
+          const bool touches = d2 < reach * reach;
+          touching_[touching] = {k, d2};
           touching += touches ? 1 : 0;
           if constexpr (Model::needs_history)
             if (!touches) shear_[k] = Vec3{};
         }
         for (std::size_t c = 0; c < touching; ++c) {
-          const std::size_t k = touching_[c];
-          add_grain_pair(model, pairs_[k], pair_constants_[k], table[k], 2.0 * half_step, shear_[k], pair_facts_[k],
-                         damps);
+          const auto [k, d2] = touching_[c];
+          add_grain_pair(model, pairs_[k], d2, pair_constants_[k], table[k], 2.0 * half_step, shear_[k],
+                         pair_facts_[k], damps);
         }
       },
       grain_model_);
@@ -702,10 +702,9 @@ void GranularPlate::drift_grains(double h) {
 // reach (reach_energy): its omega^2 = (3/2)(k/m) delta_max^(1/2) grows with (k/m)^5 delta_max^(5/2), so
 // the loop keeps the pair with the largest of those ((k/m)^5 against the first listed pair's, so that
 // nothing overflows, tabulated with the list) and takes one root, for that pair, at the end instead of
-// a power per pair. The tangential and
-// rolling laws are evaluated at the overlap and normal force now, on the slip's
-// inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal spheres with rotation) and
-// the relative spin's 1/I_i + 1/I_j.
+// a power per pair. The tangential and rolling laws are evaluated at the overlap and normal force now,
+// on the slip's inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal spheres with
+// rotation) and the relative spin's 1/I_i + 1/I_j.
 template <class Model>
 dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
   constexpr bool hertz = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
@@ -734,7 +733,7 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     if (overlap <= 0.0 && vn >= 0.0) continue;
     const double m = constants.mass, r = constants.radius;
     if constexpr (hertz) {
-      const double reach_now = reach_energy(overlap, vn, constants.approach_reach);
+      const double reach_now = reach_energy(overlap, vn, constants.closing_factor);
       if (const double x = constants.rate_weight * reach_now; x > largest) {
         largest = x;
         stiffest = {m, r, reach_now};
@@ -759,9 +758,11 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
       }
       if constexpr (Model::has_rolling) {
         // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
-        if (contacts_.rotation)
-          rates.rolling_beta = std::max(rates.rolling_beta, table[listed].rolling.lever * fn / model.rolling.regularising_spin_rate *
-                                                                (1.0 / gi.inertia + 1.0 / gj.inertia));
+        if (contacts_.rotation) {
+          const double beta = table[listed].rolling.lever * fn / model.rolling.regularising_spin_rate *
+                              (1.0 / gi.inertia + 1.0 / gj.inertia);
+          rates.rolling_beta = std::max(rates.rolling_beta, beta);
+        }
       }
     }
   }
@@ -829,7 +830,7 @@ StepLimits GranularPlate::current_limits() const {
     const double edge_inverse_mass =
         e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
-    const double k = (4.0 / 3.0) * plate_modulus_ * std::sqrt(g.radius);
+    const double k = dem::HertzNormal::stiffness(plate_modulus_, g.radius);
     if (newmark) {
       const double reach = std::pow(reach_energy(overlap, vn, 1.25 / (inverse_m * k)), 0.2);  // delta_max^(1/2)
       newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * inverse_m);
@@ -840,8 +841,8 @@ StepLimits GranularPlate::current_limits() const {
     }
     if (plate_scale == 0.0) plate_scale = k * inverse_m;
     const double ratio = k * inverse_m / plate_scale;
-    plate_largest =
-        std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_energy(overlap, vn, 1.25 / (inverse_m * k)));
+    const double reach_now = reach_energy(overlap, vn, 1.25 / (inverse_m * k));
+    plate_largest = std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_now);
     if (mu_ks > 0.0 && overlap > 0.0) {
       const double fn = k * overlap * std::sqrt(overlap);
       double inverse_mt = 1.0 / g.mass + edge_inverse_mass;  // x and y masses of a node are equal
@@ -886,8 +887,9 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
       const double overlap = g.radius - normal * (g.x - *face);
       const double vn = normal * g.vx;  // > 0: leaving the wall
       if (overlap < -skin_ || (overlap <= 0.0 && vn >= 0.0)) continue;
-      const double k = (4.0 / 3.0) * walls_.modulus * std::sqrt(g.radius);
-      omega2 = std::max(omega2, 1.5 * k * std::pow(reach_energy(overlap, vn, 1.25 * g.mass / k), 0.2) / g.mass);
+      const double k = dem::HertzNormal::stiffness(walls_.modulus, g.radius);
+      const double reach_now = reach_energy(overlap, vn, 1.25 * g.mass / k);
+      omega2 = std::max(omega2, 1.5 * k * std::pow(reach_now, 0.2) / g.mass);
       if (mu_ks > 0.0 && overlap > 0.0)
         beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * (1.0 / g.mass + g.radius * g.radius / g.inertia));
     }

@@ -5,6 +5,7 @@
 // tangential spring and dashpot) match finite differences of the force laws at a static overlap, and
 // laws it cannot hold are refused. Then the closed forms of the Hertz-Mindlin tangential spring.
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -279,7 +280,8 @@ TEST(Mindlin, EngineFirstStepOfASlidingPairIsTheSpringOverOneStep) {
 }
 
 // Coulomb-tanh's tanh(x)/x against long double's tanh over 0 to 40 (both branches, the seam at
-// 0.625 and the saturation past 19.1), within 4e-16 relative: std::tanh's own worst is 3.9e-16.
+// 0.625 and the saturation past 19.1), within 2.5 ulp (5.6e-16 relative): std::tanh's own worst on
+// this grid is 3.9e-16. A slip that is not a number gives a force that is not one.
 TEST(TanhOverX, MatchesLongDoubleTanhToRoundOff) {
   EXPECT_EQ(tanh_over_x(0.0), 1.0);
   double worst = 0.0, at = 0.0;
@@ -287,8 +289,9 @@ TEST(TanhOverX, MatchesLongDoubleTanhToRoundOff) {
     const auto exact = static_cast<double>(std::tanh(static_cast<long double>(x)) / static_cast<long double>(x));
     if (const double error = std::abs(tanh_over_x(x) - exact) / exact; error > worst) worst = error, at = x;
   }
-  EXPECT_LT(worst, 4e-16) << "at x = " << at;
+  EXPECT_LT(worst, 2.5 * std::numeric_limits<double>::epsilon()) << "at x = " << at;
   EXPECT_DOUBLE_EQ(tanh_over_x(1e3), 1e-3);  // tanh is 1 in double precision
+  EXPECT_TRUE(std::isnan(tanh_over_x(std::numeric_limits<double>::quiet_NaN())));
 }
 
 }  // namespace

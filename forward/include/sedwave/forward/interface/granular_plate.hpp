@@ -199,7 +199,9 @@ class GranularPlate {
   [[nodiscard]] double last_substep_min() const { return substep_min_; }
   [[nodiscard]] double last_substep_max() const { return substep_max_; }
   [[nodiscard]] const std::vector<Grain>& grains() const { return grains_; }
-  std::vector<Grain>& grains_mutable() { return grains_; }  ///< set initial velocities before the first step
+  /// Initial velocities and spins, before the first step. Radii, masses and inertias stay as built:
+  /// the pair tables hold what they fix.
+  std::vector<Grain>& grains_mutable() { return grains_; }
   [[nodiscard]] const std::optional<plate::ElasticPlate>& plate() const { return plate_; }
   [[nodiscard]] const std::vector<double>& plate_displacement() const { return u_; }
   [[nodiscard]] const std::vector<double>& plate_velocity() const { return v_; }
@@ -281,22 +283,23 @@ class GranularPlate {
     double inverse_slip_mass = 0.0;      ///< inverse_slip_mass at that overlap (a tangential law only)
   };
   /// What a listed pair's two grains fix, set when the list is built: r_i + r_j, the effective mass
-  /// and radius, Hertz's k = (4/3) E* sqrt(R) (0 for another normal law) and 1/m_i + 1/m_j; for the
-  /// step limit (grain_pair_rates) reach_energy's (5/4) m/k and the weight (k/m)^5 that ranks pairs.
+  /// and radius and 1/m_i + 1/m_j; for a Hertz law's step limit (grain_pair_rates) reach_energy's
+  /// closing factor (5/4) m/k and the weight (k/m)^5 that ranks pairs, k = (4/3) E* sqrt(R).
   struct PairConstants {
-    double reach = 0.0, mass = 0.0, radius = 0.0, stiffness = 0.0, inverse_mass = 0.0;
-    double approach_reach = 0.0, rate_weight = 0.0;  ///< Hertz: (5/4) m/k; ((k/m) / rate_scale_)^5
+    double reach = 0.0, mass = 0.0, radius = 0.0, inverse_mass = 0.0;
+    double closing_factor = 0.0, rate_weight = 0.0;  ///< Hertz: (5/4) m/k; ((k/m) / rate_scale_)^5
   };
   /// The listed pairs' constants: this class's and the contact model's (dem::PairTable, as the DEM
   /// engine keeps them), so that no step divides by masses or takes their roots.
   void tabulate_pairs();
   /// The grain contact model and its pair table together, so that the table always is the model's.
   void set_grain_model(const dem::AnyContactModel& model);
-  /// One touching grain pair's forces, its torques and its elastic energy; `shear` is its history
-  /// slot; `damps`: damped().
+  /// One touching grain pair's forces, its torques and its elastic energy, at the squared distance d2
+  /// compute_forces found; `shear` is its history slot; `damps`: damped().
   template <class Model>
-  void add_grain_pair(const Model& model, const Pair& p, const PairConstants& constants,
-                      const typename Model::Pair& pair, double dt, dem::Vec3& shear, PairFacts& facts, bool damps);
+  void add_grain_pair(const Model& model, const Pair& p, double d2, const PairConstants& constants,
+                      const typename Model::Pair& law_pair, double dt, dem::Vec3& shear, PairFacts& facts,
+                      bool damps);
   /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
   /// slip's inverse mass.
   [[nodiscard]] double inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
@@ -342,7 +345,11 @@ class GranularPlate {
   double plate_modulus_ = 0.0;
 
   std::vector<Pair> pairs_;
-  std::vector<std::size_t> touching_;  ///< compute_forces' scratch: the listed pairs that touch
+  struct Touching {
+    std::size_t pair;  ///< its index in pairs_
+    double d2;         ///< |x_i - x_j|^2 < (r_i + r_j)^2
+  };
+  std::vector<Touching> touching_;  ///< compute_forces' scratch: the listed pairs that touch
   std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
   std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
   std::vector<PairConstants> pair_constants_;

@@ -68,6 +68,10 @@ struct HertzNormal {
   [[nodiscard]] Pair pair(double effective_mass, double r_i, double r_j) const {
     return {r_i * r_j / (r_i + r_j), alpha * std::sqrt(effective_mass * (4.0 / 3.0) * effective_modulus)};
   }
+  /// k_h = (4/3) E* sqrt(R): the spring is k_h delta^(3/2).
+  [[nodiscard]] static double stiffness(double effective_modulus, double effective_radius) {
+    return (4.0 / 3.0) * effective_modulus * std::sqrt(effective_radius);
+  }
   /// The normal force is a spring and a dashpot in parallel: spring(overlap) - dashpot(overlap) v_n.
   [[nodiscard]] double spring(double overlap, const Pair& p) const {
     const double contact_radius = std::sqrt(p.effective_radius * overlap);  // a = sqrt(R delta)
