@@ -366,10 +366,7 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double d2,
   auto& di = dashpot_[static_cast<std::size_t>(p.i)];
   auto& dj = dashpot_[static_cast<std::size_t>(p.j)];
   di.fx += dashpot_force * nx, di.fy += dashpot_force * ny, dj.fx -= dashpot_force * nx, dj.fy -= dashpot_force * ny;
-  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>)
-    contact_energy_ += dem::HertzNormal::energy_of_force(spring, overlap);
-  else
-    contact_energy_ += model.normal.energy(overlap, gi.radius, gj.radius);
+  contact_energy_ += Model::NormalLaw::energy_of_force(spring, overlap);
   if constexpr (Model::rotates) {
     const double fx = r.force.x - r.normal_force * nx, fy = r.force.y - r.normal_force * ny;
     auto& fi = friction_[static_cast<std::size_t>(p.i)];
@@ -460,7 +457,7 @@ plate::ElasticPlate::EdgePoint GranularPlate::contact_point(double x) const {
 // Without friction or dashpots nothing reads them but a dashpot of zero: they are the velocities.
 void GranularPlate::compute_forces(double half_step, bool with_elastic, double slow_half_step) {
   seen_.resize(grains_.size());
-  const bool velocity_forces = rubbing() || damped();
+  const bool damps = damped(), velocity_forces = rubbing() || damps;
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const auto& g = grains_[i];
     if (!velocity_forces) {
@@ -498,7 +495,6 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
   plate_normal_force_ = plate_tangential_force_ = 0.0;
   wall_force_[0] = wall_force_[1] = 0.0;
   tangential_energy_ = 0.0;
-  const bool damps = damped();
   std::visit(
       [&]<class Model>(const Model& model) {
         const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;
@@ -822,31 +818,29 @@ StepLimits GranularPlate::current_limits() const {
     if (g.x < 0.0 || g.x > plate_->mesh().length_x || g.y - g.radius > ceiling) continue;
     const auto e = contact_point(g.x);
     const auto ya = static_cast<std::size_t>(2 * e.node_left + 1), yb = static_cast<std::size_t>(2 * e.node_right + 1);
-    const double overlap = g.radius - (g.y - (e.shape_left * u_[ya] + e.shape_right * u_[yb]));
+    const double overlap = plate_overlap(g, e);
     if (overlap < -skin_) continue;
     const double vn = g.vy - (e.shape_left * v_[ya] + e.shape_right * v_[yb]);
     if (overlap <= 0.0 && vn >= 0.0) continue;
-    // The edge moves with the nodes: 1/m_eff = 1/m_g + sum_a N_a^2 / M_a.
+    // The edge moves with the nodes: 1/m_eff = 1/m_g + sum_a N_a^2 / M_a; the slip adds r^2/I with
+    // rotation (2m/7 on a rigid wall; x and y masses of a node are equal).
     const double edge_inverse_mass =
         e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
+    const double inverse_mt = contacts_.rotation ? inverse_m + g.radius * g.radius / g.inertia : inverse_m;
     const double k = dem::HertzNormal::stiffness(plate_modulus_, g.radius);
+    const double reach_now = reach_energy(overlap, vn, 1.25 / (inverse_m * k));
     if (newmark) {
-      const double reach = std::pow(reach_energy(overlap, vn, 1.25 / (inverse_m * k)), 0.2);  // delta_max^(1/2)
-      newmark_omega2 = std::max(newmark_omega2, 1.5 * k * reach * inverse_m);
-      const double inverse_mt = inverse_m + (contacts_.rotation ? g.radius * g.radius / g.inertia : 0.0);
+      newmark_omega2 = std::max(newmark_omega2, 1.5 * k * std::pow(reach_now, 0.2) * inverse_m);  // delta_max^(1/2)
       if (mu_ks > 0.0 && overlap > 0.0)
         plate_beta = std::max(plate_beta, mu_ks * k * overlap * std::sqrt(overlap) * inverse_mt);
       continue;
     }
     if (plate_scale == 0.0) plate_scale = k * inverse_m;
     const double ratio = k * inverse_m / plate_scale;
-    const double reach_now = reach_energy(overlap, vn, 1.25 / (inverse_m * k));
     plate_largest = std::max(plate_largest, ratio * ratio * ratio * ratio * ratio * reach_now);
     if (mu_ks > 0.0 && overlap > 0.0) {
       const double fn = k * overlap * std::sqrt(overlap);
-      double inverse_mt = 1.0 / g.mass + edge_inverse_mass;  // x and y masses of a node are equal
-      if (contacts_.rotation) inverse_mt += g.radius * g.radius / g.inertia;  // 2m/7 on a rigid wall
       plate_beta = std::max(plate_beta, mu_ks * fn * inverse_mt);
     }
   }

@@ -76,6 +76,8 @@ struct HookeNormal {
   [[nodiscard]] double energy(double overlap, double /*r_i*/, double /*r_j*/) const {
     return 0.5 * kn * overlap * overlap;
   }
+  /// The spring's energy where its force at `overlap` is `force` (already computed): (1/2) F delta.
+  [[nodiscard]] static double energy_of_force(double force, double overlap) { return 0.5 * force * overlap; }
 };
 
 }  // namespace sedwave::forward::dem
