@@ -117,12 +117,11 @@ constexpr double kComparableChi2 = 4.0;
 void print_other_minima(const inversion::FitResult& r) {
   for (const inversion::LocalMinimum& m : r.other_minima) {
     std::string at;
-    for (std::size_t i = 0; i < m.values.size() && i < r.fitted.spec.size(); ++i) {
-      const auto& spec = r.fitted.spec[i];
-      if (!spec.free) continue;
+    for (const int i : r.fitted.free_indices()) {
+      const auto& spec = r.fitted.spec[static_cast<std::size_t>(i)];
       if (!at.empty()) at += ", ";
       char value[32];
-      std::snprintf(value, sizeof value, " %.4g", m.values[i]);
+      std::snprintf(value, sizeof value, " %.4g", m.values[static_cast<std::size_t>(i)]);
       at += spec.name;
       at += value;
       if (!spec.unit.empty() && spec.unit != "1") at += " " + spec.unit;

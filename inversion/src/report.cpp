@@ -97,9 +97,8 @@ nlohmann::json fit_report(const FitResult& r, const ObservationSet& data) {
   j["other_minima"] = nlohmann::json::array();
   for (const LocalMinimum& m : r.other_minima) {
     nlohmann::json at = nlohmann::json::object();
-    for (std::size_t i = 0; i < m.values.size() && i < r.fitted.spec.size(); ++i) {
-      if (r.fitted.spec[i].free) at[r.fitted.spec[i].name] = m.values[i];
-    }
+    for (const int i : r.fitted.free_indices())
+      at[r.fitted.spec[static_cast<std::size_t>(i)].name] = m.values[static_cast<std::size_t>(i)];
     j["other_minima"].push_back({{"chi2", m.chi2}, {"free_parameters", at}, {"units", "as in \"parameters\""}});
   }
   int defaulted = 0;
