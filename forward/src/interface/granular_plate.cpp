@@ -194,6 +194,7 @@ long GranularPlate::relax(double damping_time, double tolerance, long max_steps)
     const double keep = std::exp(-dt / damping_time);
     for (auto& g : grains_) g.vx *= keep, g.vy *= keep, g.spin *= keep;
     for (auto& v : v_) v *= keep;
+    step_rates_.reset();
     restart_newmark();
     const double now = kinetic();
     largest = std::max(largest, now);
@@ -290,6 +291,7 @@ void GranularPlate::build_pairs() {
 
 void GranularPlate::set_grain_model(const dem::AnyContactModel& model) {
   grain_model_ = model;
+  step_rates_.reset();
   tabulate_pairs();
 }
 
@@ -331,6 +333,65 @@ bool GranularPlate::pairs_stale() const {
   return false;
 }
 
+// Each grain pair's rates for the step limit (dem/critical_step.hpp), the largest of each over the
+// pairs that touch or close. A Hertz normal law is evaluated at the largest overlap a collision can
+// reach (reach_energy): its omega^2 = (3/2)(k/m) delta_max^(1/2) grows with (k/m)^5 delta_max^(5/2), so
+// the search keeps the pair with the largest of those ((k/m)^5 against the first listed pair's, so
+// that nothing overflows, tabulated with the list) and takes one root, for that pair, at the end
+// instead of a power per pair. The tangential and rolling laws are evaluated at the overlap and normal
+// force now, on the slip's inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal
+// spheres with rotation) and the relative spin's 1/I_i + 1/I_j.
+template <class Model>
+void GranularPlate::note_pair_rates(const Model& model, const PairConstants& constants,
+                                    const typename Model::Pair& law_pair, const Grain& gi, const Grain& gj,
+                                    double overlap, double normal_velocity, double normal_force, double inverse_mt,
+                                    RateSearch& search) const {
+  const double m = constants.mass, r = constants.radius;
+  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
+    const double reach_now = reach_energy(overlap, normal_velocity, constants.closing_factor);
+    if (const double x = constants.rate_weight * reach_now; x > search.largest) {
+      search.largest = x;
+      search.mass = m, search.radius = r, search.reach = reach_now;
+    }
+  } else {
+    const dem::ContactOscillator n = model.normal.oscillator(m, r, overlap);
+    search.rates.normal_omega_squared = std::max(search.rates.normal_omega_squared, n.stiffness / m);
+    search.rates.normal_beta = std::max(search.rates.normal_beta, n.damping / m);
+  }
+  if constexpr (Model::rotates) {
+    if (overlap <= 0.0) return;
+    if constexpr (Model::has_tangential) {
+      // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
+      const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, normal_force);
+      search.rates.tangential_omega_squared =
+          std::max(search.rates.tangential_omega_squared, t.stiffness * inverse_mt);
+      search.rates.tangential_beta = std::max(search.rates.tangential_beta, t.damping * inverse_mt);
+    }
+    if constexpr (Model::has_rolling) {
+      // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
+      if (contacts_.rotation) {
+        const double beta = law_pair.rolling.lever * normal_force / model.rolling.regularising_spin_rate *
+                            (1.0 / gi.inertia + 1.0 / gj.inertia);
+        search.rates.rolling_beta = std::max(search.rates.rolling_beta, beta);
+      }
+    }
+  }
+}
+
+template <class Model>
+dem::PairRates GranularPlate::finish_rates(const Model& model, const RateSearch& search) const {
+  dem::PairRates rates = search.rates;
+  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
+    if (search.largest > 0.0) {
+      // The law's tangent stiffness and dashpot at the largest overlap a collision can reach.
+      const dem::ContactOscillator n = model.normal.oscillator(search.mass, search.radius, std::pow(search.reach, 0.4));
+      rates.normal_omega_squared = n.stiffness / search.mass;
+      rates.normal_beta = n.damping / search.mass;
+    }
+  }
+  return rates;
+}
+
 // The DEM engine's contact model in the plane (dem/contact/contact_model.hpp): its slip, lever arms
 // and torques. The books split its force: the normal law's spring is conservative, the rest of the
 // normal force is its dashpot, the tangential force and the torques go to friction (with a
@@ -338,7 +399,7 @@ bool GranularPlate::pairs_stale() const {
 template <class Model>
 void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double d2, const PairConstants& constants,
                                    const typename Model::Pair& law_pair, double dt, Vec3& shear, PairFacts& facts,
-                                   bool damps) {
+                                   bool damps, RateSearch* search) {
   auto& gi = grains_[static_cast<std::size_t>(p.i)];
   auto& gj = grains_[static_cast<std::size_t>(p.j)];
   const double dx = gi.x - gj.x, dy = gi.y - gj.y;
@@ -380,6 +441,9 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double d2,
       tangential_energy_ += stored;
     }
   }
+  if (search)
+    note_pair_rates(model, constants, law_pair, gi, gj, overlap, vn, std::abs(r.normal_force), facts.inverse_slip_mass,
+                    *search);
 }
 
 // How far grain g presses into the deformed top edge at its contact point e [m] (> 0: touching).
@@ -500,25 +564,46 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
         const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;
         // The touching pairs first, packed without a branch, so that the force loop takes no branch on
         // a pair's state and the roots of successive contacts overlap; an open contact forgets its
-        // history.
+        // history. The pairs that close without touching are packed beside them for the step limit.
         touching_.resize(pairs_.size());
-        std::size_t touching = 0;
+        closing_.resize(pairs_.size());
+        std::size_t touching = 0, closing = 0;
         for (std::size_t k = 0; k < pairs_.size(); ++k) {
-          const auto& gi = grains_[static_cast<std::size_t>(pairs_[k].i)];
-          const auto& gj = grains_[static_cast<std::size_t>(pairs_[k].j)];
+          const auto i = static_cast<std::size_t>(pairs_[k].i), j = static_cast<std::size_t>(pairs_[k].j);
+          const auto &gi = grains_[i], &gj = grains_[j];
           const double dx = gi.x - gj.x, dy = gi.y - gj.y, reach = pair_constants_[k].reach;
           const double d2 = dx * dx + dy * dy;
+          const double approach = (seen_[i].vx - seen_[j].vx) * dx + (seen_[i].vy - seen_[j].vy) * dy;
           const bool touches = d2 < reach * reach;
           touching_[touching] = {k, d2};
+          closing_[closing] = {k, d2, approach};
           touching += touches ? 1 : 0;
+          closing += !touches && approach < 0.0 ? 1 : 0;
           if constexpr (Model::needs_history)
             if (!touches) shear_[k] = Vec3{};
         }
+        // The step limit's rates, at the velocities the forces see, for the scheme that steps by them
+        // (newmark_rk4 evaluates forces within its step; its limits are taken from its state afresh).
+        RateSearch search;
+        RateSearch* const rates = control_.scheme == Scheme::newmark_rk4 ? nullptr : &search;
         for (std::size_t c = 0; c < touching; ++c) {
           const auto [k, d2] = touching_[c];
           add_grain_pair(model, pairs_[k], d2, pair_constants_[k], table[k], 2.0 * half_step, shear_[k],
-                         pair_facts_[k], damps);
+                         pair_facts_[k], damps, rates);
         }
+        if (!rates) {
+          step_rates_.reset();
+          return;
+        }
+        for (std::size_t c = 0; c < closing; ++c) {
+          const auto [k, d2, approach] = closing_[c];
+          const double d = std::sqrt(d2);
+          const auto& p = pairs_[k];
+          note_pair_rates(model, pair_constants_[k], table[k], grains_[static_cast<std::size_t>(p.i)],
+                          grains_[static_cast<std::size_t>(p.j)], pair_constants_[k].reach - d, approach / d, 0.0, 0.0,
+                          search);
+        }
+        step_rates_ = finish_rates(model, search);
       },
       grain_model_);
   if (plate_) {
@@ -693,22 +778,9 @@ void GranularPlate::drift_grains(double h) {
   }
 }
 
-// Each grain pair's rates for the step limit (dem/critical_step.hpp), the largest of each over the
-// pairs that touch or close. A Hertz normal law is evaluated at the largest overlap a collision can
-// reach (reach_energy): its omega^2 = (3/2)(k/m) delta_max^(1/2) grows with (k/m)^5 delta_max^(5/2), so
-// the loop keeps the pair with the largest of those ((k/m)^5 against the first listed pair's, so that
-// nothing overflows, tabulated with the list) and takes one root, for that pair, at the end instead of
-// a power per pair. The tangential and rolling laws are evaluated at the overlap and normal force now,
-// on the slip's inertia 1/m_t = 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (m/7 for two equal spheres with
-// rotation) and the relative spin's 1/I_i + 1/I_j.
 template <class Model>
 dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
-  constexpr bool hertz = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
-  dem::PairRates rates;
-  double largest = 0.0;
-  struct {
-    double mass = 0.0, radius = 0.0, reach = 0.0;
-  } stiffest;  // Hertz: the pair whose collision reaches the largest omega^2
+  RateSearch search;
   const auto& table = std::get<dem::PairTable<Model>>(pair_table_).pairs;  // the model's (set_grain_model)
   for (std::size_t listed = 0; listed < pairs_.size(); ++listed) {
     const auto& p = pairs_[listed];
@@ -727,56 +799,30 @@ dem::PairRates GranularPlate::grain_pair_rates(const Model& model) const {
     const double overlap = reach - d;
     const double vn = approach / d;
     if (overlap <= 0.0 && vn >= 0.0) continue;
-    const double m = constants.mass, r = constants.radius;
-    if constexpr (hertz) {
-      const double reach_now = reach_energy(overlap, vn, constants.closing_factor);
-      if (const double x = constants.rate_weight * reach_now; x > largest) {
-        largest = x;
-        stiffest = {m, r, reach_now};
-      }
-    } else {
-      const dem::ContactOscillator n = model.normal.oscillator(m, r, overlap);
-      rates.normal_omega_squared = std::max(rates.normal_omega_squared, n.stiffness / m);
-      rates.normal_beta = std::max(rates.normal_beta, n.damping / m);
-    }
+    double fn = 0.0, inverse_mt = 0.0;
     if constexpr (Model::rotates) {
-      if (overlap <= 0.0) continue;
-      // The normal law's force is its spring less its dashpot times v_n (hertz.hpp, hooke.hpp).
-      const double fn =
-          known ? std::abs(facts.spring - facts.dashpot * vn)
-                : std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, table[listed].normal));
-      if constexpr (Model::has_tangential) {
-        const double inverse_mt = known ? facts.inverse_slip_mass : inverse_slip_mass(constants, gi, gj, overlap);
-        // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
-        const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, fn);
-        rates.tangential_omega_squared = std::max(rates.tangential_omega_squared, t.stiffness * inverse_mt);
-        rates.tangential_beta = std::max(rates.tangential_beta, t.damping * inverse_mt);
-      }
-      if constexpr (Model::has_rolling) {
-        // Below omega_reg the rolling torque is a dashpot mu_r R_eff |F_n| / omega_reg on the relative spin.
-        if (contacts_.rotation) {
-          const double beta = table[listed].rolling.lever * fn / model.rolling.regularising_spin_rate *
-                              (1.0 / gi.inertia + 1.0 / gj.inertia);
-          rates.rolling_beta = std::max(rates.rolling_beta, beta);
-        }
+      if (overlap > 0.0) {
+        // The normal law's force is its spring less its dashpot times v_n (hertz.hpp, hooke.hpp).
+        fn = known ? std::abs(facts.spring - facts.dashpot * vn)
+                   : std::abs(model.normal.force({{}, overlap, vn, gi.radius, gj.radius}, table[listed].normal));
+        if constexpr (Model::has_tangential)
+          inverse_mt = known ? facts.inverse_slip_mass : inverse_slip_mass(constants, gi, gj, overlap);
       }
     }
+    note_pair_rates(model, constants, table[listed], gi, gj, overlap, vn, fn, inverse_mt, search);
   }
-  if constexpr (hertz) {
-    if (largest > 0.0) {
-      // The law's tangent stiffness and dashpot at the largest overlap a collision can reach.
-      const dem::ContactOscillator n =
-          model.normal.oscillator(stiffest.mass, stiffest.radius, std::pow(stiffest.reach, 0.4));
-      rates.normal_omega_squared = n.stiffness / stiffest.mass;
-      rates.normal_beta = n.damping / stiffest.mass;
-    }
-  }
-  return rates;
+  return finish_rates(model, search);
 }
 
-// The grain pairs' rates (grain_pair_rates) and the beads on the plate, whose Hertz limits take the
-// same largest-reach trick. Coulomb-tanh limits fall with their beta alone.
 StepLimits GranularPlate::current_limits() const {
+  return limits_with(std::visit([&](const auto& model) { return grain_pair_rates(model); }, grain_model_));
+}
+
+StepLimits GranularPlate::next_limits() const { return step_rates_ ? limits_with(*step_rates_) : current_limits(); }
+
+// The grain pairs' rates and the beads on the plate, whose Hertz limits take the same largest-reach
+// trick. Coulomb-tanh limits fall with their beta alone.
+StepLimits GranularPlate::limits_with(const dem::PairRates& pair_rates) const {
   StepLimits limits;
   const double omega_plate = plate_ ? plate_->max_frequency_bound() : 0.0;
   if (plate_) limits.plate = plate_->stable_time_step();
@@ -784,8 +830,6 @@ StepLimits GranularPlate::current_limits() const {
   // The forces see the predicted velocity (compute_forces), and the packing's collective modes
   // outrun a pair's (dem/critical_step.hpp): one oscillator of the pairs' largest rates scaled to them.
   const bool spin = contacts_.rotation;
-  const dem::PairRates pair_rates =
-      std::visit([&](const auto& model) { return grain_pair_rates(model); }, grain_model_);
   dem::PairRates normal_rates;
   normal_rates.normal_omega_squared = pair_rates.normal_omega_squared;
   normal_rates.normal_beta = pair_rates.normal_beta;
@@ -894,7 +938,7 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
   return beta;
 }
 
-double GranularPlate::step(double max_dt) { return step_with(current_limits(), max_dt); }
+double GranularPlate::step(double max_dt) { return step_with(next_limits(), max_dt); }
 
 double GranularPlate::free_step(const StepLimits& limits) const {
   if (control_.fixed_step > 0.0) return control_.fixed_step;
@@ -952,7 +996,7 @@ double GranularPlate::step_multirate(const StepLimits& limits, double dt) {
   substep_min_ = inf, substep_max_ = 0.0;
   StepLimits now = limits;
   for (bool first = true; time_ < end; first = false) {
-    if (!first) now = current_limits();
+    if (!first) now = next_limits();
     const double h = substep(now, end, first ? dt : 0.0, dt);
     substep_min_ = std::min(substep_min_, h), substep_max_ = std::max(substep_max_, h);
   }
@@ -1045,7 +1089,7 @@ std::size_t GranularPlate::subcycled_dof() const {
 
 double GranularPlate::step_towards(double t_end) {
   const double left = t_end - time_;
-  const StepLimits limits = current_limits();
+  const StepLimits limits = next_limits();
   const double free = free_step(limits);
   const double dt = step_with(limits, (left > free && left < 2.0 * free) ? 0.5 * left : left);
   if (t_end - time_ < 1e-9 * dt) time_ = t_end;  // round-off, not a step

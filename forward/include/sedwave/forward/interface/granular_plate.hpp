@@ -201,16 +201,28 @@ class GranularPlate {
   [[nodiscard]] const std::vector<Grain>& grains() const { return grains_; }
   /// Initial velocities and spins, before the first step. Radii, masses and inertias stay as built:
   /// the pair tables hold what they fix.
-  std::vector<Grain>& grains_mutable() { return grains_; }
+  std::vector<Grain>& grains_mutable() {
+    step_rates_.reset();
+    return grains_;
+  }
   [[nodiscard]] const std::optional<plate::ElasticPlate>& plate() const { return plate_; }
   [[nodiscard]] const std::vector<double>& plate_displacement() const { return u_; }
   [[nodiscard]] const std::vector<double>& plate_velocity() const { return v_; }
-  std::vector<double>& plate_displacement_mutable() { return u_; }  ///< initial conditions
-  std::vector<double>& plate_velocity_mutable() { return v_; }
+  std::vector<double>& plate_displacement_mutable() {  ///< initial conditions
+    step_rates_.reset();
+    return u_;
+  }
+  std::vector<double>& plate_velocity_mutable() {
+    step_rates_.reset();
+    return v_;
+  }
 
   [[nodiscard]] Energies energies() const;
   [[nodiscard]] const StepLimits& last_limits() const { return limits_; }
-  /// The limits of the current state (what the next step will use).
+  /// The limits of the current state, every pair's rates computed afresh at the grains' velocities
+  /// now. A step reads the grain pairs' rates off the force evaluation that ended the step before it
+  /// instead (at the velocities the forces saw, compute_forces), so its limits differ from these by
+  /// the last half kick in the approach speeds.
   [[nodiscard]] StepLimits current_limits() const;
   /// Total normal force the grains exert on the plate (>= 0) and its tangential part, at the last step.
   [[nodiscard]] double plate_normal_force() const { return plate_normal_force_; }
@@ -289,23 +301,46 @@ class GranularPlate {
     double reach = 0.0, mass = 0.0, radius = 0.0, inverse_mass = 0.0;
     double closing_factor = 0.0, rate_weight = 0.0;  ///< Hertz: (5/4) m/k; ((k/m) / rate_scale_)^5
   };
+  /// The grain pairs' largest rates, gathered pair by pair (note_pair_rates) and turned into
+  /// dem::PairRates at the end (finish_rates). A Hertz law keeps the pair whose collision reaches the
+  /// largest omega^2 and evaluates its oscillator once, in finish_rates.
+  struct RateSearch {
+    dem::PairRates rates;
+    double largest = 0.0;                          ///< Hertz: the largest rate_weight times reach_energy
+    double mass = 0.0, radius = 0.0, reach = 0.0;  ///< Hertz: that pair's m, R and delta_max^(5/2)
+  };
   /// The listed pairs' constants: this class's and the contact model's (dem::PairTable, as the DEM
   /// engine keeps them), so that no step divides by masses or takes their roots.
   void tabulate_pairs();
   /// The grain contact model and its pair table together, so that the table always is the model's.
   void set_grain_model(const dem::AnyContactModel& model);
   /// One touching grain pair's forces, its torques and its elastic energy, at the squared distance d2
-  /// compute_forces found; `shear` is its history slot; `damps`: damped().
+  /// compute_forces found; `shear` is its history slot; `damps`: damped(); its rates into `search`
+  /// unless null.
   template <class Model>
   void add_grain_pair(const Model& model, const Pair& p, double d2, const PairConstants& constants,
                       const typename Model::Pair& law_pair, double dt, dem::Vec3& shear, PairFacts& facts,
-                      bool damps);
+                      bool damps, RateSearch* search);
   /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
   /// slip's inverse mass.
   [[nodiscard]] double inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
                                          double overlap) const;
+  /// One touching or closing pair into `search`: its overlap and normal velocity (< 0: closing) and,
+  /// where it touches and the law rotates, its normal force's magnitude and its slip's inverse mass.
+  template <class Model>
+  void note_pair_rates(const Model& model, const PairConstants& constants, const typename Model::Pair& law_pair,
+                       const Grain& gi, const Grain& gj, double overlap, double normal_velocity, double normal_force,
+                       double inverse_mt, RateSearch& search) const;
+  template <class Model>
+  [[nodiscard]] dem::PairRates finish_rates(const Model& model, const RateSearch& search) const;
+  /// Every listed pair's rates at the grains' positions and velocities now.
   template <class Model>
   [[nodiscard]] dem::PairRates grain_pair_rates(const Model& model) const;
+  /// The limits from the grain pairs' rates `pair_rates` and the plate's and walls' contacts now.
+  [[nodiscard]] StepLimits limits_with(const dem::PairRates& pair_rates) const;
+  /// The limits the next step takes: current_limits with the grain pairs' rates of the last force
+  /// evaluation (step_rates_) where it has them.
+  [[nodiscard]] StepLimits next_limits() const;
   void add_plate_contact(int g);
   /// The grain-plate normal law: the DEM's Hertz part with R* = r (a sphere on a flat) and no dashpot
   /// (the paper's eq. 19a, either plate contact model's modulus).
@@ -350,6 +385,16 @@ class GranularPlate {
     double d2;         ///< |x_i - x_j|^2 < (r_i + r_j)^2
   };
   std::vector<Touching> touching_;  ///< compute_forces' scratch: the listed pairs that touch
+  struct Closing {
+    std::size_t pair;  ///< its index in pairs_
+    double d2;         ///< |x_i - x_j|^2 >= (r_i + r_j)^2
+    double approach;   ///< (v_i - v_j) . (x_i - x_j) < 0 at the velocities the forces see
+  };
+  std::vector<Closing> closing_;  ///< compute_forces' scratch: the listed pairs that close without touching
+  /// The grain pairs' rates at the last force evaluation of a velocity-Verlet or multirate step (or
+  /// of refresh_forces), at its positions and the velocities its forces saw; empty once the state was
+  /// changed by hand (the *_mutable accessors, relax) until the next force evaluation.
+  std::optional<dem::PairRates> step_rates_;
   std::vector<dem::Vec3> shear_;  ///< each listed pair's tangential history (history laws), kept across rebuilds
   std::vector<PairFacts> pair_facts_;  ///< each listed pair's, from the last force evaluation
   std::vector<PairConstants> pair_constants_;
