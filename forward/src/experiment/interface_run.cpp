@@ -217,9 +217,6 @@ void check_interface_physics(const InterfaceScene& scene, const InterfaceEstimat
                                 text(0.5 * t) + " m): the plane-stress plate cannot carry such a contact "
                                 "(docs/interface.md, \"The coupling\")");
   }
-  if (scene.recording.scheme == interface::Scheme::multirate && scene.recording.fixed_step > 0.0)
-    throw std::invalid_argument("interface: the multirate scheme (run.scheme) chooses its own steps: it takes no fixed "
-                                "step (run.fixed_step, --fixed-step)");
   // Average-acceleration Newmark is unconditionally stable: only the explicit plate has this limit.
   if (scene.recording.scheme == interface::Scheme::velocity_verlet && scene.recording.fixed_step > e.plate_limit) {
     throw std::invalid_argument("interface: the fixed step " + text(scene.recording.fixed_step) +

@@ -341,6 +341,9 @@ void override_tolerance(InterfaceScene& scene, double tolerance, const std::stri
 void override_fixed_step(InterfaceScene& scene, double step, const std::string& option) {
   check_override(step, option, fixed_step_range(scene.recording.duration));
   if (!(step > 0.0)) throw std::invalid_argument(option + " must be > 0");
+  if (scene.recording.scheme == interface::Scheme::multirate)
+    throw std::invalid_argument("the multirate scheme (run.scheme) chooses its own steps: it takes no fixed step (" +
+                                option + ")");
   scene.recording.fixed_step = step;
 }
 

@@ -912,7 +912,7 @@ StepLimits GranularPlate::limits_with(const dem::PairRates& pair_rates) const {
 // factor of their own. Its forces see the predicted velocity like every other (compute_forces), so
 // its limits are predicted_velocity_critical_step's: the Hertz spring (3/2) k delta_max^(1/2) / m at
 // the largest overlap the bead can reach, 2/omega; Coulomb-tanh a dashpot mu k_s |F_n| on the slip's
-// inertia 1/m + r^2/I (the wall does not move), whose damping adds to the packing's collective
+// inertia 1/m + r^2/I (1/m with rotation off; the wall does not move), whose damping adds to the packing's collective
 // friction (`collective_friction`): 1/(beta_wall + collective). Returns beta_wall (0 without
 // friction) for the plate's limit, where a bead may rub on the plate, a wall and its neighbours.
 double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_friction) const {
@@ -928,8 +928,11 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
       const double k = dem::HertzNormal::stiffness(walls_.modulus, g.radius);
       const double reach_now = reach_energy(overlap, vn, 1.25 * g.mass / k);
       omega2 = std::max(omega2, 1.5 * k * std::pow(reach_now, 0.2) / g.mass);
-      if (mu_ks > 0.0 && overlap > 0.0)
-        beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * (1.0 / g.mass + g.radius * g.radius / g.inertia));
+      if (mu_ks > 0.0 && overlap > 0.0) {
+        // The slip's inertia: the bead's mass, and its rotation's r^2/I where it turns.
+        const double inverse_mt = 1.0 / g.mass + (contacts_.rotation ? g.radius * g.radius / g.inertia : 0.0);
+        beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * inverse_mt);
+      }
     }
   if (omega2 > 0.0)
     limits.hertz = std::min(limits.hertz, dem::predicted_velocity_critical_step(std::sqrt(omega2), 0.0));

@@ -1,5 +1,6 @@
 // Side walls and the static precompression of a hexagonal packing between them: a bead's bounce
-// on a wall against Hertz's rigid-wall closed forms and Coulomb's impulse ratio, a zig-zag column
+// on a wall against Hertz's rigid-wall closed forms and Coulomb's impulse ratio, a bead's friction
+// limit against the dashpot's closed form with and without rotation, a zig-zag column
 // between walls against its statically determinate forces, a wide packing against force balance
 // row by row, and a loaded packing whose contacts stick, stable at the largest tolerance and growing
 // beyond the collective friction mode's limit.
@@ -133,6 +134,28 @@ double bond_angle(const Grain& a, const Grain& b) { return std::atan2(std::abs(b
 // ends, 2P/sqrt(3) between). The angles follow from the Hertz overlaps, dx = r + dw_k + dw_(k+1)
 // between the walls and cos(theta_k) = dx / (2r - db_k), solved here by a fixed point; F = P/cos(30)
 // to O(delta/r).
+// One bead pressed into a frictional wall, alone (no plate, no neighbours): its friction limit is the
+// predicted-velocity scheme's dashpot limit 1/beta, beta = mu k_s F_n / m_t, where the slip's inertia
+// is 1/m_t = 1/m + r^2/I when the bead turns (7/2 m^-1 for a solid sphere) and 1/m when rotation is off.
+TEST(SideWalls, FrictionLimitIsTheDashpotsOnTheSlipsInertia) {
+  constexpr double mu = 0.4, ks = 300.0, depth = 2e-7;
+  for (const bool rotation : {true, false}) {
+    std::vector<Grain> bead = chain(1);
+    bead[0].x = 1e-2;
+    GranularPlate run(bead, steel, std::nullopt, InterfaceContacts{0.0, ks, 1.0, rotation}, StepControl{0.2});
+    SideWalls wall;
+    wall.left = bead[0].x - bead[0].radius + depth;
+    wall.modulus = wall_modulus;
+    wall.friction = mu;
+    run.set_side_walls(wall);
+    const Grain& g = run.grains()[0];
+    const double inverse_mt = 1.0 / g.mass + (rotation ? g.radius * g.radius / g.inertia : 0.0);
+    const double beta = mu * ks * k_wall * depth * std::sqrt(depth) * inverse_mt;
+    // The overlap is r - (x - wall): its round-off, 10^-2 m / 2e-7 m times 10^-16, is 5e-12 of it.
+    EXPECT_NEAR(run.current_limits().friction * beta, 1.0, 1e-9) << "rotation " << rotation;
+  }
+}
+
 TEST(SideWalls, ZigZagColumnCarriesTheStaticallyDeterminateForces) {
   constexpr int rows = 6;
   constexpr double load = 5.0, r = bead_radius;
