@@ -287,6 +287,19 @@ void BM_InterfacePlateForces(benchmark::State& state) {
   }
 }
 
+// The multirate scheme's fast internal forces, those of the top row of elements alone, added to f
+// at every substep (granular_plate.cpp).
+void BM_InterfaceTopRowForces(benchmark::State& state) {
+  const auto p = example_plate(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  std::vector<double> u, v;
+  smooth_field(p, u, v);
+  std::vector<double> f(u.size(), 0.0);
+  for (auto _ : state) {
+    p.add_top_row_forces(u, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+}
+
 #ifndef SEDWAVE_SOURCE_DIR
 #define SEDWAVE_SOURCE_DIR "."
 #endif
@@ -342,6 +355,7 @@ BENCHMARK(BM_InterfacePlateForces)->Args({120, 40})->Args({480, 160})->Unit(benc
 BENCHMARK_TEMPLATE(BM_HandForces, HandQ4)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
 BENCHMARK_TEMPLATE(BM_HandForces, HandStencil)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
 BENCHMARK_TEMPLATE(BM_HandForces, PreviousKernel)->Args({120, 40})->Args({480, 160})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_InterfaceTopRowForces)->Args({120, 40})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Example11)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_GrainsOnly)->Unit(benchmark::kMillisecond)->Iterations(1);
 

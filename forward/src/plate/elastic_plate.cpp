@@ -200,19 +200,19 @@ void ElasticPlate::fix(int node_index, int component) {
 //   + corner_coupling swap(Q_left - Q_right),
 // where swap exchanges x and y; P and Q of the right column are carried to the next node, so a
 // node reads three new pairs and costs five products instead of the stencil's 36.
-template <bool overwrite>
-void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<double>& f) const {
+template <ElasticPlate::Accumulate mode>
+void ElasticPlate::apply_stiffness(const double* u, double* f, int element_rows) const {
   using Pair = Eigen::Array2d;
   using Vec4 = Eigen::Matrix<double, 4, 1>;
   const auto load = [](const double* at) { return Pair(Eigen::Map<const Pair>(at)); };
-  const int nx = mesh_.elements_x, ny = mesh_.elements_y;
+  const int nx = mesh_.elements_x, ny = element_rows;
   const auto row = static_cast<std::size_t>(2 * nodes_x());
   const auto& [centre, along_x, along_y, corner, coupling] = node_stencil_;
   for (int j = 1; j < ny; ++j) {
-    const double* below = u.data() + static_cast<std::size_t>(j - 1) * row;
+    const double* below = u + static_cast<std::size_t>(j - 1) * row;
     const double* level = below + row;
     const double* above = level + row;
-    double* out = f.data() + static_cast<std::size_t>(j) * row;
+    double* out = f + static_cast<std::size_t>(j) * row;
     Pair sum_left = load(above) + load(below), diff_left = load(above) - load(below);
     Pair sum_here = load(above + 2) + load(below + 2), diff_here = load(above + 2) - load(below + 2);
     Pair u_left = load(level), u_here = load(level + 2);
@@ -223,41 +223,47 @@ void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<dou
       const Pair ku = centre * u_here + along_x * (u_left + u_right) + along_y * sum_here +
                       corner * (sum_left + sum_right) + coupling * (diff_left - diff_right).reverse();
       Eigen::Map<Pair> force(out + d);
-      if constexpr (overwrite)
+      if constexpr (mode == Accumulate::overwrite)
         force = -ku;
-      else
+      else if constexpr (mode == Accumulate::subtract)
         force -= ku;
+      else
+        force += ku;
       u_left = u_here, u_here = u_right;
       sum_left = sum_here, sum_here = sum_right;
       diff_left = diff_here, diff_here = diff_right;
     }
   }
   const auto store = [&](std::size_t at, const Eigen::Vector2d& ku) {
-    Eigen::Map<Eigen::Vector2d> force(f.data() + at);
-    if constexpr (overwrite)
+    Eigen::Map<Eigen::Vector2d> force(f + at);
+    if constexpr (mode == Accumulate::overwrite)
       force = -ku;
-    else
+    else if constexpr (mode == Accumulate::subtract)
       force -= ku;
+    else
+      force += ku;
   };
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   using Vec12 = Eigen::Matrix<double, 12, 1>;
   const auto top = static_cast<std::size_t>(ny) * row;
+  // A bottom or top edge's stencil on its two node rows' runs of three nodes, read in place.
+  const auto along_edge = [&](const Eigen::Matrix<double, 2, 12>& stencil, const double* lower) -> Eigen::Vector2d {
+    return stencil.leftCols<6>() * Eigen::Map<const Vec6>(lower) +
+           stencil.rightCols<6>() * Eigen::Map<const Vec6>(lower + row);
+  };
   for (std::size_t d = 2; d < row - 2; d += 2) {  // the bottom and top edges but their corners
-    Vec12 around;
-    around << Eigen::Map<const Vec6>(u.data() + d - 2), Eigen::Map<const Vec6>(u.data() + row + d - 2);
-    store(d, edge_stencil_[0] * around);
-    around << Eigen::Map<const Vec6>(u.data() + top - row + d - 2), Eigen::Map<const Vec6>(u.data() + top + d - 2);
-    store(top + d, edge_stencil_[1] * around);
+    store(d, along_edge(edge_stencil_[0], u + d - 2));
+    store(top + d, along_edge(edge_stencil_[1], u + top - row + d - 2));
   }
   for (int j = 1; j < ny; ++j) {  // the left and right edges but their corners
     const auto below = static_cast<std::size_t>(j - 1) * row;
     Vec12 around;
-    around << Eigen::Map<const Vec4>(u.data() + below), Eigen::Map<const Vec4>(u.data() + below + row),
-        Eigen::Map<const Vec4>(u.data() + below + 2 * row);
+    around << Eigen::Map<const Vec4>(u + below), Eigen::Map<const Vec4>(u + below + row),
+        Eigen::Map<const Vec4>(u + below + 2 * row);
     store(below + row, edge_stencil_[2] * around);
     const std::size_t last = row - 4;
-    around << Eigen::Map<const Vec4>(u.data() + below + last), Eigen::Map<const Vec4>(u.data() + below + row + last),
-        Eigen::Map<const Vec4>(u.data() + below + 2 * row + last);
+    around << Eigen::Map<const Vec4>(u + below + last), Eigen::Map<const Vec4>(u + below + row + last),
+        Eigen::Map<const Vec4>(u + below + 2 * row + last);
     store(below + row + last + 2, edge_stencil_[3] * around);
   }
   const auto corner_node = [&](int i, int j) {
@@ -265,7 +271,7 @@ void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<dou
     for (int a = 0; a < 4; ++a) {  // the node is node a of the element whose lower left is (i, j) - offset(a)
       const int ei = i - a % 2, ej = j - a / 2;
       if (ei < 0 || ei >= nx || ej < 0 || ej >= ny) continue;
-      const double* lower = u.data() + static_cast<std::size_t>(ej) * row + static_cast<std::size_t>(2 * ei);
+      const double* lower = u + static_cast<std::size_t>(ej) * row + static_cast<std::size_t>(2 * ei);
       Eigen::Matrix<double, 8, 1> ue;
       ue << Eigen::Map<const Vec4>(lower), Eigen::Map<const Vec4>(lower + row);
       sum += row_stiffness_.block<2, 8>(2 * a, 0) * ue;
@@ -276,29 +282,26 @@ void ElasticPlate::apply_stiffness(const std::vector<double>& u, std::vector<dou
     for (const int i : {0, nx}) corner_node(i, j);
 }
 
+// The top row of elements is a plate one element high on the two top rows of nodes: the same
+// stencils, its lower row of nodes taking the bottom edge's (each of them has only the elements above
+// it here) and its ends the corners'.
 void ElasticPlate::add_top_row_forces(const std::vector<double>& u, std::vector<double>& f, double sign) const {
-  // Element by element in row order: an element's unknowns are 4 consecutive values in each of its
-  // two node rows (row_stiffness_).
-  using Vec4 = Eigen::Matrix<double, 4, 1>;
-  const auto row = static_cast<std::size_t>(2 * nodes_x());
-  const std::size_t base = static_cast<std::size_t>(mesh_.elements_y - 1) * row;
-  for (int i = 0; i < mesh_.elements_x; ++i) {
-    const std::size_t lower = base + static_cast<std::size_t>(2 * i);
-    Eigen::Matrix<double, 8, 1> ue;
-    ue << Eigen::Map<const Vec4>(u.data() + lower), Eigen::Map<const Vec4>(u.data() + lower + row);
-    const Eigen::Matrix<double, 8, 1> fe = sign * row_stiffness_.lazyProduct(ue);
-    Eigen::Map<Vec4>(f.data() + lower) -= fe.head<4>();
-    Eigen::Map<Vec4>(f.data() + lower + row) -= fe.tail<4>();
-  }
+  const std::size_t base = static_cast<std::size_t>(mesh_.elements_y - 1) * static_cast<std::size_t>(2 * nodes_x());
+  if (sign == 1.0)
+    apply_stiffness<Accumulate::subtract>(u.data() + base, f.data() + base, 1);
+  else if (sign == -1.0)
+    apply_stiffness<Accumulate::add>(u.data() + base, f.data() + base, 1);
+  else
+    throw std::invalid_argument("ElasticPlate::add_top_row_forces: sign must be 1 or -1");
 }
 
 void ElasticPlate::add_elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {
-  apply_stiffness<false>(u, f);
+  apply_stiffness<Accumulate::subtract>(u.data(), f.data(), mesh_.elements_y);
 }
 
 void ElasticPlate::elastic_forces(const std::vector<double>& u, std::vector<double>& f) const {
   f.resize(u.size());
-  apply_stiffness<true>(u, f);
+  apply_stiffness<Accumulate::overwrite>(u.data(), f.data(), mesh_.elements_y);
 }
 
 double ElasticPlate::strain_energy(const std::vector<double>& u) const {

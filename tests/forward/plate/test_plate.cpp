@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "sedwave/forward/interface/granular_plate.hpp"
@@ -140,7 +141,9 @@ TEST(Plate, LinearDisplacementLoadsOnlyTheEdges) {
 
 // The forces of an arbitrary field are the element matrices' products summed over the elements
 // (the assembly written here from element_stiffness() and its node order), on elements wider than
-// tall and on square ones at nu = 0; elastic_forces writes them over whatever f held.
+// tall and on square ones at nu = 0; elastic_forces writes them over whatever f held; and
+// add_top_row_forces adds (sign 1) or takes away (sign -1) the top row of elements' alone, touching
+// no other entry.
 TEST(Plate, ForcesAreTheSumOfElementProducts) {
   const PlateMaterial stiff_no_poisson{200e9, 0.0, 7850.0, 1e-3};
   for (const auto& plate : {ElasticPlate(aluminium, {6, 4, 0.06, 0.02}, PlateEdges{}),
@@ -151,20 +154,34 @@ TEST(Plate, ForcesAreTheSumOfElementProducts) {
     std::vector<double> written(u.size(), std::numeric_limits<double>::quiet_NaN());
     plate.elastic_forces(u, written);
     const auto& k = plate.element_stiffness();
+    const int top_row = plate.mesh().elements_y - 1;
+    std::vector<double> top(u.size(), 0.0);
     for (int j = 0; j < plate.mesh().elements_y; ++j)
       for (int i = 0; i < plate.mesh().elements_x; ++i) {
         const int nodes[4] = {plate.node(i, j), plate.node(i + 1, j), plate.node(i + 1, j + 1), plate.node(i, j + 1)};
         for (int r = 0; r < 8; ++r)
-          for (int c = 0; c < 8; ++c)
-            assembled[static_cast<std::size_t>(2 * nodes[r / 2] + r % 2)] -=
-                k(r, c) * u[static_cast<std::size_t>(2 * nodes[c / 2] + c % 2)];
+          for (int c = 0; c < 8; ++c) {
+            const double product = k(r, c) * u[static_cast<std::size_t>(2 * nodes[c / 2] + c % 2)];
+            assembled[static_cast<std::size_t>(2 * nodes[r / 2] + r % 2)] -= product;
+            if (j == top_row) top[static_cast<std::size_t>(2 * nodes[r / 2] + r % 2)] -= product;
+          }
       }
     double largest = 0.0;
     for (const double v : assembled) largest = std::max(largest, std::abs(v));
+    std::vector<double> added(u.size(), 1.0), taken(u.size(), 1.0);
+    plate.add_top_row_forces(u, added);
+    plate.add_top_row_forces(u, taken, -1.0);
     for (std::size_t d = 0; d < u.size(); ++d) {
       EXPECT_NEAR(f[d], assembled[d], 1e-12 * largest) << "dof " << d;
       EXPECT_EQ(written[d], f[d]) << "dof " << d;
+      EXPECT_NEAR(added[d] - 1.0, top[d], 1e-12 * largest) << "dof " << d;
+      EXPECT_NEAR(1.0 - taken[d], top[d], 1e-12 * largest) << "dof " << d;
+      if (d < static_cast<std::size_t>(2 * plate.node(0, top_row))) {  // below the two top rows of nodes
+        EXPECT_EQ(added[d], 1.0) << "dof " << d;
+        EXPECT_EQ(taken[d], 1.0) << "dof " << d;
+      }
     }
+    EXPECT_THROW(plate.add_top_row_forces(u, added, 0.5), std::invalid_argument);
   }
 }
 

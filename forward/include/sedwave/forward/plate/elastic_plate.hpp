@@ -77,9 +77,9 @@ class ElasticPlate {
   /// f = -K u: the elastic forces of displacement u written over f (sized to u), without a pass that
   /// clears f first. The same arithmetic as add_elastic_forces on a zeroed f.
   void elastic_forces(const std::vector<double>& u, std::vector<double>& f) const;
-  /// f -= sign K_top u, K_top the stiffness of the top row of elements alone (under the top edge):
-  /// it touches the two top rows of nodes' entries of f and no other. (multirate integration,
-  /// interface/granular_plate.hpp: the top row of elements is integrated with the contacts.)
+  /// f -= sign K_top u (sign 1 or -1), K_top the stiffness of the top row of elements alone (under
+  /// the top edge): it touches the two top rows of nodes' entries of f and no other. (multirate
+  /// integration, interface/granular_plate.hpp: the top row of elements is integrated with the contacts.)
   void add_top_row_forces(const std::vector<double>& u, std::vector<double>& f, double sign = 1.0) const;
   /// (1/2) u^T K u.
   [[nodiscard]] double strain_energy(const std::vector<double>& u) const;
@@ -131,8 +131,11 @@ class ElasticPlate {
   /// and right edges, 2 nodes each), x then y. Order: bottom, top, left, right.
   Eigen::Matrix<double, 2, 12> edge_stencil_[4];
   static NodeStencil compact_stencil(const Eigen::Matrix<double, 2, 18>& stencil);
-  template <bool overwrite>
-  void apply_stiffness(const std::vector<double>& u, std::vector<double>& f) const;
+  enum class Accumulate { overwrite, subtract, add };  ///< f = -K u, f -= K u, f += K u
+  /// K u of the plate's first `element_rows` rows of elements over the node rows from u's and f's
+  /// first entries: the whole plate, or one row of elements taken as a plate of its own.
+  template <Accumulate mode>
+  void apply_stiffness(const double* u, double* f, int element_rows) const;
   std::vector<double> mass_;
   std::vector<double> inverse_mass_;
   std::vector<double> damping_;
