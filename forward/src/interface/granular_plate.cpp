@@ -21,6 +21,10 @@ namespace {
 using dem::Vec3;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
+/// Whether a contact model's normal law is Hertz's (its step limit ranks pairs by reach_energy).
+template <class Model>
+constexpr bool hertz_law = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
+
 /// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
 /// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
 /// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing. `closing_factor`
@@ -309,7 +313,7 @@ void GranularPlate::tabulate_pairs() {
           c.reach = gi.radius + gj.radius;
           c.mass = gi.mass * gj.mass / (gi.mass + gj.mass);
           c.radius = gi.radius * gj.radius / (gi.radius + gj.radius);
-          if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
+          if constexpr (hertz_law<Model>) {
             const double k = dem::HertzNormal::stiffness(model.normal.effective_modulus, c.radius);
             c.closing_factor = 1.25 * c.mass / k;
             if (pair_constants_.empty()) rate_scale_ = k / c.mass;
@@ -347,7 +351,7 @@ void GranularPlate::note_pair_rates(const Model& model, const PairConstants& con
                                     double overlap, double normal_velocity, double normal_force, double inverse_mt,
                                     RateSearch& search) const {
   const double m = constants.mass, r = constants.radius;
-  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
+  if constexpr (hertz_law<Model>) {
     const double reach_now = reach_energy(overlap, normal_velocity, constants.closing_factor);
     if (const double x = constants.rate_weight * reach_now; x > search.largest) {
       search.largest = x;
@@ -381,7 +385,7 @@ void GranularPlate::note_pair_rates(const Model& model, const PairConstants& con
 template <class Model>
 dem::PairRates GranularPlate::finish_rates(const Model& model, const RateSearch& search) const {
   dem::PairRates rates = search.rates;
-  if constexpr (std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>) {
+  if constexpr (hertz_law<Model>) {
     if (search.largest > 0.0) {
       // The law's tangent stiffness and dashpot at the largest overlap a collision can reach.
       const dem::ContactOscillator n = model.normal.oscillator(search.mass, search.radius, std::pow(search.reach, 0.4));
@@ -763,12 +767,8 @@ void GranularPlate::kick_plate(double h, bool second_half, double drift, const s
 
 double GranularPlate::inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
                                         double overlap) const {
-  double inverse = constants.inverse_mass;
-  if (contacts_.rotation) {
-    const double ai = gi.radius - 0.5 * overlap, aj = gj.radius - 0.5 * overlap;
-    inverse += ai * ai / gi.inertia + aj * aj / gj.inertia;
-  }
-  return inverse;
+  return constants.inverse_mass +
+         (turning_inverse_mass(gi, gi.radius - 0.5 * overlap) + turning_inverse_mass(gj, gj.radius - 0.5 * overlap));
 }
 
 void GranularPlate::drift_grains(double h) {
@@ -871,7 +871,7 @@ StepLimits GranularPlate::limits_with(const dem::PairRates& pair_rates) const {
     const double edge_inverse_mass =
         e.shape_left * e.shape_left / mass[ya] + e.shape_right * e.shape_right / mass[yb];
     const double inverse_m = 1.0 / g.mass + edge_inverse_mass;
-    const double inverse_mt = contacts_.rotation ? inverse_m + g.radius * g.radius / g.inertia : inverse_m;
+    const double inverse_mt = inverse_m + turning_inverse_mass(g, g.radius);
     const double k = dem::HertzNormal::stiffness(plate_modulus_, g.radius);
     const double reach_now = reach_energy(overlap, vn, 1.25 / (inverse_m * k));
     if (newmark) {
@@ -922,15 +922,14 @@ double GranularPlate::tighten_with_walls(StepLimits& limits, double collective_f
   for (const auto& g : grains_)
     for (const auto& [face, normal] : {std::pair{walls_.left, 1.0}, std::pair{walls_.right, -1.0}}) {
       if (!face) continue;
-      const double overlap = g.radius - normal * (g.x - *face);
+      const double overlap = wall_overlap(g, *face, normal);
       const double vn = normal * g.vx;  // > 0: leaving the wall
       if (overlap < -skin_ || (overlap <= 0.0 && vn >= 0.0)) continue;
       const double k = dem::HertzNormal::stiffness(walls_.modulus, g.radius);
       const double reach_now = reach_energy(overlap, vn, 1.25 * g.mass / k);
       omega2 = std::max(omega2, 1.5 * k * std::pow(reach_now, 0.2) / g.mass);
       if (mu_ks > 0.0 && overlap > 0.0) {
-        // The slip's inertia: the bead's mass, and its rotation's r^2/I where it turns.
-        const double inverse_mt = 1.0 / g.mass + (contacts_.rotation ? g.radius * g.radius / g.inertia : 0.0);
+        const double inverse_mt = 1.0 / g.mass + turning_inverse_mass(g, g.radius);
         beta = std::max(beta, mu_ks * k * overlap * std::sqrt(overlap) * inverse_mt);
       }
     }

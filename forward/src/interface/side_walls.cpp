@@ -10,13 +10,9 @@
 #include "sedwave/forward/interface/granular_plate.hpp"
 
 namespace sedwave::forward::interface {
-namespace {
-
-/// How far grain g presses into the wall at x = face whose normal (+1 left, -1 right) points into the
-/// packing [m] (> 0: touching).
-double wall_overlap(const Grain& g, double face, double normal) { return g.radius - normal * (g.x - face); }
-
-}  // namespace
+double GranularPlate::wall_overlap(const Grain& g, double face, double normal) {
+  return g.radius - normal * (g.x - face);
+}
 
 SideWalls side_walls_around(const HexPacking& p, double gap, bool left, bool right, double modulus, double friction) {
   SideWalls walls;

@@ -208,6 +208,14 @@ void ElasticPlate::apply_stiffness(const double* u, double* f, int element_rows)
   const int nx = mesh_.elements_x, ny = element_rows;
   const auto row = static_cast<std::size_t>(2 * nodes_x());
   const auto& [centre, along_x, along_y, corner, coupling] = node_stencil_;
+  const auto accumulate = [](auto&& force, const auto& ku) {
+    if constexpr (mode == Accumulate::overwrite)
+      force = -ku;
+    else if constexpr (mode == Accumulate::subtract)
+      force -= ku;
+    else
+      force += ku;
+  };
   for (int j = 1; j < ny; ++j) {
     const double* below = u + static_cast<std::size_t>(j - 1) * row;
     const double* level = below + row;
@@ -222,26 +230,14 @@ void ElasticPlate::apply_stiffness(const double* u, double* f, int element_rows)
       const Pair diff_right = load(above + d + 2) - load(below + d + 2);
       const Pair ku = centre * u_here + along_x * (u_left + u_right) + along_y * sum_here +
                       corner * (sum_left + sum_right) + coupling * (diff_left - diff_right).reverse();
-      Eigen::Map<Pair> force(out + d);
-      if constexpr (mode == Accumulate::overwrite)
-        force = -ku;
-      else if constexpr (mode == Accumulate::subtract)
-        force -= ku;
-      else
-        force += ku;
+      accumulate(Eigen::Map<Pair>(out + d), ku);
       u_left = u_here, u_here = u_right;
       sum_left = sum_here, sum_here = sum_right;
       diff_left = diff_here, diff_here = diff_right;
     }
   }
   const auto store = [&](std::size_t at, const Eigen::Vector2d& ku) {
-    Eigen::Map<Eigen::Vector2d> force(f + at);
-    if constexpr (mode == Accumulate::overwrite)
-      force = -ku;
-    else if constexpr (mode == Accumulate::subtract)
-      force -= ku;
-    else
-      force += ku;
+    accumulate(Eigen::Map<Eigen::Vector2d>(f + at), ku);
   };
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   using Vec12 = Eigen::Matrix<double, 12, 1>;

@@ -325,6 +325,11 @@ class GranularPlate {
   /// slip's inverse mass.
   [[nodiscard]] double inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
                                          double overlap) const;
+  /// arm^2/I: what turning adds to the inverse mass of a slip at `arm` from g's centre (0 with
+  /// rotation off, where grains do not turn).
+  [[nodiscard]] double turning_inverse_mass(const Grain& g, double arm) const {
+    return contacts_.rotation ? arm * arm / g.inertia : 0.0;
+  }
   /// One touching or closing pair into `search`: its overlap and normal velocity (< 0: closing) and,
   /// where it touches and the law rotates, its normal force's magnitude and its slip's inverse mass.
   template <class Model>
@@ -347,6 +352,9 @@ class GranularPlate {
   [[nodiscard]] dem::HertzNormal plate_law() const { return {plate_modulus_, 0.0}; }
   void add_wall_contacts(int g);                           // side_walls.cpp
   void add_wall_energies(std::vector<double>& held) const;  // side_walls.cpp
+  /// How far grain g presses into the wall at x = face whose normal (+1 left, -1 right) points into the
+  /// packing [m] (> 0: touching).
+  [[nodiscard]] static double wall_overlap(const Grain& g, double face, double normal);  // side_walls.cpp
   /// The walls' Hertz and Coulomb-tanh limits into `limits`; returns the walls' largest friction rate.
   double tighten_with_walls(StepLimits& limits, double collective_friction) const;
   /// The node(s) and weights through which a grain at abscissa x meets the edge (the contact model's).
