@@ -3,8 +3,10 @@
 //   engine:  one contact at a time through the DEM engine's parts (ContactModel::
 //            evaluate_with_normal_force, Vec3 with z = 0), as GranularPlate::add_grain_pair does;
 //   planar:  the same laws written for the plane, one contact at a time (std::sqrt, std::exp);
-//   lanes:   the planar form over arrays with a branch-free tanh(x)/x and exp (a polynomial), so
-//            that the compiler evaluates several contacts at a time in SIMD lanes.
+//   lanes:   the planar form over arrays with the branch-free tanh(x)/x (dem::tanh_over_x_in_lanes),
+//            so that the compiler evaluates several contacts at a time in SIMD lanes;
+//   library: the interface's kernel (interface::evaluate_planar_contacts), whose AVX2 clone is
+//            chosen at run time where the processor has it, whatever the instruction set compiled for.
 // No books, no scatter: the contact's force and torques alone, written to arrays.
 //   bench/interface/contact_lanes.sh
 #include <algorithm>
@@ -20,6 +22,8 @@
 #include "sedwave/forward/dem/contact/coulomb_tanh.hpp"
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/contact/hertz.hpp"
+#include "sedwave/forward/dem/contact/tanh_over_x.hpp"
+#include "sedwave/forward/interface/planar_contacts.hpp"
 
 namespace dem = sedwave::forward::dem;
 
@@ -30,6 +34,32 @@ struct Contacts {  // structure of arrays: pair geometry and motion (i minus j)
 struct Out {
   std::vector<double> fx, fy, ti, tj;
   explicit Out(std::size_t n) : fx(n), fy(n), ti(n), tj(n) {}
+};
+
+struct Scratch {  // the library's input and output arrays
+  std::vector<double> d2, radius, inertia, effective_radius, zero, reach, inverse_mass;
+  std::vector<double> distance, nx, ny, overlap, normal_velocity, spring, dashpot, tangential, inverse_slip_mass,
+      reach_energy;
+  void fill(const Contacts& c) {
+    const std::size_t n = c.dx.size();
+    if (d2.size() == n) return;
+    for (auto* v : {&d2, &radius, &inertia, &effective_radius, &zero, &reach, &inverse_mass, &distance, &nx, &ny,
+                    &overlap, &normal_velocity, &spring, &dashpot, &tangential, &inverse_slip_mass, &reach_energy})
+      v->assign(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      d2[k] = c.dx[k] * c.dx[k] + c.dy[k] * c.dy[k];
+      radius[k] = c.radius, inertia[k] = 1.0, effective_radius[k] = 0.5 * c.radius, reach[k] = 2.0 * c.radius;
+    }
+  }
+  sedwave::forward::interface::PlanarPairs pairs(const Contacts& c) const {
+    return {d2.data(),     c.dx.data(),     c.dy.data(),     c.dvx.data(),          c.dvy.data(), c.spin_i.data(),
+            c.spin_j.data(), radius.data(), radius.data(),   inertia.data(),        inertia.data(),
+            effective_radius.data(), zero.data(), reach.data(), inverse_mass.data(), zero.data()};
+  }
+  sedwave::forward::interface::PlanarContacts contacts() {
+    return {distance.data(), nx.data(),      ny.data(),         overlap.data(),           normal_velocity.data(),
+            spring.data(),   dashpot.data(), tangential.data(), inverse_slip_mass.data(), reach_energy.data()};
+  }
 };
 
 constexpr double kModulus = 200e9 / (2.0 * (1.0 - 0.09)), kFriction = 0.3, kScale = 100.0;
@@ -89,49 +119,26 @@ void planar(const Contacts& c, Out& o) {
   for (std::size_t k = 0; k < c.dx.size(); ++k) planar_contact(c, k, o, [](double x) { return dem::tanh_over_x(x); });
 }
 
-// exp(y) for 0 <= y <= 40 without a branch or a call: y = k ln 2 + r, |r| <= ln2/2, e^r by its Taylor
-// series to r^13 (relative error below 2e-16), 2^k added to the exponent's bits. k is rounded by the
-// shifter 1.5 2^52, whose low bits then hold it: no conversion to an integer type (SSE2 has none for
-// doubles to 64-bit integers).
-inline double exp_lanes(double y) {
-  constexpr double log2e = 1.4426950408889634, ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
-  constexpr double shifter = 6755399441055744.0;  // 1.5 2^52
-  const double shifted = y * log2e + shifter;
-  const double k = shifted - shifter;
-  const double r = (y - k * ln2_hi) - k * ln2_lo;
-  double p = 1.0 / 6227020800.0;
-  p = p * r + 1.0 / 479001600.0;
-  p = p * r + 1.0 / 39916800.0;
-  p = p * r + 1.0 / 3628800.0;
-  p = p * r + 1.0 / 362880.0;
-  p = p * r + 1.0 / 40320.0;
-  p = p * r + 1.0 / 5040.0;
-  p = p * r + 1.0 / 720.0;
-  p = p * r + 1.0 / 120.0;
-  p = p * r + 1.0 / 24.0;
-  p = p * r + 1.0 / 6.0;
-  p = p * r + 0.5;
-  p = p * r + 1.0;
-  p = p * r + 1.0;
-  const std::uint64_t k_bits = std::bit_cast<std::uint64_t>(shifted) - std::bit_cast<std::uint64_t>(shifter);
-  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(p) + (k_bits << 52));
-}
-// tanh(x)/x without a branch: both forms, then a select.
-inline double tanh_over_x_lanes(double x) {
-  const double s = x * x;
-  const double p = (-9.64399179425052238628e-1 * s - 9.92877231001918586564e1) * s - 1.61468768441708447952e3;
-  const double q = ((s + 1.12811678491632931402e2) * s + 2.23548839060100448583e3) * s + 4.84406305325125486048e3;
-  const double small = 1.0 + s * p / q;
-  const double xc = std::min(std::max(x, 0.625), 20.0);
-  const double e = exp_lanes(2.0 * xc);
-  const double large = (e - 1.0) / ((e + 1.0) * std::max(x, 0.625));
-  return x < 0.625 ? small : large;
-}
-
 void lanes(const Contacts& c, Out& o) {
   const std::size_t n = c.dx.size();
 #pragma omp simd
-  for (std::size_t k = 0; k < n; ++k) planar_contact(c, k, o, [](double x) { return tanh_over_x_lanes(x); });
+  for (std::size_t k = 0; k < n; ++k) planar_contact(c, k, o, [](double x) { return dem::tanh_over_x_in_lanes(x); });
+}
+
+// The library's lanes (interface/planar_contacts.hpp): the interface's own kernel, AVX2 chosen at run
+// time where the processor has it, with the normal and inertia outputs the step limit reads too.
+void library(const Contacts& c, Out& o) {
+  static Scratch s;
+  s.fill(c);
+  const dem::HertzNormal normal{kModulus, 0.0};
+  const dem::CoulombTanhFriction friction{kFriction, kScale};
+  sedwave::forward::interface::evaluate_planar_contacts(normal, friction, false, true, s.pairs(c), s.contacts(),
+                                                        c.dx.size());
+  for (std::size_t k = 0; k < c.dx.size(); ++k) {
+    const double ft = s.tangential[k], arm = c.radius - 0.5 * s.overlap[k];
+    o.fx[k] = s.spring[k] * s.nx[k] - ft * s.ny[k], o.fy[k] = s.spring[k] * s.ny[k] + ft * s.nx[k];
+    o.ti[k] = -arm * ft, o.tj[k] = -arm * ft;
+  }
 }
 
 template <class F>
@@ -167,7 +174,7 @@ int main() {
   std::printf("%-8s %16.2f %30s\n", "engine", ns_per_contact(engine, c, o), "(reference)");
   int status = 0;
   using Form = void (*)(const Contacts&, Out&);
-  const std::pair<const char*, Form> forms[] = {{"planar", planar}, {"lanes", lanes}};
+  const std::pair<const char*, Form> forms[] = {{"planar", planar}, {"lanes", lanes}, {"library", library}};
   for (const auto& [name, form] : forms) {
     const double t = ns_per_contact(form, c, o), w = worst(o);
     std::printf("%-8s %16.2f %30.2g\n", name, t, w);

@@ -25,17 +25,6 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 template <class Model>
 constexpr bool hertz_law = std::is_same_v<typename Model::NormalLaw, dem::HertzNormal>;
 
-/// delta_max^(5/2) of the largest overlap a Hertz pair can reach from its state: its elastic energy
-/// now plus the relative kinetic energy of approach, (2/5) k delta_max^(5/2) = (2/5) k delta_+^(5/2)
-/// + m v_n^2 / 2 when closing (v_n < 0). Zero when neither touching nor closing. `closing_factor`
-/// is the pair's (5/4) m / k.
-double reach_energy(double overlap, double normal_velocity, double closing_factor) {
-  const double touching = std::max(overlap, 0.0);
-  double e = touching * touching * std::sqrt(touching);
-  if (normal_velocity < 0.0) e += closing_factor * normal_velocity * normal_velocity;
-  return e;
-}
-
 /// The model's normal law (and its dashpot) alone: no tangential or rolling law.
 dem::AnyContactModel normal_law_only(const dem::AnyContactModel& model) {
   return std::visit(
@@ -350,23 +339,32 @@ void GranularPlate::note_pair_rates(const Model& model, const PairConstants& con
                                     const typename Model::Pair& law_pair, const Grain& gi, const Grain& gj,
                                     double overlap, double normal_velocity, double normal_force, double inverse_mt,
                                     RateSearch& search) const {
-  const double m = constants.mass, r = constants.radius;
   if constexpr (hertz_law<Model>) {
-    const double reach_now = reach_energy(overlap, normal_velocity, constants.closing_factor);
-    if (const double x = constants.rate_weight * reach_now; x > search.largest) {
-      search.largest = x;
-      search.mass = m, search.radius = r, search.reach = reach_now;
-    }
+    note_reach(constants, reach_energy(overlap, normal_velocity, constants.closing_factor), search);
   } else {
-    const dem::ContactOscillator n = model.normal.oscillator(m, r, overlap);
+    const double m = constants.mass;
+    const dem::ContactOscillator n = model.normal.oscillator(m, constants.radius, overlap);
     search.rates.normal_omega_squared = std::max(search.rates.normal_omega_squared, n.stiffness / m);
     search.rates.normal_beta = std::max(search.rates.normal_beta, n.damping / m);
   }
+  if (overlap > 0.0) note_slip_rates(model, constants, law_pair, gi, gj, overlap, normal_force, inverse_mt, search);
+}
+
+void GranularPlate::note_reach(const PairConstants& constants, double reach_now, RateSearch& search) {
+  if (const double x = constants.rate_weight * reach_now; x > search.largest) {
+    search.largest = x;
+    search.mass = constants.mass, search.radius = constants.radius, search.reach = reach_now;
+  }
+}
+
+template <class Model>
+void GranularPlate::note_slip_rates(const Model& model, const PairConstants& constants,
+                                    const typename Model::Pair& law_pair, const Grain& gi, const Grain& gj,
+                                    double overlap, double normal_force, double inverse_mt, RateSearch& search) const {
   if constexpr (Model::rotates) {
-    if (overlap <= 0.0) return;
     if constexpr (Model::has_tangential) {
       // Coulomb-tanh is a dashpot mu |F_n| k_s at small slip (the 2021 paper, appendix 1, eq. 29b).
-      const dem::ContactOscillator t = model.tangential.oscillator(m, r, overlap, normal_force);
+      const dem::ContactOscillator t = model.tangential.oscillator(constants.mass, constants.radius, overlap, normal_force);
       search.rates.tangential_omega_squared =
           std::max(search.rates.tangential_omega_squared, t.stiffness * inverse_mt);
       search.rates.tangential_beta = std::max(search.rates.tangential_beta, t.damping * inverse_mt);
@@ -448,6 +446,68 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double d2,
   if (search)
     note_pair_rates(model, constants, law_pair, gi, gj, overlap, vn, std::abs(r.normal_force), facts.inverse_slip_mass,
                     *search);
+}
+
+// add_grain_pair for the default contact, in three passes: the touching pairs' geometry and motion
+// gathered into arrays, every contact evaluated in SIMD lanes, and the forces, torques, energies and
+// rates added pair by pair (two pairs of a grain in one lane set would collide in its sums).
+void GranularPlate::add_planar_pairs(const PlanarLaw& model, const std::vector<PlanarLaw::Pair>& table,
+                                     std::size_t touching, bool damps, RateSearch* search) {
+  PlanarScratch& s = planar_;
+  for (auto* a : {&s.d2, &s.dx, &s.dy, &s.dvx, &s.dvy, &s.spin_i, &s.spin_j, &s.radius_i, &s.radius_j, &s.inertia_i,
+                  &s.inertia_j, &s.effective_radius, &s.damping, &s.reach, &s.inverse_mass, &s.distance, &s.nx, &s.ny,
+                  &s.closing_factor, &s.overlap, &s.normal_velocity, &s.spring, &s.dashpot, &s.tangential,
+                  &s.inverse_slip_mass, &s.reach_energy})
+    if (a->size() < touching) a->resize(touching);
+  for (std::size_t c = 0; c < touching; ++c) {
+    const auto [k, d2] = touching_[c];
+    const auto i = static_cast<std::size_t>(pairs_[k].i), j = static_cast<std::size_t>(pairs_[k].j);
+    const auto &gi = grains_[i], &gj = grains_[j];
+    s.d2[c] = d2, s.dx[c] = gi.x - gj.x, s.dy[c] = gi.y - gj.y;
+    s.dvx[c] = seen_[i].vx - seen_[j].vx, s.dvy[c] = seen_[i].vy - seen_[j].vy;
+    s.spin_i[c] = seen_[i].spin, s.spin_j[c] = seen_[j].spin;
+    s.radius_i[c] = gi.radius, s.radius_j[c] = gj.radius, s.inertia_i[c] = gi.inertia, s.inertia_j[c] = gj.inertia;
+    s.effective_radius[c] = table[k].normal.effective_radius, s.damping[c] = table[k].normal.damping;
+    s.reach[c] = pair_constants_[k].reach, s.inverse_mass[c] = pair_constants_[k].inverse_mass;
+    s.closing_factor[c] = pair_constants_[k].closing_factor;
+  }
+  evaluate_planar_contacts(model.normal, model.tangential, damps, contacts_.rotation,
+                           {s.d2.data(), s.dx.data(), s.dy.data(), s.dvx.data(), s.dvy.data(), s.spin_i.data(),
+                            s.spin_j.data(), s.radius_i.data(), s.radius_j.data(), s.inertia_i.data(),
+                            s.inertia_j.data(), s.effective_radius.data(), s.damping.data(), s.reach.data(),
+                            s.inverse_mass.data(), s.closing_factor.data()},
+                           {s.distance.data(), s.nx.data(), s.ny.data(), s.overlap.data(), s.normal_velocity.data(),
+                            s.spring.data(), s.dashpot.data(), s.tangential.data(), s.inverse_slip_mass.data(),
+                            s.reach_energy.data()},
+                           touching);
+  for (std::size_t c = 0; c < touching; ++c) {
+    const std::size_t k = touching_[c].pair;
+    const auto i = static_cast<std::size_t>(pairs_[k].i), j = static_cast<std::size_t>(pairs_[k].j);
+    const double nx = s.nx[c], ny = s.ny[c], overlap = s.overlap[c], spring = s.spring[c];
+    const double dashpot_force = -s.dashpot[c] * s.normal_velocity[c];
+    const double ft = s.tangential[c], fx = -ft * ny, fy = ft * nx;  // along t = (-n_y, n_x)
+    auto &ci = conservative_[i], &cj = conservative_[j];
+    ci.fx += spring * nx, ci.fy += spring * ny, cj.fx -= spring * nx, cj.fy -= spring * ny;
+    if (damps) {
+      auto &di = dashpot_[i], &dj = dashpot_[j];
+      di.fx += dashpot_force * nx, di.fy += dashpot_force * ny;
+      dj.fx -= dashpot_force * nx, dj.fy -= dashpot_force * ny;
+    }
+    auto &fi = friction_[i], &fj = friction_[j];
+    fi.fx += fx, fi.fy += fy, fj.fx -= fx, fj.fy -= fy;
+    const double arm_i = s.radius_i[c] - 0.5 * overlap, arm_j = s.radius_j[c] - 0.5 * overlap;
+    fi.torque -= arm_i * ft;
+    fj.torque -= arm_j * ft;
+    contact_energy_ += dem::HertzNormal::energy_of_force(spring, overlap);
+    auto& facts = pair_facts_[k];
+    facts.d2 = s.d2[c], facts.d = s.distance[c], facts.spring = spring, facts.dashpot = s.dashpot[c];
+    facts.inverse_slip_mass = s.inverse_slip_mass[c];
+    if (search) {
+      note_reach(pair_constants_[k], s.reach_energy[c], *search);
+      note_slip_rates(model, pair_constants_[k], table[k], grains_[i], grains_[j], overlap,
+                      std::abs(spring + dashpot_force), facts.inverse_slip_mass, *search);
+    }
+  }
 }
 
 // How far grain g presses into the deformed top edge at its contact point e [m] (> 0: touching).
@@ -590,10 +650,14 @@ void GranularPlate::compute_forces(double half_step, bool with_elastic, double s
         // (newmark_rk4 evaluates forces within its step; its limits are taken from its state afresh).
         RateSearch search;
         RateSearch* const rates = control_.scheme == Scheme::newmark_rk4 ? nullptr : &search;
-        for (std::size_t c = 0; c < touching; ++c) {
-          const auto [k, d2] = touching_[c];
-          add_grain_pair(model, pairs_[k], d2, pair_constants_[k], table[k], 2.0 * half_step, shear_[k],
-                         pair_facts_[k], damps, rates);
+        if constexpr (std::is_same_v<Model, PlanarLaw>) {
+          add_planar_pairs(model, table, touching, damps, rates);
+        } else {
+          for (std::size_t c = 0; c < touching; ++c) {
+            const auto [k, d2] = touching_[c];
+            add_grain_pair(model, pairs_[k], d2, pair_constants_[k], table[k], 2.0 * half_step, shear_[k],
+                           pair_facts_[k], damps, rates);
+          }
         }
         if (!rates) {
           step_rates_.reset();

@@ -294,5 +294,29 @@ TEST(TanhOverX, MatchesLongDoubleTanhToRoundOff) {
   EXPECT_TRUE(std::isnan(tanh_over_x(std::numeric_limits<double>::quiet_NaN())));
 }
 
+TEST(TanhOverX, TheLanesFormMatchesLongDoubleTanhToRoundOff) {
+  // Without a branch (both forms and a select, e^{2x} by exp_in_lanes): the same accuracy.
+  EXPECT_EQ(tanh_over_x_in_lanes(0.0), 1.0);
+  double worst = 0.0, at = 0.0;
+  for (double x = 1e-12; x < 40.0; x *= 1.00002) {
+    const auto exact = static_cast<double>(std::tanh(static_cast<long double>(x)) / static_cast<long double>(x));
+    if (const double error = std::abs(tanh_over_x_in_lanes(x) - exact) / exact; error > worst) worst = error, at = x;
+  }
+  EXPECT_LT(worst, 2.5 * std::numeric_limits<double>::epsilon()) << "at x = " << at;
+  EXPECT_DOUBLE_EQ(tanh_over_x_in_lanes(1e3), 1e-3);
+  EXPECT_TRUE(std::isnan(tanh_over_x_in_lanes(std::numeric_limits<double>::quiet_NaN())));
+}
+
+TEST(TanhOverX, TheLanesExponentialMatchesLongDoubleExpOverItsRange) {
+  // Its range in tanh_over_x_in_lanes: e^y for 1.25 <= y <= 40, and from 0 by its construction.
+  double worst = 0.0, at = 0.0;
+  for (double y = 0.0; y <= 40.0; y += 1.0 / 4096.0) {
+    const auto exact = static_cast<double>(std::exp(static_cast<long double>(y)));
+    if (const double error = std::abs(exp_in_lanes(y) - exact) / exact; error > worst) worst = error, at = y;
+  }
+  EXPECT_LT(worst, 2.0 * std::numeric_limits<double>::epsilon()) << "at y = " << at;
+  EXPECT_EQ(exp_in_lanes(0.0), 1.0);
+}
+
 }  // namespace
 }  // namespace sedwave::forward::dem

@@ -30,6 +30,7 @@
 #include "sedwave/forward/dem/contact/contact_model.hpp"
 #include "sedwave/forward/dem/critical_step.hpp"
 #include "sedwave/forward/interface/hex_packing.hpp"
+#include "sedwave/forward/interface/planar_contacts.hpp"
 #include "sedwave/forward/interface/side_walls.hpp"
 #include "sedwave/forward/plate/elastic_plate.hpp"
 
@@ -247,6 +248,8 @@ class GranularPlate {
   [[nodiscard]] long factorisations() const { return factorisations_; }
 
  private:
+  /// The grain contact whose forces add_planar_pairs evaluates in SIMD lanes.
+  using PlanarLaw = dem::ContactModel<dem::HertzNormal, dem::CoulombTanhFriction, dem::NoRolling>;
   struct Pair {
     int i;
     int j;
@@ -321,6 +324,10 @@ class GranularPlate {
   void add_grain_pair(const Model& model, const Pair& p, double d2, const PairConstants& constants,
                       const typename Model::Pair& law_pair, double dt, dem::Vec3& shear, PairFacts& facts,
                       bool damps, RateSearch* search);
+  /// The default grain contact (Hertz, Coulomb-tanh, no rolling law): add_grain_pair for the first
+  /// `touching` of touching_, their contacts evaluated in SIMD lanes (planar_contacts.hpp).
+  void add_planar_pairs(const PlanarLaw& model, const std::vector<PlanarLaw::Pair>& table, std::size_t touching,
+                        bool damps, RateSearch* search);
   /// 1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j (the inertias with rotation), a = r - overlap/2: a pair's
   /// slip's inverse mass.
   [[nodiscard]] double inverse_slip_mass(const PairConstants& constants, const Grain& gi, const Grain& gj,
@@ -328,7 +335,7 @@ class GranularPlate {
   /// arm^2/I: what turning adds to the inverse mass of a slip at `arm` from g's centre (0 with
   /// rotation off, where grains do not turn).
   [[nodiscard]] double turning_inverse_mass(const Grain& g, double arm) const {
-    return contacts_.rotation ? arm * arm / g.inertia : 0.0;
+    return contacts_.rotation ? interface::turning_inverse_mass(arm, g.inertia) : 0.0;
   }
   /// One touching or closing pair into `search`: its overlap and normal velocity (< 0: closing) and,
   /// where it touches and the law rotates, its normal force's magnitude and its slip's inverse mass.
@@ -336,6 +343,13 @@ class GranularPlate {
   void note_pair_rates(const Model& model, const PairConstants& constants, const typename Model::Pair& law_pair,
                        const Grain& gi, const Grain& gj, double overlap, double normal_velocity, double normal_force,
                        double inverse_mt, RateSearch& search) const;
+  /// A Hertz pair's reach_energy now into `search` (note_pair_rates' normal part for a Hertz law).
+  static void note_reach(const PairConstants& constants, double reach_now, RateSearch& search);
+  /// A touching pair's tangential and rolling rates into `search` (note_pair_rates' other part).
+  template <class Model>
+  void note_slip_rates(const Model& model, const PairConstants& constants, const typename Model::Pair& law_pair,
+                       const Grain& gi, const Grain& gj, double overlap, double normal_force, double inverse_mt,
+                       RateSearch& search) const;
   template <class Model>
   [[nodiscard]] dem::PairRates finish_rates(const Model& model, const RateSearch& search) const;
   /// Every listed pair's rates at the grains' positions and velocities now.
@@ -399,6 +413,14 @@ class GranularPlate {
     double approach;   ///< (v_i - v_j) . (x_i - x_j) < 0 at the velocities the forces see
   };
   std::vector<Closing> closing_;  ///< compute_forces' scratch: the listed pairs that close without touching
+  /// add_planar_pairs' scratch: the touching pairs' inputs and contacts, one array each.
+  struct PlanarScratch {
+    std::vector<double> d2, dx, dy, dvx, dvy, spin_i, spin_j, radius_i, radius_j, inertia_i, inertia_j;
+    std::vector<double> effective_radius, damping, reach, inverse_mass, closing_factor;
+    std::vector<double> distance, nx, ny, overlap, normal_velocity, spring, dashpot, tangential, inverse_slip_mass;
+    std::vector<double> reach_energy;
+  };
+  PlanarScratch planar_;
   /// The grain pairs' rates at the last force evaluation of a velocity-Verlet or multirate step (or
   /// of refresh_forces), at its positions and the velocities its forces saw; empty once the state was
   /// changed by hand (the *_mutable accessors, relax) until the next force evaluation.

@@ -37,9 +37,16 @@ struct CoulombTanhFriction {
   [[nodiscard]] Pair pair(double /*effective_mass*/, double /*r_i*/, double /*r_j*/) const { return {}; }
   [[nodiscard]] Vec3 force(const ContactPoint& /*c*/, const Pair& /*p*/, const Vec3& tangential_velocity,
                            double normal_force, double /*dt*/, Vec3& /*unused*/) const {
+    return -drag(norm(tangential_velocity), normal_force, [](double x) { return tanh_over_x(x); }) *
+           tangential_velocity;
+  }
+  /// The force's size over the slip speed, mu |F_n| tanh(k_s |v|)/|v|: the force is -drag v. tanh(x)/x
+  /// is `tanh_over_x_form`'s (tanh_over_x, or tanh_over_x_in_lanes in SIMD lanes).
+  template <class TanhOverX>
+  [[nodiscard]] double drag(double slip_speed, double normal_force, TanhOverX tanh_over_x_form) const {
     // tanh(k_s |v|)/|v| = k_s tanh(x)/x, continued to k_s at zero slip (no division by zero).
-    const double tanh_over_speed = velocity_scale * tanh_over_x(velocity_scale * norm(tangential_velocity));
-    return -(friction * std::abs(normal_force) * tanh_over_speed) * tangential_velocity;
+    const double tanh_over_speed = velocity_scale * tanh_over_x_form(velocity_scale * slip_speed);
+    return friction * std::abs(normal_force) * tanh_over_speed;
   }
   [[nodiscard]] ContactOscillator oscillator(double /*effective_mass*/, double /*radius*/, double /*overlap*/,
                                              double normal_force) const {
