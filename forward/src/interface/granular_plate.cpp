@@ -454,11 +454,7 @@ void GranularPlate::add_grain_pair(const Model& model, const Pair& p, double d2,
 void GranularPlate::add_planar_pairs(const PlanarLaw& model, const std::vector<PlanarLaw::Pair>& table,
                                      std::size_t touching, bool damps, RateSearch* search) {
   PlanarScratch& s = planar_;
-  for (auto* a : {&s.d2, &s.dx, &s.dy, &s.dvx, &s.dvy, &s.spin_i, &s.spin_j, &s.radius_i, &s.radius_j, &s.inertia_i,
-                  &s.inertia_j, &s.effective_radius, &s.damping, &s.reach, &s.inverse_mass, &s.distance, &s.nx, &s.ny,
-                  &s.closing_factor, &s.overlap, &s.normal_velocity, &s.spring, &s.dashpot, &s.tangential,
-                  &s.inverse_slip_mass, &s.reach_energy})
-    if (a->size() < touching) a->resize(touching);
+  s.hold(touching);
   for (std::size_t c = 0; c < touching; ++c) {
     const auto [k, d2] = touching_[c];
     const auto i = static_cast<std::size_t>(pairs_[k].i), j = static_cast<std::size_t>(pairs_[k].j);

@@ -419,6 +419,13 @@ class GranularPlate {
     std::vector<double> effective_radius, damping, reach, inverse_mass, closing_factor;
     std::vector<double> distance, nx, ny, overlap, normal_velocity, spring, dashpot, tangential, inverse_slip_mass;
     std::vector<double> reach_energy;
+    /// Every array at least n long (they only grow).
+    void hold(std::size_t n) {
+      for (auto* a : {&d2, &dx, &dy, &dvx, &dvy, &spin_i, &spin_j, &radius_i, &radius_j, &inertia_i, &inertia_j,
+                      &effective_radius, &damping, &reach, &inverse_mass, &closing_factor, &distance, &nx, &ny,
+                      &overlap, &normal_velocity, &spring, &dashpot, &tangential, &inverse_slip_mass, &reach_energy})
+        if (a->size() < n) a->resize(n);
+    }
   };
   PlanarScratch planar_;
   /// The grain pairs' rates at the last force evaluation of a velocity-Verlet or multirate step (or
